@@ -1,0 +1,276 @@
+"""Planar multibody model in natural coordinates (García de Jalón & Bayo, 1994).
+
+The coordinates q are the planar positions (x, z) of a few named points. A rigid body is
+described by two base points i, j; any other point of the body (its centre of mass, a joint)
+is the fixed linear combination
+
+    r = (1 - a/L) r_i + (a/L) r_j + (b/L) R90 (r_j - r_i)
+
+with (a, b) its coordinates in a frame at r_i whose x axis points to r_j, L = |r_j - r_i|
+and R90 the counter-clockwise quarter turn. Hence the mass matrix is constant:
+
+    M_body = m C(a_c, b_c)^T C(a_c, b_c) + (J_c / L^2) [[I, -I], [-I, I]]
+
+(m the mass, (a_c, b_c) the centre of mass, J_c the inertia about it). Constraints: the base
+distance (|r_j - r_i|^2 - L^2), each fixed point (two linear rows), each pair of coincident
+points (two linear rows). A point mass adds m I2 to its point.
+
+The kinematic state at touchdown (`STATE`) is mapped to (q, q') by segment kinematics
+(body.py frames); the strike point is placed at the origin, on the ground.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import casadi as ca
+import numpy as np
+
+from .body import Body
+
+# The touchdown state vector, SI: joint and trunk angles (rad; design.md section 2), the hip
+# velocity (m/s, x forward, z up) and absolute segment angular velocities (rad/s, CCW).
+STATE = ("trunk", "hip", "knee", "ankle", "hip_vx", "hip_vz",
+         "omega_trunk", "omega_thigh", "omega_shank", "omega_foot")
+STRIKES = {"heel": ("heel",), "forefoot": ("forefoot",), "flat": ("heel", "forefoot")}
+MODELS = ("leg", "shank-foot")
+
+R90 = np.array([[0.0, -1.0], [1.0, 0.0]])
+
+
+@dataclass(frozen=True)
+class Point:
+    """A coordinate point: `landmark` of the body frames (body.py) that carry it."""
+
+    name: str
+    landmark: str
+
+
+@dataclass(frozen=True)
+class RigidBody:
+    """A segment described by two base points and any number of points fixed in it."""
+
+    segment: str
+    base: tuple[str, str]
+    fixed: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class PointMass:
+    """A segment whose whole mass sits at one point (no inertia), e.g. the trunk at the hip."""
+
+    segment: str
+    point: str
+
+
+def segment_kinematics(x, body: Body):
+    """Origin, angle, origin velocity and angular velocity of each segment frame (SX).
+
+    The hip is at the origin here; positions are shifted afterwards. Thigh angle = hip - trunk,
+    shank = thigh - knee, foot = shank + ankle; the trunk leans forward (clockwise) by `trunk`.
+    """
+    s = dict(zip(STATE, ca.vertsplit(x)))
+    angle = {"trunk": -s["trunk"], "thigh": s["hip"] - s["trunk"]}
+    angle["shank"] = angle["thigh"] - s["knee"]
+    angle["foot"] = angle["shank"] + s["ankle"]
+    omega = {k: s["omega_" + k] for k in ("trunk", "thigh", "shank", "foot")}
+    hip = ca.vertcat(0, 0), ca.vertcat(s["hip_vx"], s["hip_vz"])
+    frames = {"trunk": hip, "thigh": hip}
+    for child, parent, joint in (("shank", "thigh", "knee"), ("foot", "shank", "ankle")):
+        frames[child] = _landmark(frames[parent], angle[parent], omega[parent],
+                                  body[parent].landmarks[joint])
+    return {k: (frames[k][0], angle[k], frames[k][1], omega[k]) for k in frames if k in body.segments}
+
+
+def _landmark(frame, angle, omega, local):
+    """World position and velocity of a point given in a segment frame."""
+    origin, velocity = frame
+    rot = ca.vertcat(ca.horzcat(ca.cos(angle), -ca.sin(angle)),
+                     ca.horzcat(ca.sin(angle), ca.cos(angle)))
+    arm = rot @ ca.DM(local)
+    return origin + arm, velocity + omega * ca.vertcat(-arm[1], arm[0])
+
+
+class Model:
+    """A planar model in natural coordinates, built from a Body and a description.
+
+    `points` order the coordinates: q = [x_0, z_0, x_1, z_1, ...].
+    """
+
+    def __init__(self, body: Body, points, bodies, point_masses=(), coincident=(), trunk=None):
+        self.body = body
+        self.points = tuple(points)
+        self.bodies = tuple(bodies)
+        self.point_masses = tuple(point_masses)
+        self.coincident = tuple(coincident)
+        self.index = {p.name: k for k, p in enumerate(self.points)}
+        self.n = 2 * len(self.points)
+        self.trunk = trunk  # segment whose velocity change is reported as dv_trunk
+        self._check()
+        self.M = self._mass_matrix()
+        self.M_inv = np.linalg.inv(self.M)
+
+    # -- description -----------------------------------------------------------------
+    def _check(self):
+        names = [p.name for p in self.points]
+        if len(set(names)) != len(names):
+            raise ValueError(f"duplicate point names in {names}")
+        used = {p for b in self.bodies for p in b.base + b.fixed}
+        used |= {pm.point for pm in self.point_masses} | {p for c in self.coincident for p in c}
+        unknown = used - set(names)
+        if unknown:
+            raise ValueError(f"the model refers to undefined points {sorted(unknown)}")
+        carried = {p for b in self.bodies for p in b.base} | {pm.point for pm in self.point_masses}
+        massless = [n for n in names if n not in carried]
+        if massless:
+            raise ValueError(f"points {massless} carry no mass (the mass matrix would be singular): "
+                             "make each one a base point of a body or give it a point mass")
+        for b in self.bodies:
+            if self._local(b, b.base[0]) == self._local(b, b.base[1]):
+                raise ValueError(f"{b.segment}: base points coincide, the frame is undefined")
+
+    @property
+    def segments(self) -> tuple[str, ...]:
+        return tuple(b.segment for b in self.bodies) + tuple(pm.segment for pm in self.point_masses)
+
+    def point(self, name: str) -> Point:
+        return self.points[self.index[name]]
+
+    def cols(self, name: str) -> slice:
+        k = 2 * self.index[name]
+        return slice(k, k + 2)
+
+    def _local(self, b: RigidBody, point: str):
+        return self.body[b.segment].landmarks[self.point(point).landmark]
+
+    def basis(self, b: RigidBody, local) -> np.ndarray:
+        """C (2x4): world position of a body-frame point from the base points [r_i; r_j]."""
+        ri, rj = (np.asarray(self._local(b, p), float) for p in b.base)
+        length = np.linalg.norm(rj - ri)
+        u = (rj - ri) / length
+        d = np.asarray(local, float) - ri
+        a, c = d @ u, d @ (R90 @ u)
+        eye = np.eye(2)
+        return np.hstack([(1 - a / length) * eye - (c / length) * R90,
+                          (a / length) * eye + (c / length) * R90])
+
+    def scatter(self, block: np.ndarray, points) -> np.ndarray:
+        """Place columns given for `points` (2 each) into a full-width matrix."""
+        out = np.zeros((block.shape[0], self.n))
+        for k, p in enumerate(points):
+            out[:, self.cols(p)] += block[:, 2 * k:2 * k + 2]
+        return out
+
+    # -- mass ------------------------------------------------------------------------
+    def _mass_matrix(self) -> np.ndarray:
+        M = np.zeros((self.n, self.n))
+        for b in self.bodies:
+            seg = self.body[b.segment]
+            C = self.scatter(self.basis(b, seg.com), b.base)
+            ri, rj = (np.asarray(self._local(b, p), float) for p in b.base)
+            P = self.scatter(np.eye(4), b.base)  # q -> [r_i; r_j]
+            spin = np.kron(np.array([[1.0, -1.0], [-1.0, 1.0]]), np.eye(2))
+            M += seg.mass * C.T @ C + seg.inertia_com / np.sum((rj - ri) ** 2) * P.T @ spin @ P
+        for pm in self.point_masses:
+            M[self.cols(pm.point), self.cols(pm.point)] += self.body[pm.segment].mass * np.eye(2)
+        eig = np.linalg.eigvalsh(M)
+        if eig[0] <= 1e-12 * max(eig[-1], 1e-300):
+            raise ValueError(f"the mass matrix is singular (eigenvalues {eig[0]:.3g} .. {eig[-1]:.3g}): "
+                             "each segment needs a mass and an inertia about its centre of mass > 0")
+        return M
+
+    def com_matrix(self, segment: str) -> np.ndarray:
+        """(2 x n) map from q (or q') to the segment's centre of mass (or its velocity)."""
+        for b in self.bodies:
+            if b.segment == segment:
+                return self.scatter(self.basis(b, self.body[segment].com), b.base)
+        for pm in self.point_masses:
+            if pm.segment == segment:
+                return self.scatter(np.eye(2), [pm.point])
+        raise KeyError(f"the model has no segment {segment!r}")
+
+    @property
+    def momentum_matrix(self) -> np.ndarray:
+        """(2 x n) map from q' to the total linear momentum (kg m/s)."""
+        return sum(self.body[s].mass * self.com_matrix(s) for s in self.segments)
+
+    @property
+    def mass(self) -> float:
+        return sum(self.body[s].mass for s in self.segments)
+
+    # -- constraints -----------------------------------------------------------------
+    def constraints(self, q) -> ca.SX:
+        """Body constraints phi_b(q) = 0 (distances, fixed points, coincident points)."""
+        rows = []
+        for b in self.bodies:
+            ri, rj = (q[self.cols(p)] for p in b.base)
+            li, lj = (np.asarray(self._local(b, p), float) for p in b.base)
+            rows.append(ca.sumsqr(rj - ri) - float(np.sum((lj - li) ** 2)))
+            for p in b.fixed:
+                C = self.basis(b, self._local(b, p))
+                rows.append(q[self.cols(p)] - ca.DM(C) @ ca.vertcat(ri, rj))
+        for a, c in self.coincident:
+            rows.append(q[self.cols(a)] - q[self.cols(c)])
+        return ca.vertcat(*rows)
+
+    def constraint_jacobian(self, q) -> ca.SX:
+        """Phi_b,q(q): the Jacobian of the body constraints, for a symbolic or numeric q."""
+        if not hasattr(self, "_jacobian"):
+            qs = ca.SX.sym("q", self.n)
+            self._jacobian = ca.Function("Phi_b_q", [qs], [ca.jacobian(self.constraints(qs), qs)])
+        return self._jacobian(q)
+
+    def contact_rows(self, points, slope: float, tangential=None) -> np.ndarray:
+        """Constant Jacobian rows [t; n] of each contact point held on a ground of `slope` rad.
+
+        `tangential` lists the points whose tangential row is kept (default: all).
+        """
+        t = np.array([np.cos(slope), np.sin(slope)])
+        n = np.array([-np.sin(slope), np.cos(slope)])
+        keep = points if tangential is None else tangential
+        rows = []
+        for p in points:
+            if p in keep:
+                rows.append(self.scatter(t[None, :], [p]))
+            rows.append(self.scatter(n[None, :], [p]))
+        return np.vstack(rows)
+
+    # -- state -----------------------------------------------------------------------
+    def state(self, x, strike_point: str):
+        """(q, q') as SX of the touchdown state x, with `strike_point` at the origin."""
+        frames = segment_kinematics(x, self.body)
+        pos, vel = [], []
+        for p in self.points:
+            seg = next(s for s in ("foot", "shank", "thigh", "trunk")
+                       if s in frames and p.landmark in self.body[s].landmarks)
+            origin, angle, velocity, omega = frames[seg]
+            r, v = _landmark((origin, velocity), angle, omega, self.body[seg].landmarks[p.landmark])
+            pos.append(r)
+            vel.append(v)
+        q = ca.vertcat(*pos)
+        shift = q[self.cols(strike_point)]
+        return q - ca.repmat(shift, len(self.points), 1), ca.vertcat(*vel)
+
+    def kinetic_energy(self, qd):
+        return 0.5 * ca.bilin(ca.DM(self.M), qd, qd)
+
+
+def build_model(body: Body, kind: str = "leg") -> Model:
+    """The paper's leg (foot, shank, thigh, trunk point mass at the hip) or shank + foot.
+
+    Leg: points hip, knee, ankle, heel, forefoot (10 coordinates); thigh hip->knee, shank
+    knee->ankle, foot heel->forefoot with the ankle fixed in it; 5 constraints, 5 degrees of
+    freedom. Shank + foot drops the hip and the thigh's mass (8 coordinates, 4 degrees of
+    freedom); the thigh's length still carries the hip's motion to the knee.
+    """
+    foot = RigidBody("foot", ("heel", "forefoot"), ("ankle",))
+    shank = RigidBody("shank", ("knee", "ankle"))
+    if kind == "leg":
+        names = ("hip", "knee", "ankle", "heel", "forefoot")
+        bodies = (RigidBody("thigh", ("hip", "knee")), shank, foot)
+        return Model(body, [Point(n, n) for n in names], bodies,
+                     [PointMass("trunk", "hip")], trunk="trunk")
+    if kind == "shank-foot":
+        names = ("knee", "ankle", "heel", "forefoot")
+        return Model(body, [Point(n, n) for n in names], (shank, foot))
+    raise ValueError(f"unknown model {kind!r}: expected one of {', '.join(MODELS)}")

@@ -1,0 +1,271 @@
+"""Scene files (TOML): what is studied, validated at the boundary.
+
+Every error is a SceneError naming the key (`touchdown.angles_deg.knee`) and what is wrong
+with it; nothing invalid reaches the mechanics. Degrees at this edge, SI inside.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from . import body as bodies
+from .body import Body, Segment
+from .model import MODELS, STATE, STRIKES
+
+# The segments each model needs; a segment a model does not use may be given and is ignored.
+# Shank + foot keeps the thigh's geometry: the touchdown state moves the knee through it.
+MODEL_SEGMENTS = {"leg": ("trunk", "thigh", "shank", "foot"),
+                  "shank-foot": ("thigh", "shank", "foot")}
+ANGLES = ("trunk", "hip", "knee", "ankle")
+RATES = ("trunk", "thigh", "shank", "foot")
+
+
+class SceneError(ValueError):
+    """A scene that cannot be used: `key` names the offending entry."""
+
+    def __init__(self, key: str, message: str):
+        self.key = key
+        super().__init__(f"{key}: {message}" if key else message)
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A validated scene: the body, the model to build and the touchdown to study."""
+
+    name: str
+    model: str
+    body: Body
+    strike: str
+    state: np.ndarray  # model.STATE, SI
+    friction: float
+    slope: float  # rad, positive uphill
+    path: str = ""
+    notes: tuple[str, ...] = field(default=())  # what the loader did that a user should know
+
+    @property
+    def touchdown(self) -> dict:
+        """The touchdown in the scene file's schema (degrees)."""
+        s = dict(zip(STATE, self.state))
+        return {"strike": self.strike,
+                "hip_velocity": [s["hip_vx"], s["hip_vz"]],
+                "angles_deg": {k: math.degrees(s[k]) for k in ANGLES},
+                "angular_velocity_dps": {k: math.degrees(s["omega_" + k]) for k in RATES}}
+
+
+def load(path) -> Scene:
+    """Read and validate a scene file."""
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except OSError as err:
+        raise SceneError("", f"cannot read {path}: {err.strerror}") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise SceneError("", f"{path} is not valid TOML: {err}") from None
+    return parse(data, str(path))
+
+
+def parse(data: dict, path: str = "") -> Scene:
+    """Validate a scene given as a dictionary (the parsed TOML)."""
+    _keys(data, "", {"scene", "body", "touchdown", "ground"}, ("scene", "touchdown", "ground"))
+    scene = _table(data, "scene", {"name", "model"}, {"name"})
+    name = _string(scene, "name", "scene")
+    model = _choice(scene.get("model", "leg"), "scene.model", MODELS)
+    body, notes = _body(data.get("body", {}), model)
+    strike, state = _touchdown(_table(data, "touchdown", {"strike", "hip_velocity", "angles_deg",
+                                                          "angular_velocity_dps"},
+                                      {"strike", "hip_velocity", "angles_deg",
+                                       "angular_velocity_dps"}))
+    ground = _table(data, "ground", {"friction", "slope_deg"}, {"friction"})
+    friction = _number(ground, "friction", "ground", low=0.0, low_open=True)
+    slope = _number(ground, "slope_deg", "ground", default=0.0, low=-60.0, high=60.0)
+    return Scene(name, model, body, strike, state, friction, math.radians(slope), path, notes)
+
+
+# -- body -------------------------------------------------------------------------------
+
+SEGMENT_KEYS = {
+    "trunk": {"mass"},
+    "thigh": {"mass", "length", "com", "inertia_proximal", "inertia_com"},
+    "shank": {"mass", "length", "com", "inertia_proximal", "inertia_com"},
+    "foot": {"mass", "com", "inertia_com", "inertia_proximal", "heel", "forefoot"},
+}
+
+
+def _body(data, model) -> tuple[Body, tuple[str, ...]]:
+    if not isinstance(data, dict):
+        raise SceneError("body", "must be a table")
+    _keys(data, "body", {"preset", "mass", "height", "sex", *bodies.SEGMENTS}, set())
+    notes = []
+    if "preset" in data:
+        for key in ("mass", "height", "sex"):
+            if key in data:
+                raise SceneError(f"body.{key}", "give either body.preset or body.mass/height, not both")
+        _choice(data["preset"], "body.preset", ("paper",))
+        base = bodies.paper_body()
+    elif "mass" in data or "height" in data:
+        mass = _number(data, "mass", "body", low=1.0, high=500.0)
+        height = _number(data, "height", "body", low=0.5, high=2.5)
+        sex = _choice(data.get("sex", "male"), "body.sex", tuple(bodies.DE_LEVA))
+        base = bodies.scaled_body(mass, height, sex)
+    else:
+        base = None
+    segments = {}
+    for name in bodies.SEGMENTS:
+        given = data.get(name)
+        if given is not None and not isinstance(given, dict):
+            raise SceneError(f"body.{name}", "must be a table")
+        if name not in MODEL_SEGMENTS[model]:
+            if given is not None:
+                notes.append(f"body.{name} is not part of model {model!r} and was ignored")
+            continue
+        if given is None and base is None:
+            raise SceneError(f"body.{name}", f"missing (model {model!r} needs it; or give body.preset "
+                                             "or body.mass and body.height)")
+        segments[name] = _segment(name, given or {}, base[name] if base else None)
+    source = base.source if base else "scene file"
+    if base and any(name in data for name in bodies.SEGMENTS):
+        source += ", with segments from the scene file"
+    return Body(segments, source), tuple(notes)
+
+
+def _segment(name, data, base: Segment | None) -> Segment:
+    where = f"body.{name}"
+    _keys(data, where, SEGMENT_KEYS[name], set())
+    if "inertia_proximal" in data and "inertia_com" in data:
+        raise SceneError(f"{where}.inertia_com", "give inertia_proximal or inertia_com, not both")
+    values = _segment_values(base) if base else {}
+    if {"inertia_proximal", "inertia_com"} & set(data):
+        values.pop("inertia_com", None)
+    values.update(data)
+    required = SEGMENT_KEYS[name] - {"inertia_proximal", "inertia_com"}
+    for key in sorted(required):
+        if key not in values:
+            raise SceneError(f"{where}.{key}", "missing")
+    if name != "trunk" and not {"inertia_proximal", "inertia_com"} & set(values):
+        raise SceneError(f"{where}.inertia_com", "missing (give inertia_com or inertia_proximal)")
+    mass = _number(values, "mass", where, low=0.0, low_open=True)
+    if name == "trunk":
+        return bodies.trunk(mass)
+    if name == "foot":
+        com = _pair(values, "com", where)
+        heel, forefoot = _pair(values, "heel", where), _pair(values, "forefoot", where)
+        if not heel[0] < forefoot[0]:
+            raise SceneError(f"{where}.heel", "must lie behind the forefoot (smaller x in the foot frame)")
+        proximal = float(np.dot(com, com))
+    else:
+        length = _number(values, "length", where, low=0.0, low_open=True)
+        com = _number(values, "com", where, low=0.0, high=length)
+        proximal = com**2
+    if "inertia_proximal" in values:
+        inertia = _number(values, "inertia_proximal", where, low=0.0, low_open=True) - mass * proximal
+        if inertia <= 0:
+            raise SceneError(f"{where}.inertia_proximal",
+                             f"must exceed mass * distance^2 to the centre of mass "
+                             f"({mass * proximal:.4g} kg m^2): the inertia about the centre of mass "
+                             f"would be {inertia:.3g}")
+    else:
+        inertia = _number(values, "inertia_com", where, low=0.0, low_open=True)
+    if name == "foot":
+        return bodies.foot(mass, com, inertia, heel, forefoot)
+    return bodies.bar(name, mass, length, com, inertia)
+
+
+def _segment_values(seg: Segment) -> dict:
+    """A segment's data in the scene file's keys."""
+    if seg.name == "trunk":
+        return {"mass": seg.mass}
+    if seg.name == "foot":
+        return {"mass": seg.mass, "com": list(seg.com), "inertia_com": seg.inertia_com,
+                "heel": list(seg.landmarks["heel"]), "forefoot": list(seg.landmarks["forefoot"])}
+    return {"mass": seg.mass, "length": seg.length, "com": -seg.com[1], "inertia_com": seg.inertia_com}
+
+
+# -- touchdown --------------------------------------------------------------------------
+
+def _touchdown(data) -> tuple[str, np.ndarray]:
+    strike = _choice(data["strike"], "touchdown.strike", tuple(STRIKES))
+    velocity = _pair(data, "hip_velocity", "touchdown", limit=30.0)
+    angles = _table(data, "angles_deg", set(ANGLES), set(ANGLES), "touchdown")
+    rates = _table(data, "angular_velocity_dps", set(RATES), set(RATES) - {"trunk"}, "touchdown")
+    where_a, where_r = "touchdown.angles_deg", "touchdown.angular_velocity_dps"
+    a = {k: math.radians(_number(angles, k, where_a, low=-180.0, high=180.0)) for k in ANGLES}
+    w = {k: math.radians(_number(rates, k, where_r, default=0.0, low=-5000.0, high=5000.0))
+         for k in RATES}
+    values = {**a, "hip_vx": velocity[0], "hip_vz": velocity[1],
+              **{"omega_" + k: v for k, v in w.items()}}
+    return strike, np.array([values[k] for k in STATE])
+
+
+# -- primitives -------------------------------------------------------------------------
+
+def _keys(data: dict, where: str, allowed: set, required):
+    prefix = f"{where}." if where else ""
+    for key in data:
+        if key not in allowed:
+            close = difflib.get_close_matches(key, sorted(allowed), n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else \
+                f" (expected one of: {', '.join(sorted(allowed))})"
+            raise SceneError(prefix + key, "unknown key" + hint)
+    for key in required if isinstance(required, tuple) else sorted(required):
+        if key not in data:
+            raise SceneError(prefix + key, "missing")
+
+
+def _table(data: dict, key: str, allowed: set, required: set, where: str = "") -> dict:
+    full = f"{where}.{key}" if where else key
+    value = data.get(key)
+    if not isinstance(value, dict):
+        raise SceneError(full, "missing" if value is None else
+                         f"must be a table, not {type(value).__name__}")
+    _keys(value, full, allowed, required)
+    return value
+
+
+def _number(data, key, where, default=None, low=-math.inf, high=math.inf, low_open=False) -> float:
+    return _value(data.get(key, default), f"{where}.{key}", low, high, low_open)
+
+
+def _value(value, full, low=-math.inf, high=math.inf, low_open=False) -> float:
+    if value is None:
+        raise SceneError(full, "missing")
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise SceneError(full, f"must be a number, not {type(value).__name__} {value!r}")
+    value = float(value)
+    if not math.isfinite(value):
+        raise SceneError(full, f"must be finite, not {value}")
+    if value < low or (low_open and value == low) or value > high:
+        bound = f"> {low:g}" if low_open and high == math.inf else \
+            f"between {low:g} and {high:g}" if high != math.inf else f">= {low:g}"
+        raise SceneError(full, f"must be {bound}, not {value:g}")
+    return value
+
+
+def _pair(data, key, where, limit=math.inf) -> tuple[float, float]:
+    full = f"{where}.{key}"
+    value = data.get(key)
+    if not isinstance(value, list) or len(value) != 2:
+        raise SceneError(full, f"must be a pair [x, z], not {value!r}")
+    return tuple(_value(v, f"{full}[{i}]", low=-limit, high=limit) for i, v in enumerate(value))
+
+
+def _string(data, key, where) -> str:
+    value = data.get(key)
+    if not isinstance(value, str) or not value.strip():
+        raise SceneError(f"{where}.{key}", f"must be a non-empty string, not {value!r}")
+    return value
+
+
+def _choice(value, key, choices) -> str:
+    if value not in choices:
+        close = difflib.get_close_matches(str(value), choices, n=1)
+        hint = f" (did you mean {close[0]!r}?)" if close else ""
+        raise SceneError(key, f"must be one of {', '.join(choices)}, not {value!r}{hint}")
+    return value

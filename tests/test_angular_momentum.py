@@ -1,0 +1,25 @@
+"""The projection equals the angular-momentum impact map (seed eq. 3) for one contact point."""
+
+import casadi as ca
+import numpy as np
+import pytest
+
+from formopt import Impact, angular_momentum_impact, build_model
+
+from conftest import random_states, split_leg
+
+
+@pytest.mark.parametrize("kind", ["leg", "shank-foot", "split-leg"])
+@pytest.mark.parametrize("strike", ["heel", "forefoot"])
+def test_projection_equals_angular_momentum(body, kind, strike):
+    model = split_leg(body) if kind == "split-leg" else build_model(body, kind)
+    impact = Impact(model, strike)
+    for x in random_states(30, seed=7, strike=strike):
+        r = impact(x)
+        q, qd = model.state(ca.DM(x), strike)
+        q = np.asarray(ca.evalf(q), float).ravel()
+        qd_plus = angular_momentum_impact(model, q, r.qd_minus, strike)
+        scale = np.max(np.abs(r.qd_minus))
+        assert np.max(np.abs(qd_plus - r.qd_plus)) <= 1e-9 * scale
+        T_a = 0.5 * qd_plus @ model.M @ qd_plus
+        assert abs((r.T - T_a) - r.T_c) <= 1e-9 * r.T

@@ -1,0 +1,97 @@
+"""Invariants of the projection (design.md section 5) over random touchdowns."""
+
+import casadi as ca
+import numpy as np
+import pytest
+
+from formopt import Impact, build_model
+from formopt.model import STRIKES
+
+from conftest import random_states, split_leg
+
+
+def numeric_projection(model, q, points, slope):
+    """P_c and Phi_q at q, assembled in numpy from the model's pieces."""
+    Phi = np.vstack([np.asarray(model.constraint_jacobian(q), float),
+                     model.contact_rows(points, slope)])
+    G = Phi @ model.M_inv @ Phi.T
+    Pc = model.M_inv @ Phi.T @ np.linalg.pinv(G, rcond=1e-12) @ Phi
+    return Pc, Phi
+
+
+@pytest.mark.parametrize("kind", ["leg", "shank-foot"])
+@pytest.mark.parametrize("strike", ["heel", "forefoot", "flat"])
+@pytest.mark.parametrize("slope", [0.0, np.radians(-10.0), np.radians(12.0)])
+def test_energy_split_and_projection(body, kind, strike, slope):
+    model = build_model(body, kind)
+    impact = Impact(model, strike, slope)
+    points = STRIKES[strike]
+    for x in random_states(25, strike=strike, slope=slope):
+        r = impact(x)
+        assert r.T_c >= 0.0
+        assert abs(r.T_c + r.T_a - r.T) <= 1e-10 * r.T
+        q, _ = model.state(ca.DM(x), points[0])
+        Pc, Phi = numeric_projection(model, np.asarray(ca.evalf(q), float).ravel(), points, slope)
+        Pa = np.eye(model.n) - Pc
+        assert np.allclose(Pa @ Pa, Pa, atol=1e-10)
+        # every active constraint holds after the impact, velocities only move along P_c
+        assert np.max(np.abs(Phi @ r.qd_plus)) <= 1e-10 * np.max(np.abs(r.qd_minus))
+        assert np.allclose(Pa @ r.qd_minus, r.qd_plus, atol=1e-10)
+        assert abs(0.5 * r.qd_minus @ Pc.T @ model.M @ Pc @ r.qd_minus - r.T_c) <= 1e-9 * r.T
+
+
+def test_energy_is_never_created(leg):
+    for strike in ("heel", "forefoot"):
+        results = [Impact(leg, strike)(x) for x in random_states(200, strike=strike)]
+        assert all(r.T_a <= r.T * (1 + 1e-12) for r in results)
+
+
+@pytest.mark.parametrize("strike", ["heel", "forefoot", "flat"])
+def test_independent_of_the_natural_coordinates(body, leg, strike):
+    """The same body in other natural coordinates gives the same indicators."""
+    other = split_leg(body)
+    assert other.n == 12 and leg.n == 10
+    a, b = Impact(leg, strike), Impact(other, strike)
+    for x in random_states(20, strike=strike):
+        ra, rb = a(x), b(x)
+        assert abs(ra.T_c - rb.T_c) <= 1e-10 * ra.T
+        assert abs(ra.T - rb.T) <= 1e-10 * ra.T
+        for p in ra.impulse:
+            assert np.allclose(ra.impulse[p], rb.impulse[p], rtol=1e-9, atol=1e-10)
+        assert np.allclose(ra.dv_trunk, rb.dv_trunk, atol=1e-10)
+        assert np.allclose(ra.dv_com, rb.dv_com, atol=1e-10)
+
+
+def test_mass_matrix_reproduces_the_bar_formula(body, leg):
+    """design.md's 2x2 block for a bar (thigh) inside the assembled matrix."""
+    thigh = body["thigh"]
+    m, L, c, Ii = thigh.mass, thigh.length, -thigh.com[1], thigh.inertia_proximal
+    block = np.array([[m - 2 * m * c / L + Ii / L**2, m * c / L - Ii / L**2],
+                      [m * c / L - Ii / L**2, Ii / L**2]])
+    trunk = body["trunk"].mass
+    expected_hip = block[0, 0] + trunk
+    M = leg.M
+    hip, knee = leg.cols("hip"), leg.cols("knee")
+    assert np.allclose(M[hip, hip], expected_hip * np.eye(2))
+    assert np.allclose(M[hip, knee], block[0, 1] * np.eye(2))
+    assert np.allclose(M, M.T) and np.all(np.linalg.eigvalsh(M) > 0)
+
+
+def test_kinetic_energy_matches_segment_sums(body, leg):
+    """T from the constant mass matrix equals the sum of 1/2 m v^2 + 1/2 J w^2 per segment."""
+    x = random_states(1)[0]
+    r = Impact(leg, "forefoot")(x)
+    qd = r.qd_minus
+    w = {"thigh": x[7], "shank": x[8], "foot": x[9]}
+    T = 0.5 * body["trunk"].mass * qd[leg.cols("hip")] @ qd[leg.cols("hip")]
+    for seg in ("thigh", "shank", "foot"):
+        v = leg.com_matrix(seg) @ qd
+        T += 0.5 * body[seg].mass * v @ v + 0.5 * body[seg].inertia_com * w[seg] ** 2
+    assert abs(T - r.T) <= 1e-12 * T
+
+
+def test_mu_c_two_ways(leg):
+    for strike in STRIKES:
+        for x in random_states(20, strike=strike):
+            r = Impact(leg, strike)(x)
+            assert abs(r.mu_c - r.mu_c_momentum) <= 1e-8 * max(1.0, r.mu_c)
