@@ -28,6 +28,7 @@ from dataclasses import asdict, dataclass
 import casadi as ca
 import numpy as np
 
+from .compiled import Compiled
 from .model import STATE, STRIKES, Model, build_model
 # Ill-conditioned beyond this: results lose more than 6 of 16 digits.
 CONDITION_LIMIT = 1e10
@@ -51,7 +52,7 @@ def projection(model: Model, q, qd, contact_jacobian):
             "n_body": Phi_b.shape[0]}
 
 
-def impact_function(model: Model, strike: str, slope: float = 0.0) -> ca.Function:
+def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None) -> ca.Function:
     """CasADi Function of the touchdown state x (model.STATE, SI) -> every impact indicator.
 
     Outputs: T, T_c, T_a (J); qd_minus, qd_plus (natural coordinates, m/s); impulse
@@ -59,6 +60,7 @@ def impact_function(model: Model, strike: str, slope: float = 0.0) -> ca.Functio
     mu_momentum_signed; dv_trunk, dv_com ([x, z] m/s; dv_trunk is zero for a model without a
     trunk); approach (normal velocity of each strike point, m/s, < 0 when it approaches);
     clearance (height of the other foot point above the ground, m); G (Phi_q M^-1 Phi_q^T).
+    `outputs` keeps only the named ones (the generated code then holds only what they need).
     """
     points = STRIKES[strike]
     t, n = ground_axes(slope)
@@ -79,7 +81,7 @@ def impact_function(model: Model, strike: str, slope: float = 0.0) -> ca.Functio
     momentum = ca.DM(model.momentum_matrix) @ dqd
     trunk = ca.DM(model.com_matrix(model.trunk)) @ dqd if model.trunk else ca.DM.zeros(2)
     other = "heel" if points == ("forefoot",) else "forefoot"
-    outputs = {
+    indicators = {
         "T": model.kinetic_energy(qd),
         "T_c": imp["T_c"],
         "T_a": model.kinetic_energy(imp["qd_plus"]),
@@ -95,7 +97,12 @@ def impact_function(model: Model, strike: str, slope: float = 0.0) -> ca.Functio
         "clearance": ca.dot(q[model.cols(other)], n),
         "G": imp["G"],
     }
-    return ca.Function(f"impact_{strike}", [x], list(outputs.values()), ["x"], list(outputs))
+    if outputs is not None:
+        unknown = set(outputs) - set(indicators)
+        if unknown:
+            raise ValueError(f"unknown impact outputs {sorted(unknown)}: expected {list(indicators)}")
+        indicators = {k: indicators[k] for k in outputs}
+    return ca.Function(f"impact_{strike}", [x], list(indicators.values()), ["x"], list(indicators))
 
 
 @dataclass(frozen=True)
@@ -140,18 +147,26 @@ class Impact:
     `Impact(...)(x)` evaluates it and checks every assumption, returning an ImpactResult.
     """
 
-    def __init__(self, model: Model, strike: str, slope: float = 0.0, friction: float = 0.8):
+    def __init__(self, model: Model, strike: str, slope: float = 0.0, friction: float = 0.8,
+                 compiled: bool = False):
         if strike not in STRIKES:
             raise ValueError(f"unknown strike {strike!r}: expected one of {', '.join(STRIKES)}")
         self.model, self.strike, self.slope, self.friction = model, strike, slope, friction
         self.function = impact_function(model, strike, slope)
+        self._compiled = Compiled(self.function) if compiled else None
+
+    def evaluate(self, x) -> dict[str, np.ndarray]:
+        """Every output of `function` at x, unchecked (the fast path; compiled if asked)."""
+        if self._compiled is not None:
+            return self._compiled(x)
+        return {k: v.full() for k, v in zip(self.function.name_out(), self.function.call([x]))}
 
     def __call__(self, x) -> ImpactResult:
         x = np.asarray(x, float).reshape(-1)
         if x.shape != (len(STATE),) or not np.all(np.isfinite(x)):
             raise ValueError(f"the touchdown state needs {len(STATE)} finite values {STATE}, got {x}")
-        raw = self.function.call({"x": x})
-        condition = float(np.linalg.cond(np.asarray(raw.pop("G"), float)))
+        raw = self.evaluate(x)
+        condition = float(np.linalg.cond(raw.pop("G")))
         out = {k: np.asarray(v, float).ravel() for k, v in raw.items()}
         out.update({k: float(v[0]) for k, v in out.items() if v.size == 1})
         points = STRIKES[self.strike]
