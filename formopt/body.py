@@ -6,8 +6,12 @@ segment's absolute angle (counter-clockwise positive, x forward, z up):
 - thigh, shank: the distal joint is at (0, -length), the centre of mass at (0, -com);
 - foot: origin at the ankle, x along the sole toward the toes, z up; heel and forefoot
   are points of this frame;
-- trunk: origin at the hip, the trunk's axis along +z; a point mass at the hip unless
-  it has a length and an inertia.
+- trunk (head, arms and trunk): origin at the hip, the trunk's axis along +z up to the
+  shoulder at (0, length), the centre of mass at (0, com);
+- swing_leg: the other leg, a point mass at the hip.
+
+The paper's leg lumps trunk and swing leg into one point mass at the hip; the rigid-trunk
+model ("leg-trunk") needs the trunk's length, centre of mass and inertia.
 
 Units: kg, m, kg m^2.
 """
@@ -18,7 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-SEGMENTS = ("trunk", "thigh", "shank", "foot")
+SEGMENTS = ("trunk", "swing_leg", "thigh", "shank", "foot")
 
 
 @dataclass(frozen=True)
@@ -72,9 +76,35 @@ def foot(mass: float, com, inertia_com: float, heel, forefoot) -> Segment:
                     "forefoot": (float(forefoot[0]), float(forefoot[1]))})
 
 
-def trunk(mass: float, com: float = 0.0, inertia_com: float = 0.0) -> Segment:
-    """The trunk: a point mass at the hip unless `com` (above the hip) and inertia are given."""
-    return Segment("trunk", mass, (0.0, com), inertia_com, {"hip": (0.0, 0.0)})
+def trunk(mass: float, com: float = 0.0, inertia_com: float = 0.0, length: float = 0.0) -> Segment:
+    """Head, arms and trunk: centre of mass `com` above the hip, shoulder `length` above it.
+
+    With no length it is only a mass (the paper's point mass at the hip).
+    """
+    landmarks = {"hip": (0.0, 0.0)}
+    if length > 0:
+        landmarks["shoulder"] = (0.0, length)
+    return Segment("trunk", mass, (0.0, com), inertia_com, landmarks)
+
+
+def swing_leg(mass: float) -> Segment:
+    """The swing leg as a point mass at the hip."""
+    return Segment("swing_leg", mass, (0.0, 0.0), 0.0, {"hip": (0.0, 0.0)})
+
+
+# Head, arms and trunk (HAT) from Winter D.A. (2009) Biomechanics and Motor Control of Human
+# Movement, 4th ed., Table 4.1: greater trochanter to glenohumeral joint 0.288 of stature
+# (Fig. 4.1: 0.818 - 0.530), centre of mass 0.626 of that length from the hip, radius of
+# gyration about the centre of mass 0.496 of the length.
+HAT_LENGTH_PER_STATURE = 0.288
+HAT_COM = 0.626
+HAT_GYRATION = 0.496
+
+
+def hat(mass: float, height: float) -> Segment:
+    """The rigid trunk (head, arms and trunk) of a given mass (kg) for a stature (m)."""
+    length = HAT_LENGTH_PER_STATURE * height
+    return trunk(mass, HAT_COM * length, mass * (HAT_GYRATION * length) ** 2, length)
 
 
 def paper_body() -> Body:
@@ -92,14 +122,19 @@ def paper_body() -> Body:
     centre of mass (0.06, -0.045) m (de Leva: 44.15 % of the 0.257 m heel-to-toe length from
     the heel), inertia 0.0042 kg m^2 about the centre of mass (de Leva's radius of gyration
     25.7 % of foot length gives 0.0044).
-    Trunk: 58.5 kg, a point mass at the hip (head, arms, trunk and the swing leg).
+    Trunk: 58.5 kg at the hip in the paper (head, arms, trunk and the swing leg). Split here
+    into the swing leg (14.5 kg, the stance leg's segments) and head-arms-trunk (44.0 kg,
+    Winter's HAT geometry at 1.731 m), so that the rigid-trunk model has a trunk; the paper's
+    leg lumps both at the hip again (58.5 kg).
     """
     shank_length = 0.4340 / 1.741 * 1.731
     shank_mass = 73.0 - 58.5 - 10.3 - 1.0
     shank_com = 0.4459 * shank_length
     shank_inertia_proximal = shank_mass * shank_length**2 / 3.0
+    leg_mass = 10.3 + shank_mass + 1.0
     return Body({
-        "trunk": trunk(58.5),
+        "trunk": hat(58.5 - leg_mass, 1.731),
+        "swing_leg": swing_leg(leg_mass),
         "thigh": bar("thigh", 10.3, 0.402, 0.164, 0.557 - 10.3 * 0.164**2),
         "shank": bar("shank", shank_mass, shank_length, shank_com,
                      shank_inertia_proximal - shank_mass * shank_com**2),
@@ -135,7 +170,8 @@ FOREFOOT_AHEAD_OF_ANKLE = 0.623
 def scaled_body(mass: float, height: float, sex: str = "male") -> Body:
     """A body scaled from total mass (kg) and stature (m) with de Leva (1996), Table 4.
 
-    The trunk point mass at the hip carries everything that is not the stance leg.
+    The swing leg mirrors the stance leg; head, arms and trunk carry the rest (Winter's HAT
+    geometry).
     """
     if sex not in DE_LEVA:
         raise ValueError(f"sex must be one of {sorted(DE_LEVA)}, not {sex!r}")
@@ -153,8 +189,10 @@ def scaled_body(mass: float, height: float, sex: str = "male") -> Body:
     foot_l, foot_m, foot_c, foot_i = props("foot")
     ankle_height = ANKLE_HEIGHT_PER_STATURE * height
     heel_x = -HEEL_BEHIND_ANKLE * foot_l
+    leg_mass = thigh_m + shank_m + foot_m
     return Body({
-        "trunk": trunk(mass - thigh_m - shank_m - foot_m),
+        "trunk": hat(mass - 2 * leg_mass, height),
+        "swing_leg": swing_leg(leg_mass),
         "thigh": bar("thigh", thigh_m, thigh_l, thigh_c, thigh_i),
         "shank": bar("shank", shank_m, shank_l, shank_c, shank_i),
         "foot": foot(foot_m, (heel_x + foot_c, -FOOT_COM_BELOW_ANKLE * ankle_height), foot_i,

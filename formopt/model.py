@@ -33,7 +33,7 @@ from .body import Body
 STATE = ("trunk", "hip", "knee", "ankle", "hip_vx", "hip_vz",
          "omega_trunk", "omega_thigh", "omega_shank", "omega_foot")
 STRIKES = {"heel": ("heel",), "forefoot": ("forefoot",), "flat": ("heel", "forefoot")}
-MODELS = ("leg", "shank-foot")
+MODELS = ("shank-foot", "leg", "leg-trunk")
 
 R90 = np.array([[0.0, -1.0], [1.0, 0.0]])
 
@@ -256,21 +256,31 @@ class Model:
 
 
 def build_model(body: Body, kind: str = "leg") -> Model:
-    """The paper's leg (foot, shank, thigh, trunk point mass at the hip) or shank + foot.
+    """A model of the stance leg, from coarse to fine.
 
-    Leg: points hip, knee, ankle, heel, forefoot (10 coordinates); thigh hip->knee, shank
-    knee->ankle, foot heel->forefoot with the ankle fixed in it; 5 constraints, 5 degrees of
-    freedom. Shank + foot drops the hip and the thigh's mass (8 coordinates, 4 degrees of
-    freedom); the thigh's length still carries the hip's motion to the knee.
+    shank-foot: points knee, ankle, heel, forefoot (8 coordinates); shank knee->ankle, foot
+    heel->forefoot with the ankle fixed in it; 4 degrees of freedom. The thigh's length still
+    carries the hip's motion to the knee.
+    leg (the paper's): adds the hip and the thigh hip->knee, and trunk and swing leg as one
+    point mass at the hip (10 coordinates, 5 constraints, 5 degrees of freedom).
+    leg-trunk: the trunk (head, arms, trunk) rigid, hip->shoulder, so its angle and
+    inertia matter; the swing leg a point mass at the hip (12 coordinates, 6 degrees of freedom).
     """
     foot = RigidBody("foot", ("heel", "forefoot"), ("ankle",))
     shank = RigidBody("shank", ("knee", "ankle"))
-    if kind == "leg":
-        names = ("hip", "knee", "ankle", "heel", "forefoot")
-        bodies = (RigidBody("thigh", ("hip", "knee")), shank, foot)
-        return Model(body, [Point(n, n) for n in names], bodies,
-                     [PointMass("trunk", "hip")], trunk="trunk")
+    thigh = RigidBody("thigh", ("hip", "knee"))
+    leg_points = ("hip", "knee", "ankle", "heel", "forefoot")
+    swing = [PointMass("swing_leg", "hip")] if "swing_leg" in body.segments else []
     if kind == "shank-foot":
-        names = ("knee", "ankle", "heel", "forefoot")
-        return Model(body, [Point(n, n) for n in names], (shank, foot))
+        return Model(body, [Point(n, n) for n in leg_points[1:]], (shank, foot))
+    if kind == "leg":
+        return Model(body, [Point(n, n) for n in leg_points], (thigh, shank, foot),
+                     [PointMass("trunk", "hip"), *swing], trunk="trunk")
+    if kind == "leg-trunk":
+        if "shoulder" not in body["trunk"].landmarks or body["trunk"].inertia_com <= 0:
+            raise ValueError("model 'leg-trunk' needs a rigid trunk: its length, centre of mass "
+                             "and inertia")
+        return Model(body, [Point(n, n) for n in ("shoulder", *leg_points)],
+                     (RigidBody("trunk", ("hip", "shoulder")), thigh, shank, foot),
+                     swing, trunk="trunk")
     raise ValueError(f"unknown model {kind!r}: expected one of {', '.join(MODELS)}")

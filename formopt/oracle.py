@@ -1,7 +1,7 @@
 """The paper's leg in Pinocchio (package `pin`, the `test` extra): an independent oracle.
 
-Pinocchio builds the leg as a kinematic tree (a planar free joint at the hip carrying the
-thigh and the trunk point mass, revolute joints at knee and ankle) and knows nothing of
+Pinocchio builds the paper's leg as a kinematic tree (a planar free joint at the hip carrying
+the thigh and the trunk and swing leg as a point mass, revolute joints at knee and ankle) and knows nothing of
 natural coordinates. Tests compare the projection with its `impulseDynamics`; benchmarks time
 the same work side by side.
 """
@@ -30,7 +30,8 @@ def pinocchio_leg(body: Body):
 
     root = model.addJoint(0, pin.JointModelPlanar(), pin.SE3.Identity(), "hip")
     model.appendBodyToJoint(root, inertia(thigh), pin.SE3.Identity())
-    model.appendBodyToJoint(root, pin.Inertia(body["trunk"].mass, np.zeros(3), 1e-300 * np.eye(3)),
+    at_hip = body["trunk"].mass + (body["swing_leg"].mass if "swing_leg" in body.segments else 0.0)
+    model.appendBodyToJoint(root, pin.Inertia(at_hip, np.zeros(3), 1e-300 * np.eye(3)),
                             pin.SE3.Identity())
     knee = model.addJoint(root, pin.JointModelRZ(), offset(0.0, -thigh.length), "knee")
     model.appendBodyToJoint(knee, inertia(shank), pin.SE3.Identity())

@@ -20,8 +20,11 @@ from .model import MODELS, STATE, STRIKES
 
 # The segments each model needs; a segment a model does not use may be given and is ignored.
 # Shank + foot keeps the thigh's geometry: the touchdown state moves the knee through it.
-MODEL_SEGMENTS = {"leg": ("trunk", "thigh", "shank", "foot"),
-                  "shank-foot": ("thigh", "shank", "foot")}
+# The swing leg is optional (no mass when not given).
+MODEL_SEGMENTS = {"shank-foot": ("thigh", "shank", "foot"),
+                  "leg": ("trunk", "swing_leg", "thigh", "shank", "foot"),
+                  "leg-trunk": ("trunk", "swing_leg", "thigh", "shank", "foot")}
+OPTIONAL_SEGMENTS = ("swing_leg",)
 ANGLES = ("trunk", "hip", "knee", "ankle")
 RATES = ("trunk", "thigh", "shank", "foot")
 
@@ -92,7 +95,8 @@ def parse(data: dict, path: str = "") -> Scene:
 # -- body -------------------------------------------------------------------------------
 
 SEGMENT_KEYS = {
-    "trunk": {"mass"},
+    "trunk": {"mass", "length", "com", "inertia_proximal", "inertia_com"},
+    "swing_leg": {"mass"},
     "thigh": {"mass", "length", "com", "inertia_proximal", "inertia_com"},
     "shank": {"mass", "length", "com", "inertia_proximal", "inertia_com"},
     "foot": {"mass", "com", "inertia_com", "inertia_proximal", "heel", "forefoot"},
@@ -127,9 +131,14 @@ def _body(data, model) -> tuple[Body, tuple[str, ...]]:
                 notes.append(f"body.{name} is not part of model {model!r} and was ignored")
             continue
         if given is None and base is None:
+            if name in OPTIONAL_SEGMENTS:
+                continue
             raise SceneError(f"body.{name}", f"missing (model {model!r} needs it; or give body.preset "
                                              "or body.mass and body.height)")
         segments[name] = _segment(name, given or {}, base[name] if base else None)
+    if model == "leg-trunk" and segments["trunk"].inertia_com <= 0:
+        raise SceneError("body.trunk.length", "model 'leg-trunk' needs a rigid trunk: give its "
+                                              "length, com and inertia (or a body preset or scaling)")
     source = base.source if base else "scene file"
     if base and any(name in data for name in bodies.SEGMENTS):
         source += ", with segments from the scene file"
@@ -145,14 +154,17 @@ def _segment(name, data, base: Segment | None) -> Segment:
     if {"inertia_proximal", "inertia_com"} & set(data):
         values.pop("inertia_com", None)
     values.update(data)
-    required = SEGMENT_KEYS[name] - {"inertia_proximal", "inertia_com"}
+    point_mass = name == "swing_leg" or (name == "trunk" and set(values) == {"mass"})
+    required = {"mass"} if point_mass else SEGMENT_KEYS[name] - {"inertia_proximal", "inertia_com"}
     for key in sorted(required):
         if key not in values:
             raise SceneError(f"{where}.{key}", "missing")
-    if name != "trunk" and not {"inertia_proximal", "inertia_com"} & set(values):
+    if not point_mass and not {"inertia_proximal", "inertia_com"} & set(values):
         raise SceneError(f"{where}.inertia_com", "missing (give inertia_com or inertia_proximal)")
-    mass = _number(values, "mass", where, low=0.0, low_open=True)
-    if name == "trunk":
+    mass = _number(values, "mass", where, low=0.0, low_open=name != "swing_leg")
+    if name == "swing_leg":
+        return bodies.swing_leg(mass)
+    if point_mass:
         return bodies.trunk(mass)
     if name == "foot":
         com = _pair(values, "com", where)
@@ -175,13 +187,18 @@ def _segment(name, data, base: Segment | None) -> Segment:
         inertia = _number(values, "inertia_com", where, low=0.0, low_open=True)
     if name == "foot":
         return bodies.foot(mass, com, inertia, heel, forefoot)
+    if name == "trunk":
+        return bodies.trunk(mass, com, inertia, length)
     return bodies.bar(name, mass, length, com, inertia)
 
 
 def _segment_values(seg: Segment) -> dict:
     """A segment's data in the scene file's keys."""
-    if seg.name == "trunk":
+    if seg.name == "swing_leg" or (seg.name == "trunk" and "shoulder" not in seg.landmarks):
         return {"mass": seg.mass}
+    if seg.name == "trunk":
+        return {"mass": seg.mass, "length": seg.landmarks["shoulder"][1], "com": seg.com[1],
+                "inertia_com": seg.inertia_com}
     if seg.name == "foot":
         return {"mass": seg.mass, "com": list(seg.com), "inertia_com": seg.inertia_com,
                 "heel": list(seg.landmarks["heel"]), "forefoot": list(seg.landmarks["forefoot"])}

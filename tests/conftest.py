@@ -38,7 +38,7 @@ def split_leg(body) -> Model:
               Point("ankle", "ankle"), Point("heel", "heel"), Point("forefoot", "forefoot")]
     bodies = [RigidBody("thigh", ("knee_t", "hip")), RigidBody("shank", ("knee_s", "ankle")),
               RigidBody("foot", ("forefoot", "heel"), ("ankle",))]
-    return Model(body, points, bodies, [PointMass("trunk", "hip")],
+    return Model(body, points, bodies, [PointMass("trunk", "hip"), PointMass("swing_leg", "hip")],
                  coincident=[("knee_t", "knee_s")], trunk="trunk")
 
 

@@ -9,7 +9,7 @@ from formopt import Impact, angular_momentum_impact, build_model
 from conftest import random_states, split_leg
 
 
-@pytest.mark.parametrize("kind", ["leg", "shank-foot", "split-leg"])
+@pytest.mark.parametrize("kind", ["leg", "shank-foot", "leg-trunk", "split-leg"])
 @pytest.mark.parametrize("strike", ["heel", "forefoot"])
 def test_projection_equals_angular_momentum(body, kind, strike):
     model = split_leg(body) if kind == "split-leg" else build_model(body, kind)

@@ -19,7 +19,7 @@ def numeric_projection(model, q, points, slope):
     return Pc, Phi
 
 
-@pytest.mark.parametrize("kind", ["leg", "shank-foot"])
+@pytest.mark.parametrize("kind", ["shank-foot", "leg", "leg-trunk"])
 @pytest.mark.parametrize("strike", ["heel", "forefoot", "flat"])
 @pytest.mark.parametrize("slope", [0.0, np.radians(-10.0), np.radians(12.0)])
 def test_energy_split_and_projection(body, kind, strike, slope):
@@ -68,7 +68,7 @@ def test_mass_matrix_reproduces_the_bar_formula(body, leg):
     m, L, c, Ii = thigh.mass, thigh.length, -thigh.com[1], thigh.inertia_proximal
     block = np.array([[m - 2 * m * c / L + Ii / L**2, m * c / L - Ii / L**2],
                       [m * c / L - Ii / L**2, Ii / L**2]])
-    trunk = body["trunk"].mass
+    trunk = body["trunk"].mass + body["swing_leg"].mass
     expected_hip = block[0, 0] + trunk
     M = leg.M
     hip, knee = leg.cols("hip"), leg.cols("knee")
@@ -83,7 +83,8 @@ def test_kinetic_energy_matches_segment_sums(body, leg):
     r = Impact(leg, "forefoot")(x)
     qd = r.qd_minus
     w = {"thigh": x[7], "shank": x[8], "foot": x[9]}
-    T = 0.5 * body["trunk"].mass * qd[leg.cols("hip")] @ qd[leg.cols("hip")]
+    at_hip = body["trunk"].mass + body["swing_leg"].mass
+    T = 0.5 * at_hip * qd[leg.cols("hip")] @ qd[leg.cols("hip")]
     for seg in ("thigh", "shank", "foot"):
         v = leg.com_matrix(seg) @ qd
         T += 0.5 * body[seg].mass * v @ v + 0.5 * body[seg].inertia_com * w[seg] ** 2

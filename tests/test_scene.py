@@ -77,7 +77,7 @@ BAD = [
     ("body.trunk", DELETE, "body.trunk", "missing"),
     ("ground.friction", 0.0, "ground.friction", "must be > 0"),
     ("ground.slope_deg", 75.0, "ground.slope_deg", "between -60 and 60"),
-    ("scene.model", "full", "scene.model", "must be one of leg, shank-foot"),
+    ("scene.model", "full", "scene.model", "must be one of shank-foot, leg, leg-trunk"),
     ("scene.name", "", "scene.name", "non-empty"),
     ("optimize", {"variables": ["knee"]}, "optimize", "unknown key"),
 ]
@@ -162,3 +162,13 @@ def test_cli_table(capsys):
     assert main(["impact", str(PROBLEMS / "heel_strike.toml")]) == 0
     text = capsys.readouterr().out
     assert "T_c" in text and "heel" in text and "valid:" in text
+
+
+def test_rigid_trunk_needs_its_inertia(reference):
+    reference["scene"]["model"] = "leg-trunk"
+    with pytest.raises(SceneError) as err:
+        parse(reference)  # the reference trunk is only a mass
+    assert err.value.key == "body.trunk.length"
+    reference["body"]["trunk"] = {"mass": 44.0, "length": 0.5, "com": 0.31, "inertia_com": 2.7}
+    reference["body"]["swing_leg"] = {"mass": 14.5}
+    assert impact(parse(reference)).T_c > 0
