@@ -1,4 +1,5 @@
-# make demo: set up .venv when missing, install formopt, run the main job on a shipped scene.
+# make demo: set up .venv when missing, install formopt, optimise the demo scene's posture
+# (prints the result, writes figures and JSON to out/demo).
 # make test: the same set-up, then the whole test suite.
 PYTHON ?= python3.11
 VENV := .venv
@@ -16,14 +17,14 @@ $(STAMP): $(BIN)/python pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(BIN)/formopt impact problems/forefoot_strike.toml
-	$(BIN)/formopt impact problems/heel_strike.toml
+	$(BIN)/formopt solve problems/demo.toml --out out/demo
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/impact_speed.py
+	$(BIN)/python benchmarks/solve_speed.py
 
 clean:
 	rm -rf $(VENV) build *.egg-info

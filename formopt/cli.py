@@ -1,32 +1,55 @@
-"""Command line: `formopt impact SCENE [--json]`.
+"""Command line of formopt.
+
+    formopt impact SCENE [--json]        the indicators of the foot strike a scene describes
+    formopt solve SCENE [--json] [--out DIR] [--starts N] [--seed S] [--compiled]
+                                         the touchdown posture that absorbs the least energy
 
 Bad input (a scene that does not validate, a posture the impact map cannot take) prints one
-line naming the key and the reason and exits with status 2.
+line naming the key and the reason and exits with status 2. `solve` exits with status 1 when
+no start converged: IPOPT's status is printed, and no optimum is claimed.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
+import math
 import sys
+from pathlib import Path
 
 from .impact import ImpactResult, impact
-from .scene import Scene, SceneError, load
+from .scene import Scene, SceneError, load, touchdown_table
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="formopt", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="formopt", description="The running form that wastes "
+                                     "the least energy at foot strike.")
     commands = parser.add_subparsers(dest="command", required=True)
     cmd = commands.add_parser("impact", help="indicators of the foot strike a scene describes")
     cmd.add_argument("scene", help="scene file (TOML), e.g. problems/forefoot_strike.toml")
     cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
+    cmd = commands.add_parser("solve", help="optimise the touchdown posture of a scene")
+    cmd.add_argument("scene", help="scene file with an [optimize] table, e.g. problems/demo.toml")
+    cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
+    cmd.add_argument("--out", help="folder for figures and result files (default out/<scene>)")
+    cmd.add_argument("--starts", type=int, help="number of starts (overrides the scene)")
+    cmd.add_argument("--seed", type=int, help="seed of the random starts (overrides the scene)")
+    cmd.add_argument("--compiled", action="store_true",
+                     help="generate, compile (cached) and run the NLP's functions as C")
     args = parser.parse_args(argv)
     try:
         scene = load(args.scene)
-        result = impact(scene)
+        if args.command == "impact":
+            return _impact(scene, args)
+        return _solve(scene, args)
     except (SceneError, ValueError) as err:
         print(f"formopt: error: {args.scene}: {err}", file=sys.stderr)
         return 2
+
+
+def _impact(scene: Scene, args) -> int:
+    result = impact(scene)
     if args.json:
         print(json.dumps({"scene": scene.name, "model": scene.model, "body": scene.body.source,
                           "touchdown": scene.touchdown, "notes": list(scene.notes),
@@ -36,28 +59,145 @@ def main(argv=None) -> int:
     return 0
 
 
+def _solve(scene: Scene, args) -> int:
+    from .optimize import solve
+    from .plots import indicator_figure, posture_figure
+
+    if args.starts is not None and args.starts < 1:
+        raise ValueError("--starts must be at least 1")
+    problem = scene.problem
+    seed = args.seed if args.seed is not None else problem.seed if problem else 0
+    print(f"{scene.name}: seed {seed}", file=sys.stderr)
+
+    def progress(k, n, start):
+        print(f"  start {k}/{n}: {start.status}, objective {start.objective:.6g} "
+              f"({start.iterations} iterations)", file=sys.stderr)
+
+    opt = solve(scene, compiled=args.compiled, progress=progress, starts=args.starts, seed=args.seed)
+    out = Path(args.out) if args.out else Path("out") / Path(scene.path).stem
+    figures = [posture_figure(out / "posture.png", scene.body, scene.strike, scene.slope,
+                              [(scene.state, "reference", "0.55"),
+                               (opt.state, "optimum" if opt.success else "not converged",
+                                "tab:blue")]),
+               indicator_figure(out / "indicators.png", {"reference": opt.reference,
+                                                         "optimum": opt.impact})]
+    report = solve_report(scene, opt, [str(f) for f in figures])
+    _write_json(out / "result.json", report)
+    if args.json:
+        print(json.dumps(report, indent=2))
+    else:
+        print(solve_table(scene, opt))
+        print(f"\nwrote {', '.join(str(f) for f in figures)}, {out / 'result.json'}")
+    return 0 if opt.success else 1
+
+
+def solve_report(scene: Scene, opt, figures) -> dict:
+    """The JSON report of an optimisation."""
+    return {
+        "scene": scene.name, "model": scene.model, "success": opt.success, "status": opt.status,
+        "objective": opt.objective, "objective_terms": scene.problem.objective,
+        "touchdown": touchdown_table(scene.strike, opt.state),
+        "T_c": opt.impact.T_c, "impulse": {k: list(v) for k, v in opt.impact.impulse.items()},
+        "indicators": opt.impact.to_dict(),
+        "reference": {"touchdown": scene.touchdown, "indicators": opt.reference.to_dict()},
+        "active": [dataclasses.asdict(c) for c in opt.active],
+        "sensitivity": opt.sensitivity,
+        "starts": [dataclasses.asdict(s) for s in opt.starts],
+        "local_optima": opt.local_optima, "seed": opt.seed,
+        "solve_time_s": opt.solve_time, "build_time_s": opt.build_time,
+        "notes": list(scene.notes) + list(opt.notes), "figures": figures,
+    }
+
+
+def _write_json(path: Path, data):
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.tmp")
+    tmp.write_text(json.dumps(data, indent=2))
+    tmp.replace(path)
+
+
 def impact_table(scene: Scene, r: ImpactResult) -> str:
     """The indicators of one strike as a terminal table."""
-    import math
-
     lines = [f"{scene.name}  ({scene.path})",
              f"model {scene.model}; body {scene.body.source}",
              f"{r.strike} strike on {math.degrees(scene.slope):+.1f} deg ground, friction {r.friction:g}",
-             "",
-             f"  {'kinetic energy before':30s} T     {r.T:10.3f} J",
-             f"  {'absorbed (CMSKE)':30s} T_c   {r.T_c:10.3f} J   ({100 * r.T_c / r.T:.2f} % of T)",
-             f"  {'kinetic energy after':30s} T_a   {r.T_a:10.3f} J"]
-    for point, (t, n) in r.impulse.items():
-        open_ = "" if all(r.impulse_determined[point]) else "   (split not determined)"
-        lines.append(f"  {'ground impulse, ' + point:30s} t, n  {t:+10.4f} {n:+10.4f} N s{open_}")
-    lines.append(f"  {'critical friction':30s} mu_c  {r.mu_c:10.4f}     (momentum check {r.mu_c_momentum:.4f})")
-    if r.dv_trunk is not None:
-        lines.append(f"  {'trunk velocity change':30s} dv    {r.dv_trunk[0]:+10.4f} {r.dv_trunk[1]:+10.4f} m/s")
-    lines.append(f"  {'centre-of-mass velocity change':30s} dv    {r.dv_com[0]:+10.4f} {r.dv_com[1]:+10.4f} m/s")
-    lines.append(f"  {'condition of Phi M^-1 Phi^T':30s}       {r.condition:10.3g}")
+             ""]
+    lines += _indicator_lines(r)
     lines += ["", f"valid: {'yes' if r.valid else 'no'}"]
     lines += [f"warning: {w}" for w in r.warnings] + [f"note: {n}" for n in scene.notes]
     return "\n".join(lines)
+
+
+def _indicator_lines(r: ImpactResult, other: ImpactResult | None = None) -> list[str]:
+    """Indicator rows; with `other`, a second column (reference, then this one)."""
+    def row(name, symbol, value, unit, fmt="{:+10.4f}"):
+        cells = fmt.format(value(other)) + " " if other else ""
+        return f"  {name:30s} {symbol:5s} {cells}{fmt.format(value(r))} {unit}"
+
+    lines = [row("kinetic energy before", "T", lambda z: z.T, "J", "{:10.3f}"),
+             row("absorbed (CMSKE)", "T_c", lambda z: z.T_c, "J", "{:10.3f}"),
+             row("kinetic energy after", "T_a", lambda z: z.T_a, "J", "{:10.3f}")]
+    for point in r.impulse:
+        if other is None or point in other.impulse:
+            open_ = "" if all(r.impulse_determined[point]) else "   (split not determined)"
+            lines.append(row(f"ground impulse t, {point}", "t", lambda z: z.impulse[point][0], "N s")
+                         + open_)
+            lines.append(row(f"ground impulse n, {point}", "n", lambda z: z.impulse[point][1], "N s"))
+    lines.append(row("critical friction", "mu_c", lambda z: z.mu_c, "", "{:10.4f}")
+                 + ("" if other else f"   (momentum check {r.mu_c_momentum:.4f})"))
+    if r.dv_trunk is not None:
+        lines.append(row("trunk velocity change x", "dv", lambda z: z.dv_trunk[0], "m/s"))
+        lines.append(row("trunk velocity change z", "dv", lambda z: z.dv_trunk[1], "m/s"))
+    lines.append(row("centre-of-mass change x", "dv", lambda z: z.dv_com[0], "m/s"))
+    lines.append(row("centre-of-mass change z", "dv", lambda z: z.dv_com[1], "m/s"))
+    lines.append(row("condition of Phi M^-1 Phi^T", "", lambda z: z.condition, "", "{:10.3g}"))
+    return lines
+
+
+def solve_table(scene: Scene, opt) -> str:
+    """The optimum against the reference posture, the active constraints, the sensitivities."""
+    ok = "converged" if opt.success else "NOT CONVERGED"
+    lines = [f"{scene.name}  ({scene.path})",
+             f"model {scene.model}; body {scene.body.source}; {scene.strike} strike on "
+             f"{math.degrees(scene.slope):+.1f} deg ground, friction {scene.friction:g}",
+             f"objective {_objective_text(scene.problem.objective)}: {opt.objective:.6g} "
+             f"({ok}: {opt.status})", ""]
+    ref, best = touchdown_table(scene.strike, scene.state), touchdown_table(scene.strike, opt.state)
+    lines.append(f"  {'posture (deg)':36s} {'reference':>10s} {'optimum':>10s}")
+    for k in ref["angles_deg"]:
+        mark = "  *" if k in scene.problem.variables else ""
+        lines.append(f"  {k:36s} {ref['angles_deg'][k]:10.2f} {best['angles_deg'][k]:10.2f}{mark}")
+    for k in ref["angular_velocity_dps"]:
+        if "omega_" + k in scene.problem.variables:
+            lines.append(f"  {'omega ' + k + ' (deg/s)':36s} {ref['angular_velocity_dps'][k]:10.1f} "
+                         f"{best['angular_velocity_dps'][k]:10.1f}  *")
+    lines += ["  (* decision variable)", "", f"  {'indicators':36s} {'reference':>10s} {'optimum':>10s}"]
+    lines += _indicator_lines(opt.impact, opt.reference)
+    lines += ["", f"valid at the optimum: {'yes' if opt.impact.valid else 'no'}"]
+    lines += [f"warning: {w}" for w in opt.impact.warnings]
+    if opt.active:
+        lines += ["", "what holds the optimum where it is (multiplier = objective change per unit):"]
+        for c in opt.active:
+            lines.append(f"  {c.name:22s} at {c.bound:+.4g}  multiplier {c.multiplier:+.4g}: {c.meaning}")
+    elif opt.success:
+        lines += ["", "no constraint is active: an interior optimum"]
+    if opt.sensitivity:
+        s = opt.sensitivity
+        lines += ["", f"sensitivity: d objective / d speed {s['d_objective_d_speed']:+.4g} per m/s, "
+                      f"/ d friction {s['d_objective_d_friction']:+.4g}"]
+    converged = sum(st.converged for st in opt.starts)
+    lines += ["", f"multi-start: {len(opt.starts)} starts (seed {opt.seed}), {converged} converged, "
+                  f"{opt.local_optima} distinct optima; median solve {opt.solve_time * 1e3:.1f} ms, "
+                  f"build {opt.build_time * 1e3:.0f} ms"]
+    for st in opt.starts:
+        if not st.converged:
+            lines.append(f"  start {st.index}: {st.status} (objective {st.objective:.4g}), not used")
+    lines += [f"note: {n}" for n in list(scene.notes) + list(opt.notes)]
+    return "\n".join(lines)
+
+
+def _objective_text(terms: dict) -> str:
+    return " + ".join(f"{w:g} {k}" if w != 1 else k for k, w in terms.items())
 
 
 if __name__ == "__main__":

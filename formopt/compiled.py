@@ -12,6 +12,7 @@ The cache folder is $FORMOPT_CACHE, or ~/.cache/formopt.
 
 from __future__ import annotations
 
+import contextlib
 import ctypes
 import hashlib
 import os
@@ -42,20 +43,38 @@ def library(function: ca.Function) -> Path:
     """Path of the compiled shared library of `function` (built once, then cached)."""
     generator = ca.CodeGenerator(f"{function.name()}.c", {"with_header": False})
     generator.add(function)
-    source = generator.dump()
+    return _compile(generator.dump(), function.name())
+
+
+def cached_nlpsol(name: str, nlp: dict, opts: dict, compiled: bool = False) -> ca.Function:
+    """An IPOPT solver of `nlp`; with `compiled`, its functions and derivatives run as C.
+
+    The objective, constraints, gradient, Jacobian and Hessian of the Lagrangian are generated
+    once (CasADi's generate_dependencies), compiled and cached like `library`.
+    """
+    solver = ca.nlpsol(name, "ipopt", nlp, opts)
+    if not compiled:
+        return solver
+    with tempfile.TemporaryDirectory() as tmp, contextlib.chdir(tmp):
+        solver.generate_dependencies(f"{name}_nlp.c", {"with_header": False})
+        source = Path(f"{name}_nlp.c").read_text()
+    return ca.nlpsol(name, "ipopt", str(_compile(source, f"{name}_nlp")), opts)
+
+
+def _compile(source: str, name: str) -> Path:
     cc = compiler()
     key = hashlib.sha256("\0".join([source, cc, *FLAGS]).encode()).hexdigest()[:20]
-    target = cache_dir() / f"{function.name()}_{key}.so"
+    target = cache_dir() / f"{name}_{key}.so"
     if target.exists():
         return target
     target.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=target.parent) as tmp:
-        c_file, so_file = Path(tmp) / f"{function.name()}.c", Path(tmp) / target.name
+        c_file, so_file = Path(tmp) / f"{name}.c", Path(tmp) / target.name
         c_file.write_text(source)
         done = subprocess.run([cc, *FLAGS, str(c_file), "-o", str(so_file), "-lm"],
                               capture_output=True, text=True)
         if done.returncode != 0:
-            raise RuntimeError(f"compiling {function.name()} failed:\n{done.stderr[-2000:]}")
+            raise RuntimeError(f"compiling {name} failed:\n{done.stderr[-2000:]}")
         os.replace(so_file, target)  # atomic: a half-written library is never seen as built
     return target
 

@@ -82,6 +82,30 @@ def segment_kinematics(x, body: Body):
     return {k: (frames[k][0], angle[k], frames[k][1], omega[k]) for k in frames if k in body.segments}
 
 
+def landmarks(x, body: Body, origin: str = "hip") -> dict:
+    """World position and velocity (SX) of every landmark of the body, with `origin` at (0, 0).
+
+    A landmark shared by two segments (a joint) is taken from the distal one.
+    """
+    frames = segment_kinematics(x, body)
+    world = {}
+    for seg in ("trunk", "thigh", "shank", "foot"):
+        if seg in frames:
+            position, angle, velocity, omega = frames[seg]
+            for name, local in body[seg].landmarks.items():
+                world[name] = _landmark((position, velocity), angle, omega, local)
+    shift = world[origin][0]
+    return {k: (p - shift, v) for k, (p, v) in world.items()}
+
+
+def positions(x, body: Body, origin: str = "hip") -> dict[str, np.ndarray]:
+    """World positions (m, numeric) of every landmark at the touchdown state x."""
+    xs = ca.SX.sym("x", len(STATE))
+    world = landmarks(xs, body, origin)
+    f = ca.Function("positions", [xs], [p for p, _ in world.values()])
+    return {k: np.asarray(v, float).ravel() for k, v in zip(world, f(np.asarray(x, float)))}
+
+
 def _landmark(frame, angle, omega, local):
     """World position and velocity of a point given in a segment frame."""
     origin, velocity = frame
@@ -238,18 +262,9 @@ class Model:
     # -- state -----------------------------------------------------------------------
     def state(self, x, strike_point: str):
         """(q, q') as SX of the touchdown state x, with `strike_point` at the origin."""
-        frames = segment_kinematics(x, self.body)
-        pos, vel = [], []
-        for p in self.points:
-            seg = next(s for s in ("foot", "shank", "thigh", "trunk")
-                       if s in frames and p.landmark in self.body[s].landmarks)
-            origin, angle, velocity, omega = frames[seg]
-            r, v = _landmark((origin, velocity), angle, omega, self.body[seg].landmarks[p.landmark])
-            pos.append(r)
-            vel.append(v)
-        q = ca.vertcat(*pos)
-        shift = q[self.cols(strike_point)]
-        return q - ca.repmat(shift, len(self.points), 1), ca.vertcat(*vel)
+        world = landmarks(x, self.body, strike_point)
+        q = ca.vertcat(*[world[p.landmark][0] for p in self.points])
+        return q, ca.vertcat(*[world[p.landmark][1] for p in self.points])
 
     def kinetic_energy(self, qd):
         return 0.5 * ca.bilin(ca.DM(self.M), qd, qd)

@@ -17,6 +17,7 @@ import numpy as np
 from . import body as bodies
 from .body import Body, Segment
 from .model import MODELS, STATE, STRIKES
+from .optimize import OBJECTIVES, RANGE_OF_MOTION_DEG, Problem
 
 # The segments each model needs; a segment a model does not use may be given and is ignored.
 # Shank + foot keeps the thigh's geometry: the touchdown state moves the knee through it.
@@ -50,15 +51,21 @@ class Scene:
     slope: float  # rad, positive uphill
     path: str = ""
     notes: tuple[str, ...] = field(default=())  # what the loader did that a user should know
+    problem: Problem | None = None  # the [optimize] table, when there is one
 
     @property
     def touchdown(self) -> dict:
         """The touchdown in the scene file's schema (degrees)."""
-        s = dict(zip(STATE, self.state))
-        return {"strike": self.strike,
-                "hip_velocity": [s["hip_vx"], s["hip_vz"]],
-                "angles_deg": {k: math.degrees(s[k]) for k in ANGLES},
-                "angular_velocity_dps": {k: math.degrees(s["omega_" + k]) for k in RATES}}
+        return touchdown_table(self.strike, self.state)
+
+
+def touchdown_table(strike: str, state) -> dict:
+    """A touchdown state (model.STATE, SI) in the scene file's [touchdown] schema."""
+    s = dict(zip(STATE, (float(v) for v in state)))
+    return {"strike": strike,
+            "hip_velocity": [s["hip_vx"], s["hip_vz"]],
+            "angles_deg": {k: math.degrees(s[k]) for k in ANGLES},
+            "angular_velocity_dps": {k: math.degrees(s["omega_" + k]) for k in RATES}}
 
 
 def load(path) -> Scene:
@@ -77,7 +84,8 @@ def load(path) -> Scene:
 
 def parse(data: dict, path: str = "") -> Scene:
     """Validate a scene given as a dictionary (the parsed TOML)."""
-    _keys(data, "", {"scene", "body", "touchdown", "ground"}, ("scene", "touchdown", "ground"))
+    _keys(data, "", {"scene", "body", "touchdown", "ground", "optimize"},
+          ("scene", "touchdown", "ground"))
     scene = _table(data, "scene", {"name", "model"}, {"name"})
     name = _string(scene, "name", "scene")
     model = _choice(scene.get("model", "leg"), "scene.model", MODELS)
@@ -89,7 +97,88 @@ def parse(data: dict, path: str = "") -> Scene:
     ground = _table(data, "ground", {"friction", "slope_deg"}, {"friction"})
     friction = _number(ground, "friction", "ground", low=0.0, low_open=True)
     slope = _number(ground, "slope_deg", "ground", default=0.0, low=-60.0, high=60.0)
-    return Scene(name, model, body, strike, state, friction, math.radians(slope), path, notes)
+    problem = None
+    if "optimize" in data:
+        problem, more = _optimize(data["optimize"], model, strike)
+        notes += more
+    return Scene(name, model, body, strike, state, friction, math.radians(slope), path, notes,
+                 problem)
+
+
+# -- optimize ---------------------------------------------------------------------------
+
+OPTIMIZE_KEYS = {"variables", "objective", "bounds_deg", "bounds_dps", "starts", "seed",
+                 "tolerance", "max_overstride_m", "hip_height_m"}
+RATE_VARIABLES = tuple("omega_" + r for r in RATES)
+
+
+def _optimize(data, model, strike) -> tuple[Problem, tuple[str, ...]]:
+    if not isinstance(data, dict):
+        raise SceneError("optimize", "must be a table")
+    _keys(data, "optimize", OPTIMIZE_KEYS, ("variables", "objective"))
+    variables = data["variables"]
+    allowed = ANGLES + RATE_VARIABLES
+    if not isinstance(variables, list) or not variables:
+        raise SceneError("optimize.variables", f"must be a non-empty list of {', '.join(allowed)}")
+    for v in variables:
+        _choice(v, "optimize.variables", allowed)
+    if len(set(variables)) != len(variables):
+        raise SceneError("optimize.variables", "lists a variable twice")
+    if "trunk" in variables and model != "leg-trunk":
+        raise SceneError("optimize.variables", "'trunk' needs scene.model = \"leg-trunk\": the "
+                                               "paper's leg has a point-mass trunk whose angle does not matter")
+    if strike == "flat" and "ankle" in variables:
+        raise SceneError("optimize.variables", "'ankle' follows from a flat strike (the sole on "
+                                               "the ground); leave it out")
+    notes = []
+    bounds_deg = _table(data, "bounds_deg", set(ANGLES), set(), "optimize") if "bounds_deg" in data else {}
+    bounds_dps = _table(data, "bounds_dps", set(RATES), set(), "optimize") if "bounds_dps" in data else {}
+    lower, upper = [], []
+    for v in variables:
+        if v in ANGLES:
+            rom = RANGE_OF_MOTION_DEG[v]
+            lo, hi = _pair(bounds_deg, v, "optimize.bounds_deg") if v in bounds_deg else rom
+            if lo >= hi:
+                raise SceneError(f"optimize.bounds_deg.{v}", f"lower bound {lo:g} must be below the upper {hi:g}")
+            if lo < rom[0] or hi > rom[1]:
+                notes.append(f"optimize.bounds_deg.{v} [{lo:g}, {hi:g}] clipped to the range of motion "
+                             f"[{rom[0]:g}, {rom[1]:g}] deg (AAOS)")
+                lo, hi = max(lo, rom[0]), min(hi, rom[1])
+                if lo >= hi:
+                    raise SceneError(f"optimize.bounds_deg.{v}", "lies outside the joint's range of motion "
+                                                                 f"[{rom[0]:g}, {rom[1]:g}] deg")
+        else:
+            rate = v.removeprefix("omega_")
+            if rate not in bounds_dps:
+                raise SceneError(f"optimize.bounds_dps.{rate}", f"missing (variable {v!r} needs bounds)")
+            lo, hi = _pair(bounds_dps, rate, "optimize.bounds_dps", limit=5000.0)
+            if lo >= hi:
+                raise SceneError(f"optimize.bounds_dps.{rate}", f"lower bound {lo:g} must be below the upper {hi:g}")
+        lower.append(math.radians(lo))
+        upper.append(math.radians(hi))
+    objective = data["objective"]
+    if isinstance(objective, str):
+        objective = {_choice(objective, "optimize.objective", OBJECTIVES): 1.0}
+    elif isinstance(objective, dict):
+        _keys(objective, "optimize.objective", set(OBJECTIVES), set())
+        objective = {k: _number(objective, k, "optimize.objective") for k in objective}
+        if not any(objective.values()):
+            raise SceneError("optimize.objective", "needs at least one non-zero weight")
+    else:
+        raise SceneError("optimize.objective", f"must be one of {', '.join(OBJECTIVES)} or a table "
+                                               "of weights, e.g. {{ T_c = 1.0, dv_trunk_x = 20.0 }}")
+    starts = _integer(data, "starts", "optimize", default=8, low=1, high=1000)
+    seed = _integer(data, "seed", "optimize", default=0, low=0, high=2**32 - 1)
+    tolerance = _number(data, "tolerance", "optimize", default=1e-8, low=1e-14, high=1e-2)
+    overstride = (_number(data, "max_overstride_m", "optimize", low=-2.0, high=2.0)
+                  if "max_overstride_m" in data else None)
+    hip_height = None
+    if "hip_height_m" in data:
+        hip_height = _pair(data, "hip_height_m", "optimize", limit=3.0)
+        if hip_height[0] >= hip_height[1]:
+            raise SceneError("optimize.hip_height_m", "the lower height must be below the upper")
+    return Problem(tuple(variables), tuple(lower), tuple(upper), objective, overstride, hip_height,
+                   starts, seed, tolerance), tuple(notes)
 
 
 # -- body -------------------------------------------------------------------------------
@@ -265,11 +354,20 @@ def _value(value, full, low=-math.inf, high=math.inf, low_open=False) -> float:
     return value
 
 
+def _integer(data, key, where, default, low, high) -> int:
+    value = data.get(key, default)
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise SceneError(f"{where}.{key}", f"must be a whole number, not {value!r}")
+    if not low <= value <= high:
+        raise SceneError(f"{where}.{key}", f"must be between {low} and {high}, not {value}")
+    return value
+
+
 def _pair(data, key, where, limit=math.inf) -> tuple[float, float]:
     full = f"{where}.{key}"
     value = data.get(key)
     if not isinstance(value, list) or len(value) != 2:
-        raise SceneError(full, f"must be a pair [x, z], not {value!r}")
+        raise SceneError(full, f"must be a pair of numbers, not {value!r}")
     return tuple(_value(v, f"{full}[{i}]", low=-limit, high=limit) for i, v in enumerate(value))
 
 

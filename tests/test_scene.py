@@ -79,7 +79,7 @@ BAD = [
     ("ground.slope_deg", 75.0, "ground.slope_deg", "between -60 and 60"),
     ("scene.model", "full", "scene.model", "must be one of shank-foot, leg, leg-trunk"),
     ("scene.name", "", "scene.name", "non-empty"),
-    ("optimize", {"variables": ["knee"]}, "optimize", "unknown key"),
+    ("optimise", {"variables": ["knee"]}, "optimise", "did you mean 'optimize'"),
 ]
 
 

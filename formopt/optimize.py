@@ -1,0 +1,309 @@
+"""IPOPT searches the touchdown posture that absorbs the least energy (or another objective).
+
+The decision variables are some of the touchdown state's angles (and, if asked, segment
+angular velocities), scaled to [0, 1] between their bounds; the rest of the state stays as
+the scene gives it. Every constraint is smooth:
+
+- no slip at the strike: t - mu n <= 0 and -t - mu n <= 0 (t, n: the ground's impulse; the
+  total over heel and forefoot for a flat strike), and n >= 0 at every strike point;
+- the strike point approaches the ground (normal velocity < 0), the other foot point is
+  not below it;
+- joint ranges of motion (RANGE_OF_MOTION_DEG) and the scene's bounds (box constraints);
+- optionally the overstride (strike point ahead of the hip, m) and the hip height (m).
+
+Derivatives are CasADi's (exact Hessian). A multi-start from a printed seed reports every
+start; only a start IPOPT reports as converged, and whose optimum passes the checked impact
+map, can be the optimum. The sensitivity of the optimal objective to the running speed and
+the friction coefficient comes from the envelope theorem (dF*/dp = dL/dp at the optimum).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field, replace
+
+import casadi as ca
+import numpy as np
+
+from .compiled import cached_nlpsol
+from .impact import Impact, ImpactResult, ground_axes, impact_function
+from .model import STATE, STRIKES, Model, build_model, landmarks
+
+ANGLES = ("trunk", "hip", "knee", "ankle")
+RATES = ("omega_trunk", "omega_thigh", "omega_shank", "omega_foot")
+OBJECTIVES = ("T_c", "dv_trunk_x", "dv_trunk_z", "dv_com_x", "dv_com_z")
+# Active ranges of motion (deg): American Academy of Orthopaedic Surgeons (1965), Joint Motion:
+# Method of Measuring and Recording, as tabulated in Norkin C.C. & White D.J. (2016) Measurement
+# of Joint Motion, 5th ed.: hip extension 30 / flexion 120, knee flexion 135 (0 = straight),
+# ankle plantarflexion 50 / dorsiflexion 20; trunk: thoracolumbar extension 25 / flexion 80.
+RANGE_OF_MOTION_DEG = {"trunk": (-25.0, 80.0), "hip": (-30.0, 120.0), "knee": (0.0, 135.0),
+                       "ankle": (-50.0, 20.0)}
+CONVERGED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
+
+
+@dataclass(frozen=True)
+class Problem:
+    """What to optimise: variables (STATE names) with SI bounds, an objective, constraints."""
+
+    variables: tuple[str, ...]
+    lower: tuple[float, ...]  # rad or rad/s
+    upper: tuple[float, ...]
+    objective: dict[str, float]  # indicator -> weight; minimise the weighted sum
+    max_overstride: float | None = None  # m, strike point ahead of the hip along the ground
+    hip_height: tuple[float, float] | None = None  # m, above the strike point, normal to the ground
+    starts: int = 8
+    seed: int = 0
+    tolerance: float = 1e-8
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """A constraint (or variable bound) at the optimum."""
+
+    name: str
+    value: float
+    bound: float
+    multiplier: float  # d(objective*)/d(bound): objective units per unit of the bound (deg for angles)
+    meaning: str
+
+
+@dataclass(frozen=True)
+class Start:
+    """One start of the multi-start: where it began and how IPOPT ended it."""
+
+    index: int  # 1-based, in the order run (1 is the reference posture)
+    initial: dict[str, float]  # deg or deg/s
+    status: str
+    converged: bool
+    objective: float
+    final: dict[str, float]
+    iterations: int
+
+
+@dataclass(frozen=True)
+class Optimum:
+    """The result of a posture optimisation. `success` is False unless a start converged."""
+
+    success: bool
+    status: str
+    objective: float
+    state: np.ndarray  # STATE, SI: the optimum (or, when not successful, the best last iterate)
+    impact: ImpactResult  # checked indicators at `state`
+    reference: ImpactResult  # and at the scene's touchdown
+    active: tuple[Constraint, ...]
+    sensitivity: dict[str, float]  # d(objective*)/d(speed) per m/s, d(objective*)/d(friction)
+    starts: tuple[Start, ...]
+    local_optima: int  # distinct converged optima (0.5 deg apart)
+    seed: int
+    solve_time: float  # s, median over the starts
+    build_time: float  # s
+    notes: tuple[str, ...] = field(default=())
+
+
+def solve(scene, compiled: bool = False, progress=None, **overrides) -> Optimum:
+    """Optimise a scene's touchdown (a formopt.scene.Scene with an [optimize] table).
+
+    `overrides` replace fields of the scene's Problem (starts, seed, tolerance, ...).
+    """
+    if scene.problem is None:
+        raise ValueError(f"{scene.path or scene.name}: no [optimize] table: nothing to optimise")
+    problem = replace(scene.problem, **{k: v for k, v in overrides.items() if v is not None})
+    model = build_model(scene.body, scene.model)
+    return PostureProblem(model, scene.strike, scene.state, problem, scene.slope,
+                          scene.friction, compiled).solve(progress)
+
+
+class PostureProblem:
+    """The NLP of one model, strike, ground and problem; solve() runs the multi-start."""
+
+    def __init__(self, model: Model, strike: str, reference, problem: Problem,
+                 slope: float = 0.0, friction: float = 0.8, compiled: bool = False):
+        t0 = time.perf_counter()
+        self.model, self.strike, self.problem = model, strike, problem
+        self.slope, self.friction = slope, friction
+        self.reference = np.asarray(reference, float)
+        self.index = [STATE.index(v) for v in problem.variables]
+        self.lower, self.upper = np.array(problem.lower), np.array(problem.upper)
+        self.impact = Impact(model, strike, slope, friction)
+        u = ca.SX.sym("u", len(self.index))
+        p = ca.SX.sym("p", 2)  # running speed (hip_vx, m/s), friction coefficient
+        x = self.state(u, p)
+        self._state = ca.Function("state", [u, p], [x])
+        out = impact_function(model, strike, slope)(x=x)
+        terms = {"T_c": out["T_c"], "dv_trunk_x": out["dv_trunk"][0],
+                 "dv_trunk_z": out["dv_trunk"][1], "dv_com_x": out["dv_com"][0],
+                 "dv_com_z": out["dv_com"][1]}
+        f = sum(w * terms[k] for k, w in problem.objective.items())
+        self._objective = ca.Function("objective", [u, p], [f])
+        self.scale = 1.0 / max(abs(float(self._objective(self.to_unit(self.reference), self.p0))),
+                               1e-2)
+        g, self.constraints = self._constraints(x, out, p)
+        self.nlp = {"x": u, "p": p, "f": self.scale * f, "g": g}
+        opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
+                "ipopt.tol": problem.tolerance, "ipopt.max_iter": 200}
+        self.solver = cached_nlpsol("touchdown", self.nlp, opts, compiled)
+        lam = ca.SX.sym("lam", g.shape[0])
+        lagrangian = self.scale * f + ca.dot(lam, g)
+        self._dL_dp = ca.Function("dL_dp", [u, p, lam], [ca.gradient(lagrangian, p) / self.scale])
+        self._g = ca.Function("g", [u, p], [g])
+        self.build_time = time.perf_counter() - t0
+
+    @property
+    def p0(self) -> np.ndarray:
+        return np.array([self.reference[STATE.index("hip_vx")], self.friction])
+
+    def state(self, u, p):
+        """The touchdown state (SX) of scaled variables u and parameters p."""
+        x = ca.SX(ca.DM(self.reference))
+        for k, i in enumerate(self.index):
+            x[i] = self.lower[k] + (self.upper[k] - self.lower[k]) * u[k]
+        x[STATE.index("hip_vx")] = p[0]
+        if self.strike == "flat":  # the sole on the ground: the ankle follows the other angles
+            heel, fore = (np.array(self.model.body["foot"].landmarks[k]) for k in ("heel", "forefoot"))
+            sole = math.atan2(fore[1] - heel[1], fore[0] - heel[0])
+            x[3] = self.slope - sole - x[1] + x[0] + x[2]
+        return x
+
+    def to_unit(self, x) -> np.ndarray:
+        x = np.asarray(x, float)
+        return np.clip((x[self.index] - self.lower) / (self.upper - self.lower), 0.0, 1.0)
+
+    def to_state(self, u, p=None) -> np.ndarray:
+        """The touchdown state (SI) of scaled variables u (and parameters p)."""
+        return np.asarray(self._state(u, self.p0 if p is None else p), float).ravel()
+
+    def _constraints(self, x, out, p):
+        """Stacked constraints g (lbg <= g <= ubg) and their names, kinds and bounds."""
+        rows, names = [], []
+        t_axis, n_axis = ground_axes(self.slope)
+        mu = p[1]
+        total_t, total_n = out["impulse_total"][0], out["impulse_total"][1]
+        rows += [total_t - mu * total_n, -total_t - mu * total_n]
+        names += [("no_slip_forward", "upper", 0.0), ("no_slip_backward", "upper", 0.0)]
+        points = STRIKES[self.strike]
+        for k, point in enumerate(points):
+            rows.append(out["impulse"][2 * k + 1])
+            names.append((f"push_{point}", "lower", 0.0))
+            rows.append(out["approach"][k])
+            names.append((f"approach_{point}", "upper", -1e-3))
+        if self.strike != "flat":
+            rows.append(out["clearance"])
+            other = "heel" if points == ("forefoot",) else "forefoot"
+            names.append((f"clearance_{other}", "lower", 0.0))
+        world = landmarks(x, self.model.body, points[0])
+        hip = world["hip"][0]
+        if self.problem.max_overstride is not None:
+            rows.append(ca.dot(-hip, ca.DM(t_axis)))
+            names.append(("overstride", "upper", self.problem.max_overstride))
+        if self.problem.hip_height is not None:
+            lo, hi = self.problem.hip_height
+            rows += [ca.dot(hip, ca.DM(n_axis))] * 2
+            names += [("hip_height_min", "lower", lo), ("hip_height_max", "upper", hi)]
+        self.lbg = np.array([b if kind == "lower" else -np.inf for _, kind, b in names])
+        self.ubg = np.array([b if kind == "upper" else np.inf for _, kind, b in names])
+        return ca.vertcat(*rows), names
+
+    def starts(self) -> list[np.ndarray]:
+        """The reference posture first, then seeded uniform starts in the bounds."""
+        rng = np.random.default_rng(self.problem.seed)
+        first = self.to_unit(self.reference)
+        return [first] + [rng.uniform(0.0, 1.0, len(self.index)) for _ in range(self.problem.starts - 1)]
+
+    def solve_from(self, u0, p=None):
+        p = self.p0 if p is None else p
+        t = time.perf_counter()
+        sol = self.solver(x0=u0, p=p, lbx=0.0, ubx=1.0, lbg=self.lbg, ubg=self.ubg)
+        elapsed = time.perf_counter() - t
+        stats = self.solver.stats()
+        return sol, stats, elapsed
+
+    def solve(self, progress=None) -> Optimum:
+        """Run the multi-start; `progress(k, n, start)` is called after each start."""
+        results, starts = [], []
+        for k, u0 in enumerate(self.starts()):
+            sol, stats, elapsed = self.solve_from(u0)
+            u = np.asarray(sol["x"], float).ravel()
+            status = stats["return_status"]
+            x = self.to_state(u)
+            converged = status in CONVERGED and self._feasible(u) and self.impact(x).valid
+            objective = float(sol["f"]) / self.scale
+            start = Start(k + 1, _named(self.problem.variables, self.to_state(u0)[self.index]), status,
+                          converged, objective, _named(self.problem.variables, x[self.index]),
+                          int(stats["iter_count"]))
+            starts.append(start)
+            results.append((sol, u, x, start, elapsed))
+            if progress:
+                progress(k + 1, self.problem.starts, start)
+        converged = [r for r in results if r[3].converged]
+        pool = converged or results
+        sol, u, x, best, _ = min(pool, key=lambda r: r[3].objective)
+        notes = []
+        if not converged:
+            notes.append(f"no start converged (statuses: {sorted({r[3].status for r in results})}); "
+                         "the state shown is the best last iterate, not an optimum")
+        impact = self.impact(x)
+        active = self._active(u, sol) if converged else ()
+        sensitivity = self._sensitivity(u, sol) if converged else {}
+        return Optimum(success=bool(converged), status=best.status, objective=best.objective,
+                       state=x, impact=impact, reference=self.impact(self.reference),
+                       active=active, sensitivity=sensitivity, starts=tuple(starts),
+                       local_optima=_distinct([r[2][self.index] for r in converged]),
+                       seed=self.problem.seed,
+                       solve_time=float(np.median([r[4] for r in results])),
+                       build_time=self.build_time, notes=tuple(notes))
+
+    def _feasible(self, u, tol=1e-6) -> bool:
+        g = np.asarray(self._g(u, self.p0), float).ravel()
+        return bool(np.all(g >= self.lbg - tol) and np.all(g <= self.ubg + tol))
+
+    def _active(self, u, sol) -> tuple[Constraint, ...]:
+        g = np.asarray(self._g(u, self.p0), float).ravel()
+        # IPOPT's multipliers of L = f + lam' g: d(f*)/d(bound) = -lam (envelope theorem)
+        lam_g = -np.asarray(sol["lam_g"], float).ravel() / self.scale
+        lam_x = -np.asarray(sol["lam_x"], float).ravel() / self.scale
+        active = []
+        for (name, kind, bound), value, lam in zip(self.constraints, g, lam_g):
+            if abs(value - bound) < 1e-6 * max(1.0, abs(bound)) and abs(lam) > 1e-9:
+                active.append(Constraint(name, float(value), bound, float(lam), _meaning(name)))
+        for k, var in enumerate(self.problem.variables):
+            at = "lower" if u[k] < 1e-6 else "upper" if u[k] > 1 - 1e-6 else None
+            if at and abs(lam_x[k]) > 1e-9:
+                value = self.lower[k] if at == "lower" else self.upper[k]
+                unit = math.degrees(value)
+                active.append(Constraint(f"{var}_{at}", unit, unit,
+                                         float(lam_x[k]) * math.pi / 180 / (self.upper[k] - self.lower[k]),
+                                         f"{var} held at its {at} bound: the objective would keep "
+                                         f"falling past it"))
+        return tuple(active)
+
+    def _sensitivity(self, u, sol) -> dict[str, float]:
+        d = np.asarray(self._dL_dp(u, self.p0, sol["lam_g"]), float).ravel()
+        return {"d_objective_d_speed": float(d[0]), "d_objective_d_friction": float(d[1])}
+
+
+def _meaning(name: str) -> str:
+    if name.startswith("no_slip"):
+        return ("friction holds the optimum: the foot would slip past it; more friction lets the "
+                "posture go further")
+    if name.startswith("push"):
+        return "the ground's impulse would pull the foot past here: the contact would not hold"
+    if name.startswith("approach"):
+        return "the strike point would stop approaching the ground: no impact past here"
+    if name.startswith("clearance"):
+        return "the other foot point touches the ground: past here the strike pattern changes"
+    if name == "overstride":
+        return "the foot lands as far ahead of the hip as allowed"
+    return "the hip height limit holds the optimum"
+
+
+def _named(names, values) -> dict[str, float]:
+    return {n: float(math.degrees(v)) for n, v in zip(names, values)}
+
+
+def _distinct(points, tol=math.radians(0.5)) -> int:
+    found = []
+    for p in points:
+        if all(np.max(np.abs(p - q)) > tol for q in found):
+            found.append(p)
+    return len(found)

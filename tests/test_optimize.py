@@ -1,0 +1,183 @@
+"""The posture optimum: checked independently of IPOPT's own claim."""
+
+import copy
+import json
+import tomllib
+from pathlib import Path
+
+import casadi as ca
+import numpy as np
+import pytest
+
+from formopt import load
+from formopt.cli import main
+from formopt.optimize import PostureProblem, solve
+from formopt.scene import parse
+
+DEMO = Path(__file__).resolve().parent.parent / "problems" / "demo.toml"
+
+
+@pytest.fixture(scope="module")
+def demo():
+    scene = load(DEMO)
+    from formopt import build_model
+    problem = PostureProblem(build_model(scene.body, scene.model), scene.strike, scene.state,
+                             scene.problem, scene.slope, scene.friction)
+    return scene, problem, problem.solve()
+
+
+def test_demo_converges_to_a_valid_optimum(demo):
+    scene, problem, opt = demo
+    assert opt.success and opt.status == "Solve_Succeeded"
+    assert opt.impact.valid
+    assert opt.impact.T_c < opt.reference.T_c
+    assert opt.objective == pytest.approx(opt.impact.T_c, rel=1e-9)
+    assert all(s.converged == (s.status in ("Solve_Succeeded", "Solved_To_Acceptable_Level"))
+               for s in opt.starts if s.converged)
+
+
+def test_feasible_perturbations_do_not_beat_the_optimum(demo):
+    scene, problem, opt = demo
+    rng = np.random.default_rng(123)
+    u_opt = problem.to_unit(opt.state)
+    tried = 0
+    for _ in range(3000):
+        u = np.clip(u_opt + rng.normal(scale=0.05, size=u_opt.size), 0.0, 1.0)
+        g = np.asarray(problem._g(u, problem.p0), float).ravel()
+        if np.all(g >= problem.lbg) and np.all(g <= problem.ubg):
+            tried += 1
+            value = float(problem._objective(u, problem.p0))
+            assert value >= opt.objective - 1e-9 * abs(opt.objective)
+    assert tried > 50, "the test must try enough feasible neighbours"
+
+
+def test_nlp_derivatives_match_finite_differences(demo):
+    scene, problem, opt = demo
+    u, p = ca.SX.sym("u", len(problem.index)), ca.SX.sym("p", 2)
+    nlp = ca.Function("nlp", [problem.nlp["x"], problem.nlp["p"]],
+                      [problem.nlp["f"], problem.nlp["g"]])
+    f, g = nlp(u, p)
+    jac = ca.Function("jacobians", [u, p], [ca.gradient(f, u), ca.jacobian(g, u),
+                                            ca.hessian(f, u)[0]])
+    rng = np.random.default_rng(4)
+    for u0 in [problem.to_unit(opt.state), *rng.uniform(0.1, 0.9, (4, len(problem.index)))]:
+        grad, J, H = (np.asarray(a, float) for a in jac(u0, problem.p0))
+        h = 1e-5
+        for k in range(u0.size):
+            e = np.zeros_like(u0)
+            e[k] = h
+            fp, gp = (np.asarray(a, float).ravel() for a in nlp(u0 + e, problem.p0))
+            fm, gm = (np.asarray(a, float).ravel() for a in nlp(u0 - e, problem.p0))
+            assert abs((fp[0] - fm[0]) / (2 * h) - grad[k, 0]) < 1e-6 * max(1, abs(grad[k, 0]))
+            assert np.allclose((gp - gm) / (2 * h), J[:, k], rtol=1e-5, atol=1e-6)
+            gradp = np.asarray(jac(u0 + e, problem.p0)[0], float).ravel()
+            gradm = np.asarray(jac(u0 - e, problem.p0)[0], float).ravel()
+            assert np.allclose((gradp - gradm) / (2 * h), H[:, k], rtol=1e-5, atol=1e-5)
+
+
+def test_speed_sensitivity_matches_a_resolve(demo):
+    """The envelope theorem's dT_c*/dv against re-solving at v +- dv."""
+    scene, problem, opt = demo
+    dv = 1e-3
+    u0 = problem.to_unit(opt.state)
+    values = []
+    for v in (problem.p0[0] + dv, problem.p0[0] - dv):
+        sol, stats, _ = problem.solve_from(u0, np.array([v, problem.friction]))
+        assert stats["return_status"] == "Solve_Succeeded"
+        values.append(float(sol["f"]) / problem.scale)
+    fd = (values[0] - values[1]) / (2 * dv)
+    assert fd == pytest.approx(opt.sensitivity["d_objective_d_speed"], rel=1e-3, abs=1e-6)
+
+
+def test_multipliers_predict_a_moved_bound(demo):
+    """Moving an active bound by delta changes the optimum by multiplier * delta."""
+    scene, problem, opt = demo
+    active = {c.name: c for c in opt.active}
+    assert "hip_height_max" in active
+    lo, hi = scene.problem.hip_height
+    delta = 1e-4
+    moved = copy.copy(problem)
+    moved.ubg = problem.ubg.copy()
+    k = [n for n, _, _ in problem.constraints].index("hip_height_max")
+    moved.ubg[k] = hi + delta
+    sol, stats, _ = moved.solve_from(problem.to_unit(opt.state))
+    assert stats["return_status"] == "Solve_Succeeded"
+    change = float(sol["f"]) / problem.scale - opt.objective
+    assert change == pytest.approx(active["hip_height_max"].multiplier * delta, rel=2e-2)
+
+
+def test_box_multiplier_predicts_a_moved_bound(demo):
+    scene, problem, opt = demo
+    active = {c.name: c for c in opt.active}
+    assert "ankle_lower" in active
+    delta = 0.01  # deg
+    k = scene.problem.variables.index("ankle")
+    lower = list(scene.problem.lower)
+    lower[k] -= np.radians(delta)
+    from dataclasses import replace
+    moved = PostureProblem(problem.model, scene.strike, scene.state,
+                           replace(scene.problem, lower=tuple(lower)), scene.slope, scene.friction)
+    sol, stats, _ = moved.solve_from(moved.to_unit(opt.state))
+    assert stats["return_status"] == "Solve_Succeeded"
+    change = float(sol["f"]) / moved.scale - opt.objective
+    assert change == pytest.approx(active["ankle_lower"].multiplier * -delta, rel=2e-2)
+
+
+def test_infeasible_scene_reports_its_status_and_no_optimum():
+    data = tomllib.loads(DEMO.read_text())
+    data["ground"]["friction"] = 0.01  # no posture keeps the foot from slipping
+    data["optimize"]["starts"] = 3
+    opt = solve(parse(data, "infeasible.toml"))
+    assert not opt.success
+    assert opt.status in ("Infeasible_Problem_Detected", "Restoration_Failed",
+                          "Maximum_Iterations_Exceeded", "Solved_To_Acceptable_Level",
+                          "Solve_Succeeded")
+    assert not any(s.converged for s in opt.starts)
+    assert opt.active == () and opt.sensitivity == {}
+    assert any("not an optimum" in n for n in opt.notes)
+
+
+def test_cli_solve_json(tmp_path, capsys):
+    code = main(["solve", str(DEMO), "--json", "--out", str(tmp_path), "--starts", "3"])
+    data = json.loads(capsys.readouterr().out)
+    assert code == 0 and data["success"] is True
+    for key in ("success", "status", "touchdown", "T_c", "impulse"):
+        assert key in data
+    assert set(data["touchdown"]) == {"strike", "hip_velocity", "angles_deg", "angular_velocity_dps"}
+    assert data["T_c"] == pytest.approx(data["objective"])
+    assert (tmp_path / "posture.png").stat().st_size > 0
+    assert json.loads((tmp_path / "result.json").read_text())["T_c"] == data["T_c"]
+    assert len(data["starts"]) == 3 and data["seed"] == 0
+
+
+def test_cli_solve_not_converged_exits_1(tmp_path, capsys):
+    text = DEMO.read_text().replace("friction = 0.8", "friction = 0.01").replace("starts = 8", "starts = 2")
+    path = tmp_path / "scene.toml"
+    path.write_text(text)
+    assert main(["solve", str(path), "--out", str(tmp_path)]) == 1
+    assert "NOT CONVERGED" in capsys.readouterr().out
+
+
+def test_solve_without_optimize_table_is_bad_input(capsys):
+    scene = Path(__file__).resolve().parent.parent / "problems" / "heel_strike.toml"
+    assert main(["solve", str(scene)]) == 2
+    assert "no [optimize] table" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("edit,key", [
+    ({"variables": ["kne"]}, "optimize.variables"),
+    ({"variables": ["trunk"]}, "optimize.variables"),
+    ({"objective": "energy"}, "optimize.objective"),
+    ({"bounds_deg": {"knee": [40.0, 10.0]}}, "optimize.bounds_deg.knee"),
+    ({"bounds_deg": {"knee": [140.0, 150.0]}}, "optimize.bounds_deg.knee"),
+    ({"starts": 0}, "optimize.starts"),
+    ({"starts": 2.5}, "optimize.starts"),
+    ({"variables": ["omega_thigh"]}, "optimize.bounds_dps.thigh"),
+])
+def test_bad_optimize_tables(edit, key):
+    from formopt import SceneError
+    data = tomllib.loads(DEMO.read_text())
+    data["optimize"].update(edit)
+    with pytest.raises(SceneError) as err:
+        parse(data)
+    assert err.value.key == key
