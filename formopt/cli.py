@@ -183,8 +183,12 @@ def solve_table(scene: Scene, opt) -> str:
         lines += ["", "no constraint is active: an interior optimum"]
     if opt.sensitivity:
         s = opt.sensitivity
-        lines += ["", f"sensitivity: d objective / d speed {s['d_objective_d_speed']:+.4g} per m/s, "
-                      f"/ d friction {s['d_objective_d_friction']:+.4g}"]
+        lines += ["", f"sensitivity of the optimum: objective {s['d_objective_d_speed']:+.4g} per m/s "
+                      f"of running speed, {s['d_objective_d_friction']:+.4g} per unit of friction"]
+        for name, unit in (("speed", "m/s"), ("friction", "unit of friction")):
+            if f"d_posture_d_{name}_deg" in s:
+                moves = ", ".join(f"{k} {v:+.3g}" for k, v in s[f"d_posture_d_{name}_deg"].items())
+                lines.append(f"  posture per {unit}: {moves} deg")
     converged = sum(st.converged for st in opt.starts)
     lines += ["", f"multi-start: {len(opt.starts)} starts (seed {opt.seed}), {converged} converged, "
                   f"{opt.local_optima} distinct optima; median solve {opt.solve_time * 1e3:.1f} ms, "

@@ -24,7 +24,11 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
-FLAGS = ("-O3", "-fPIC", "-shared", "-fno-math-errno")
+FLAGS = ("-fPIC", "-shared", "-fno-math-errno")
+# Small functions evaluated millions of times get -O3; an NLP's generated derivatives (tens of
+# thousands of lines, called a few dozen times per solve) compile ten times faster at -O0 and
+# solve almost as fast: IPOPT's own work dominates (benchmarks/solve_speed.py).
+FUNCTION_OPT, NLP_OPT = "-O3", "-O0"
 
 
 def cache_dir() -> Path:
@@ -43,7 +47,7 @@ def library(function: ca.Function) -> Path:
     """Path of the compiled shared library of `function` (built once, then cached)."""
     generator = ca.CodeGenerator(f"{function.name()}.c", {"with_header": False})
     generator.add(function)
-    return _compile(generator.dump(), function.name())
+    return _compile(generator.dump(), function.name(), FUNCTION_OPT)
 
 
 def cached_nlpsol(name: str, nlp: dict, opts: dict, compiled: bool = False) -> ca.Function:
@@ -58,12 +62,13 @@ def cached_nlpsol(name: str, nlp: dict, opts: dict, compiled: bool = False) -> c
     with tempfile.TemporaryDirectory() as tmp, contextlib.chdir(tmp):
         solver.generate_dependencies(f"{name}_nlp.c", {"with_header": False})
         source = Path(f"{name}_nlp.c").read_text()
-    return ca.nlpsol(name, "ipopt", str(_compile(source, f"{name}_nlp")), opts)
+    return ca.nlpsol(name, "ipopt", str(_compile(source, f"{name}_nlp", NLP_OPT)), opts)
 
 
-def _compile(source: str, name: str) -> Path:
+def _compile(source: str, name: str, level: str) -> Path:
     cc = compiler()
-    key = hashlib.sha256("\0".join([source, cc, *FLAGS]).encode()).hexdigest()[:20]
+    flags = (level, *FLAGS)
+    key = hashlib.sha256("\0".join([source, cc, *flags]).encode()).hexdigest()[:20]
     target = cache_dir() / f"{name}_{key}.so"
     if target.exists():
         return target
@@ -71,7 +76,7 @@ def _compile(source: str, name: str) -> Path:
     with tempfile.TemporaryDirectory(dir=target.parent) as tmp:
         c_file, so_file = Path(tmp) / f"{name}.c", Path(tmp) / target.name
         c_file.write_text(source)
-        done = subprocess.run([cc, *FLAGS, str(c_file), "-o", str(so_file), "-lm"],
+        done = subprocess.run([cc, *flags, str(c_file), "-o", str(so_file), "-lm"],
                               capture_output=True, text=True)
         if done.returncode != 0:
             raise RuntimeError(f"compiling {name} failed:\n{done.stderr[-2000:]}")

@@ -92,7 +92,7 @@ class Optimum:
     impact: ImpactResult  # checked indicators at `state`
     reference: ImpactResult  # and at the scene's touchdown
     active: tuple[Constraint, ...]
-    sensitivity: dict[str, float]  # d(objective*)/d(speed) per m/s, d(objective*)/d(friction)
+    sensitivity: dict  # d(objective*)/d(speed, friction); d(posture*)/d(speed, friction) in deg
     starts: tuple[Start, ...]
     local_optima: int  # distinct converged optima (0.5 deg apart)
     seed: int
@@ -118,7 +118,8 @@ class PostureProblem:
     """The NLP of one model, strike, ground and problem; solve() runs the multi-start."""
 
     def __init__(self, model: Model, strike: str, reference, problem: Problem,
-                 slope: float = 0.0, friction: float = 0.8, compiled: bool = False):
+                 slope: float = 0.0, friction: float = 0.8, compiled: bool = False,
+                 hessian: str = "exact"):
         t0 = time.perf_counter()
         self.model, self.strike, self.problem = model, strike, problem
         self.slope, self.friction = slope, friction
@@ -141,7 +142,8 @@ class PostureProblem:
         g, self.constraints = self._constraints(x, out, p)
         self.nlp = {"x": u, "p": p, "f": self.scale * f, "g": g}
         opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
-                "ipopt.tol": problem.tolerance, "ipopt.max_iter": 200}
+                "ipopt.tol": problem.tolerance, "ipopt.max_iter": 200,
+                "ipopt.hessian_approximation": hessian}
         self.solver = cached_nlpsol("touchdown", self.nlp, opts, compiled)
         lam = ca.SX.sym("lam", g.shape[0])
         lagrangian = self.scale * f + ca.dot(lam, g)
@@ -277,9 +279,24 @@ class PostureProblem:
                                          f"falling past it"))
         return tuple(active)
 
-    def _sensitivity(self, u, sol) -> dict[str, float]:
+    def _sensitivity(self, u, sol) -> dict:
+        """d(objective*)/dp by the envelope theorem; d(posture*)/dp (deg per unit) by
+        warm-started re-solves at p +- h (central differences), p = speed, friction."""
         d = np.asarray(self._dL_dp(u, self.p0, sol["lam_g"]), float).ravel()
-        return {"d_objective_d_speed": float(d[0]), "d_objective_d_friction": float(d[1])}
+        out = {"d_objective_d_speed": float(d[0]), "d_objective_d_friction": float(d[1])}
+        for k, (name, h) in enumerate((("speed", 1e-3), ("friction", 1e-3))):
+            moved = []
+            for sign in (1.0, -1.0):
+                p = self.p0.copy()
+                p[k] += sign * h
+                re, stats, _ = self.solve_from(u, p)
+                if stats["return_status"] not in CONVERGED:
+                    break
+                moved.append(self.to_state(np.asarray(re["x"], float).ravel(), p)[self.index])
+            if len(moved) == 2:
+                slope = np.degrees((moved[0] - moved[1]) / (2 * h))
+                out[f"d_posture_d_{name}_deg"] = dict(zip(self.problem.variables, map(float, slope)))
+        return out
 
 
 def _meaning(name: str) -> str:
