@@ -37,11 +37,17 @@ def main(argv=None) -> int:
     cmd.add_argument("--seed", type=int, help="seed of the random starts (overrides the scene)")
     cmd.add_argument("--compiled", action="store_true",
                      help="generate, compile (cached) and run the NLP's functions as C")
+    cmd = commands.add_parser("simulate", help="follow the landing from the touchdown")
+    cmd.add_argument("scene", help="scene file, e.g. problems/landing_spring.toml")
+    cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
+    cmd.add_argument("--out", help="folder for figures, CSV and JSON (default out/<scene>)")
     args = parser.parse_args(argv)
     try:
         scene = load(args.scene)
         if args.command == "impact":
             return _impact(scene, args)
+        if args.command == "simulate":
+            return _simulate(scene, args)
         return _solve(scene, args)
     except (SceneError, ValueError) as err:
         print(f"formopt: error: {args.scene}: {err}", file=sys.stderr)
@@ -89,6 +95,52 @@ def _solve(scene: Scene, args) -> int:
         print(solve_table(scene, opt))
         print(f"\nwrote {', '.join(str(f) for f in figures)}, {out / 'result.json'}")
     return 0 if opt.success else 1
+
+
+def _simulate(scene: Scene, args) -> int:
+    import csv
+
+    from .landing import history_rows, land
+    from .model import build_model
+    from .plots import landing_figures
+
+    landing = land(scene)
+    model = build_model(scene.body, scene.model)
+    out = Path(args.out) if args.out else Path("out") / Path(scene.path).stem
+    figures = landing_figures(out, landing, scene.body, model, scene.slope, scene.strike)
+    out.mkdir(parents=True, exist_ok=True)
+    tmp = out / ".landing.csv.tmp"
+    with tmp.open("w", newline="") as fh:
+        csv.writer(fh).writerows(history_rows(landing, model))
+    tmp.replace(out / "landing.csv")
+    report = {"scene": scene.name, "model": scene.model, "joints": dataclasses.asdict(scene.joints),
+              "touchdown": scene.touchdown, **landing.to_dict(),
+              "files": [str(f) for f in figures] + [str(out / "landing.csv")]}
+    _write_json(out / "landing.json", report)
+    if args.json:
+        print(json.dumps(report, indent=2))
+        return 0
+    print(f"{scene.name}  ({scene.path})\nmodel {scene.model}; joints {scene.joints.model}; "
+          f"{scene.strike} strike; friction {scene.friction:g}; slope {math.degrees(scene.slope):+.1f} deg\n")
+    print(f"  {'time (ms)':>10s} {'contact':>10s} {'T_c (J)':>10s} {'t (N s)':>9s} {'n (N s)':>9s} "
+          f"{'mu_c':>7s} {'dv trunk x, z (m/s)':>22s}")
+    for e in landing.impacts:
+        dv = f"{e.dv_trunk[0]:+.4f} {e.dv_trunk[1]:+.4f}" if e.dv_trunk else "-"
+        print(f"  {e.time * 1e3:10.3f} {e.contact:>10s} {e.T_c:10.4f} {e.impulse[0]:+9.4f} "
+              f"{e.impulse[1]:+9.4f} {e.mu_c:7.3f} {dv:>22s}")
+    print(f"\n  absorbed in all      T_c_total {landing.T_c_total:.4f} J")
+    print(f"  largest mu_c         {landing.mu_c_max:.3f} (friction {scene.friction:g})")
+    held = "yes" if landing.no_slip_held else \
+        f"no: mu_c exceeds the friction at {len(landing.slip_at)} instants, first at {landing.slip_at[0] * 1e3:.2f} ms"
+    print(f"  no-slip held         {held}")
+    for t, p in landing.releases:
+        print(f"  released             {p} at {t * 1e3:.3f} ms: the ground would have pulled it")
+    print(f"  energy balance error {landing.energy_error:.2e} J; constraint drift {landing.drift:.1e} m")
+    print(f"  ended                {landing.ended} at {landing.t[-1] * 1e3:.2f} ms")
+    for w in landing.warnings:
+        print(f"warning: {w}")
+    print(f"\nwrote {', '.join(report['files'])}, {out / 'landing.json'}")
+    return 0
 
 
 def solve_report(scene: Scene, opt, figures) -> dict:

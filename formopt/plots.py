@@ -89,3 +89,42 @@ def save(fig, path) -> Path:
     plt.close(fig)
     os.replace(tmp, path)
     return path
+
+
+def landing_figures(folder, landing, body: Body, model, slope: float, strike: str) -> list[Path]:
+    """Stick figures through the landing, and kinetic energy over time with its impact drops."""
+    from .model import positions  # noqa: F401  (positions of model points come from q)
+
+    folder = Path(folder)
+    fig, ax = plt.subplots(figsize=(8, 5))
+    ground(ax, slope, span=(-0.8, 0.8))
+    frames = np.linspace(0, len(landing.t) - 1, min(8, len(landing.t))).astype(int)
+    cmap = plt.get_cmap("viridis")
+    for j, k in enumerate(frames):
+        q = landing.q[k]
+        pts = {p.name: q[model.cols(p.name)] for p in model.points}
+        color = cmap(j / max(1, len(frames) - 1))
+        chain = [pts[n] for n in ("hip", "knee", "ankle") if n in pts]
+        ax.plot(*np.array(chain).T, "-o", color=color, ms=3, lw=1.8,
+                label=f"{landing.t[k] * 1e3:.1f} ms")
+        ax.fill(*np.array([pts["ankle"], pts["heel"], pts["forefoot"]]).T, color=color, alpha=0.3)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x, forward (m)")
+    ax.set_ylabel("z, up (m)")
+    ax.legend(fontsize=7, ncol=2)
+    ax.set_title(f"landing after a {strike} strike", fontsize=10)
+    sequence = save(fig, folder / "landing_sequence.png")
+
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.plot(landing.t * 1e3, landing.T, color="tab:blue", label="kinetic energy T")
+    for e in landing.impacts:
+        ax.axvline(e.time * 1e3, color="tab:red", lw=0.8, ls="--")
+        ax.annotate(f"{e.contact}: T_c {e.T_c:.2f} J", (e.time * 1e3, ax.get_ylim()[1]),
+                    rotation=90, va="top", ha="right", fontsize=8, color="tab:red")
+    ax.set_xlabel("time after touchdown (ms)")
+    ax.set_ylabel("J")
+    ax.set_title(f"absorbed in all: {landing.T_c_total:.3f} J; energy balance error "
+                 f"{landing.energy_error:.1e} J", fontsize=9)
+    ax.legend(fontsize=8)
+    energy = save(fig, folder / "kinetic_energy.png")
+    return [sequence, energy]

@@ -16,6 +16,7 @@ import numpy as np
 
 from . import body as bodies
 from .body import Body, Segment
+from .landing import JOINT_MODELS, Joints
 from .model import MODELS, STATE, STRIKES
 from .optimize import OBJECTIVES, RANGE_OF_MOTION_DEG, Problem
 
@@ -52,6 +53,8 @@ class Scene:
     path: str = ""
     notes: tuple[str, ...] = field(default=())  # what the loader did that a user should know
     problem: Problem | None = None  # the [optimize] table, when there is one
+    joints: Joints = Joints()  # the [joints] table: the joint model of the landing
+    landing: dict = field(default_factory=lambda: dict(LANDING_DEFAULTS))  # the [landing] table
 
     @property
     def touchdown(self) -> dict:
@@ -84,7 +87,7 @@ def load(path) -> Scene:
 
 def parse(data: dict, path: str = "") -> Scene:
     """Validate a scene given as a dictionary (the parsed TOML)."""
-    _keys(data, "", {"scene", "body", "touchdown", "ground", "optimize"},
+    _keys(data, "", {"scene", "body", "touchdown", "ground", "optimize", "joints", "landing"},
           ("scene", "touchdown", "ground"))
     scene = _table(data, "scene", {"name", "model"}, {"name"})
     name = _string(scene, "name", "scene")
@@ -101,8 +104,57 @@ def parse(data: dict, path: str = "") -> Scene:
     if "optimize" in data:
         problem, more = _optimize(data["optimize"], model, strike)
         notes += more
+    joints = _joints(data.get("joints", {}), model)
+    landing = _landing(data.get("landing", {}))
     return Scene(name, model, body, strike, state, friction, math.radians(slope), path, notes,
-                 problem)
+                 problem, joints, landing)
+
+
+# -- landing ----------------------------------------------------------------------------
+
+LANDING_DEFAULTS = {"dt_ms": 0.2, "duration_ms": 200.0}
+MODEL_JOINTS = {"shank-foot": ("ankle",), "leg": ("knee", "ankle"), "leg-trunk": ("hip", "knee", "ankle")}
+
+
+def _joints(data, model) -> Joints:
+    if not isinstance(data, dict):
+        raise SceneError("joints", "must be a table")
+    _keys(data, "joints", {"model", "stiffness_nm_per_deg", "damping_nms_per_deg", "locked"}, set())
+    kind = _choice(data.get("model", "free"), "joints.model", JOINT_MODELS)
+    names = MODEL_JOINTS[model]
+    if kind == "spring-damper":
+        tables = {}
+        for key in ("stiffness_nm_per_deg", "damping_nms_per_deg"):
+            table = _table(data, key, set(names), set(), "joints") if key in data else {}
+            tables[key] = {j: math.degrees(_number(table, j, f"joints.{key}", low=0.0, high=1e5))
+                           for j in table}
+        if not tables["stiffness_nm_per_deg"] and not tables["damping_nms_per_deg"]:
+            raise SceneError("joints.stiffness_nm_per_deg", "missing: a spring-damper model needs "
+                                                            "stiffness or damping for some joint")
+        return Joints(kind, tables["stiffness_nm_per_deg"], tables["damping_nms_per_deg"])
+    for key in ("stiffness_nm_per_deg", "damping_nms_per_deg"):
+        if key in data:
+            raise SceneError(f"joints.{key}", f"only for joints.model = \"spring-damper\", not {kind!r}")
+    if kind == "locked":
+        locked = data.get("locked", list(names))
+        if not isinstance(locked, list) or not locked:
+            raise SceneError("joints.locked", f"must be a non-empty list of {', '.join(names)}")
+        for j in locked:
+            _choice(j, "joints.locked", names)
+        return Joints(kind, locked=tuple(locked))
+    if "locked" in data:
+        raise SceneError("joints.locked", "only for joints.model = \"locked\"")
+    return Joints(kind)
+
+
+def _landing(data) -> dict:
+    if not isinstance(data, dict):
+        raise SceneError("landing", "must be a table")
+    _keys(data, "landing", set(LANDING_DEFAULTS), set())
+    return {"dt_ms": _number(data, "dt_ms", "landing", default=LANDING_DEFAULTS["dt_ms"],
+                             low=1e-4, high=5.0),
+            "duration_ms": _number(data, "duration_ms", "landing",
+                                   default=LANDING_DEFAULTS["duration_ms"], low=1.0, high=2000.0)}
 
 
 # -- optimize ---------------------------------------------------------------------------

@@ -1,0 +1,133 @@
+"""The landing: energy bookkeeping, events, the impact sequence, differentiability."""
+
+import copy
+import json
+import tomllib
+from pathlib import Path
+
+import casadi as ca
+import numpy as np
+import pytest
+
+from formopt import SceneError, build_model, impact, load
+from formopt.cli import main
+from formopt.landing import LandingModel, absorbed_function, land, landing_function
+from formopt.scene import parse
+
+SPRING = Path(__file__).resolve().parent.parent / "problems" / "landing_spring.toml"
+
+
+@pytest.fixture(scope="module")
+def spring():
+    return load(SPRING)
+
+
+@pytest.fixture(scope="module")
+def spring_landing(spring):
+    return land(spring)
+
+
+def with_joints(scene_data, joints):
+    data = copy.deepcopy(scene_data)
+    data["joints"] = joints
+    return parse(data, "edited.toml")
+
+
+def test_two_impacts_and_their_bookkeeping(spring, spring_landing):
+    L = spring_landing
+    assert [e.contact for e in L.impacts] == ["forefoot", "heel"]
+    assert L.ended == "heel and forefoot both down"
+    assert 0.0 < L.impacts[1].time < 0.2
+    assert L.T_c_total == pytest.approx(sum(e.T_c for e in L.impacts))
+    assert L.energy_error < 1e-6  # J: T + V + springs + damped + absorbed is constant
+    assert L.drift < 1e-9
+
+
+def test_first_impact_equals_formopt_impact(spring, spring_landing):
+    r = impact(spring)
+    first = spring_landing.impacts[0]
+    assert first.T_c == pytest.approx(r.T_c, rel=1e-10)
+    assert np.allclose(first.impulse, r.impulse_total, rtol=1e-9)
+    assert np.allclose(first.dv_trunk, r.dv_trunk, atol=1e-12)
+
+
+def test_event_time_and_absorbed_energy_converge(spring):
+    results = [land(spring, dt=dt) for dt in (8e-4, 4e-4, 2e-4, 1e-4)]
+    times = np.array([r.impacts[1].time for r in results])
+    totals = np.array([r.T_c_total for r in results])
+    dt_err, tc_err = np.abs(np.diff(times)), np.abs(np.diff(totals))
+    assert np.all(dt_err[1:] < dt_err[:-1] + 1e-15) and dt_err[-1] < 1e-9
+    assert np.all(tc_err[1:] < tc_err[:-1] + 1e-15) and tc_err[-1] < 1e-6 * totals[-1]
+
+
+@pytest.mark.parametrize("joints", [{"model": "free"}, {"model": "locked"},
+                                    {"model": "locked", "locked": ["knee"]}])
+def test_energy_balance_for_every_joint_model(spring, joints):
+    data = tomllib.loads(SPRING.read_text())
+    L = land(with_joints(data, joints))
+    assert L.energy_error < 1e-8
+    assert L.impacts[0].T_c > 0
+
+
+def test_free_hinges_pull_and_the_contact_is_released(spring):
+    """Issue 3's warning: with free hinges the pinned forefoot needs a pulling force at once."""
+    data = tomllib.loads(SPRING.read_text())
+    L = land(with_joints(data, {"model": "free"}))
+    assert L.releases and L.releases[0][0] == 0.0 and L.releases[0][1] == "forefoot"
+    assert np.all(np.isnan(L.force[1:, 1]) | (L.force[1:, 1] >= 0))  # never a pulling force
+
+
+def test_locked_leg_absorbs_more_than_free_hinges(spring):
+    data = tomllib.loads(SPRING.read_text())
+    free = land(with_joints(data, {"model": "free"}))
+    locked = land(with_joints(data, {"model": "locked"}))
+    assert locked.impacts[0].T_c > 10 * free.impacts[0].T_c
+
+
+def test_differentiable_landing_matches_the_simulation(spring, spring_landing):
+    model = build_model(spring.body, spring.model)
+    lm = LandingModel(model, spring.joints, spring.slope)
+    absorbed = absorbed_function(lm, spring.strike, spring_landing.impacts[1].time, steps=60)
+    T_c_total, t_e = (float(v) for v in absorbed(spring.state))
+    assert t_e == pytest.approx(spring_landing.impacts[1].time, abs=1e-7)
+    assert T_c_total == pytest.approx(spring_landing.T_c_total, rel=1e-6)
+    x = ca.MX.sym("x", len(spring.state))
+    grad = ca.Function("grad", [x], [ca.gradient(absorbed(x)[0], x)])
+    exact = np.asarray(grad(spring.state), float).ravel()
+    h = 1e-5
+    for k in range(spring.state.size):
+        e = np.zeros_like(spring.state)
+        e[k] = h
+        fd = (float(absorbed(spring.state + e)[0]) - float(absorbed(spring.state - e)[0])) / (2 * h)
+        assert fd == pytest.approx(exact[k], rel=1e-5, abs=1e-6)
+
+
+def test_landing_function_needs_a_single_strike(spring):
+    lm = LandingModel(build_model(spring.body, spring.model), spring.joints)
+    with pytest.raises(ValueError, match="heel or forefoot"):
+        landing_function(lm, "flat")
+
+
+@pytest.mark.parametrize("joints,key", [
+    ({"model": "springy"}, "joints.model"),
+    ({"model": "spring-damper"}, "joints.stiffness_nm_per_deg"),
+    ({"model": "spring-damper", "stiffness_nm_per_deg": {"hip": 5.0}}, "joints.stiffness_nm_per_deg.hip"),
+    ({"model": "free", "locked": ["knee"]}, "joints.locked"),
+    ({"model": "locked", "locked": ["elbow"]}, "joints.locked"),
+])
+def test_bad_joint_tables(joints, key):
+    data = tomllib.loads(SPRING.read_text())
+    with pytest.raises(SceneError) as err:
+        with_joints(data, joints)
+    assert err.value.key == key
+
+
+def test_cli_simulate_json(tmp_path, capsys):
+    assert main(["simulate", str(SPRING), "--json", "--out", str(tmp_path)]) == 0
+    data = json.loads(capsys.readouterr().out)
+    for key in ("impacts", "T_c_total", "mu_c_max", "no_slip_held", "energy_error"):
+        assert key in data
+    assert {"time", "contact", "T_c", "dv_trunk"} <= set(data["impacts"][0])
+    rows = (tmp_path / "landing.csv").read_text().splitlines()
+    assert rows[0].startswith("t_s,T_J,energy_J") and len(rows) > 10
+    assert (tmp_path / "kinetic_energy.png").stat().st_size > 0
