@@ -41,6 +41,12 @@ def main(argv=None) -> int:
     cmd.add_argument("scene", help="scene file, e.g. problems/landing_spring.toml")
     cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
     cmd.add_argument("--out", help="folder for figures, CSV and JSON (default out/<scene>)")
+    cmd = commands.add_parser("sweep", help="landings across a range of parameters (resumable)")
+    cmd.add_argument("scene", help="scene file, e.g. problems/landing_spring.toml")
+    cmd.add_argument("--param", action="append", required=True,
+                     help="NAME=START:STOP:COUNT, e.g. ankle_deg=-20:20:41 (repeat for a grid)")
+    cmd.add_argument("--out", help="CSV file (default out/<scene>/sweep.csv); an existing one is resumed")
+    cmd.add_argument("--no-progress", action="store_true", help="no progress bar")
     args = parser.parse_args(argv)
     try:
         scene = load(args.scene)
@@ -48,6 +54,8 @@ def main(argv=None) -> int:
             return _impact(scene, args)
         if args.command == "simulate":
             return _simulate(scene, args)
+        if args.command == "sweep":
+            return _sweep(scene, args)
         return _solve(scene, args)
     except (SceneError, ValueError) as err:
         print(f"formopt: error: {args.scene}: {err}", file=sys.stderr)
@@ -133,13 +141,28 @@ def _simulate(scene: Scene, args) -> int:
     held = "yes" if landing.no_slip_held else \
         f"no: mu_c exceeds the friction at {len(landing.slip_at)} instants, first at {landing.slip_at[0] * 1e3:.2f} ms"
     print(f"  no-slip held         {held}")
-    for t, p in landing.releases:
-        print(f"  released             {p} at {t * 1e3:.3f} ms: the ground would have pulled it")
+    for t, p, f in landing.releases:
+        print(f"  released             {p} at {t * 1e3:.3f} ms: the ground would have pulled it ({f:.1f} N)")
     print(f"  energy balance error {landing.energy_error:.2e} J; constraint drift {landing.drift:.1e} m")
     print(f"  ended                {landing.ended} at {landing.t[-1] * 1e3:.2f} ms")
     for w in landing.warnings:
         print(f"warning: {w}")
     print(f"\nwrote {', '.join(report['files'])}, {out / 'landing.json'}")
+    return 0
+
+
+def _sweep(scene: Scene, args) -> int:
+    from . import sweep
+
+    params = [sweep.parse_param(p) for p in args.param]
+    out = Path(args.out) if args.out else Path("out") / Path(scene.path).stem / "sweep.csv"
+    rows = sweep.run(scene, params, out, progress=not args.no_progress)
+    failed = [r for r in rows if r["error"]]
+    totals = [float(r["T_c_total"]) for r in rows if not r["error"]]
+    print(f"{len(rows)} landings in {out}" + (f", {len(failed)} failed (see the error column)"
+                                              if failed else ""))
+    if totals:
+        print(f"T_c_total from {min(totals):.4f} to {max(totals):.4f} J")
     return 0
 
 

@@ -71,7 +71,7 @@ class Landing:
     force: np.ndarray  # (len(t), 2): total contact force (tangential, normal), N; nan in flight
     active: list  # contact set at each sample
     impacts: list[ImpactEvent]
-    releases: list[tuple[float, str]]  # (time, point) where a pulling contact was let go
+    releases: list[tuple[float, str, float]]  # (time, point, normal force N < 0): contacts let go
     T_c_total: float  # J
     mu_c_max: float  # largest |f_t| / f_n over contact phases and impacts
     no_slip_held: bool  # mu_c stayed within the ground's friction everywhere
@@ -87,7 +87,7 @@ class Landing:
                              "impulse": list(e.impulse), "mu_c": e.mu_c} for e in self.impacts],
                 "T_c_total": self.T_c_total, "mu_c_max": self.mu_c_max,
                 "no_slip_held": self.no_slip_held, "slip_at": self.slip_at,
-                "releases": [{"time": t, "contact": p} for t, p in self.releases],
+                "releases": [{"time": t, "contact": p, "normal_force": f} for t, p, f in self.releases],
                 "energy_error": self.energy_error, "drift": self.drift, "ended": self.ended,
                 "warnings": self.warnings,
                 "duration": float(self.t[-1])}
@@ -277,7 +277,12 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
     impact_map = impact_map or (lambda q, qd, active: impact_for(lm, q, qd, active))
     q, qd = np.asarray(q0, float), np.asarray(qd0, float)
     rest = lm.joint_angles(q)
-    E0 = float(lm.functions(())[1](q, qd, 0.0, rest)["energy"][0])
+    start = lm.functions(())[1](q, qd, 0.0, rest)
+    E0 = float(start["energy"][0])
+    for k, p in enumerate(("heel", "forefoot")):
+        if p not in STRIKES[strike] and start["heights"][k] < -1e-9:
+            raise ValueError(f"{strike} strike: the {p} is {-start['heights'][k] * 1e3:.1f} mm below "
+                             "the ground at touchdown")
     active = ()
     impacts, releases, slip_at, warnings = [], [], [], []
     absorbed, damped, t = 0.0, 0.0, 0.0
@@ -336,7 +341,7 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
             break
         if pulling:
             pulled = [p for p, n in zip(active, normals) if n < 0]
-            releases.append((t, "+".join(pulled)))
+            releases.append((t, "+".join(pulled), float(min(normals))))
             active = tuple(p for p in active if p not in pulled)
             if active:  # the first held point carries the tangential row
                 s_anchor = float(q[m.cols(active[0])] @ lm.t_axis)

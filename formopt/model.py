@@ -266,6 +266,14 @@ class Model:
         q = ca.vertcat(*[world[p.landmark][0] for p in self.points])
         return q, ca.vertcat(*[world[p.landmark][1] for p in self.points])
 
+    def segment_angle(self, q, segment: str) -> float:
+        """Absolute angle (rad, design.md conventions) of a rigid segment at numeric q."""
+        b = next(b for b in self.bodies if b.segment == segment)
+        li, lj = (np.asarray(self._local(b, p), float) for p in b.base)
+        d = q[self.cols(b.base[1])] - q[self.cols(b.base[0])]
+        local = lj - li
+        return float(np.arctan2(d[1], d[0]) - np.arctan2(local[1], local[0]))
+
     def kinetic_energy(self, qd):
         return 0.5 * ca.bilin(ca.DM(self.M), qd, qd)
 

@@ -74,6 +74,7 @@ def test_free_hinges_pull_and_the_contact_is_released(spring):
     data = tomllib.loads(SPRING.read_text())
     L = land(with_joints(data, {"model": "free"}))
     assert L.releases and L.releases[0][0] == 0.0 and L.releases[0][1] == "forefoot"
+    assert L.releases[0][2] < 0  # the normal force the pinned point would have needed
     assert np.all(np.isnan(L.force[1:, 1]) | (L.force[1:, 1] >= 0))  # never a pulling force
 
 
@@ -131,3 +132,40 @@ def test_cli_simulate_json(tmp_path, capsys):
     rows = (tmp_path / "landing.csv").read_text().splitlines()
     assert rows[0].startswith("t_s,T_J,energy_J") and len(rows) > 10
     assert (tmp_path / "kinetic_energy.png").stat().st_size > 0
+
+
+def test_sweep_writes_as_it_goes_and_resumes(spring, tmp_path):
+    from formopt import sweep
+
+    path = tmp_path / "sweep.csv"
+    first = sweep.run(spring, [sweep.parse_param("ankle_deg=-14:-10:3")], path, progress=False)
+    assert len(first) == 3 and all(not r["error"] for r in first)
+    lines = path.read_text().splitlines()
+    path.write_text("\n".join(lines[:-1]) + "\n")  # as if interrupted before the last row
+    again = sweep.run(spring, [sweep.parse_param("ankle_deg=-14:-10:3")], path, progress=False)
+    assert len(again) == 3
+    assert [r["ankle_deg"] for r in again] == [r["ankle_deg"] for r in first]
+    assert again[-1]["T_c_total"] == first[-1]["T_c_total"]
+    grid = sweep.run(spring, [sweep.parse_param("ankle_deg=-14:-10:3")] * 1 +
+                     [sweep.parse_param("hip_vx=3:4:2")], tmp_path / "grid.csv", progress=False)
+    assert len(grid) == 6
+
+
+def test_sweep_reports_points_the_model_cannot_take(spring, tmp_path):
+    from formopt import sweep
+
+    rows = sweep.run(spring, [sweep.parse_param("ankle_deg=0:5:2")], tmp_path / "s.csv", progress=False)
+    assert all("below the ground" in r["error"] for r in rows)
+
+
+@pytest.mark.parametrize("text", ["ankle=-20:20:41", "ankle_deg=-20:20", "ankle_deg=a:b:3"])
+def test_bad_sweep_parameters(text):
+    from formopt import sweep
+
+    with pytest.raises(ValueError, match="--param"):
+        sweep.parse_param(text)
+
+
+def test_cli_sweep_bad_param_exits_2(capsys):
+    assert main(["sweep", str(SPRING), "--param", "ankel_deg=0:1:2"]) == 2
+    assert "ankel_deg" in capsys.readouterr().err

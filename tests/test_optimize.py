@@ -183,19 +183,6 @@ def test_bad_optimize_tables(edit, key):
     assert err.value.key == key
 
 
-def test_notebook_runs_top_to_bottom(tmp_path):
-    import nbclient
-    import nbformat
-
-    path = Path(__file__).resolve().parent.parent / "notebooks" / "own_scene.ipynb"
-    nb = nbformat.read(path, as_version=4)
-    nbclient.NotebookClient(nb, timeout=300, kernel_name="python3",
-                            resources={"metadata": {"path": str(path.parent)}}).execute()
-    errors = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])
-              if o.get("output_type") == "error"]
-    assert not errors
-
-
 def test_compiled_solver_gives_the_same_optimum(demo, tmp_path, monkeypatch):
     monkeypatch.setenv("FORMOPT_CACHE", str(tmp_path))
     scene, problem, opt = demo

@@ -1,0 +1,135 @@
+"""Parameter sweeps of the landing: each result written as it finishes, resumable.
+
+`--param ankle_deg=-20:20:41` sweeps the touchdown ankle angle from -20 to 20 deg in 41
+points; several --param make a grid. Parameters: trunk_deg, hip_deg, knee_deg, ankle_deg
+(touchdown angles), hip_vx, hip_vz (m/s), friction, slope_deg. Rows go to a CSV file as soon
+as each landing is done; a second run with the same file skips the rows already there, so an
+interruption loses nothing and repeats nothing.
+"""
+
+from __future__ import annotations
+
+import csv
+import itertools
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import casadi as ca
+import numpy as np
+
+from .landing import LandingModel, simulate
+from .model import STATE, STRIKES, build_model
+
+PARAMETERS = {"trunk_deg": "trunk", "hip_deg": "hip", "knee_deg": "knee", "ankle_deg": "ankle",
+              "hip_vx": "hip_vx", "hip_vz": "hip_vz", "friction": None, "slope_deg": None}
+COLUMNS = ["T_c_first", "T_c_second", "T_c_total", "t_second_ms", "ankle_at_second_deg",
+           "f_n_max_N", "dv_trunk_x", "dv_trunk_z", "mu_c_max", "no_slip_held", "releases",
+           "energy_error", "ended", "error"]
+
+
+def parse_param(text: str) -> tuple[str, np.ndarray]:
+    """'ankle_deg=-20:20:41' -> ('ankle_deg', 41 values from -20 to 20)."""
+    name, _, spec = text.partition("=")
+    if name not in PARAMETERS:
+        raise ValueError(f"--param {name!r}: expected one of {', '.join(PARAMETERS)}")
+    try:
+        start, stop, count = spec.split(":")
+        values = np.linspace(float(start), float(stop), int(count))
+    except ValueError:
+        raise ValueError(f"--param {text!r}: expected NAME=START:STOP:COUNT, e.g. ankle_deg=-20:20:41") from None
+    if not 1 <= len(values) <= 100000 or not np.all(np.isfinite(values)):
+        raise ValueError(f"--param {text!r}: COUNT must be 1 to 100000 and the range finite")
+    return name, values
+
+
+def apply(scene, values: dict):
+    """The scene with parameter values set (degrees where the name says so)."""
+    state = scene.state.copy()
+    friction, slope = scene.friction, scene.slope
+    for name, value in values.items():
+        if name == "friction":
+            friction = value
+        elif name == "slope_deg":
+            slope = math.radians(value)
+        else:
+            k = STATE.index(PARAMETERS[name])
+            state[k] = math.radians(value) if name.endswith("_deg") else value
+    return replace(scene, state=state, friction=friction, slope=slope)
+
+
+def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True) -> list[dict]:
+    """Sweep the landing of `scene` over the grid of `params`, appending rows to `path` (CSV)."""
+    path = Path(path)
+    names = [n for n, _ in params]
+    header = names + COLUMNS
+    done = _done(path, header, names)
+    grid = [dict(zip(names, combo)) for combo in itertools.product(*[v for _, v in params])]
+    todo = [g for g in grid if _key(g, names) not in done]
+    models = {}
+    path.parent.mkdir(parents=True, exist_ok=True)
+    new_file = not path.exists() or path.stat().st_size == 0
+    bar = None
+    if progress:
+        from tqdm import tqdm
+        bar = tqdm(total=len(grid), initial=len(grid) - len(todo), unit="landing", desc="sweep")
+    with path.open("a", newline="") as fh:
+        writer = csv.writer(fh)
+        if new_file:
+            writer.writerow(header)
+        for values in todo:
+            writer.writerow([values[n] for n in names] + _landing_row(scene, values, models))
+            fh.flush()
+            if bar:
+                bar.update()
+    if bar:
+        bar.close()
+    return read(path)
+
+
+def read(path) -> list[dict]:
+    with Path(path).open(newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def _landing_row(scene, values, models) -> list:
+    try:
+        s = apply(scene, values)
+        key = (s.slope,)
+        if key not in models:
+            models[key] = LandingModel(build_model(s.body, s.model), s.joints, s.slope)
+        lm = models[key]
+        q, qd = lm.model.state(ca.DM(s.state), STRIKES[s.strike][0])
+        L = simulate(lm, s.strike, np.asarray(ca.evalf(q), float).ravel(),
+                     np.asarray(ca.evalf(qd), float).ravel(), s.friction,
+                     s.landing["dt_ms"] * 1e-3, s.landing["duration_ms"] * 1e-3)
+        second = L.impacts[1] if len(L.impacts) > 1 else None
+        ankle = ""
+        if second:
+            k = int(np.searchsorted(L.t, second.time))
+            q_e = L.q[min(k, len(L.t) - 1)]
+            ankle = math.degrees(lm.model.segment_angle(q_e, "foot") - lm.model.segment_angle(q_e, "shank"))
+        normal = L.force[:, 1]
+        f_max = float(np.nanmax(normal)) if np.any(np.isfinite(normal)) else ""
+        dv = np.sum([e.dv_trunk for e in L.impacts if e.dv_trunk], axis=0) if lm.model.trunk else ("", "")
+        return [L.impacts[0].T_c, second.T_c if second else "", L.T_c_total,
+                second.time * 1e3 if second else "", ankle, f_max, dv[0], dv[1], L.mu_c_max,
+                L.no_slip_held, len(L.releases), L.energy_error, L.ended, ""]
+    except (ValueError, RuntimeError) as err:  # a point the model cannot take: say so, go on
+        return [""] * (len(COLUMNS) - 1) + [str(err).replace("\n", " ")]
+
+
+def _key(values: dict, names) -> tuple:
+    return tuple(round(float(values[n]), 9) for n in names)
+
+
+def _done(path: Path, header, names) -> set:
+    if not path.exists() or path.stat().st_size == 0:
+        return set()
+    rows = read(path)
+    with path.open(newline="") as fh:
+        found = next(csv.reader(fh), [])
+    if found != header:
+        raise ValueError(f"{path} holds another sweep (columns {found[:4]}...): "
+                         "give another --out or remove it")
+    return {_key({n: float(r[n]) for n in names}, names) for r in rows}
