@@ -25,6 +25,7 @@ test: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/python benchmarks/impact_speed.py
 	$(BIN)/python benchmarks/solve_speed.py
+	$(BIN)/python benchmarks/landing_speed.py
 
 clean:
 	rm -rf $(VENV) build *.egg-info
