@@ -5,7 +5,8 @@
 Prints medians (seed printed): building the NLP, generating and compiling it (cold cache) and
 loading it again (cached); one IPOPT solve from the reference posture and from seeded random
 starts, with CasADi's interpreted functions and with compiled ones; IPOPT with the exact
-Hessian against its limited-memory (L-BFGS) approximation. No peer tool solves this problem
+Hessian against its limited-memory (L-BFGS) approximation; and the landing objective
+(problems/landing_optimum.toml: both impacts and the contact phase). No peer tool solves this problem
 (Pinocchio has no optimiser; bioptim and OpenSim Moco optimise trajectories, not the impact
 map), so the reference figure is IPOPT's own with a quasi-Newton Hessian.
 """
@@ -71,6 +72,21 @@ def main():
         for u0 in rng.uniform(0, 1, (args.repeats, len(scene.problem.variables))):
             times.append(problem.solve_from(u0)[2])
         rows.append((label, "solve from a random start", f"{statistics.median(times) * 1e3:.2f} ms"))
+    landing = load(ROOT / "problems" / "landing_optimum.toml")
+    label = "landing objective (T_c_total), limited-memory"
+    t = time.perf_counter()
+    problem = PostureProblem(build_model(landing.body, landing.model), landing.strike, landing.state,
+                             landing.problem, landing.slope, landing.friction, joints=landing.joints,
+                             duration=landing.landing["duration_ms"] * 1e-3)
+    rows.append((label, "build", f"{time.perf_counter() - t:.3f} s"))
+    times, statuses = [], set()
+    for w0 in problem.starts():
+        for _ in range(max(1, args.repeats // 10)):
+            sol, stats, elapsed = problem.solve_from(w0)
+            times.append(elapsed)
+            statuses.add(stats["return_status"])
+    rows.append((label, "solve", f"{statistics.median(times) * 1e3:.0f} ms   ({', '.join(sorted(statuses))}, "
+                                 f"{len(times)} solves from {len(problem.starts())} starts)"))
     width = max(len(r[0]) + len(r[1]) for r in rows) + 4
     for label, what, figure in rows:
         print(f"{label + ': ' + what:{width}s} {figure}")

@@ -412,8 +412,10 @@ def landing_function(lm: LandingModel, strike: str, steps: int = 60) -> ca.Funct
     (x, t_e) -> T_c_total, T_c (both impacts), residual, force_t, force_n: x the touchdown state
     (model.STATE), t_e the time (s) of the second impact. The strike point is held from the
     first impact; `steps` RK4 steps of t_e / steps integrate to t_e, where `residual` is the
-    other point's height (zero at the event); force_t, force_n are the contact force (N) after
-    each step. `absorbed_function` solves residual = 0 for t_e.
+    other point's height (zero at the event) and `approach` its normal velocity then (m/s,
+    negative when it strikes); force_t, force_n are the contact force (N) and
+    height the other point's height (m) after each step. `absorbed_function` solves
+    residual = 0 for t_e.
     """
     if strike not in ("heel", "forefoot"):
         raise ValueError("the two-impact landing starts with a heel or forefoot strike")
@@ -428,7 +430,9 @@ def landing_function(lm: LandingModel, strike: str, steps: int = 60) -> ca.Funct
     s_anchor, rest = ca.SX.sym("s_anchor"), ca.SX.sym("rest", len(lm.hinges))
     x_next = lm.rk4((point,), xk, h, s_anchor, rest)
     forces = lm.rhs((point,))(x_next[:m.n], x_next[m.n:2 * m.n], s_anchor, rest)[3]
-    step = ca.Function("step", [xk, ca.vertcat(h, s_anchor, rest)], [x_next, forces])
+    height = ca.dot(x_next[m.cols(other)], ca.DM(lm.n_axis))
+    step = ca.Function("step", [xk, ca.vertcat(h, s_anchor, rest)],
+                       [x_next, ca.vertcat(forces, height)])
     run = step.mapaccum("run", steps, [0], [0])
 
     x = ca.MX.sym("x", len(STATE))
@@ -441,9 +445,12 @@ def landing_function(lm: LandingModel, strike: str, steps: int = 60) -> ca.Funct
     q_e, qd_e = end[:m.n], end[m.n:2 * m.n]
     residual = ca.dot(q_e[m.cols(other)], ca.DM(lm.n_axis))
     _, T_c2, _ = lm.impact_map((point, other))(q_e, qd_e, rest_mx)
+    approach = ca.dot(qd_e[m.cols(other)], ca.DM(lm.n_axis))
     return ca.Function("landing", [x, t_e],
-                       [T_c1 + T_c2, ca.vertcat(T_c1, T_c2), residual, f[0, :].T, f[1, :].T],
-                       ["x", "t_e"], ["T_c_total", "T_c", "residual", "force_t", "force_n"])
+                       [T_c1 + T_c2, ca.vertcat(T_c1, T_c2), residual, approach, f[0, :].T,
+                        f[1, :].T, f[2, :].T],
+                       ["x", "t_e"], ["T_c_total", "T_c", "residual", "approach", "force_t",
+                                      "force_n", "height"])
 
 
 def absorbed_function(lm: LandingModel, strike: str, t_guess: float, steps: int = 60) -> ca.Function:

@@ -28,11 +28,17 @@ import numpy as np
 
 from .compiled import cached_nlpsol
 from .impact import Impact, ImpactResult, ground_axes, impact_function
+from .landing import Joints, LandingModel, landing_function, simulate
 from .model import STATE, STRIKES, Model, build_model, landmarks
 
 ANGLES = ("trunk", "hip", "knee", "ankle")
 RATES = ("omega_trunk", "omega_thigh", "omega_shank", "omega_foot")
-OBJECTIVES = ("T_c", "dv_trunk_x", "dv_trunk_z", "dv_com_x", "dv_com_z")
+OBJECTIVES = ("T_c", "T_c_total", "dv_trunk_x", "dv_trunk_z", "dv_com_x", "dv_com_z")
+LANDING_STEPS = 40  # RK4 steps over the contact phase between the two impacts
+# The second point must strike at least this fast (m/s, normal): a grazing touch (zero normal
+# velocity, which absorbs nothing) dips below the ground by less than the integration error,
+# so a slower strike is not an event the simulation would see.
+SECOND_APPROACH = -0.01
 # Active ranges of motion (deg): American Academy of Orthopaedic Surgeons (1965), Joint Motion:
 # Method of Measuring and Recording, as tabulated in Norkin C.C. & White D.J. (2016) Measurement
 # of Joint Motion, 5th ed.: hip extension 30 / flexion 120, knee flexion 135 (0 = straight),
@@ -55,6 +61,12 @@ class Problem:
     starts: int = 8
     seed: int = 0
     tolerance: float = 1e-8
+    contact_friction: bool = False  # |f_t| <= mu f_n, f_n >= 0 through the contact phase
+
+    @property
+    def landing(self) -> bool:
+        """Whether the problem needs the whole landing (T_c_total or contact-phase friction)."""
+        return "T_c_total" in self.objective or self.contact_friction
 
 
 @dataclass(frozen=True)
@@ -111,7 +123,8 @@ def solve(scene, compiled: bool = False, progress=None, **overrides) -> Optimum:
     problem = replace(scene.problem, **{k: v for k, v in overrides.items() if v is not None})
     model = build_model(scene.body, scene.model)
     return PostureProblem(model, scene.strike, scene.state, problem, scene.slope,
-                          scene.friction, compiled).solve(progress)
+                          scene.friction, compiled, joints=scene.joints,
+                          duration=scene.landing["duration_ms"] * 1e-3).solve(progress)
 
 
 class PostureProblem:
@@ -119,7 +132,7 @@ class PostureProblem:
 
     def __init__(self, model: Model, strike: str, reference, problem: Problem,
                  slope: float = 0.0, friction: float = 0.8, compiled: bool = False,
-                 hessian: str = "exact"):
+                 hessian: str | None = None, joints: Joints | None = None, duration: float = 0.2):
         t0 = time.perf_counter()
         self.model, self.strike, self.problem = model, strike, problem
         self.slope, self.friction = slope, friction
@@ -127,29 +140,83 @@ class PostureProblem:
         self.index = [STATE.index(v) for v in problem.variables]
         self.lower, self.upper = np.array(problem.lower), np.array(problem.upper)
         self.impact = Impact(model, strike, slope, friction)
-        u = ca.SX.sym("u", len(self.index))
-        p = ca.SX.sym("p", 2)  # running speed (hip_vx, m/s), friction coefficient
-        x = self.state(u, p)
-        self._state = ca.Function("state", [u, p], [x])
+        us, ps = ca.SX.sym("u", len(self.index)), ca.SX.sym("p", 2)
+        self._state = ca.Function("state", [us, ps], [self.state(us, ps)])
+        self.duration = duration
+        self.landing = LandingModel(model, joints or Joints(), slope) if problem.landing else None
+        # exact Hessians pay for the impact alone; through the landing's RK4 chain a
+        # limited-memory Hessian solves 4x faster (benchmarks/solve_speed.py)
+        hessian = hessian or ("limited-memory" if self.landing else "exact")
+        sym = ca.MX if self.landing else ca.SX
+        u = sym.sym("u", len(self.index))
+        p = sym.sym("p", 2)  # running speed (hip_vx, m/s), friction coefficient
+        tau = sym.sym("tau", 1 if self.landing else 0)  # second impact at tau * duration
+        w = ca.vertcat(u, tau)
+        x = self._state(u, p)
         out = impact_function(model, strike, slope)(x=x)
         terms = {"T_c": out["T_c"], "dv_trunk_x": out["dv_trunk"][0],
                  "dv_trunk_z": out["dv_trunk"][1], "dv_com_x": out["dv_com"][0],
                  "dv_com_z": out["dv_com"][1]}
-        f = sum(w * terms[k] for k, w in problem.objective.items())
-        self._objective = ca.Function("objective", [u, p], [f])
-        self.scale = 1.0 / max(abs(float(self._objective(self.to_unit(self.reference), self.p0))),
-                               1e-2)
-        g, self.constraints = self._constraints(x, out, p)
-        self.nlp = {"x": u, "p": p, "f": self.scale * f, "g": g}
+        landing = None
+        if self.landing:
+            if strike not in ("heel", "forefoot"):
+                raise ValueError("a landing objective needs a heel or forefoot strike (the other "
+                                 "point comes down second)")
+            self._t_ref = self._second_impact(self.reference)
+            if self._t_ref is None:
+                raise ValueError("the reference touchdown's landing never brings the other foot point "
+                                 f"down within {duration * 1e3:g} ms: no landing to optimise "
+                                 "(check [joints] and [landing].duration_ms)")
+            landing = landing_function(self.landing, strike, LANDING_STEPS)(x=x, t_e=tau * duration)
+            terms["T_c_total"] = landing["T_c_total"]
+            self._T_c_total = ca.Function("T_c_total", [w, p], [landing["T_c_total"]])
+        f = sum(wt * terms[k] for k, wt in problem.objective.items())
+        self._objective = ca.Function("objective", [w, p], [f])
+        self.scale = 1.0 / max(abs(float(self._objective(self.start(self.reference), self.p0))), 1e-2)
+        g, self.constraints = self._constraints(x, out, p, landing)
+        self.nlp = {"x": w, "p": p, "f": self.scale * f, "g": g}
         opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
                 "ipopt.tol": problem.tolerance, "ipopt.max_iter": 200,
                 "ipopt.hessian_approximation": hessian}
         self.solver = cached_nlpsol("touchdown", self.nlp, opts, compiled)
-        lam = ca.SX.sym("lam", g.shape[0])
+        lam = sym.sym("lam", g.shape[0])
         lagrangian = self.scale * f + ca.dot(lam, g)
-        self._dL_dp = ca.Function("dL_dp", [u, p, lam], [ca.gradient(lagrangian, p) / self.scale])
-        self._g = ca.Function("g", [u, p], [g])
+        self._dL_dp = ca.Function("dL_dp", [w, p, lam], [ca.gradient(lagrangian, p) / self.scale])
+        self._g = ca.Function("g", [w, p], [g])
         self.build_time = time.perf_counter() - t0
+
+    def _second_impact(self, x) -> float | None:
+        """Time (s) of the second impact of the simulated landing from touchdown state x, when
+        that landing is the two-impact sequence the NLP models (the strike point held, never
+        released, until the other point comes down); None otherwise."""
+        q, qd = self.model.state(ca.DM(x), self.strike)
+        try:
+            L = simulate(self.landing, self.strike, np.asarray(ca.evalf(q), float).ravel(),
+                         np.asarray(ca.evalf(qd), float).ravel(), self.friction, 5e-4, self.duration)
+        except ValueError:
+            return None
+        two_impacts = len(L.impacts) == 2 and not L.releases and L.ended.startswith("heel and")
+        return L.impacts[1].time if two_impacts else None
+
+    def _landing_agrees(self, w, x, rtol=1e-3) -> bool:
+        """The event-driven simulation from x gives the same two-impact landing and T_c_total."""
+        q, qd = self.model.state(ca.DM(x), self.strike)
+        try:
+            L = simulate(self.landing, self.strike, np.asarray(ca.evalf(q), float).ravel(),
+                         np.asarray(ca.evalf(qd), float).ravel(), self.friction, 2e-4, self.duration)
+        except ValueError:
+            return False
+        nlp = float(self._T_c_total(w, self.p0))
+        return (len(L.impacts) == 2 and not L.releases
+                and abs(L.T_c_total - nlp) <= rtol * max(1.0, abs(nlp)))
+
+    def start(self, x) -> np.ndarray:
+        """The scaled decision vector of a touchdown state: posture (and event time) in [0, 1]."""
+        u = self.to_unit(x)
+        if not self.landing:
+            return u
+        t_e = self._second_impact(self.to_state(u)) or self._t_ref
+        return np.append(u, t_e / self.duration)
 
     @property
     def p0(self) -> np.ndarray:
@@ -171,11 +238,12 @@ class PostureProblem:
         x = np.asarray(x, float)
         return np.clip((x[self.index] - self.lower) / (self.upper - self.lower), 0.0, 1.0)
 
-    def to_state(self, u, p=None) -> np.ndarray:
-        """The touchdown state (SI) of scaled variables u (and parameters p)."""
+    def to_state(self, w, p=None) -> np.ndarray:
+        """The touchdown state (SI) of a scaled decision vector (and parameters p)."""
+        u = np.asarray(w, float)[:len(self.index)]
         return np.asarray(self._state(u, self.p0 if p is None else p), float).ravel()
 
-    def _constraints(self, x, out, p):
+    def _constraints(self, x, out, p, landing=None):
         """Stacked constraints g (lbg <= g <= ubg) and their names, kinds and bounds."""
         rows, names = [], []
         t_axis, n_axis = ground_axes(self.slope)
@@ -202,20 +270,53 @@ class PostureProblem:
             lo, hi = self.problem.hip_height
             rows += [ca.dot(hip, ca.DM(n_axis))] * 2
             names += [("hip_height_min", "lower", lo), ("hip_height_max", "upper", hi)]
-        self.lbg = np.array([b if kind == "lower" else -np.inf for _, kind, b in names])
-        self.ubg = np.array([b if kind == "upper" else np.inf for _, kind, b in names])
+        if landing is not None:
+            other = "heel" if points == ("forefoot",) else "forefoot"
+            rows.append(landing["residual"])
+            names.append((f"{other}_down_at_second_impact", "equal", 0.0))
+            rows.append(landing["approach"])  # a real impact, seen by the event-driven simulation too
+            names.append((f"approach_{other}", "upper", SECOND_APPROACH))
+            rows.append(landing["height"][:-1])
+            names += [(f"{other}_above_ground_{k + 1}", "lower", 0.0) for k in range(LANDING_STEPS - 1)]
+            f_t, f_n = landing["force_t"], landing["force_n"]
+            rows.append(f_n)  # the held point is pushed, never pulled, through the phase
+            names += [(f"contact_push_{k + 1}", "lower", 0.0) for k in range(LANDING_STEPS)]
+            if self.problem.contact_friction:
+                rows += [f_t - mu * f_n, -f_t - mu * f_n]
+                for label in ("contact_no_slip_forward", "contact_no_slip_backward"):
+                    names += [(f"{label}_{k + 1}", "upper", 0.0) for k in range(LANDING_STEPS)]
+        self.lbg = np.array([b if kind in ("lower", "equal") else -np.inf for _, kind, b in names])
+        self.ubg = np.array([b if kind in ("upper", "equal") else np.inf for _, kind, b in names])
         return ca.vertcat(*rows), names
 
     def starts(self) -> list[np.ndarray]:
-        """The reference posture first, then seeded uniform starts in the bounds."""
-        rng = np.random.default_rng(self.problem.seed)
-        first = self.to_unit(self.reference)
-        return [first] + [rng.uniform(0.0, 1.0, len(self.index)) for _ in range(self.problem.starts - 1)]
+        """The reference posture first, then seeded uniform starts in the bounds.
 
-    def solve_from(self, u0, p=None):
+        For a landing problem a start must land: its simulated landing brings the other foot
+        point down (otherwise the event constraint has no solution near it); up to 50 draws
+        per start are tried.
+        """
+        rng = np.random.default_rng(self.problem.seed)
+        if not self.landing:
+            return [self.to_unit(self.reference)] + [rng.uniform(0.0, 1.0, len(self.index))
+                                                     for _ in range(self.problem.starts - 1)]
+        found = [self.start(self.reference)]
+        for _ in range(50 * self.problem.starts):
+            if len(found) == self.problem.starts:
+                break
+            u = rng.uniform(0.0, 1.0, len(self.index))
+            t_e = self._second_impact(self.to_state(u))
+            if t_e is not None:
+                found.append(np.append(u, t_e / self.duration))
+        return found
+
+    def solve_from(self, w0, p=None):
         p = self.p0 if p is None else p
+        lbx = np.zeros(len(w0))
+        if self.landing:
+            lbx[-1] = 1e-3
         t = time.perf_counter()
-        sol = self.solver(x0=u0, p=p, lbx=0.0, ubx=1.0, lbg=self.lbg, ubg=self.ubg)
+        sol = self.solver(x0=w0, p=p, lbx=lbx, ubx=1.0, lbg=self.lbg, ubg=self.ubg)
         elapsed = time.perf_counter() - t
         stats = self.solver.stats()
         return sol, stats, elapsed
@@ -229,6 +330,8 @@ class PostureProblem:
             status = stats["return_status"]
             x = self.to_state(u)
             converged = status in CONVERGED and self._feasible(u) and self.impact(x).valid
+            if converged and self.landing:  # the event-driven simulation agrees
+                converged = self._landing_agrees(u, x)
             objective = float(sol["f"]) / self.scale
             start = Start(k + 1, _named(self.problem.variables, self.to_state(u0)[self.index]), status,
                           converged, objective, _named(self.problem.variables, x[self.index]),
@@ -300,15 +403,21 @@ class PostureProblem:
 
 
 def _meaning(name: str) -> str:
+    if name.startswith("contact_no_slip"):
+        return "friction during the contact phase holds the optimum: the held point would slide"
     if name.startswith("no_slip"):
         return ("friction holds the optimum: the foot would slip past it; more friction lets the "
                 "posture go further")
-    if name.startswith("push"):
-        return "the ground's impulse would pull the foot past here: the contact would not hold"
+    if name.startswith(("push", "contact_push")):
+        return "the ground would have to pull the foot past here: the contact would not hold"
     if name.startswith("approach"):
-        return "the strike point would stop approaching the ground: no impact past here"
+        return "the point would strike the ground no faster than allowed: no impact past here"
     if name.startswith("clearance"):
         return "the other foot point touches the ground: past here the strike pattern changes"
+    if "_down_at_second_impact" in name:
+        return "the event itself: the other point reaches the ground at the second impact"
+    if "_above_ground_" in name:
+        return "the other point would touch the ground earlier in the contact phase"
     if name == "overstride":
         return "the foot lands as far ahead of the hip as allowed"
     return "the hip height limit holds the optimum"

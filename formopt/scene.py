@@ -160,7 +160,7 @@ def _landing(data) -> dict:
 # -- optimize ---------------------------------------------------------------------------
 
 OPTIMIZE_KEYS = {"variables", "objective", "bounds_deg", "bounds_dps", "starts", "seed",
-                 "tolerance", "max_overstride_m", "hip_height_m"}
+                 "tolerance", "max_overstride_m", "hip_height_m", "contact_friction"}
 RATE_VARIABLES = tuple("omega_" + r for r in RATES)
 
 
@@ -229,8 +229,15 @@ def _optimize(data, model, strike) -> tuple[Problem, tuple[str, ...]]:
         hip_height = _pair(data, "hip_height_m", "optimize", limit=3.0)
         if hip_height[0] >= hip_height[1]:
             raise SceneError("optimize.hip_height_m", "the lower height must be below the upper")
-    return Problem(tuple(variables), tuple(lower), tuple(upper), objective, overstride, hip_height,
-                   starts, seed, tolerance), tuple(notes)
+    contact_friction = data.get("contact_friction", False)
+    if not isinstance(contact_friction, bool):
+        raise SceneError("optimize.contact_friction", f"must be true or false, not {contact_friction!r}")
+    problem = Problem(tuple(variables), tuple(lower), tuple(upper), objective, overstride, hip_height,
+                      starts, seed, tolerance, contact_friction)
+    if problem.landing and strike == "flat":
+        raise SceneError("optimize.objective", "the landing (T_c_total, contact_friction) starts with "
+                                               "a heel or forefoot strike, not a flat one")
+    return problem, tuple(notes)
 
 
 # -- body -------------------------------------------------------------------------------

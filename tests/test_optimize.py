@@ -192,3 +192,57 @@ def test_compiled_solver_gives_the_same_optimum(demo, tmp_path, monkeypatch):
     assert stats["return_status"] == "Solve_Succeeded"
     assert float(sol["f"]) / compiled.scale == pytest.approx(opt.objective, rel=1e-9)
     assert list(tmp_path.glob("touchdown_nlp_*.so")), "the compiled NLP is cached"
+
+
+LANDING = Path(__file__).resolve().parent.parent / "problems" / "landing_optimum.toml"
+
+
+@pytest.fixture(scope="module")
+def landing_optimum():
+    scene = load(LANDING)
+    return scene, solve(scene)
+
+
+def test_landing_optimum_agrees_with_the_event_driven_simulation(landing_optimum):
+    from dataclasses import replace
+    from formopt.landing import land
+
+    scene, opt = landing_optimum
+    assert opt.success and all(s.converged for s in opt.starts)
+    simulated = land(replace(scene, state=opt.state))
+    assert [e.contact for e in simulated.impacts] == ["forefoot", "heel"]
+    assert not simulated.releases
+    assert simulated.T_c_total == pytest.approx(opt.objective, rel=1e-3)
+    assert simulated.no_slip_held  # contact_friction = true: no slip at impacts or between
+    reference = land(scene)
+    assert opt.objective < reference.T_c_total
+
+
+def test_landing_nlp_gradient_matches_finite_differences(landing_optimum):
+    from formopt import build_model
+
+    scene, opt = landing_optimum
+    problem = PostureProblem(build_model(scene.body, scene.model), scene.strike, scene.state,
+                             scene.problem, scene.slope, scene.friction, joints=scene.joints,
+                             duration=scene.landing["duration_ms"] * 1e-3)
+    w0 = problem.start(scene.state)
+    w = ca.MX.sym("w", w0.size)
+    f = problem._objective(w, problem.p0)
+    grad = ca.Function("grad", [w], [ca.gradient(f, w)])
+    exact = np.asarray(grad(w0), float).ravel()
+    h = 1e-6
+    for k in range(w0.size):
+        e = np.zeros_like(w0)
+        e[k] = h
+        fd = (float(problem._objective(w0 + e, problem.p0)) -
+              float(problem._objective(w0 - e, problem.p0))) / (2 * h)
+        assert fd == pytest.approx(exact[k], rel=1e-5, abs=1e-7)
+
+
+def test_landing_objective_needs_a_landing_that_happens():
+    """With the slower sweep the reference landing pulls the forefoot: said, not optimised."""
+    data = tomllib.loads(LANDING.read_text())
+    data["touchdown"]["angular_velocity_dps"] = {"thigh": 40.0, "shank": -220.0, "foot": -140.0}
+    data["touchdown"]["angles_deg"]["ankle"] = -25.0
+    with pytest.raises(ValueError, match="never brings the other foot point down"):
+        solve(parse(data, "no-landing.toml"))
