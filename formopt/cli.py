@@ -163,6 +163,9 @@ def _sweep(scene: Scene, args) -> int:
                                               if failed else ""))
     if totals:
         print(f"T_c_total from {min(totals):.4f} to {max(totals):.4f} J")
+    if len(params) == 1 and totals:
+        from .plots import sweep_figure
+        print(f"wrote {sweep_figure(out.with_suffix('.png'), rows, params[0][0])}")
     return 0
 
 

@@ -128,3 +128,22 @@ def landing_figures(folder, landing, body: Body, model, slope: float, strike: st
     ax.legend(fontsize=8)
     energy = save(fig, folder / "kinetic_energy.png")
     return [sequence, energy]
+
+
+def sweep_figure(path, rows: list[dict], param: str) -> Path:
+    """Absorbed energy (first impact, all impacts) and peak normal force against a parameter."""
+    good = [r for r in rows if not r["error"]]
+    x = np.array([float(r[param]) for r in good])
+    order = np.argsort(x)
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
+    for key, label in (("T_c_first", "first impact"), ("T_c_total", "all impacts")):
+        axes[0].plot(x[order], np.array([float(good[k][key]) for k in order]), "-o", ms=3, label=label)
+    axes[0].set_ylabel("absorbed energy T_c (J)")
+    axes[0].legend(fontsize=8)
+    force = np.array([float(good[k]["f_n_max_N"]) if good[k]["f_n_max_N"] else np.nan for k in order])
+    axes[1].plot(x[order], force, "-o", ms=3, color="tab:red")
+    axes[1].set_ylabel("peak normal contact force (N)")
+    for ax in axes:
+        ax.set_xlabel(param)
+    fig.tight_layout()
+    return save(fig, path)

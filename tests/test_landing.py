@@ -166,6 +166,13 @@ def test_bad_sweep_parameters(text):
         sweep.parse_param(text)
 
 
+def test_cli_sweep_writes_csv_and_figure(tmp_path, capsys):
+    out = tmp_path / "s.csv"
+    assert main(["sweep", str(SPRING), "--param", "ankle_deg=-14:-10:3", "--out", str(out),
+                 "--no-progress"]) == 0
+    assert len(out.read_text().splitlines()) == 4 and out.with_suffix(".png").stat().st_size > 0
+
+
 def test_cli_sweep_bad_param_exits_2(capsys):
     assert main(["sweep", str(SPRING), "--param", "ankel_deg=0:1:2"]) == 2
     assert "ankel_deg" in capsys.readouterr().err

@@ -246,3 +246,15 @@ def test_landing_objective_needs_a_landing_that_happens():
     data["touchdown"]["angles_deg"]["ankle"] = -25.0
     with pytest.raises(ValueError, match="never brings the other foot point down"):
         solve(parse(data, "no-landing.toml"))
+
+
+def test_angular_velocities_as_variables():
+    data = tomllib.loads(DEMO.read_text())
+    data["optimize"].update({"variables": ["hip", "knee", "omega_shank"],
+                             "bounds_dps": {"shank": [-400.0, 0.0]}, "starts": 3})
+    scene = parse(data, "rates.toml")
+    opt = solve(scene)
+    assert opt.success and opt.impact.valid
+    omega = np.degrees(opt.state[8])
+    assert -400.0 - 1e-6 <= omega <= 1e-6
+    assert opt.objective <= opt.reference.T_c
