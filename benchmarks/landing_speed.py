@@ -18,12 +18,10 @@ import time
 from pathlib import Path
 
 import casadi as ca
-import numpy as np
 
 from formopt import build_model, load
-from formopt.landing import LandingModel, absorbed_function, simulate
-from formopt.model import STRIKES
 from formopt import sweep
+from formopt.landing import LandingModel, absorbed_function, simulate_state
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -35,11 +33,11 @@ def main():
     args = parser.parse_args()
     scene = load(args.scene)
     t = time.perf_counter()
-    model = build_model(scene.body, scene.model)
-    lm = LandingModel(model, scene.joints, scene.slope)
-    q, qd = model.state(ca.DM(scene.state), STRIKES[scene.strike][0])
-    q, qd = np.asarray(ca.evalf(q), float).ravel(), np.asarray(ca.evalf(qd), float).ravel()
-    run = lambda dt: simulate(lm, scene.strike, q, qd, scene.friction, dt, 0.2)  # noqa: E731
+    lm = LandingModel(build_model(scene.body, scene.model), scene.joints, scene.slope)
+
+    def run(dt):
+        return simulate_state(lm, scene.strike, scene.state, scene.friction, dt, 0.2)
+
     run(2e-4)
     print(f"{scene.name}; joints {scene.joints.model}; one core\n")
     print(f"build (model, compiled step functions): {time.perf_counter() - t:.2f} s\n")

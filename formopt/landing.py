@@ -471,15 +471,20 @@ def impact_for(lm: LandingModel, q, qd, active):
     return tuple(np.asarray(v, float).ravel() if k != 1 else float(v) for k, v in enumerate(out))
 
 
+def simulate_state(lm: LandingModel, strike: str, x, friction: float, dt: float,
+                   duration: float) -> Landing:
+    """Simulate the landing from a touchdown state x (model.STATE, SI)."""
+    q, qd = lm.model.state(ca.DM(np.asarray(x, float)), STRIKES[strike][0])
+    return simulate(lm, strike, np.asarray(ca.evalf(q), float).ravel(),
+                    np.asarray(ca.evalf(qd), float).ravel(), friction, dt, duration)
+
+
 def land(scene, compiled: bool = True, dt: float | None = None) -> Landing:
     """Simulate a scene's landing (a formopt.scene.Scene), from its touchdown."""
-    model = build_model(scene.body, scene.model)
-    lm = LandingModel(model, scene.joints, scene.slope, compiled)
-    q, qd = model.state(ca.DM(scene.state), STRIKES[scene.strike][0])
+    lm = LandingModel(build_model(scene.body, scene.model), scene.joints, scene.slope, compiled)
     dt = scene.landing["dt_ms"] * 1e-3 if dt is None else dt
-    return simulate(lm, scene.strike, np.asarray(ca.evalf(q), float).ravel(),
-                    np.asarray(ca.evalf(qd), float).ravel(), scene.friction, dt,
-                    scene.landing["duration_ms"] * 1e-3)
+    return simulate_state(lm, scene.strike, scene.state, scene.friction, dt,
+                          scene.landing["duration_ms"] * 1e-3)
 
 
 def history_rows(landing: Landing, model: Model):

@@ -28,7 +28,7 @@ import numpy as np
 
 from .compiled import cached_nlpsol
 from .impact import Impact, ImpactResult, ground_axes, impact_function
-from .landing import Joints, LandingModel, landing_function, simulate
+from .landing import Joints, LandingModel, landing_function, simulate_state
 from .model import STATE, STRIKES, Model, build_model, landmarks
 
 ANGLES = ("trunk", "hip", "knee", "ankle")
@@ -185,30 +185,29 @@ class PostureProblem:
         self._g = ca.Function("g", [w, p], [g])
         self.build_time = time.perf_counter() - t0
 
-    def _second_impact(self, x) -> float | None:
-        """Time (s) of the second impact of the simulated landing from touchdown state x, when
-        that landing is the two-impact sequence the NLP models (the strike point held, never
-        released, until the other point comes down); None otherwise."""
-        q, qd = self.model.state(ca.DM(x), self.strike)
+    def _simulate(self, x, dt: float):
+        """The event-driven landing from touchdown state x, or None if the state cannot land."""
         try:
-            L = simulate(self.landing, self.strike, np.asarray(ca.evalf(q), float).ravel(),
-                         np.asarray(ca.evalf(qd), float).ravel(), self.friction, 5e-4, self.duration)
+            return simulate_state(self.landing, self.strike, x, self.friction, dt, self.duration)
         except ValueError:
             return None
-        two_impacts = len(L.impacts) == 2 and not L.releases and L.ended.startswith("heel and")
-        return L.impacts[1].time if two_impacts else None
+
+    @staticmethod
+    def _two_impacts(L) -> bool:
+        """The landing the NLP models: the strike point held, never released, until the other
+        point comes down."""
+        return L is not None and len(L.impacts) == 2 and not L.releases
+
+    def _second_impact(self, x) -> float | None:
+        """Time (s) of the second impact of the two-impact landing from x; None otherwise."""
+        L = self._simulate(x, 5e-4)
+        return L.impacts[1].time if self._two_impacts(L) else None
 
     def _landing_agrees(self, w, x, rtol=1e-3) -> bool:
         """The event-driven simulation from x gives the same two-impact landing and T_c_total."""
-        q, qd = self.model.state(ca.DM(x), self.strike)
-        try:
-            L = simulate(self.landing, self.strike, np.asarray(ca.evalf(q), float).ravel(),
-                         np.asarray(ca.evalf(qd), float).ravel(), self.friction, 2e-4, self.duration)
-        except ValueError:
-            return False
+        L = self._simulate(x, 2e-4)
         nlp = float(self._T_c_total(w, self.p0))
-        return (len(L.impacts) == 2 and not L.releases
-                and abs(L.T_c_total - nlp) <= rtol * max(1.0, abs(nlp)))
+        return self._two_impacts(L) and abs(L.T_c_total - nlp) <= rtol * max(1.0, abs(nlp))
 
     def start(self, x) -> np.ndarray:
         """The scaled decision vector of a touchdown state: posture (and event time) in [0, 1]."""

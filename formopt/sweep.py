@@ -15,11 +15,10 @@ import math
 from dataclasses import replace
 from pathlib import Path
 
-import casadi as ca
 import numpy as np
 
-from .landing import LandingModel, simulate
-from .model import STATE, STRIKES, build_model
+from .landing import LandingModel, simulate_state
+from .model import STATE, build_model
 
 PARAMETERS = {"trunk_deg": "trunk", "hip_deg": "hip", "knee_deg": "knee", "ankle_deg": "ankle",
               "hip_vx": "hip_vx", "hip_vz": "hip_vz", "friction": None, "slope_deg": None}
@@ -99,10 +98,8 @@ def _landing_row(scene, values, models) -> list:
         if key not in models:
             models[key] = LandingModel(build_model(s.body, s.model), s.joints, s.slope)
         lm = models[key]
-        q, qd = lm.model.state(ca.DM(s.state), STRIKES[s.strike][0])
-        L = simulate(lm, s.strike, np.asarray(ca.evalf(q), float).ravel(),
-                     np.asarray(ca.evalf(qd), float).ravel(), s.friction,
-                     s.landing["dt_ms"] * 1e-3, s.landing["duration_ms"] * 1e-3)
+        L = simulate_state(lm, s.strike, s.state, s.friction, s.landing["dt_ms"] * 1e-3,
+                           s.landing["duration_ms"] * 1e-3)
         second = L.impacts[1] if len(L.impacts) > 1 else None
         ankle = ""
         if second:
