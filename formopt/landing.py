@@ -474,9 +474,8 @@ def impact_for(lm: LandingModel, q, qd, active):
 def simulate_state(lm: LandingModel, strike: str, x, friction: float, dt: float,
                    duration: float) -> Landing:
     """Simulate the landing from a touchdown state x (model.STATE, SI)."""
-    q, qd = lm.model.state(ca.DM(np.asarray(x, float)), STRIKES[strike][0])
-    return simulate(lm, strike, np.asarray(ca.evalf(q), float).ravel(),
-                    np.asarray(ca.evalf(qd), float).ravel(), friction, dt, duration)
+    q, qd = lm.model.state_numeric(x, STRIKES[strike][0])
+    return simulate(lm, strike, q, qd, friction, dt, duration)
 
 
 def land(scene, compiled: bool = True, dt: float | None = None) -> Landing:

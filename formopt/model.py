@@ -266,6 +266,16 @@ class Model:
         q = ca.vertcat(*[world[p.landmark][0] for p in self.points])
         return q, ca.vertcat(*[world[p.landmark][1] for p in self.points])
 
+    def state_numeric(self, x, strike_point: str) -> tuple[np.ndarray, np.ndarray]:
+        """(q, q') as numpy arrays of a numeric touchdown state (the map is built once)."""
+        if not hasattr(self, "_state_functions"):
+            self._state_functions = {}
+        if strike_point not in self._state_functions:
+            xs = ca.SX.sym("x", len(STATE))
+            self._state_functions[strike_point] = ca.Function("state", [xs], list(self.state(xs, strike_point)))
+        q, qd = self._state_functions[strike_point](np.asarray(x, float))
+        return np.asarray(q, float).ravel(), np.asarray(qd, float).ravel()
+
     def segment_angle(self, q, segment: str) -> float:
         """Absolute angle (rad, design.md conventions) of a rigid segment at numeric q."""
         b = next(b for b in self.bodies if b.segment == segment)
