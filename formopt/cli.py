@@ -134,8 +134,9 @@ def _simulate(scene: Scene, args) -> int:
           f"{'mu_c':>7s} {'dv trunk x, z (m/s)':>22s}")
     for e in landing.impacts:
         dv = f"{e.dv_trunk[0]:+.4f} {e.dv_trunk[1]:+.4f}" if e.dv_trunk else "-"
+        mu = f"{e.mu_c:7.3f}" if e.mu_c is not None else "  n < 0"
         print(f"  {e.time * 1e3:10.3f} {e.contact:>10s} {e.T_c:10.4f} {e.impulse[0]:+9.4f} "
-              f"{e.impulse[1]:+9.4f} {e.mu_c:7.3f} {dv:>22s}")
+              f"{e.impulse[1]:+9.4f} {mu} {dv:>22s}")
     print(f"\n  absorbed in all      T_c_total {landing.T_c_total:.4f} J")
     print(f"  largest mu_c         {landing.mu_c_max:.3f} (friction {scene.friction:g})")
     held = "yes" if landing.no_slip_held else \
@@ -221,8 +222,11 @@ def _indicator_lines(r: ImpactResult, other: ImpactResult | None = None) -> list
             lines.append(row(f"ground impulse t, {point}", "t", lambda z: z.impulse[point][0], "N s")
                          + open_)
             lines.append(row(f"ground impulse n, {point}", "n", lambda z: z.impulse[point][1], "N s"))
-    lines.append(row("critical friction", "mu_c", lambda z: z.mu_c, "", "{:10.4f}")
-                 + ("" if other else f"   (momentum check {r.mu_c_momentum:.4f})"))
+    if r.mu_c is not None and (other is None or other.mu_c is not None):
+        lines.append(row("critical friction", "mu_c", lambda z: z.mu_c, "", "{:10.4f}")
+                     + ("" if other else f"   (momentum check {r.mu_c_momentum:.4f})"))
+    else:
+        lines.append(f"  {'critical friction':30s} mu_c  undefined: the ground does not push")
     if r.dv_trunk is not None:
         lines.append(row("trunk velocity change x", "dv", lambda z: z.dv_trunk[0], "m/s"))
         lines.append(row("trunk velocity change z", "dv", lambda z: z.dv_trunk[1], "m/s"))

@@ -119,8 +119,8 @@ class ImpactResult:
     impulse: dict[str, tuple[float, float]]  # contact -> (tangential, normal), N s
     impulse_determined: dict[str, tuple[bool, bool]]  # False where rigid-body impact leaves it open
     impulse_total: tuple[float, float]  # (tangential, normal), N s
-    mu_c: float  # critical friction coefficient, |total tangential| / total normal
-    mu_c_momentum: float  # the same from the linear-momentum change (a check)
+    mu_c: float | None  # critical friction coefficient |total t| / total n; None if n <= 0
+    mu_c_momentum: float | None  # the same from the linear-momentum change (a check)
     dv_trunk: tuple[float, float] | None  # m/s, velocity change of the trunk's centre of mass
     dv_com: tuple[float, float]  # m/s, velocity change of the whole-body centre of mass
     qd_minus: np.ndarray  # natural-coordinate velocities before, m/s
@@ -191,9 +191,14 @@ class Impact:
         for p, (_, normal) in zip(points, impulse):
             if normal < -RTOL * scale:
                 warnings.append(f"the ground pulls the {p} (normal impulse {normal:.4f} N s)")
-        mu_c = abs(out["mu_signed"])
-        total_n = out["impulse_total"][1]
-        if total_n > 0 and mu_c > self.friction * (1 + RTOL):
+        total_t, total_n = out["impulse_total"]
+        pushes = total_n > RTOL * max(abs(total_t), 1e-300)
+        mu_c = abs(out["mu_signed"]) if pushes else None
+        mu_c_momentum = abs(out["mu_momentum_signed"]) if pushes else None
+        if not pushes:
+            warnings.append("mu_c is undefined: the ground does not push (total normal impulse "
+                            f"{total_n:.3g} N s)")
+        elif mu_c > self.friction * (1 + RTOL):
             warnings.append(f"the foot slips: mu_c {mu_c:.3f} exceeds the friction {self.friction:g}")
         if self.strike == "flat":
             warnings.append("flat foot: the tangential split between heel and forefoot is not "
@@ -205,7 +210,7 @@ class Impact:
             impulse={p: (float(t), float(n)) for p, (t, n) in zip(points, impulse)},
             impulse_determined=determined,
             impulse_total=tuple(float(v) for v in out["impulse_total"]),
-            mu_c=mu_c, mu_c_momentum=abs(out["mu_momentum_signed"]),
+            mu_c=mu_c, mu_c_momentum=mu_c_momentum,
             dv_trunk=tuple(float(v) for v in out["dv_trunk"]) if self.model.trunk else None,
             dv_com=tuple(float(v) for v in out["dv_com"]),
             qd_minus=out["qd_minus"], qd_plus=out["qd_plus"],

@@ -56,7 +56,7 @@ class ImpactEvent:
     T_c: float  # J
     dv_trunk: tuple[float, float] | None  # m/s
     impulse: tuple[float, float]  # total (tangential, normal), N s
-    mu_c: float
+    mu_c: float | None  # |t| / n of the impulse; None when the ground does not push
 
 
 @dataclass(frozen=True)
@@ -73,7 +73,7 @@ class Landing:
     impacts: list[ImpactEvent]
     releases: list[tuple[float, str, float]]  # (time, point, normal force N < 0): contacts let go
     T_c_total: float  # J
-    mu_c_max: float  # largest |f_t| / f_n over contact phases and impacts
+    mu_c_max: float  # largest |f_t| / f_n where the ground pushes (impacts and contact phases)
     no_slip_held: bool  # mu_c stayed within the ground's friction everywhere
     slip_at: list[float]  # times where it did not
     energy_error: float  # J
@@ -298,10 +298,11 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
             s_anchor = float(q[m.cols(new[0])] @ lm.t_axis)
         qd_plus, T_c, total = impact_map(q, qd, new)
         dv = (m.com_matrix(m.trunk) @ (qd_plus - qd)) if m.trunk else None
-        mu = abs(total[0]) / total[1] if total[1] > 0 else math.inf
-        mu_max = max(mu_max, mu)
-        if mu > friction or total[1] < 0:
+        mu = abs(total[0]) / total[1] if total[1] > 0 else None  # undefined when not pushed
+        if mu is None or mu > friction:
             slip_at.append(time)
+        else:
+            mu_max = max(mu_max, mu)
         impacts.append(ImpactEvent(time, "+".join(points), new, T_c,
                                    tuple(map(float, dv)) if dv is not None else None,
                                    (float(total[0]), float(total[1])), mu))
@@ -350,8 +351,8 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
                 warnings.append(ended)
                 break
             continue
-        if active:
-            mu = abs(force[0]) / force[1] if force[1] > 0 else math.inf
+        if active and force[1] > 0:
+            mu = abs(force[0]) / force[1]
             mu_max = max(mu_max, mu)
             if mu > friction:
                 slip_at.append(t)

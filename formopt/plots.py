@@ -66,7 +66,8 @@ def indicator_figure(path, results: dict[str, ImpactResult]) -> Path:
 
     def values(r):
         dv = r.dv_trunk or (float("nan"), float("nan"))
-        return [r.T_c, r.impulse_total[1], r.impulse_total[0], r.mu_c, dv[0], dv[1]]
+        mu = r.mu_c if r.mu_c is not None else float("nan")  # no bar where undefined
+        return [r.T_c, r.impulse_total[1], r.impulse_total[0], mu, dv[0], dv[1]]
 
     fig, axes = plt.subplots(1, len(names), figsize=(12, 3.2))
     colors = ["0.55", "tab:blue", "tab:orange", "tab:green"]

@@ -74,8 +74,9 @@ def compare(impacts, name, velocity):
                              "strike": strike, "T_c": r.T_c, "impulse_t": t, "impulse_n": n,
                              "mu_c": r.mu_c, "dv_trunk_x": r.dv_trunk[0], "dv_trunk_z": r.dv_trunk[1],
                              "valid": r.valid})
+                mu = f"{r.mu_c:6.2f}" if r.mu_c is not None else "   n<0"
                 print(f"{knee:5.0f} {sign * foot:5.0f} {strike:>9s} {v_point:6.2f} {r.T_c:8.2f} {t:8.3f} {n:8.3f} "
-                      f"{r.mu_c:6.2f} {r.dv_trunk[0]:7.3f} {r.dv_trunk[1]:7.3f}  {r.valid}")
+                      f"{mu} {r.dv_trunk[0]:7.3f} {r.dv_trunk[1]:7.3f}  {r.valid}")
     heel = np.array([r["T_c"] for r in rows if r["strike"] == "heel"])
     fore = np.array([r["T_c"] for r in rows if r["strike"] == "forefoot"])
     valid = {s: sum(r["valid"] for r in rows if r["strike"] == s) for s in ("heel", "forefoot")}
