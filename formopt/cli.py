@@ -172,8 +172,11 @@ def _sweep(scene: Scene, args) -> int:
 
 def solve_report(scene: Scene, opt, figures) -> dict:
     """The JSON report of an optimisation."""
+    from .optimize import explain
+
     return {
         "scene": scene.name, "model": scene.model, "success": opt.success, "status": opt.status,
+        "status_explained": explain(opt.status),
         "objective": opt.objective, "objective_terms": scene.problem.objective,
         "touchdown": touchdown_table(scene.strike, opt.state),
         "T_c": opt.impact.T_c, "impulse": {k: list(v) for k, v in opt.impact.impulse.items()},
@@ -275,9 +278,11 @@ def solve_table(scene: Scene, opt) -> str:
     lines += ["", f"multi-start: {len(opt.starts)} starts (seed {opt.seed}), {converged} converged, "
                   f"{opt.local_optima} distinct optima; median solve {opt.solve_time * 1e3:.1f} ms, "
                   f"build {opt.build_time * 1e3:.0f} ms"]
+    from .optimize import explain
     for st in opt.starts:
         if not st.converged:
-            lines.append(f"  start {st.index}: {st.status} (objective {st.objective:.4g}), not used")
+            lines.append(f"  start {st.index}: {st.status} (objective {st.objective:.4g}), not used: "
+                         f"{explain(st.status)}")
     lines += [f"note: {n}" for n in list(scene.notes) + list(opt.notes)]
     return "\n".join(lines)
 

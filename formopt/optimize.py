@@ -46,6 +46,28 @@ SECOND_APPROACH = -0.01
 RANGE_OF_MOTION_DEG = {"trunk": (-25.0, 80.0), "hip": (-30.0, 120.0), "knee": (0.0, 135.0),
                        "ankle": (-50.0, 20.0)}
 CONVERGED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
+# IPOPT's return statuses in plain words (the ones a posture problem meets).
+STATUS_EXPLAINED = {
+    "Solve_Succeeded": "converged to the requested tolerance",
+    "Solved_To_Acceptable_Level": "converged to IPOPT's looser 'acceptable' tolerance",
+    "Infeasible_Problem_Detected": "no posture near where this start ended satisfies every "
+                                   "constraint (too little friction for any posture, bounds that "
+                                   "exclude a landing, ...); other starts may still find one",
+    "Maximum_Iterations_Exceeded": "stopped at the iteration limit before converging "
+                                   "(raise [optimize].max_iterations, or start elsewhere)",
+    "Restoration_Failed": "IPOPT lost feasibility and could not regain it from this start",
+    "Search_Direction_Becomes_Too_Small": "the steps became too small to make progress: a "
+                                          "flat or ill-scaled objective near this point",
+    "Error_In_Step_Computation": "the linear system of a step could not be solved (a singular "
+                                 "or badly conditioned problem near this point)",
+    "Invalid_Number_Detected": "a function returned NaN or inf at a trial point",
+    "Diverging_Iterates": "the iterates ran off to very large values",
+    "Maximum_CpuTime_Exceeded": "stopped at the time limit before converging",
+}
+
+
+def explain(status: str) -> str:
+    return STATUS_EXPLAINED.get(status, "see IPOPT's documentation of this return status")
 
 
 @dataclass(frozen=True)
@@ -62,6 +84,7 @@ class Problem:
     seed: int = 0
     tolerance: float = 1e-8
     contact_friction: bool = False  # |f_t| <= mu f_n, f_n >= 0 through the contact phase
+    max_iterations: int = 200  # IPOPT's max_iter
 
     @property
     def landing(self) -> bool:
@@ -176,7 +199,7 @@ class PostureProblem:
         g, self.constraints = self._constraints(x, out, p, landing)
         self.nlp = {"x": w, "p": p, "f": self.scale * f, "g": g}
         opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
-                "ipopt.tol": problem.tolerance, "ipopt.max_iter": 200,
+                "ipopt.tol": problem.tolerance, "ipopt.max_iter": problem.max_iterations,
                 "ipopt.hessian_approximation": hessian}
         self.solver = cached_nlpsol("touchdown", self.nlp, opts, compiled)
         lam = sym.sym("lam", g.shape[0])
@@ -344,8 +367,9 @@ class PostureProblem:
         sol, u, x, best, _ = min(pool, key=lambda r: r[3].objective)
         notes = []
         if not converged:
-            notes.append(f"no start converged (statuses: {sorted({r[3].status for r in results})}); "
-                         "the state shown is the best last iterate, not an optimum")
+            statuses = sorted({r[3].status for r in results})
+            notes.append(f"no start converged: {'; '.join(f'{s}: {explain(s)}' for s in statuses)}. "
+                         "The state shown is the best last iterate, not an optimum")
         impact = self.impact(x)
         active = self._active(u, sol) if converged else ()
         sensitivity = self._sensitivity(u, sol) if converged else {}

@@ -160,7 +160,8 @@ def _landing(data) -> dict:
 # -- optimize ---------------------------------------------------------------------------
 
 OPTIMIZE_KEYS = {"variables", "objective", "bounds_deg", "bounds_dps", "starts", "seed",
-                 "tolerance", "max_overstride_m", "hip_height_m", "contact_friction"}
+                 "tolerance", "max_overstride_m", "hip_height_m", "contact_friction",
+                 "max_iterations"}
 RATE_VARIABLES = tuple("omega_" + r for r in RATES)
 
 
@@ -232,8 +233,9 @@ def _optimize(data, model, strike) -> tuple[Problem, tuple[str, ...]]:
     contact_friction = data.get("contact_friction", False)
     if not isinstance(contact_friction, bool):
         raise SceneError("optimize.contact_friction", f"must be true or false, not {contact_friction!r}")
+    max_iterations = _integer(data, "max_iterations", "optimize", default=200, low=1, high=100000)
     problem = Problem(tuple(variables), tuple(lower), tuple(upper), objective, overstride, hip_height,
-                      starts, seed, tolerance, contact_friction)
+                      starts, seed, tolerance, contact_friction, max_iterations)
     if problem.landing and strike == "flat":
         raise SceneError("optimize.objective", "the landing (T_c_total, contact_friction) starts with "
                                                "a heel or forefoot strike, not a flat one")

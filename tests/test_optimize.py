@@ -258,3 +258,17 @@ def test_angular_velocities_as_variables():
     omega = np.degrees(opt.state[8])
     assert -400.0 - 1e-6 <= omega <= 1e-6
     assert opt.objective <= opt.reference.T_c
+
+
+def test_iteration_limit_is_reported_not_claimed():
+    data = tomllib.loads(DEMO.read_text())
+    data["optimize"].update({"max_iterations": 2, "starts": 2})
+    opt = solve(parse(data, "limited.toml"))
+    assert not opt.success and opt.status == "Maximum_Iterations_Exceeded"
+    assert any("iteration limit" in n for n in opt.notes)
+
+
+def test_every_status_has_a_plain_explanation():
+    from formopt.optimize import explain
+    for status in ("Infeasible_Problem_Detected", "Restoration_Failed", "Maximum_Iterations_Exceeded"):
+        assert "IPOPT's documentation" not in explain(status)
