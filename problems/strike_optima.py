@@ -50,7 +50,9 @@ def main():
                     (optima["forefoot"][1].state, "forefoot-strike optimum", "tab:blue")])
     indicator_figure(out / "indicators.png", {s: o.impact for s, (_, o) in optima.items()})
     out.mkdir(parents=True, exist_ok=True)
-    (out / "optima.json").write_text(json.dumps(reports, indent=2))
+    tmp = out / ".optima.json.tmp"
+    tmp.write_text(json.dumps(reports, indent=2))
+    tmp.replace(out / "optima.json")  # never a half-written file under the final name
     print(f"wrote {out / 'postures.png'}, {out / 'indicators.png'}, {out / 'optima.json'}")
 
 
