@@ -47,7 +47,20 @@ def main(argv=None) -> int:
                      help="NAME=START:STOP:COUNT, e.g. ankle_deg=-20:20:41 (repeat for a grid)")
     cmd.add_argument("--out", help="CSV file (default out/<scene>/sweep.csv); an existing one is resumed")
     cmd.add_argument("--no-progress", action="store_true", help="no progress bar")
+    cmd = commands.add_parser("compare", help="measured touchdowns of a motion-capture trial "
+                                               "against the optimum")
+    cmd.add_argument("--trial", required=True, help="running trial: C3D, or RBDS marker text")
+    cmd.add_argument("--static", required=True, help="standing calibration trial (C3D or text)")
+    cmd.add_argument("--forces", help="force text file for a text trial (RBDS layout)")
+    cmd.add_argument("--mass", type=float, required=True, help="runner's mass (kg)")
+    cmd.add_argument("--height", type=float, required=True, help="runner's stature (m)")
+    cmd.add_argument("--sex", default="male", choices=["male", "female"])
+    cmd.add_argument("--friction", type=float, default=0.8, help="the ground's friction (default 0.8)")
+    cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
+    cmd.add_argument("--out", help="folder for the figure, CSV and JSON (default out/<trial>)")
     args = parser.parse_args(argv)
+    if args.command == "compare":
+        return _compare(args)
     try:
         scene = load(args.scene)
         if args.command == "impact":
@@ -168,6 +181,47 @@ def _sweep(scene: Scene, args) -> int:
         from .plots import sweep_figure
         print(f"wrote {sweep_figure(out.with_suffix('.png'), rows, params[0][0])}")
     return 0
+
+
+def _compare(args) -> int:
+    import csv
+
+    from . import mocap
+    from .compare import compare, report, table
+    from .plots import comparison_figure
+
+    try:
+        if not 1.0 <= args.mass <= 500.0 or not 0.5 <= args.height <= 2.5:
+            raise ValueError("--mass must be 1 to 500 kg and --height 0.5 to 2.5 m")
+        if not args.friction > 0:
+            raise ValueError("--friction must be > 0")
+        trial = mocap.read(args.trial, args.forces)
+        static = mocap.read(args.static)
+        result = compare(trial, static, args.mass, args.height, args.sex, args.friction)
+    except ValueError as err:  # MocapError included
+        print(f"formopt: error: {err}", file=sys.stderr)
+        return 2
+    out = Path(args.out) if args.out else Path("out") / Path(args.trial).stem
+    rep = report(result)
+    rep["figure"] = str(comparison_figure(out / "comparison.png", result))
+    out.mkdir(parents=True, exist_ok=True)
+    tmp = out / ".touchdowns.csv.tmp"
+    with tmp.open("w", newline="") as fh:
+        writer = csv.writer(fh)
+        writer.writerow(["time_s", "side", "strike", "trunk_deg", "hip_deg", "knee_deg", "ankle_deg",
+                         "foot_angle_deg", "hip_vx", "hip_vz", "T_c_J", "valid"])
+        for t in rep["touchdowns"]:
+            a = t["angles_deg"]
+            writer.writerow([t["time"], t["side"], t["strike"], a["trunk"], a["hip"], a["knee"],
+                             a["ankle"], t["foot_angle_deg"], *t["hip_velocity"], t["T_c"], t["valid"]])
+    tmp.replace(out / "touchdowns.csv")
+    _write_json(out / "comparison.json", rep)
+    if args.json:
+        print(json.dumps(rep, indent=2))
+    else:
+        print(table(result))
+        print(f"\nwrote {rep['figure']}, {out / 'touchdowns.csv'}, {out / 'comparison.json'}")
+    return 0 if result.optimum.success else 1
 
 
 def solve_report(scene: Scene, opt, figures) -> dict:

@@ -148,3 +148,42 @@ def sweep_figure(path, rows: list[dict], param: str) -> Path:
         ax.set_xlabel(param)
     fig.tight_layout()
     return save(fig, path)
+
+
+def comparison_figure(path, c) -> Path:
+    """Measured and optimal touchdowns overlaid, per-joint differences, T_c across steps."""
+    from .compare import JOINTS, report
+
+    rep = report(c)
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.8), gridspec_kw={"width_ratios": [1.1, 1, 1]})
+    ax = axes[0]
+    ground(ax, 0.0)
+    stick_figure(ax, c.body, c.reference, c.strike, 0.0, "0.5", f"measured (mean {c.strike} touchdown)")
+    stick_figure(ax, c.body, c.optimum.state, c.strike, 0.0, "tab:blue", "optimum, same speed")
+    ax.set_aspect("equal")
+    ax.legend(fontsize=7, loc="upper left")
+    ax.set_title("touchdown posture", fontsize=10)
+    ax = axes[1]
+    side = max(rep["summary"], key=lambda k: rep["summary"][k]["steps"])
+    sd = [rep["summary"][side]["angles_deg_sd"][k] for k in JOINTS]
+    diff = [rep["difference_deg"][k] for k in JOINTS]
+    ax.bar(JOINTS, diff, color="tab:blue", label="optimum - measured")
+    ax.errorbar(JOINTS, np.zeros(4), yerr=sd, fmt="none", ecolor="0.3", capsize=4,
+                label="measured step-to-step sd")
+    ax.axhline(0, color="0.3", lw=0.8)
+    ax.set_ylabel("deg")
+    ax.legend(fontsize=7)
+    ax.set_title("how far the optimum is, joint by joint", fontsize=10)
+    ax = axes[2]
+    for k, s in enumerate(("R", "L")):
+        values = [r.T_c for td, r in zip(c.steps.touchdowns, c.results) if td.side == s]
+        if values:
+            ax.scatter(np.full(len(values), k) + np.random.default_rng(0).uniform(-0.15, 0.15, len(values)),
+                       values, s=10, alpha=0.6, label="right" if s == "R" else "left")
+    ax.axhline(c.optimum.impact.T_c, color="tab:blue", ls="--", label="optimum")
+    ax.set_xticks([0, 1], ["right", "left"])
+    ax.set_ylabel("absorbed energy T_c (J)")
+    ax.legend(fontsize=7)
+    ax.set_title(f"T_c per step (cadence {c.steps.cadence_spm:.0f} steps/min)", fontsize=10)
+    fig.tight_layout()
+    return save(fig, path)

@@ -1,0 +1,149 @@
+"""Measured touchdowns against the optimum: the runner's own posture, indicators and the gap.
+
+For each touchdown of a trial (formopt.mocap), the indicators of that landing on the paper's
+leg scaled to the runner (de Leva), and the least-T_c posture for the same running speed,
+vertical velocity, segment rates and ground; then per-joint differences and the spread
+across steps.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import mocap
+from .body import Body, scaled_body
+from .impact import Impact, ImpactResult
+from .model import STATE, build_model
+from .optimize import Optimum, PostureProblem, Problem
+
+JOINTS = ("trunk", "hip", "knee", "ankle")
+# The optimum searches hip, knee and ankle within these bounds (deg), the runner's trunk lean,
+# speed and segment rates held at their measured means.
+BOUNDS_DEG = {"hip": (0.0, 45.0), "knee": (0.0, 60.0), "ankle": (-30.0, 20.0)}
+
+
+@dataclass
+class Comparison:
+    steps: mocap.Steps
+    axes: str
+    results: list[ImpactResult]  # one per touchdown, on the scaled model
+    strikes: list[str]  # the impact's strike point per touchdown (heel or forefoot)
+    reference: np.ndarray  # mean measured touchdown state of the dominant pattern
+    strike: str  # the dominant strike point
+    optimum: Optimum
+    body: Body
+
+
+def impact_strike(td: mocap.Touchdown, kin: mocap.Kinematics) -> str:
+    """The foot point that meets the ground first: heel or forefoot (midfoot: the lower)."""
+    if td.strike in ("heel", "forefoot"):
+        return td.strike
+    heel = kin.points[f"{td.side}.heel"][td.frame, 1]
+    fore = kin.points[f"{td.side}.forefoot"][td.frame, 1]
+    return "heel" if heel <= fore else "forefoot"
+
+
+def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
+            sex: str = "male", friction: float = 0.8, starts: int = 4, seed: int = 0) -> Comparison:
+    cal = mocap.calibrate(static)
+    kin = mocap.kinematics(trial, cal)
+    steps = mocap.touchdowns(trial, kin, cal)
+    if not steps.touchdowns:
+        raise mocap.MocapError(f"{trial.source}: no usable touchdown ({'; '.join(steps.left_out)})")
+    body = scaled_body(mass, height, sex)
+    model = build_model(body, "leg")
+    impacts = {s: Impact(model, s, 0.0, friction) for s in ("heel", "forefoot")}
+    strikes = [impact_strike(td, kin) for td in steps.touchdowns]
+    results = [impacts[s](td.state()) for s, td in zip(strikes, steps.touchdowns)]
+    patterns = [td.strike for td in steps.touchdowns]  # the runner's pattern decides the optimum's
+    strike = "heel" if patterns.count("heel") > len(patterns) / 2 else "forefoot"
+    chosen = [td for s, td in zip(strikes, steps.touchdowns) if s == strike] or steps.touchdowns
+    reference = np.mean([td.state() for td in chosen], axis=0)
+    heights = np.array([td.hip_height for td in chosen])
+    lower, upper = zip(*(map(math.radians, BOUNDS_DEG[v]) for v in ("hip", "knee", "ankle")))
+    problem = Problem(("hip", "knee", "ankle"), lower, upper, {"T_c": 1.0},
+                      hip_height=(float(heights.min() - 0.02), float(heights.max() + 0.02)),
+                      starts=starts, seed=seed)
+    optimum = PostureProblem(model, strike, reference, problem, 0.0, friction).solve()
+    return Comparison(steps, cal.axes.describe(), results, strikes, reference, strike, optimum, body)
+
+
+def report(c: Comparison) -> dict:
+    """The JSON report (the CLI's --json)."""
+    def deg(state):
+        return {k: math.degrees(state[STATE.index(k)]) for k in JOINTS}
+
+    touchdowns = [{"time": td.time, "side": td.side, "strike": td.strike, "impact_at": s,
+                   "angles_deg": {k: math.degrees(v) for k, v in td.angles.items()},
+                   "foot_angle_deg": math.degrees(td.foot_strike_angle),
+                   "rates_dps": {k: math.degrees(v) for k, v in td.rates.items()},
+                   "hip_velocity": list(td.hip_velocity), "hip_height": td.hip_height,
+                   "T_c": r.T_c, "mu_c": r.mu_c, "valid": r.valid}
+                  for td, s, r in zip(c.steps.touchdowns, c.strikes, c.results)]
+    opt = c.optimum
+    return {
+        "cadence_spm": c.steps.cadence_spm, "belt_speed": c.steps.belt_speed,
+        "touchdown_method": c.steps.method, "axes": c.axes, "body": c.body.source,
+        "left_out": c.steps.left_out, "touchdowns": touchdowns,
+        "summary": summary(c),
+        "optimum": {"success": opt.success, "status": opt.status, "strike": c.strike,
+                    "touchdown": {"angles_deg": deg(opt.state), "hip_velocity": list(opt.state[4:6])},
+                    "T_c": opt.impact.T_c, "active": [a.name for a in opt.active]},
+        "reference": {"angles_deg": deg(c.reference), "T_c": opt.reference.T_c},
+        "difference_deg": {k: v for k, v in zip(JOINTS, np.subtract(
+            [deg(opt.state)[k] for k in JOINTS], [deg(c.reference)[k] for k in JOINTS]))},
+    }
+
+
+def summary(c: Comparison) -> dict:
+    """Mean and standard deviation per side: joint angles, foot strike angle, T_c."""
+    out = {}
+    for side in mocap.SIDES:
+        rows = [(td, r) for td, r in zip(c.steps.touchdowns, c.results) if td.side == side]
+        if not rows:
+            continue
+        angles = np.array([[math.degrees(td.angles[k]) for k in JOINTS] for td, _ in rows])
+        T_c = np.array([r.T_c for _, r in rows])
+        fsa = np.array([math.degrees(td.foot_strike_angle) for td, _ in rows])
+        patterns = [td.strike for td, _ in rows]
+        out[side] = {"steps": len(rows),
+                     "strike": max(set(patterns), key=patterns.count),
+                     "angles_deg_mean": dict(zip(JOINTS, angles.mean(axis=0))),
+                     "angles_deg_sd": dict(zip(JOINTS, angles.std(axis=0, ddof=1) if len(rows) > 1
+                                               else np.zeros(4))),
+                     "foot_angle_deg_mean": float(fsa.mean()), "foot_angle_deg_sd": float(fsa.std(ddof=1)) if len(rows) > 1 else 0.0,
+                     "T_c_mean": float(T_c.mean()), "T_c_sd": float(T_c.std(ddof=1)) if len(rows) > 1 else 0.0}
+    return out
+
+
+def table(c: Comparison) -> str:
+    rep = report(c)
+    lines = [f"touchdowns: {len(c.steps.touchdowns)} ({c.steps.method}); cadence {c.steps.cadence_spm:.1f} "
+             f"steps/min; treadmill belt {c.steps.belt_speed:.2f} m/s",
+             f"lab axes found: {c.axes}", f"model: the paper's leg, {c.body.source}", ""]
+    lines.append(f"  {'':22s} {'steps':>5s} {'strike':>9s} {'trunk':>7s} {'hip':>7s} {'knee':>7s} "
+                 f"{'ankle':>7s} {'foot':>7s} {'T_c (J)':>12s}")
+    for side, s in rep["summary"].items():
+        a, sd = s["angles_deg_mean"], s["angles_deg_sd"]
+        lines.append(f"  {'measured, ' + ('right' if side == 'R' else 'left'):22s} {s['steps']:5d} "
+                     f"{s['strike']:>9s} " + " ".join(f"{a[k]:7.1f}" for k in JOINTS)
+                     + f" {s['foot_angle_deg_mean']:7.1f} {s['T_c_mean']:6.2f} ± {s['T_c_sd']:.2f}")
+        lines.append(f"  {'   sd':22s} {'':5s} {'':9s} " + " ".join(f"{sd[k]:7.1f}" for k in JOINTS)
+                     + f" {s['foot_angle_deg_sd']:7.1f}")
+    ref, opt = rep["reference"], rep["optimum"]
+    lines.append(f"  {'mean ' + c.strike + ' touchdown':22s} {'':5s} {'':9s} "
+                 + " ".join(f"{ref['angles_deg'][k]:7.1f}" for k in JOINTS) + f" {'':7s} {ref['T_c']:6.2f}")
+    status = "" if opt["success"] else f"  (NOT CONVERGED: {opt['status']})"
+    lines.append(f"  {'optimum, same speed':22s} {'':5s} {c.strike:>9s} "
+                 + " ".join(f"{opt['touchdown']['angles_deg'][k]:7.1f}" for k in JOINTS)
+                 + f" {'':7s} {opt['T_c']:6.2f}{status}")
+    lines.append(f"  {'optimum - measured':22s} {'':5s} {'':9s} "
+                 + " ".join(f"{rep['difference_deg'][k]:+7.1f}" for k in JOINTS)
+                 + f" {'':7s} {opt['T_c'] - ref['T_c']:+6.2f}")
+    if opt["active"]:
+        lines.append(f"  the optimum is held by: {', '.join(opt['active'])}")
+    lines += [f"  left out: {x}" for x in c.steps.left_out]
+    return "\n".join(lines)
