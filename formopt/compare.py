@@ -87,7 +87,7 @@ def report(c: Comparison) -> dict:
     return {
         "cadence_spm": c.steps.cadence_spm, "belt_speed": c.steps.belt_speed,
         "touchdown_method": c.steps.method, "axes": c.axes, "body": c.body.source,
-        "left_out": c.steps.left_out, "touchdowns": touchdowns,
+        "left_out": c.steps.left_out, "notes": c.steps.notes, "touchdowns": touchdowns,
         "summary": summary(c),
         "optimum": {"success": opt.success, "status": opt.status, "strike": c.strike,
                     "touchdown": {"angles_deg": deg(opt.state), "hip_velocity": list(opt.state[4:6])},
@@ -146,4 +146,5 @@ def table(c: Comparison) -> str:
     if opt["active"]:
         lines.append(f"  the optimum is held by: {', '.join(opt['active'])}")
     lines += [f"  left out: {x}" for x in c.steps.left_out]
+    lines += [f"note: {n}" for n in c.steps.notes]
     return "\n".join(lines)

@@ -62,6 +62,7 @@ class Trial:
     force_rate: float | None = None
     source: str = ""
     gaps: dict[str, list[tuple[int, int]]] = field(default_factory=dict)  # long gaps (start, stop)
+    notes: list[str] = field(default_factory=list)  # what the reader did that a user should know
 
 
 # -- readers ------------------------------------------------------------------------------
@@ -98,14 +99,16 @@ def read_c3d(path) -> Trial:
         raise MocapError(f"{path}: truncated: the file declares {declared} frames but holds "
                          f"{points.shape[2]}")
     markers = {name: points[:, k, :].T.copy() for k, name in enumerate(labels)}
-    force, force_rate = None, None
+    force, force_rate, notes = None, None, []
     platforms = c3d["data"].get("platform", [])
     if platforms:
         f = np.asarray(platforms[0]["force"], float).T
         if f.size and np.nanmax(np.abs(f)) > FORCE_THRESHOLD:
             force = f
             force_rate = float(c3d["header"]["analogs"]["frame_rate"])
-    return _clean(Trial(markers, rate, force, force_rate, str(path)))
+        else:
+            notes.append("the force plate is empty: touchdowns from the kinematics")
+    return _clean(Trial(markers, rate, force, force_rate, str(path), notes=notes))
 
 
 def _declared_frames(path) -> int | None:
@@ -153,8 +156,9 @@ def read_text(path, forces=None) -> Trial:
         duration = len(time) / rate
         trial.force = fdata[:, 1:4]
         trial.force_rate = round(len(fdata) / duration, 2)
-        if not np.any(np.abs(trial.force) > FORCE_THRESHOLD):
-            trial.force, trial.force_rate = None, None  # an empty plate: kinematics instead
+        if not np.any(np.abs(trial.force) > FORCE_THRESHOLD):  # an empty plate: kinematics instead
+            trial.force, trial.force_rate = None, None
+            trial.notes.append(f"{fpath.name}: the force plate is empty: touchdowns from the kinematics")
     return _clean(trial)
 
 
@@ -193,6 +197,12 @@ def _clean(trial: Trial) -> Trial:
         long = [(a, b) for a, b in _runs(missing) if b - a > MAX_GAP]
         if long:
             trial.gaps[name] = long
+        filled = int(missing.sum()) - sum(b - a for a, b in long)
+        if filled:
+            trial.notes.append(f"{name}: {filled} missing frames interpolated")
+        if long:
+            trial.notes.append(f"{name}: {len(long)} gaps longer than {MAX_GAP} frames "
+                               f"({', '.join(f'{a / trial.rate:.2f}-{b / trial.rate:.2f} s' for a, b in long)})")
     return trial
 
 
@@ -403,6 +413,7 @@ class Steps:
     belt_speed: float  # m/s
     method: str  # "force plate" or "kinematics"
     left_out: list[str]  # steps not used, and why
+    notes: list[str] = field(default_factory=list)  # from the reader
 
 
 def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration) -> Steps:
@@ -438,7 +449,7 @@ def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration) -> Steps:
     if len(times) < 2:
         raise MocapError(f"{trial.source}: fewer than two touchdowns found ({method})")
     cadence = 60.0 / float(np.median(np.diff(times)))
-    return Steps(steps, cadence, belt, method, left_out)
+    return Steps(steps, cadence, belt, method, left_out, list(trial.notes))
 
 
 def _separated(times, gap):

@@ -161,7 +161,7 @@ def test_empty_force_plate_falls_back_to_kinematics(tmp_path, run25):
     forces = tmp_path / "f.txt"
     forces.write_text("Time\tFx\tFy\tFz\n" + "".join(f"{k}\t0\t0\t0\n" for k in range(1, 9001)))
     trial = mocap.read(markers, forces)
-    assert trial.force is None
+    assert trial.force is None and any("force plate is empty" in n for n in trial.notes)
 
 
 @pytest.mark.parametrize("damage,needle", [
@@ -192,3 +192,17 @@ def test_cli_compare_json_and_bad_input(tmp_path, capsys):
     assert main(["compare", "--trial", str(tmp_path / "none.c3d"), "--static", str(STATIC),
                  "--mass", "62", "--height", "1.81"]) == 2
     assert "no such file" in capsys.readouterr().err
+
+
+def test_cli_bad_motion_capture_exits_2_with_one_line(tmp_path, run35, capsys):
+    trial = copy.copy(run35)
+    trial.markers = {k: v for k, v in run35.markers.items() if k != "L.Shank.Top.Medial"}
+    mocap.write_text(trial, tmp_path / "m.txt", tmp_path / "f.txt")
+    args = ["--static", str(STATIC), "--mass", "62", "--height", "1.81", "--out", str(tmp_path)]
+    assert main(["compare", "--trial", str(tmp_path / "m.txt"), "--forces", str(tmp_path / "f.txt"), *args]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "L.Shank.Top.Medial" in err[0]
+    data = RUN35.read_bytes()
+    (tmp_path / "cut.c3d").write_bytes(data[: len(data) // 2])
+    assert main(["compare", "--trial", str(tmp_path / "cut.c3d"), *args]) == 2
+    assert "truncated" in capsys.readouterr().err
