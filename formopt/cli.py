@@ -276,9 +276,9 @@ def _indicator_lines(r: ImpactResult, other: ImpactResult | None = None) -> list
     for point in r.impulse:
         if other is None or point in other.impulse:
             open_ = "" if all(r.impulse_determined[point]) else "   (split not determined)"
-            lines.append(row(f"ground impulse t, {point}", "t", lambda z: z.impulse[point][0], "N s")
+            lines.append(row(f"ground impulse t, {point}", "t", lambda z, p=point: z.impulse[p][0], "N s")
                          + open_)
-            lines.append(row(f"ground impulse n, {point}", "n", lambda z: z.impulse[point][1], "N s"))
+            lines.append(row(f"ground impulse n, {point}", "n", lambda z, p=point: z.impulse[p][1], "N s"))
     if r.mu_c is not None and (other is None or other.mu_c is not None):
         lines.append(row("critical friction", "mu_c", lambda z: z.mu_c, "", "{:10.4f}")
                      + ("" if other else f"   (momentum check {r.mu_c_momentum:.4f})"))

@@ -21,7 +21,6 @@ before the first impact, to the integration tolerance; `energy_error` is its lar
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import casadi as ca

@@ -391,7 +391,7 @@ class PostureProblem:
         lam_g = -np.asarray(sol["lam_g"], float).ravel() / self.scale
         lam_x = -np.asarray(sol["lam_x"], float).ravel() / self.scale
         active = []
-        for (name, kind, bound), value, lam in zip(self.constraints, g, lam_g):
+        for (name, _, bound), value, lam in zip(self.constraints, g, lam_g):
             if abs(value - bound) < 1e-6 * max(1.0, abs(bound)) and abs(lam) > 1e-9:
                 active.append(Constraint(name, float(value), bound, float(lam), _meaning(name)))
         for k, var in enumerate(self.problem.variables):
@@ -450,7 +450,10 @@ def _named(names, values) -> dict[str, float]:
     return {n: float(math.degrees(v)) for n, v in zip(names, values)}
 
 
-def _distinct(points, tol=math.radians(0.5)) -> int:
+DISTINCT = math.radians(0.5)  # optima closer than this in every variable count as one
+
+
+def _distinct(points, tol=DISTINCT) -> int:
     found = []
     for p in points:
         if all(np.max(np.abs(p - q)) > tol for q in found):

@@ -42,7 +42,7 @@ def main():
     for name, value in rows:
         cells = [value(o) for _, o in optima.values()]
         print(f"{name:28s} {cells[0]:14.4f} {cells[1]:16.4f}")
-    for strike, (scene, opt) in optima.items():
+    for strike, (_, opt) in optima.items():
         held = ", ".join(c.name for c in opt.active) or "nothing (interior)"
         print(f"{strike}: {opt.status}; held by {held}")
     posture_figure(out / "postures.png", base.body, "forefoot", base.slope,
