@@ -19,7 +19,7 @@ from pathlib import Path
 
 import casadi as ca
 
-from formopt import build_model, load
+from formopt import load
 from formopt import sweep
 from formopt.landing import LandingModel, absorbed_function, simulate_state
 
@@ -33,7 +33,7 @@ def main():
     args = parser.parse_args()
     scene = load(args.scene)
     t = time.perf_counter()
-    lm = LandingModel(build_model(scene.body, scene.model), scene.joints, scene.slope)
+    lm = LandingModel(scene.build_model(), scene.joints, scene.slope)
 
     def run(dt):
         return simulate_state(lm, scene.strike, scene.state, scene.friction, dt, 0.2)

@@ -51,7 +51,7 @@ def main():
         row(f"heel strike on {slope:+g} deg", strike="heel", slope=slope, ankle=10.0)
 
     scene = load(ROOT / "problems" / "demo.toml")
-    problem = PostureProblem(build_model(scene.body, scene.model), scene.strike, scene.state,
+    problem = PostureProblem(scene.build_model(), scene.strike, scene.state,
                              scene.problem, scene.slope, scene.friction)
     opt = problem.solve()
     w = problem.to_unit(opt.state)

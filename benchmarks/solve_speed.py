@@ -35,7 +35,7 @@ def main():
     args = parser.parse_args()
     os.environ["FORMOPT_CACHE"] = tempfile.mkdtemp(prefix="formopt-bench-")  # a cold cache
     scene = load(args.scene)
-    model = build_model(scene.body, scene.model)
+    model = scene.build_model()
     seed = scene.problem.seed
     print(f"{scene.name}: {len(scene.problem.variables)} variables; seed {seed}; "
           f"medians of {args.repeats} solves; one core\n")

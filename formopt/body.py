@@ -55,6 +55,8 @@ class Body:
     source: str
 
     def __getitem__(self, name: str) -> Segment:
+        if name == "effective_mass" and name not in self.segments:
+            return effective_mass(self)
         return self.segments[name]
 
     @property
@@ -85,6 +87,13 @@ def trunk(mass: float, com: float = 0.0, inertia_com: float = 0.0, length: float
     if length > 0:
         landmarks["shoulder"] = (0.0, length)
     return Segment("trunk", mass, (0.0, com), inertia_com, landmarks)
+
+
+def effective_mass(body: "Body") -> Segment:
+    """The lower limb (shank and foot) as one mass at the strike point: the effective mass of
+    the impact in Lieberman et al. (2010)'s one-degree-of-freedom picture."""
+    return Segment("effective_mass", body["shank"].mass + body["foot"].mass, (0.0, 0.0), 0.0,
+                   {"heel": (0.0, 0.0), "forefoot": (0.0, 0.0)})
 
 
 def swing_leg(mass: float) -> Segment:

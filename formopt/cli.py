@@ -122,11 +122,10 @@ def _simulate(scene: Scene, args) -> int:
     import csv
 
     from .landing import history_rows, land
-    from .model import build_model
     from .plots import landing_figures
 
     landing = land(scene)
-    model = build_model(scene.body, scene.model)
+    model = scene.build_model()
     out = Path(args.out) if args.out else Path("out") / Path(scene.path).stem
     figures = landing_figures(out, landing, scene.body, model, scene.slope, scene.strike)
     out.mkdir(parents=True, exist_ok=True)

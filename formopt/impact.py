@@ -29,7 +29,7 @@ import casadi as ca
 import numpy as np
 
 from .compiled import Compiled
-from .model import STATE, STRIKES, Model, build_model
+from .model import STATE, STRIKES, Model, landmarks
 # Ill-conditioned beyond this: results lose more than 10 of 16 digits.
 CONDITION_LIMIT = 1e10
 # Relative tolerance of the validity checks: an optimum on a constraint (mu_c = friction,
@@ -69,9 +69,11 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None)
     t, n = ground_axes(slope)
     x = ca.SX.sym("x", len(STATE))
     q, qd = model.state(x, points[0])
-    rows = model.contact_rows(points, slope, tangential=points[:1])
+    rows = model.contact_rows(points, slope, tangential=points[:1] if model.tangential else ())
     imp = projection(model, q, qd, rows)
     lam = imp["lambda"][imp["n_body"]:]
+    if not model.tangential:  # the impact acts along the normal only
+        lam = ca.vertcat(0, lam)
     if strike == "flat":
         total_t, normals = lam[0], ca.vertcat(lam[1], lam[2])
         total_n = normals[0] + normals[1]
@@ -97,7 +99,7 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None)
         "dv_trunk": trunk,
         "dv_com": momentum / model.mass,
         "approach": ca.vertcat(*[ca.dot(qd[model.cols(p)], n) for p in points]),
-        "clearance": ca.dot(q[model.cols(other)], n),
+        "clearance": ca.dot(landmarks(x, model.body, points[0])[other][0], n),
         "G": imp["G"],
     }
     if outputs is not None:
@@ -279,24 +281,36 @@ def _point_groups(model: Model) -> dict[str, str]:
 
 
 def _hinges(model: Model, groups, contact_segment):
-    """(hinge point, segments beyond it seen from the contact) for every hinge of the chain."""
+    """(hinge point, segments of one branch beyond it seen from the contact), for every
+    branch of every hinge: a chain has one branch beyond each hinge, a tree may have more
+    (trunk and swing leg beyond the stance hip)."""
     touches = {b.segment: {groups[p] for p in b.base + b.fixed} for b in model.bodies}
     touches.update({pm.segment: {groups[pm.point]} for pm in model.point_masses})
     rigid = {b.segment for b in model.bodies}
     hinges = [g for g in set(groups.values())
               if sum(g in touches[s] for s in rigid) >= 2]
-    for g in sorted(hinges):
-        reached, frontier = {contact_segment}, [contact_segment]
+
+    def component(start, g, allowed):
+        reached, frontier = {start}, [start]
         while frontier:
             seg = frontier.pop()
-            for other, pts in touches.items():
-                if other not in reached and (touches[seg] & pts) - {g}:
+            for other in allowed:
+                if other not in reached and (touches[seg] & touches[other]) - {g}:
                     reached.add(other)
                     frontier.append(other)
-        yield g, [s for s in touches if s not in reached]
+        return reached
+
+    for g in sorted(hinges):
+        near = component(contact_segment, g, touches)
+        rest = [s for s in touches if s not in near]
+        while rest:
+            branch = component(rest[0], g, rest)
+            if branch & rigid:  # a lone point mass at the hinge has no moment about it
+                yield g, sorted(branch)
+            rest = [s for s in rest if s not in branch]
 
 
 def impact(scene) -> ImpactResult:
     """The indicators of a scene's touchdown (a formopt.scene.Scene)."""
-    model = build_model(scene.body, scene.model)
+    model = scene.build_model()
     return Impact(model, scene.strike, scene.slope, scene.friction)(scene.state)

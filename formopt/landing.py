@@ -28,13 +28,15 @@ import numpy as np
 
 from .compiled import Compiled
 from .impact import ground_axes
-from .model import STATE, STRIKES, Model, build_model
+from .model import STATE, STRIKES, Model
 
 GRAVITY = 9.81  # m/s^2
 BAUMGARTE = 50.0  # 1/s, critically damped constraint stabilisation
 JOINT_MODELS = ("free", "spring-damper", "locked")
 # Joints: (name, parent segment, child segment); the hip only where the trunk is a rigid body.
-JOINTS = (("hip", "trunk", "thigh"), ("knee", "thigh", "shank"), ("ankle", "shank", "foot"))
+JOINTS = (("hip", "trunk", "thigh"), ("knee", "thigh", "shank"), ("ankle", "shank", "foot"),
+          ("swing_hip", "trunk", "swing_thigh"), ("swing_knee", "swing_thigh", "swing_shank"),
+          ("swing_ankle", "swing_shank", "swing_foot"))
 
 
 @dataclass(frozen=True)
@@ -97,6 +99,8 @@ class LandingModel:
 
     def __init__(self, model: Model, joints: Joints = Joints(), slope: float = 0.0,
                  compiled: bool = True):
+        if not {"heel", "forefoot"} <= set(model.index):
+            raise ValueError(f"model {model.kind!r} has no foot to land on (it is impact-only)")
         self.model, self.joints, self.slope = model, joints, slope
         self.t_axis, self.n_axis = ground_axes(slope)
         rigid = {b.segment: b for b in model.bodies}
@@ -480,7 +484,7 @@ def simulate_state(lm: LandingModel, strike: str, x, friction: float, dt: float,
 
 def land(scene, compiled: bool = True, dt: float | None = None) -> Landing:
     """Simulate a scene's landing (a formopt.scene.Scene), from its touchdown."""
-    lm = LandingModel(build_model(scene.body, scene.model), scene.joints, scene.slope, compiled)
+    lm = LandingModel(scene.build_model(), scene.joints, scene.slope, compiled)
     dt = scene.landing["dt_ms"] * 1e-3 if dt is None else dt
     return simulate_state(lm, scene.strike, scene.state, scene.friction, dt,
                           scene.landing["duration_ms"] * 1e-3)

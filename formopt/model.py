@@ -33,7 +33,7 @@ from .body import Body
 STATE = ("trunk", "hip", "knee", "ankle", "hip_vx", "hip_vz",
          "omega_trunk", "omega_thigh", "omega_shank", "omega_foot")
 STRIKES = {"heel": ("heel",), "forefoot": ("forefoot",), "flat": ("heel", "forefoot")}
-MODELS = ("shank-foot", "leg", "leg-trunk")
+MODELS = ("effective-mass", "shank-foot", "leg", "leg-trunk", "full-body")
 
 R90 = np.array([[0.0, -1.0], [1.0, 0.0]])
 
@@ -63,33 +63,58 @@ class PointMass:
     point: str
 
 
-def segment_kinematics(x, body: Body):
+@dataclass(frozen=True)
+class Swing:
+    """The swing leg's touchdown posture (joint angles, rad) and absolute rates (rad/s)."""
+
+    hip: float
+    knee: float
+    ankle: float
+    omega_thigh: float
+    omega_shank: float
+    omega_foot: float
+
+
+CHAIN = (("shank", "thigh", "knee"), ("foot", "shank", "ankle"),
+         ("swing_shank", "swing_thigh", "swing_knee"), ("swing_foot", "swing_shank", "swing_ankle"))
+
+
+def segment_kinematics(x, body: Body, swing: Swing | None = None):
     """Origin, angle, origin velocity and angular velocity of each segment frame (SX).
 
     The hip is at the origin here; positions are shifted afterwards. Thigh angle = hip - trunk,
     shank = thigh - knee, foot = shank + ankle; the trunk leans forward (clockwise) by `trunk`.
+    The swing leg, when given, follows the same rules with its own joint angles.
     """
     s = dict(zip(STATE, ca.vertsplit(x)))
     angle = {"trunk": -s["trunk"], "thigh": s["hip"] - s["trunk"]}
     angle["shank"] = angle["thigh"] - s["knee"]
     angle["foot"] = angle["shank"] + s["ankle"]
     omega = {k: s["omega_" + k] for k in ("trunk", "thigh", "shank", "foot")}
+    if swing is not None:
+        angle["swing_thigh"] = swing.hip - s["trunk"]
+        angle["swing_shank"] = angle["swing_thigh"] - swing.knee
+        angle["swing_foot"] = angle["swing_shank"] + swing.ankle
+        omega.update(swing_thigh=swing.omega_thigh, swing_shank=swing.omega_shank,
+                     swing_foot=swing.omega_foot)
     hip = ca.vertcat(0, 0), ca.vertcat(s["hip_vx"], s["hip_vz"])
-    frames = {"trunk": hip, "thigh": hip}
-    for child, parent, joint in (("shank", "thigh", "knee"), ("foot", "shank", "ankle")):
-        frames[child] = _landmark(frames[parent], angle[parent], omega[parent],
-                                  body[parent].landmarks[joint])
-    return {k: (frames[k][0], angle[k], frames[k][1], omega[k]) for k in frames if k in body.segments}
+    frames = {"trunk": hip, "thigh": hip, "swing_thigh": hip}
+    for child, parent, joint in CHAIN:
+        if child in angle:
+            frames[child] = _landmark(frames[parent], angle[parent], omega[parent],
+                                      body[parent].landmarks[joint])
+    return {k: (frames[k][0], angle[k], frames[k][1], omega[k]) for k in frames
+            if k in body.segments and k in angle}
 
 
-def landmarks(x, body: Body, origin: str = "hip") -> dict:
+def landmarks(x, body: Body, origin: str = "hip", swing: Swing | None = None) -> dict:
     """World position and velocity (SX) of every landmark of the body, with `origin` at (0, 0).
 
     A landmark shared by two segments (a joint) is taken from the distal one.
     """
-    frames = segment_kinematics(x, body)
+    frames = segment_kinematics(x, body, swing)
     world = {}
-    for seg in ("trunk", "thigh", "shank", "foot"):
+    for seg in ("trunk", "thigh", "shank", "foot", "swing_thigh", "swing_shank", "swing_foot"):
         if seg in frames:
             position, angle, velocity, omega = frames[seg]
             for name, local in body[seg].landmarks.items():
@@ -98,10 +123,10 @@ def landmarks(x, body: Body, origin: str = "hip") -> dict:
     return {k: (p - shift, v) for k, (p, v) in world.items()}
 
 
-def positions(x, body: Body, origin: str = "hip") -> dict[str, np.ndarray]:
+def positions(x, body: Body, origin: str = "hip", swing: Swing | None = None) -> dict[str, np.ndarray]:
     """World positions (m, numeric) of every landmark at the touchdown state x."""
     xs = ca.SX.sym("x", len(STATE))
-    world = landmarks(xs, body, origin)
+    world = landmarks(xs, body, origin, swing)
     f = ca.Function("positions", [xs], [p for p, _ in world.values()])
     return {k: np.asarray(v, float).ravel() for k, v in zip(world, f(np.asarray(x, float)))}
 
@@ -121,12 +146,19 @@ class Model:
     `points` order the coordinates: q = [x_0, z_0, x_1, z_1, ...].
     """
 
-    def __init__(self, body: Body, points, bodies, point_masses=(), coincident=(), trunk=None):
+    def __init__(self, body: Body, points, bodies, point_masses=(), coincident=(), trunk=None,
+                 guides=(), tangential: bool = True, kind: str = "", swing: Swing | None = None):
         self.body = body
+        self.kind = kind
+        self.swing = swing
         self.points = tuple(points)
         self.bodies = tuple(bodies)
         self.point_masses = tuple(point_masses)
         self.coincident = tuple(coincident)
+        # (point, direction): the point moves only along that line through the origin (where
+        # the strike point is placed); `tangential`: contacts hold the tangential direction
+        self.guides = tuple((p, np.asarray(d, float) / np.linalg.norm(d)) for p, d in guides)
+        self.tangential = tangential
         self.index = {p.name: k for k, p in enumerate(self.points)}
         self.n = 2 * len(self.points)
         self.trunk = trunk  # segment whose velocity change is reported as dv_trunk
@@ -141,6 +173,7 @@ class Model:
             raise ValueError(f"duplicate point names in {names}")
         used = {p for b in self.bodies for p in b.base + b.fixed}
         used |= {pm.point for pm in self.point_masses} | {p for c in self.coincident for p in c}
+        used |= {p for p, _ in self.guides}
         unknown = used - set(names)
         if unknown:
             raise ValueError(f"the model refers to undefined points {sorted(unknown)}")
@@ -235,6 +268,8 @@ class Model:
                 rows.append(q[self.cols(p)] - ca.DM(C) @ ca.vertcat(ri, rj))
         for a, c in self.coincident:
             rows.append(q[self.cols(a)] - q[self.cols(c)])
+        for p, d in self.guides:
+            rows.append(ca.dot(q[self.cols(p)], ca.DM(R90 @ d)))
         return ca.vertcat(*rows)
 
     def constraint_jacobian(self, q) -> ca.SX:
@@ -262,9 +297,15 @@ class Model:
     # -- state -----------------------------------------------------------------------
     def state(self, x, strike_point: str):
         """(q, q') as SX of the touchdown state x, with `strike_point` at the origin."""
-        world = landmarks(x, self.body, strike_point)
+        world = landmarks(x, self.body, strike_point, self.swing)
+        guided = dict(self.guides)
         q = ca.vertcat(*[world[p.landmark][0] for p in self.points])
-        return q, ca.vertcat(*[world[p.landmark][1] for p in self.points])
+        velocities = []
+        for p in self.points:  # a guided point moves only along its guide
+            v = world[p.landmark][1]
+            velocities.append(ca.DM(guided[p.name]) * ca.dot(v, ca.DM(guided[p.name]))
+                              if p.name in guided else v)
+        return q, ca.vertcat(*velocities)
 
     def state_numeric(self, x, strike_point: str) -> tuple[np.ndarray, np.ndarray]:
         """(q, q') as numpy arrays of a numeric touchdown state (the map is built once)."""
@@ -288,9 +329,13 @@ class Model:
         return 0.5 * ca.bilin(ca.DM(self.M), qd, qd)
 
 
-def build_model(body: Body, kind: str = "leg") -> Model:
+def build_model(body: Body, kind: str = "leg", strike: str = "forefoot",
+                swing: Swing | None = None) -> Model:
     """A model of the stance leg, from coarse to fine.
 
+    effective-mass (Lieberman et al. 2010, Nature 463:531): the lower limb's mass (shank and
+    foot) at the strike point, which moves only vertically: one degree of freedom, the impact
+    along the ground normal only (T_c = 1/2 m v_n^2). Built for one strike point.
     shank-foot: points knee, ankle, heel, forefoot (8 coordinates); shank knee->ankle, foot
     heel->forefoot with the ankle fixed in it; 4 degrees of freedom. The thigh's length still
     carries the hip's motion to the knee.
@@ -298,22 +343,52 @@ def build_model(body: Body, kind: str = "leg") -> Model:
     point mass at the hip (10 coordinates, 5 constraints, 5 degrees of freedom).
     leg-trunk: the trunk (head, arms, trunk) rigid, hip->shoulder, so its angle and
     inertia matter; the swing leg a point mass at the hip (12 coordinates, 6 degrees of freedom).
+    full-body: the rigid trunk and both legs, the swing leg (the stance leg's segments) a free
+    chain of thigh, shank and foot in the posture `swing` (20 coordinates, 9 degrees of freedom).
     """
     foot = RigidBody("foot", ("heel", "forefoot"), ("ankle",))
     shank = RigidBody("shank", ("knee", "ankle"))
     thigh = RigidBody("thigh", ("hip", "knee"))
     leg_points = ("hip", "knee", "ankle", "heel", "forefoot")
-    swing = [PointMass("swing_leg", "hip")] if "swing_leg" in body.segments else []
+    swing_mass = [PointMass("swing_leg", "hip")] if "swing_leg" in body.segments else []
+    if kind == "effective-mass":
+        point = STRIKES[strike][0]
+        return Model(body, [Point(point, point)], (), [PointMass("effective_mass", point)],
+                     guides=[(point, (0.0, 1.0))], tangential=False, kind=kind)
     if kind == "shank-foot":
-        return Model(body, [Point(n, n) for n in leg_points[1:]], (shank, foot))
+        return Model(body, [Point(n, n) for n in leg_points[1:]], (shank, foot), kind=kind)
     if kind == "leg":
         return Model(body, [Point(n, n) for n in leg_points], (thigh, shank, foot),
-                     [PointMass("trunk", "hip"), *swing], trunk="trunk")
+                     [PointMass("trunk", "hip"), *swing_mass], trunk="trunk", kind=kind)
     if kind == "leg-trunk":
         if "shoulder" not in body["trunk"].landmarks or body["trunk"].inertia_com <= 0:
             raise ValueError("model 'leg-trunk' needs a rigid trunk: its length, centre of mass "
                              "and inertia")
         return Model(body, [Point(n, n) for n in ("shoulder", *leg_points)],
                      (RigidBody("trunk", ("hip", "shoulder")), thigh, shank, foot),
-                     swing, trunk="trunk")
+                     swing_mass, trunk="trunk", kind=kind)
+    if kind == "full-body":
+        if swing is None:
+            raise ValueError("model 'full-body' needs the swing leg's touchdown posture")
+        if "shoulder" not in body["trunk"].landmarks or body["trunk"].inertia_com <= 0:
+            raise ValueError("model 'full-body' needs a rigid trunk: its length, centre of mass "
+                             "and inertia")
+        full = Body({**body.segments, **swing_segments(body)}, body.source)
+        swing_points = ("swing_knee", "swing_ankle", "swing_heel", "swing_forefoot")
+        bodies = (RigidBody("trunk", ("hip", "shoulder")), thigh, shank, foot,
+                  RigidBody("swing_thigh", ("hip", "swing_knee")),
+                  RigidBody("swing_shank", ("swing_knee", "swing_ankle")),
+                  RigidBody("swing_foot", ("swing_heel", "swing_forefoot"), ("swing_ankle",)))
+        return Model(full, [Point(n, n) for n in ("shoulder", *leg_points, *swing_points)], bodies,
+                     trunk="trunk", kind=kind, swing=swing)
     raise ValueError(f"unknown model {kind!r}: expected one of {', '.join(MODELS)}")
+
+
+def swing_segments(body: Body) -> dict:
+    """The swing leg: the stance leg's segments with their landmarks renamed swing_*."""
+    out = {}
+    for seg in ("thigh", "shank", "foot"):
+        s = body[seg]
+        marks = {(k if k == "hip" else f"swing_{k}"): v for k, v in s.landmarks.items()}
+        out[f"swing_{seg}"] = type(s)(f"swing_{seg}", s.mass, s.com, s.inertia_com, marks)
+    return out

@@ -29,7 +29,7 @@ import numpy as np
 from .compiled import cached_nlpsol
 from .impact import Impact, ImpactResult, ground_axes, impact_function
 from .landing import Joints, LandingModel, landing_function, simulate_state
-from .model import STATE, STRIKES, Model, build_model, landmarks
+from .model import STATE, STRIKES, Model, landmarks
 
 ANGLES = ("trunk", "hip", "knee", "ankle")
 RATES = ("omega_trunk", "omega_thigh", "omega_shank", "omega_foot")
@@ -144,7 +144,7 @@ def solve(scene, compiled: bool = False, progress=None, **overrides) -> Optimum:
     if scene.problem is None:
         raise ValueError(f"{scene.path or scene.name}: no [optimize] table: nothing to optimise")
     problem = replace(scene.problem, **{k: v for k, v in overrides.items() if v is not None})
-    model = build_model(scene.body, scene.model)
+    model = scene.build_model()
     return PostureProblem(model, scene.strike, scene.state, problem, scene.slope,
                           scene.friction, compiled, joints=scene.joints,
                           duration=scene.landing["duration_ms"] * 1e-3).solve(progress)

@@ -17,15 +17,17 @@ import numpy as np
 from . import body as bodies
 from .body import Body, Segment
 from .landing import JOINT_MODELS, Joints
-from .model import MODELS, STATE, STRIKES
+from .model import MODELS, STATE, STRIKES, Model, Swing, build_model
 from .optimize import OBJECTIVES, RANGE_OF_MOTION_DEG, Problem
 
 # The segments each model needs; a segment a model does not use may be given and is ignored.
 # Shank + foot keeps the thigh's geometry: the touchdown state moves the knee through it.
 # The swing leg is optional (no mass when not given).
-MODEL_SEGMENTS = {"shank-foot": ("thigh", "shank", "foot"),
+MODEL_SEGMENTS = {"effective-mass": ("thigh", "shank", "foot"),
+                  "shank-foot": ("thigh", "shank", "foot"),
                   "leg": ("trunk", "swing_leg", "thigh", "shank", "foot"),
-                  "leg-trunk": ("trunk", "swing_leg", "thigh", "shank", "foot")}
+                  "leg-trunk": ("trunk", "swing_leg", "thigh", "shank", "foot"),
+                  "full-body": ("trunk", "thigh", "shank", "foot")}
 OPTIONAL_SEGMENTS = ("swing_leg",)
 ANGLES = ("trunk", "hip", "knee", "ankle")
 RATES = ("trunk", "thigh", "shank", "foot")
@@ -55,6 +57,11 @@ class Scene:
     problem: Problem | None = None  # the [optimize] table, when there is one
     joints: Joints = Joints()  # the [joints] table: the joint model of the landing
     landing: dict = field(default_factory=lambda: dict(LANDING_DEFAULTS))  # the [landing] table
+    swing: Swing | None = None  # the swing leg's posture (model "full-body")
+
+    def build_model(self) -> Model:
+        """The model the scene asks for (only its segments, contacts and swing posture)."""
+        return build_model(self.body, self.model, self.strike, self.swing)
 
     @property
     def touchdown(self) -> dict:
@@ -93,10 +100,14 @@ def parse(data: dict, path: str = "") -> Scene:
     name = _string(scene, "name", "scene")
     model = _choice(scene.get("model", "leg"), "scene.model", MODELS)
     body, notes = _body(data.get("body", {}), model)
-    strike, state = _touchdown(_table(data, "touchdown", {"strike", "hip_velocity", "angles_deg",
-                                                          "angular_velocity_dps"},
-                                      {"strike", "hip_velocity", "angles_deg",
-                                       "angular_velocity_dps"}))
+    touchdown = _table(data, "touchdown", {"strike", "hip_velocity", "angles_deg", "angular_velocity_dps",
+                                           "swing_angles_deg", "swing_velocity_dps"},
+                       ("strike", "hip_velocity", "angles_deg", "angular_velocity_dps"))
+    strike, state = _touchdown(touchdown)
+    swing = _swing(touchdown) if model == "full-body" else None
+    for key in ("swing_angles_deg", "swing_velocity_dps"):
+        if key in touchdown and model != "full-body":
+            notes += (f"touchdown.{key} is only used by model 'full-body' and was ignored",)
     ground = _table(data, "ground", {"friction", "slope_deg"}, {"friction"})
     friction = _number(ground, "friction", "ground", low=0.0, low_open=True)
     slope = _number(ground, "slope_deg", "ground", default=0.0, low=-60.0, high=60.0)
@@ -106,14 +117,30 @@ def parse(data: dict, path: str = "") -> Scene:
         notes += more
     joints = _joints(data.get("joints", {}), model)
     landing = _landing(data.get("landing", {}))
+    if model == "effective-mass" and (problem and problem.landing or data.get("joints")):
+        raise SceneError("scene.model", "'effective-mass' is an impact-only model: no [joints], "
+                                        "landing or T_c_total")
     return Scene(name, model, body, strike, state, friction, math.radians(slope), path, notes,
-                 problem, joints, landing)
+                 problem, joints, landing, swing)
+
+
+def _swing(data) -> Swing:
+    where = "touchdown"
+    angles = _table(data, "swing_angles_deg", {"hip", "knee", "ankle"}, ("hip", "knee", "ankle"), where)
+    rates = _table(data, "swing_velocity_dps", {"thigh", "shank", "foot"}, ("thigh", "shank", "foot"), where)
+    a = {k: math.radians(_number(angles, k, f"{where}.swing_angles_deg", low=-180.0, high=180.0))
+         for k in ("hip", "knee", "ankle")}
+    w = {k: math.radians(_number(rates, k, f"{where}.swing_velocity_dps", low=-5000.0, high=5000.0))
+         for k in ("thigh", "shank", "foot")}
+    return Swing(a["hip"], a["knee"], a["ankle"], w["thigh"], w["shank"], w["foot"])
 
 
 # -- landing ----------------------------------------------------------------------------
 
 LANDING_DEFAULTS = {"dt_ms": 0.2, "duration_ms": 200.0}
-MODEL_JOINTS = {"shank-foot": ("ankle",), "leg": ("knee", "ankle"), "leg-trunk": ("hip", "knee", "ankle")}
+MODEL_JOINTS = {"effective-mass": (), "shank-foot": ("ankle",), "leg": ("knee", "ankle"),
+                "leg-trunk": ("hip", "knee", "ankle"),
+                "full-body": ("hip", "knee", "ankle", "swing_hip", "swing_knee", "swing_ankle")}
 
 
 def _joints(data, model) -> Joints:
@@ -122,6 +149,8 @@ def _joints(data, model) -> Joints:
     _keys(data, "joints", {"model", "stiffness_nm_per_deg", "damping_nms_per_deg", "locked"}, set())
     kind = _choice(data.get("model", "free"), "joints.model", JOINT_MODELS)
     names = MODEL_JOINTS[model]
+    if not names:
+        return Joints(kind)
     if kind == "spring-damper":
         tables = {}
         for key in ("stiffness_nm_per_deg", "damping_nms_per_deg"):
@@ -286,8 +315,8 @@ def _body(data, model) -> tuple[Body, tuple[str, ...]]:
             raise SceneError(f"body.{name}", f"missing (model {model!r} needs it; or give body.preset "
                                              "or body.mass and body.height)")
         segments[name] = _segment(name, given or {}, base[name] if base else None)
-    if model == "leg-trunk" and segments["trunk"].inertia_com <= 0:
-        raise SceneError("body.trunk.length", "model 'leg-trunk' needs a rigid trunk: give its "
+    if model in ("leg-trunk", "full-body") and segments["trunk"].inertia_com <= 0:
+        raise SceneError("body.trunk.length", f"model {model!r} needs a rigid trunk: give its "
                                               "length, com and inertia (or a body preset or scaling)")
     source = base.source if base else "scene file"
     if base and any(name in data for name in bodies.SEGMENTS):

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from .landing import LandingModel, simulate_state
-from .model import STATE, build_model
+from .model import STATE
 
 PARAMETERS = {"trunk_deg": "trunk", "hip_deg": "hip", "knee_deg": "knee", "ankle_deg": "ankle",
               "hip_vx": "hip_vx", "hip_vz": "hip_vz", "friction": None, "slope_deg": None}
@@ -96,7 +96,7 @@ def _landing_row(scene, values, models) -> list:
         s = apply(scene, values)
         key = (s.slope,)
         if key not in models:
-            models[key] = LandingModel(build_model(s.body, s.model), s.joints, s.slope)
+            models[key] = LandingModel(s.build_model(), s.joints, s.slope)
         lm = models[key]
         L = simulate_state(lm, s.strike, s.state, s.friction, s.landing["dt_ms"] * 1e-3,
                            s.landing["duration_ms"] * 1e-3)

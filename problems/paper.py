@@ -57,8 +57,7 @@ def figure4(out: Path) -> list[str]:
             bars[(strike, ankle)] = L
             if len(L.impacts) > 1:
                 q = L.q[-1]
-                from formopt import build_model
-                model = build_model(load(SCENES[strike]).body)
+                model = load(SCENES[strike]).build_model()
                 at = math.degrees(model.segment_angle(q, "foot") - model.segment_angle(q, "shank"))
                 findings.append(f"{strike} strike, ankle {ankle:+.0f} deg: second contact after "
                                 f"{L.impacts[1].time * 1e3:.1f} ms, ankle then {at:+.1f} deg "

@@ -20,8 +20,7 @@ DEMO = Path(__file__).resolve().parent.parent / "problems" / "demo.toml"
 @pytest.fixture(scope="module")
 def demo():
     scene = load(DEMO)
-    from formopt import build_model
-    problem = PostureProblem(build_model(scene.body, scene.model), scene.strike, scene.state,
+    problem = PostureProblem(scene.build_model(), scene.strike, scene.state,
                              scene.problem, scene.slope, scene.friction)
     return scene, problem, problem.solve()
 
@@ -219,10 +218,9 @@ def test_landing_optimum_agrees_with_the_event_driven_simulation(landing_optimum
 
 
 def test_landing_nlp_gradient_matches_finite_differences(landing_optimum):
-    from formopt import build_model
 
     scene, opt = landing_optimum
-    problem = PostureProblem(build_model(scene.body, scene.model), scene.strike, scene.state,
+    problem = PostureProblem(scene.build_model(), scene.strike, scene.state,
                              scene.problem, scene.slope, scene.friction, joints=scene.joints,
                              duration=scene.landing["duration_ms"] * 1e-3)
     w0 = problem.start(scene.state)

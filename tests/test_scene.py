@@ -77,7 +77,7 @@ BAD = [
     ("body.trunk", DELETE, "body.trunk", "missing"),
     ("ground.friction", 0.0, "ground.friction", "must be > 0"),
     ("ground.slope_deg", 75.0, "ground.slope_deg", "between -60 and 60"),
-    ("scene.model", "full", "scene.model", "must be one of shank-foot, leg, leg-trunk"),
+    ("scene.model", "full", "scene.model", "must be one of effective-mass, shank-foot, leg, leg-trunk, full-body"),
     ("scene.name", "", "scene.name", "non-empty"),
     ("optimise", {"variables": ["knee"]}, "optimise", "did you mean 'optimize'"),
 ]
