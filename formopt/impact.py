@@ -32,6 +32,7 @@ from .compiled import Compiled
 from .model import STATE, STRIKES, Model, landmarks
 # Ill-conditioned beyond this: results lose more than 10 of 16 digits.
 CONDITION_LIMIT = 1e10
+GRAPHS = ("SX", "MX")
 # Relative tolerance of the validity checks: an optimum on a constraint (mu_c = friction,
 # normal impulse = 0) is valid, not a rounding error away from invalid.
 RTOL = 1e-6
@@ -55,7 +56,8 @@ def projection(model: Model, q, qd, contact_jacobian):
             "n_body": Phi_b.shape[0]}
 
 
-def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None) -> ca.Function:
+def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
+                    graph: str = "SX") -> ca.Function:
     """CasADi Function of the touchdown state x (model.STATE, SI) -> every impact indicator.
 
     Outputs: T, T_c, T_a (J); qd_minus, qd_plus (natural coordinates, m/s); impulse
@@ -64,10 +66,14 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None)
     trunk); approach (normal velocity of each strike point, m/s, < 0 when it approaches);
     clearance (height of the other foot point above the ground, m); G (Phi_q M^-1 Phi_q^T).
     `outputs` keeps only the named ones (the generated code then holds only what they need).
+    `graph`: "SX" (scalar expressions, fast to evaluate) or "MX" (matrix expressions with a
+    linear-solver node, smaller graphs).
     """
     points = STRIKES[strike]
     t, n = ground_axes(slope)
-    x = ca.SX.sym("x", len(STATE))
+    if graph not in GRAPHS:
+        raise ValueError(f"graph {graph!r}: expected one of {', '.join(GRAPHS)}")
+    x = getattr(ca, graph).sym("x", len(STATE))
     q, qd = model.state(x, points[0])
     rows = model.contact_rows(points, slope, tangential=points[:1] if model.tangential else ())
     imp = projection(model, q, qd, rows)
@@ -153,11 +159,11 @@ class Impact:
     """
 
     def __init__(self, model: Model, strike: str, slope: float = 0.0, friction: float = 0.8,
-                 compiled: bool = False):
+                 compiled: bool = False, graph: str = "SX"):
         if strike not in STRIKES:
             raise ValueError(f"unknown strike {strike!r}: expected one of {', '.join(STRIKES)}")
         self.model, self.strike, self.slope, self.friction = model, strike, slope, friction
-        self.function = impact_function(model, strike, slope)
+        self.function = impact_function(model, strike, slope, graph=graph)
         self._compiled = Compiled(self.function) if compiled else None
 
     def evaluate(self, x) -> dict[str, np.ndarray]:
@@ -312,5 +318,6 @@ def _hinges(model: Model, groups, contact_segment):
 
 def impact(scene) -> ImpactResult:
     """The indicators of a scene's touchdown (a formopt.scene.Scene)."""
-    model = scene.build_model()
-    return Impact(model, scene.strike, scene.slope, scene.friction)(scene.state)
+    numerics = scene.numerics
+    return Impact(scene.build_model(), scene.strike, scene.slope, scene.friction,
+                  numerics["compiled"], numerics["graph"])(scene.state)

@@ -33,6 +33,8 @@ from .model import STATE, STRIKES, Model
 GRAVITY = 9.81  # m/s^2
 BAUMGARTE = 50.0  # 1/s, critically damped constraint stabilisation
 JOINT_MODELS = ("free", "spring-damper", "locked")
+# Fixed-step explicit schemes: classical Runge-Kutta (4th order) and the midpoint rule (2nd)
+INTEGRATORS = ("rk4", "midpoint")
 # Joints: (name, parent segment, child segment); the hip only where the trunk is a rigid body.
 JOINTS = (("hip", "trunk", "thigh"), ("knee", "thigh", "shank"), ("ankle", "shank", "foot"),
           ("swing_hip", "trunk", "swing_thigh"), ("swing_knee", "swing_thigh", "swing_shank"),
@@ -98,10 +100,12 @@ class LandingModel:
     """The landing equations of one model, joint model and ground, compiled per contact set."""
 
     def __init__(self, model: Model, joints: Joints = Joints(), slope: float = 0.0,
-                 compiled: bool = True):
+                 compiled: bool = True, integrator: str = "rk4"):
         if not {"heel", "forefoot"} <= set(model.index):
             raise ValueError(f"model {model.kind!r} has no foot to land on (it is impact-only)")
-        self.model, self.joints, self.slope = model, joints, slope
+        if integrator not in INTEGRATORS:
+            raise ValueError(f"integrator {integrator!r}: expected one of {', '.join(INTEGRATORS)}")
+        self.model, self.joints, self.slope, self.integrator = model, joints, slope, integrator
         self.t_axis, self.n_axis = ground_axes(slope)
         rigid = {b.segment: b for b in model.bodies}
         self.hinges = [(name, rigid[p], rigid[c]) for name, p, c in JOINTS
@@ -196,13 +200,15 @@ class LandingModel:
         return self._functions[key]
 
     def rk4(self, active, x, h, s_anchor, rest):
-        """One RK4 step of [q, q', E_damped] (symbolic or numeric)."""
+        """One step of [q, q', E_damped] by the model's integrator (symbolic or numeric)."""
         n, rhs = self.model.n, self.rhs(active)
 
         def f(state):
             out = rhs(state[:n], state[n:2 * n], s_anchor, rest)
             return ca.vertcat(out[0], out[1], out[2])
 
+        if self.integrator == "midpoint":
+            return x + h * f(x + h / 2 * f(x))
         k1 = f(x)
         k2 = f(x + h / 2 * k1)
         k3 = f(x + h / 2 * k2)
@@ -484,7 +490,8 @@ def simulate_state(lm: LandingModel, strike: str, x, friction: float, dt: float,
 
 def land(scene, compiled: bool = True, dt: float | None = None) -> Landing:
     """Simulate a scene's landing (a formopt.scene.Scene), from its touchdown."""
-    lm = LandingModel(scene.build_model(), scene.joints, scene.slope, compiled)
+    lm = LandingModel(scene.build_model(), scene.joints, scene.slope, compiled,
+                      scene.numerics["integrator"])
     dt = scene.landing["dt_ms"] * 1e-3 if dt is None else dt
     return simulate_state(lm, scene.strike, scene.state, scene.friction, dt,
                           scene.landing["duration_ms"] * 1e-3)

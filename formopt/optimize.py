@@ -145,8 +145,11 @@ def solve(scene, compiled: bool = False, progress=None, **overrides) -> Optimum:
         raise ValueError(f"{scene.path or scene.name}: no [optimize] table: nothing to optimise")
     problem = replace(scene.problem, **{k: v for k, v in overrides.items() if v is not None})
     model = scene.build_model()
+    numerics = scene.numerics
+    hessian = None if numerics["hessian"] == "auto" else numerics["hessian"]
     return PostureProblem(model, scene.strike, scene.state, problem, scene.slope,
-                          scene.friction, compiled, joints=scene.joints,
+                          scene.friction, compiled or numerics["compiled"], hessian=hessian,
+                          joints=scene.joints,
                           duration=scene.landing["duration_ms"] * 1e-3).solve(progress)
 
 

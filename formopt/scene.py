@@ -58,6 +58,7 @@ class Scene:
     joints: Joints = Joints()  # the [joints] table: the joint model of the landing
     landing: dict = field(default_factory=lambda: dict(LANDING_DEFAULTS))  # the [landing] table
     swing: Swing | None = None  # the swing leg's posture (model "full-body")
+    numerics: dict = field(default_factory=lambda: dict(NUMERICS_DEFAULTS))  # the [numerics] table
 
     def build_model(self) -> Model:
         """The model the scene asks for (only its segments, contacts and swing posture)."""
@@ -94,8 +95,8 @@ def load(path) -> Scene:
 
 def parse(data: dict, path: str = "") -> Scene:
     """Validate a scene given as a dictionary (the parsed TOML)."""
-    _keys(data, "", {"scene", "body", "touchdown", "ground", "optimize", "joints", "landing"},
-          ("scene", "touchdown", "ground"))
+    _keys(data, "", {"scene", "body", "touchdown", "ground", "optimize", "joints", "landing",
+                     "numerics"}, ("scene", "touchdown", "ground"))
     scene = _table(data, "scene", {"name", "model"}, {"name"})
     name = _string(scene, "name", "scene")
     model = _choice(scene.get("model", "leg"), "scene.model", MODELS)
@@ -121,7 +122,31 @@ def parse(data: dict, path: str = "") -> Scene:
         raise SceneError("scene.model", "'effective-mass' is an impact-only model: no [joints], "
                                         "landing or T_c_total")
     return Scene(name, model, body, strike, state, friction, math.radians(slope), path, notes,
-                 problem, joints, landing, swing)
+                 problem, joints, landing, swing, _numerics(data.get("numerics", {})))
+
+
+NUMERICS_DEFAULTS = {"graph": "SX", "compiled": False, "hessian": "auto", "integrator": "rk4"}
+
+
+def _numerics(data) -> dict:
+    """Speed against accuracy: CasADi graph, compiled or not, IPOPT's Hessian, the landing's
+    integrator. hessian "auto": exact for impacts, limited-memory through a landing."""
+    from .impact import GRAPHS
+    from .landing import INTEGRATORS
+
+    if not isinstance(data, dict):
+        raise SceneError("numerics", "must be a table")
+    _keys(data, "numerics", set(NUMERICS_DEFAULTS), set())
+    out = dict(NUMERICS_DEFAULTS)
+    out["graph"] = _choice(data.get("graph", "SX"), "numerics.graph", GRAPHS)
+    out["hessian"] = _choice(data.get("hessian", "auto"), "numerics.hessian",
+                             ("auto", "exact", "limited-memory"))
+    out["integrator"] = _choice(data.get("integrator", "rk4"), "numerics.integrator", INTEGRATORS)
+    compiled = data.get("compiled", False)
+    if not isinstance(compiled, bool):
+        raise SceneError("numerics.compiled", f"must be true or false, not {compiled!r}")
+    out["compiled"] = compiled
+    return out
 
 
 def _swing(data) -> Swing:
