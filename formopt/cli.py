@@ -58,9 +58,16 @@ def main(argv=None) -> int:
     cmd.add_argument("--friction", type=float, default=0.8, help="the ground's friction (default 0.8)")
     cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
     cmd.add_argument("--out", help="folder for the figure, CSV and JSON (default out/<trial>)")
+    cmd = commands.add_parser("bench", help="time and accuracy of each model level and numerical "
+                                             "option (problems/bench)")
+    cmd.add_argument("--quick", action="store_true", help="a reduced set, under a minute")
+    cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
+    cmd.add_argument("--out", default="out/bench", help="folder for bench.csv and pareto.png")
     args = parser.parse_args(argv)
     if args.command == "compare":
         return _compare(args)
+    if args.command == "bench":
+        return _bench(args)
     try:
         scene = load(args.scene)
         if args.command == "impact":
@@ -221,6 +228,23 @@ def _compare(args) -> int:
         print(table(result))
         print(f"\nwrote {rep['figure']}, {out / 'touchdowns.csv'}, {out / 'comparison.json'}")
     return 0 if result.optimum.success else 1
+
+
+def _bench(args) -> int:
+    from . import bench
+    from .plots import pareto_figure
+
+    rows, batch = bench.run(args.quick, progress=lambda text: print(f"  {text}", file=sys.stderr))
+    out = Path(args.out)
+    files = [bench.write_csv(rows, out / "bench.csv"), pareto_figure(out / "pareto.png", rows)]
+    report = {**bench.to_json(rows, batch), "files": [str(f) for f in files]}
+    _write_json(out / "bench.json", report)
+    if args.json:
+        print(json.dumps(report, indent=2))
+    else:
+        print(bench.table(rows, batch))
+        print(f"wrote {', '.join(report['files'])}, {out / 'bench.json'}")
+    return 0
 
 
 def solve_report(scene: Scene, opt, figures) -> dict:

@@ -187,3 +187,29 @@ def comparison_figure(path, c) -> Path:
     ax.set_title(f"T_c per step (cadence {c.steps.cadence_spm:.0f} steps/min)", fontsize=10)
     fig.tight_layout()
     return save(fig, path)
+
+
+def pareto_figure(path, rows) -> Path:
+    """Time against error of every bench row, one panel per kind of work, Pareto front marked."""
+    works = [w for w in ("impact", "landing", "optimisation") if any(r.work == w for r in rows)]
+    fig, axes = plt.subplots(1, len(works), figsize=(5 * len(works), 4.2))
+    for ax, work in zip(np.atleast_1d(axes), works):
+        pts = [(r.time_s, max(r.error, 1e-16), f"{r.level}: {r.option}") for r in rows
+               if r.work == work and np.isfinite(r.error)]
+        front, best = [], np.inf
+        for t, e, label in sorted(pts):
+            if e < best:
+                front.append((t, e))
+                best = e
+        ax.scatter([p[0] for p in pts], [p[1] for p in pts], s=18)
+        ax.plot(*np.array(front).T, "--", color="tab:red", lw=1, label="Pareto front")
+        for t, e, label in pts:
+            ax.annotate(label, (t, e), fontsize=6, xytext=(3, 2), textcoords="offset points")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("time per unit of work (s)")
+        ax.set_ylabel("error against the finest setting (1e-16: exact)")
+        ax.set_title(work, fontsize=10)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    return save(fig, path)

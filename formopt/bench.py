@@ -1,0 +1,209 @@
+"""`formopt bench`: what each model level and numerical choice costs, and what it gives up.
+
+Over the fixed touchdown states of problems/bench/states.csv and the scene
+problems/bench/full_body.toml (the paper's body, forefoot strike at 3.5 m/s), for each
+ladder level and option: time per indicator evaluation, per landing and per optimisation, and
+the error of T_c, mu_c, dv of the trunk and of the optimal posture against the finest setting
+(the full planar body; SX, interpreted, exact Hessian; RK4 at the smallest step).
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import statistics
+import time
+from dataclasses import asdict, dataclass, replace
+from pathlib import Path
+
+import casadi as ca
+import numpy as np
+
+from .compiled import Compiled, external
+from .impact import Impact, impact_function
+from .landing import LandingModel, simulate_state
+from .model import STATE, build_model
+from .optimize import PostureProblem
+from .scene import load
+
+LEVELS = ("effective-mass", "shank-foot", "leg", "leg-trunk", "full-body")
+ROOT = Path(__file__).resolve().parent.parent / "problems" / "bench"
+
+
+@dataclass
+class Row:
+    level: str
+    option: str
+    work: str  # "impact", "landing", "optimisation", "build"
+    time_s: float  # median time of one unit of work
+    error: float  # relative error of T_c (T_c_total for landings), or posture error (deg)
+    error_mu_c: float = float("nan")  # largest absolute error of mu_c
+    error_dv: float = float("nan")  # largest absolute error of dv_trunk (m/s)
+    note: str = ""
+
+
+def read_states(path=None) -> np.ndarray:
+    """problems/bench/states.csv as model.STATE vectors (SI)."""
+    with Path(path or ROOT / "states.csv").open() as fh:
+        rows = list(csv.DictReader(fh))
+    deg = math.radians
+    return np.array([[deg(float(r["trunk_deg"])), deg(float(r["hip_deg"])), deg(float(r["knee_deg"])),
+                      deg(float(r["ankle_deg"])), float(r["hip_vx"]), float(r["hip_vz"]), 0.0,
+                      deg(float(r["omega_thigh_dps"])), deg(float(r["omega_shank_dps"])),
+                      deg(float(r["omega_foot_dps"]))] for r in rows])
+
+
+def _median_time(f, args, repeats=1):
+    times = []
+    for a in args:
+        for _ in range(repeats):
+            t = time.perf_counter()
+            f(a)
+            times.append(time.perf_counter() - t)
+    return statistics.median(times)
+
+
+def run(quick: bool = False, progress=None) -> tuple[list[Row], float]:
+    """All rows, and the compiled batch throughput of the paper's leg (states/s)."""
+    say = progress or (lambda text: None)
+    scene = load(ROOT / "full_body.toml")
+    states = read_states()[: 20 if quick else 200]
+    rows: list[Row] = []
+    models = {level: build_model(scene.body, level, scene.strike, scene.swing) for level in LEVELS}
+
+    # indicators per level against the full body
+    results = {}
+    for level in LEVELS:
+        say(f"impact: {level}")
+        t = time.perf_counter()
+        impact = Impact(models[level], scene.strike, scene.slope, scene.friction)
+        build = time.perf_counter() - t
+        results[level] = [impact(x) for x in states]
+        rows.append(Row(level, "SX interpreted", "build", build, 0.0,
+                        note=f"{impact.function.n_instructions()} instructions, {models[level].n} coordinates"))
+        rows.append(Row(level, "ladder, SX interpreted", "impact", _median_time(impact.evaluate, states), 0.0))
+    finest = results["full-body"]
+    for level in LEVELS:
+        errors = [abs(r.T_c - f.T_c) / f.T_c for r, f in zip(results[level], finest)]
+        mu = [abs(r.mu_c - f.mu_c) for r, f in zip(results[level], finest)
+              if r.mu_c is not None and f.mu_c is not None]
+        dv = [np.hypot(*np.subtract(r.dv_trunk, f.dv_trunk)) for r, f in zip(results[level], finest)
+              if r.dv_trunk is not None]
+        row = next(r for r in rows if r.level == level and r.work == "impact" and r.option.startswith("ladder"))
+        row.error = float(np.max(errors))
+        row.error_mu_c = float(np.max(mu)) if mu else float("nan")
+        row.error_dv = float(np.max(dv)) if dv else float("nan")
+        row.note = f"median relative T_c error {np.median(errors):.2e}"
+
+    # numerical options for the paper's leg
+    leg = models["leg"]
+    reference = np.array([r.T_c for r in results["leg"]])
+    for graph in ("SX", "MX"):
+        for compiled in (False, True):
+            say(f"impact: leg, {graph}, {'compiled' if compiled else 'interpreted'}")
+            impact = Impact(leg, scene.strike, compiled=compiled, graph=graph)
+            values = np.array([float(np.ravel(impact.evaluate(x)["T_c"])[0]) for x in states])
+            rows.append(Row("leg", f"{graph} {'compiled' if compiled else 'interpreted'}", "impact",
+                            _median_time(impact.evaluate, states),
+                            float(np.max(np.abs(values - reference) / reference)),
+                            note=f"{impact.function.n_instructions()} instructions"))
+    batch_states_per_s = _batch(leg, scene.strike, states)
+
+    # landings: step and integrator for the leg, then the ladder
+    landing_states = states[: 5 if quick else 20]
+    steps = (1e-3, 5e-4) if quick else (2e-3, 1e-3, 5e-4, 2.5e-4)
+    reference_dt = 1e-4 if quick else 6.25e-5
+    lm = {integ: LandingModel(leg, scene.joints, scene.slope, integrator=integ)
+          for integ in ("rk4", "midpoint")}
+
+    def land(model, x, dt):
+        return simulate_state(model, scene.strike, x, scene.friction, dt, 0.2)
+
+    say("landing: reference")
+    ref_total = [land(lm["rk4"], x, reference_dt).T_c_total for x in landing_states]
+    for integ in ("rk4", "midpoint"):
+        for dt in steps:
+            say(f"landing: leg, {integ}, dt {dt * 1e3:g} ms")
+            totals = [land(lm[integ], x, dt).T_c_total for x in landing_states]
+            errors = np.abs(np.subtract(totals, ref_total)) / np.abs(ref_total)
+            rows.append(Row("leg", f"{integ} dt {dt * 1e3:g} ms", "landing",
+                            _median_time(lambda x: land(lm[integ], x, dt), landing_states),
+                            float(np.max(errors)), note=f"median {np.median(errors):.1e}"))
+    ladder, totals = {}, {}
+    for level in LEVELS[1:]:
+        say(f"landing: {level}")
+        model = LandingModel(models[level], scene.joints, scene.slope)
+        totals[level] = [land(model, x, 5e-4).T_c_total for x in landing_states]
+        ladder[level] = Row(level, "ladder, rk4 dt 0.5 ms", "landing",
+                            _median_time(lambda x: land(model, x, 5e-4), landing_states), 0.0)
+        rows.append(ladder[level])
+    for level, row in ladder.items():
+        errors = np.abs(np.subtract(totals[level], totals["full-body"])) / np.abs(totals["full-body"])
+        row.error, row.note = float(np.max(errors)), f"median {np.median(errors):.1e}"
+
+    # optimisations: the ladder (exact Hessian), then Hessian and compilation for the leg
+    problem = replace(scene.problem, starts=1)
+    optima = {}
+    for level in LEVELS:
+        say(f"optimisation: {level}")
+        pp = PostureProblem(models[level], scene.strike, scene.state, problem, scene.slope, scene.friction)
+        sol, stats, _ = pp.solve_from(pp.to_unit(scene.state))
+        optima[level] = np.degrees(pp.to_state(np.asarray(sol["x"], float).ravel())[pp.index])
+        rows.append(Row(level, "ladder, exact Hessian", "optimisation",
+                        _median_time(lambda u: pp.solve_from(u), [pp.to_unit(scene.state)], 3 if quick else 10),
+                        0.0, note=stats["return_status"]))
+    for level in LEVELS:
+        row = next(r for r in rows if r.level == level and r.work == "optimisation" and r.option.startswith("ladder"))
+        row.error = float(np.max(np.abs(optima[level] - optima["full-body"])))
+        row.note += "; posture error against the full body's optimum, deg"
+    for hessian, compiled in (("limited-memory", False), ("exact", True)):
+        say(f"optimisation: leg, {hessian}, {'compiled' if compiled else 'interpreted'}")
+        pp = PostureProblem(leg, scene.strike, scene.state, problem, scene.slope, scene.friction,
+                            compiled=compiled, hessian=hessian)
+        sol, stats, _ = pp.solve_from(pp.to_unit(scene.state))
+        posture = np.degrees(pp.to_state(np.asarray(sol["x"], float).ravel())[pp.index])
+        rows.append(Row("leg", f"{hessian} Hessian{', compiled' if compiled else ''}", "optimisation",
+                        _median_time(lambda u: pp.solve_from(u), [pp.to_unit(scene.state)], 3 if quick else 10),
+                        float(np.max(np.abs(posture - optima["leg"]))),
+                        note=f"{stats['return_status']}; posture error against the leg's exact optimum, deg"))
+    return rows, batch_states_per_s
+
+
+def _batch(model, strike, states, n=10000):
+    """Compiled, mapped indicators of the paper's leg: states per second on one core."""
+    f = impact_function(model, strike, outputs=["T", "T_c", "T_a", "impulse", "mu_signed",
+                                                 "dv_trunk", "dv_com"])
+    batch = external(f.map(n, "serial"))
+    X = ca.DM(np.resize(states, (n, len(STATE))).T)
+    batch(X)
+    return n / _median_time(lambda _: batch(X), range(7))
+
+
+def table(rows: list[Row], batch: float) -> str:
+    lines = [f"{'level':15s} {'option':28s} {'work':13s} {'time':>11s} {'error':>10s} "
+             f"{'mu_c err':>9s} {'dv err':>9s}  note"]
+    for r in rows:
+        unit = f"{r.time_s * 1e6:9.1f} us" if r.time_s < 1e-2 else f"{r.time_s * 1e3:9.2f} ms"
+        lines.append(f"{r.level:15s} {r.option:28s} {r.work:13s} {unit:>11s} {r.error:10.2e} "
+                     f"{r.error_mu_c:9.2e} {r.error_dv:9.2e}  {r.note}")
+    lines.append(f"\ncompiled mapped batch, paper's leg: {batch:,.0f} states/s (one core)")
+    return "\n".join(lines)
+
+
+def to_json(rows: list[Row], batch: float) -> dict:
+    def clean(v):
+        return None if isinstance(v, float) and not math.isfinite(v) else v
+    return {"rows": [{k: clean(v) for k, v in asdict(r).items()} for r in rows],
+            "batch_states_per_s": batch}
+
+
+def write_csv(rows: list[Row], path) -> Path:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.tmp")
+    with tmp.open("w", newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=list(asdict(rows[0])))
+        writer.writeheader()
+        writer.writerows(asdict(r) for r in rows)
+    tmp.replace(path)
+    return path
