@@ -19,7 +19,7 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
-from .compiled import Compiled, external
+from .compiled import external
 from .impact import Impact, impact_function
 from .landing import LandingModel, simulate_state
 from .model import STATE, build_model
@@ -127,7 +127,7 @@ def run(quick: bool = False, progress=None) -> tuple[list[Row], float]:
             totals = [land(lm[integ], x, dt).T_c_total for x in landing_states]
             errors = np.abs(np.subtract(totals, ref_total)) / np.abs(ref_total)
             rows.append(Row("leg", f"{integ} dt {dt * 1e3:g} ms", "landing",
-                            _median_time(lambda x: land(lm[integ], x, dt), landing_states),
+                            _median_time(lambda x, m=lm[integ], h=dt: land(m, x, h), landing_states),
                             float(np.max(errors)), note=f"median {np.median(errors):.1e}"))
     ladder, totals = {}, {}
     for level in LEVELS[1:]:
@@ -135,7 +135,7 @@ def run(quick: bool = False, progress=None) -> tuple[list[Row], float]:
         model = LandingModel(models[level], scene.joints, scene.slope)
         totals[level] = [land(model, x, 5e-4).T_c_total for x in landing_states]
         ladder[level] = Row(level, "ladder, rk4 dt 0.5 ms", "landing",
-                            _median_time(lambda x: land(model, x, 5e-4), landing_states), 0.0)
+                            _median_time(lambda x, m=model: land(m, x, 5e-4), landing_states), 0.0)
         rows.append(ladder[level])
     for level, row in ladder.items():
         errors = np.abs(np.subtract(totals[level], totals["full-body"])) / np.abs(totals["full-body"])
@@ -150,7 +150,7 @@ def run(quick: bool = False, progress=None) -> tuple[list[Row], float]:
         sol, stats, _ = pp.solve_from(pp.to_unit(scene.state))
         optima[level] = np.degrees(pp.to_state(np.asarray(sol["x"], float).ravel())[pp.index])
         rows.append(Row(level, "ladder, exact Hessian", "optimisation",
-                        _median_time(lambda u: pp.solve_from(u), [pp.to_unit(scene.state)], 3 if quick else 10),
+                        _median_time(pp.solve_from, [pp.to_unit(scene.state)], 3 if quick else 10),
                         0.0, note=stats["return_status"]))
     for level in LEVELS:
         row = next(r for r in rows if r.level == level and r.work == "optimisation" and r.option.startswith("ladder"))
@@ -163,7 +163,7 @@ def run(quick: bool = False, progress=None) -> tuple[list[Row], float]:
         sol, stats, _ = pp.solve_from(pp.to_unit(scene.state))
         posture = np.degrees(pp.to_state(np.asarray(sol["x"], float).ravel())[pp.index])
         rows.append(Row("leg", f"{hessian} Hessian{', compiled' if compiled else ''}", "optimisation",
-                        _median_time(lambda u: pp.solve_from(u), [pp.to_unit(scene.state)], 3 if quick else 10),
+                        _median_time(pp.solve_from, [pp.to_unit(scene.state)], 3 if quick else 10),
                         float(np.max(np.abs(posture - optima["leg"]))),
                         note=f"{stats['return_status']}; posture error against the leg's exact optimum, deg"))
     return rows, batch_states_per_s

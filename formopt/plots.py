@@ -197,7 +197,7 @@ def pareto_figure(path, rows) -> Path:
         pts = [(r.time_s, max(r.error, 1e-16), f"{r.level}: {r.option}") for r in rows
                if r.work == work and np.isfinite(r.error)]
         front, best = [], np.inf
-        for t, e, label in sorted(pts):
+        for t, e, _ in sorted(pts):
             if e < best:
                 front.append((t, e))
                 best = e
