@@ -23,9 +23,11 @@ test: $(STAMP)
 	$(BIN)/python -m pytest -q
 
 bench: $(STAMP)
+	$(BIN)/formopt bench
 	$(BIN)/python benchmarks/impact_speed.py
 	$(BIN)/python benchmarks/solve_speed.py
 	$(BIN)/python benchmarks/landing_speed.py
+	$(BIN)/python benchmarks/sweep_scaling.py
 
 clean:
 	rm -rf $(VENV) build *.egg-info

@@ -15,6 +15,7 @@ import argparse
 import dataclasses
 import json
 import math
+import os
 import sys
 from pathlib import Path
 
@@ -47,6 +48,10 @@ def main(argv=None) -> int:
                      help="NAME=START:STOP:COUNT, e.g. ankle_deg=-20:20:41 (repeat for a grid)")
     cmd.add_argument("--out", help="CSV file (default out/<scene>/sweep.csv); an existing one is resumed")
     cmd.add_argument("--no-progress", action="store_true", help="no progress bar")
+    cmd.add_argument("--workers", type=int, default=os.cpu_count() or 1,
+                     help="local processes (default: one per core)")
+    cmd.add_argument("--scheduler", help="address of a Dask distributed scheduler, e.g. "
+                                         "tcp://10.0.0.5:8786 (pip install 'formopt[dask]')")
     cmd = commands.add_parser("compare", help="measured touchdowns of a motion-capture trial "
                                                "against the optimum")
     cmd.add_argument("--trial", required=True, help="running trial: C3D, or RBDS marker text")
@@ -176,7 +181,10 @@ def _sweep(scene: Scene, args) -> int:
 
     params = [sweep.parse_param(p) for p in args.param]
     out = Path(args.out) if args.out else Path("out") / Path(scene.path).stem / "sweep.csv"
-    rows = sweep.run(scene, params, out, progress=not args.no_progress)
+    if args.workers < 1:
+        raise ValueError("--workers must be at least 1")
+    rows = sweep.run(scene, params, out, progress=not args.no_progress, workers=args.workers,
+                     scheduler=args.scheduler)
     failed = [r for r in rows if r["error"]]
     totals = [float(r["T_c_total"]) for r in rows if not r["error"]]
     print(f"{len(rows)} landings in {out}" + (f", {len(failed)} failed (see the error column)"

@@ -190,25 +190,33 @@ def comparison_figure(path, c) -> Path:
 
 
 def pareto_figure(path, rows) -> Path:
-    """Time against error of every bench row, one panel per kind of work, Pareto front marked."""
+    """Time against error of every bench row, one panel per kind of work. The model ladder
+    (errors against the full body) and the numerical options (errors against the paper's leg
+    at its finest setting) are drawn apart, each with its Pareto front."""
     works = [w for w in ("impact", "landing", "optimisation") if any(r.work == w for r in rows)]
-    fig, axes = plt.subplots(1, len(works), figsize=(5 * len(works), 4.2))
+    fig, axes = plt.subplots(1, len(works), figsize=(5.5 * len(works), 4.5))
+    groups = (("model ladder", "tab:orange", lambda r: r.option.startswith("ladder")),
+              ("numerical options, paper's leg", "tab:blue", lambda r: not r.option.startswith("ladder")))
     for ax, work in zip(np.atleast_1d(axes), works):
-        pts = [(r.time_s, max(r.error, 1e-16), f"{r.level}: {r.option}") for r in rows
-               if r.work == work and np.isfinite(r.error)]
-        front, best = [], np.inf
-        for t, e, _ in sorted(pts):
-            if e < best:
-                front.append((t, e))
-                best = e
-        ax.scatter([p[0] for p in pts], [p[1] for p in pts], s=18)
-        ax.plot(*np.array(front).T, "--", color="tab:red", lw=1, label="Pareto front")
-        for t, e, label in pts:
-            ax.annotate(label, (t, e), fontsize=6, xytext=(3, 2), textcoords="offset points")
+        for name, color, member in groups:
+            pts = sorted((r.time_s, max(r.error, 1e-16), r.level if member(r) and name == "model ladder"
+                          else r.option) for r in rows
+                         if r.work == work and member(r) and np.isfinite(r.error))
+            if not pts:
+                continue
+            front, best = [], np.inf
+            for t, e, _ in pts:
+                if e < best:
+                    front.append((t, e))
+                    best = e
+            ax.scatter([p[0] for p in pts], [p[1] for p in pts], s=18, color=color, label=name)
+            ax.plot(*np.array(front).T, "--", color=color, lw=1)
+            for t, e, label in pts:
+                ax.annotate(label, (t, e), fontsize=6, xytext=(3, 2), textcoords="offset points")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("time per unit of work (s)")
-        ax.set_ylabel("error against the finest setting (1e-16: exact)")
+        ax.set_ylabel("error (1e-16 stands for exact)")
         ax.set_title(work, fontsize=10)
         ax.legend(fontsize=7)
     fig.tight_layout()

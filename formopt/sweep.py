@@ -1,10 +1,14 @@
-"""Parameter sweeps of the landing: each result written as it finishes, resumable.
+"""Parameter sweeps of the landing: each result written as it finishes, resumable, parallel.
 
 `--param ankle_deg=-20:20:41` sweeps the touchdown ankle angle from -20 to 20 deg in 41
 points; several --param make a grid. Parameters: trunk_deg, hip_deg, knee_deg, ankle_deg
 (touchdown angles), hip_vx, hip_vz (m/s), friction, slope_deg. Rows go to a CSV file as soon
 as each landing is done; a second run with the same file skips the rows already there, so an
 interruption loses nothing and repeats nothing.
+
+The landings run in chunks on a local process pool (`workers`), or on a Dask distributed
+cluster when given its scheduler's address; each worker builds its landing model once
+(compiled functions come from the on-disk cache) and the rows are written as chunks return.
 """
 
 from __future__ import annotations
@@ -57,15 +61,22 @@ def apply(scene, values: dict):
     return replace(scene, state=state, friction=friction, slope=slope)
 
 
-def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True) -> list[dict]:
-    """Sweep the landing of `scene` over the grid of `params`, appending rows to `path` (CSV)."""
+CHUNK = 8  # landings per task: enough to pay for a worker's model, small enough to balance
+
+
+def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True,
+        workers: int = 1, scheduler: str | None = None) -> list[dict]:
+    """Sweep the landing of `scene` over the grid of `params`, appending rows to `path` (CSV).
+
+    workers > 1: a local process pool; scheduler: a Dask distributed scheduler's address.
+    """
     path = Path(path)
     names = [n for n, _ in params]
     header = names + COLUMNS
     done = _done(path, header, names)
     grid = [dict(zip(names, combo)) for combo in itertools.product(*[v for _, v in params])]
     todo = [g for g in grid if _key(g, names) not in done]
-    models = {}
+    chunks = [todo[k:k + CHUNK] for k in range(0, len(todo), CHUNK)]
     path.parent.mkdir(parents=True, exist_ok=True)
     new_file = not path.exists() or path.stat().st_size == 0
     bar = None
@@ -76,14 +87,43 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
         writer = csv.writer(fh)
         if new_file:
             writer.writerow(header)
-        for values in todo:
-            writer.writerow([values[n] for n in names] + _landing_row(scene, values, models))
+        for chunk, rows in _results(scene, chunks, workers, scheduler):
+            writer.writerows([values[n] for n in names] + row for values, row in zip(chunk, rows))
             fh.flush()
             if bar:
-                bar.update()
+                bar.update(len(chunk))
     if bar:
         bar.close()
     return read(path)
+
+
+def _results(scene, chunks, workers, scheduler):
+    """(chunk, rows) as each chunk finishes, wherever it ran."""
+    if scheduler:
+        from dask.distributed import Client, as_completed
+
+        with Client(scheduler) as client:
+            futures = {client.submit(landing_rows, scene, chunk, pure=False): chunk for chunk in chunks}
+            for future in as_completed(futures):
+                yield futures[future], future.result()
+    elif workers > 1 and len(chunks) > 1:
+        from concurrent.futures import ProcessPoolExecutor, as_completed
+
+        with ProcessPoolExecutor(workers) as pool:
+            futures = {pool.submit(landing_rows, scene, chunk): chunk for chunk in chunks}
+            for future in as_completed(futures):
+                yield futures[future], future.result()
+    else:
+        for chunk in chunks:
+            yield chunk, landing_rows(scene, chunk)
+
+
+_MODELS: dict = {}  # per process: landing models by scene and slope, built once
+
+
+def landing_rows(scene, chunk) -> list[list]:
+    """The CSV rows (without parameter columns) of a chunk of parameter values."""
+    return [_landing_row(scene, values, _MODELS) for values in chunk]
 
 
 def read(path) -> list[dict]:
@@ -94,7 +134,7 @@ def read(path) -> list[dict]:
 def _landing_row(scene, values, models) -> list:
     try:
         s = apply(scene, values)
-        key = (s.slope,)
+        key = (s.path, s.name, s.model, s.slope)
         if key not in models:
             models[key] = LandingModel(s.build_model(), s.joints, s.slope)
         lm = models[key]
