@@ -260,12 +260,20 @@ def find_axes(static: Trial) -> Axes:
 
 
 def kabsch(reference, current):
-    """Rotation R and translation t with current ~ reference @ R.T + t (rows are markers)."""
-    a0, b0 = reference.mean(axis=0), current.mean(axis=0)
-    u, _, vt = np.linalg.svd((reference - a0).T @ (current - b0))
-    d = np.sign(np.linalg.det(vt.T @ u.T))
-    R = vt.T @ np.diag([1.0, 1.0, d]) @ u.T
-    return R, b0 - a0 @ R.T
+    """Rotations R and translations t with current ~ reference @ R.T + t (rows are markers).
+
+    reference: (k, 3); current: (k, 3) or a stack (..., k, 3), one fit per frame.
+    """
+    a0, b0 = reference.mean(axis=0), current.mean(axis=-2)
+    H = np.swapaxes(current - b0[..., None, :], -1, -2) @ (reference - a0)  # = ((ref)^T cur)^T
+    u, _, vt = np.linalg.svd(np.swapaxes(H, -1, -2))
+    v, ut = np.swapaxes(vt, -1, -2), np.swapaxes(u, -1, -2)
+    d = np.sign(np.linalg.det(v @ ut))
+    D = np.zeros(d.shape + (3, 3))
+    D[..., 0, 0] = D[..., 1, 1] = 1.0
+    D[..., 2, 2] = d
+    R = v @ D @ ut
+    return R, b0 - a0 @ np.swapaxes(R, -1, -2)
 
 
 def harrington_hip(static: Trial, side: str) -> np.ndarray:
@@ -359,14 +367,12 @@ def kinematics(trial: Trial, cal: Calibration) -> Kinematics:
     require(trial, needed, "the running trial")
     frames = len(next(iter(trial.markers.values())))
     filtered = {n: lowpass(trial.markers[n], trial.rate) for n in needed}
-    points = {}
+    points, fits = {}, {}
     for name, (cluster, ref, p0) in cal.points.items():
-        current = np.stack([filtered[n] for n in cluster], axis=1)  # (frames, k, 3)
-        out = np.empty((frames, 3))
-        for f in range(frames):
-            R, t = kabsch(ref, current[f])
-            out[f] = p0 @ R.T + t
-        points[name] = cal.axes.sagittal(out)
+        if cluster not in fits:  # one fit per cluster and frame (the pelvis carries both hips)
+            fits[cluster] = kabsch(ref, np.stack([filtered[n] for n in cluster], axis=1))
+        R, t = fits[cluster]
+        points[name] = cal.axes.sagittal(np.einsum("fij,j->fi", R, p0) + t)
     angles = {}
     for s in SIDES:
         p = {k: points[f"{s}.{k}"] for k in ("hip", "knee", "ankle", "heel", "forefoot")}

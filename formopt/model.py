@@ -163,6 +163,9 @@ class Model:
         self.n = 2 * len(self.points)
         self.trunk = trunk  # segment whose velocity change is reported as dv_trunk
         self._check()
+        qs = ca.SX.sym("q", self.n)
+        self._jacobian = ca.Function("Phi_b_q", [qs], [ca.jacobian(self.constraints(qs), qs)])
+        self._state_functions = {}  # strike point -> Function x -> (q, q'), built on first use
         self.M = self._mass_matrix()
         self.M_inv = np.linalg.inv(self.M)
 
@@ -274,9 +277,6 @@ class Model:
 
     def constraint_jacobian(self, q) -> ca.SX:
         """Phi_b,q(q): the Jacobian of the body constraints, for a symbolic or numeric q."""
-        if not hasattr(self, "_jacobian"):
-            qs = ca.SX.sym("q", self.n)
-            self._jacobian = ca.Function("Phi_b_q", [qs], [ca.jacobian(self.constraints(qs), qs)])
         return self._jacobian(q)
 
     def contact_rows(self, points, slope: float, tangential=None) -> np.ndarray:
@@ -309,8 +309,6 @@ class Model:
 
     def state_numeric(self, x, strike_point: str) -> tuple[np.ndarray, np.ndarray]:
         """(q, q') as numpy arrays of a numeric touchdown state (the map is built once)."""
-        if not hasattr(self, "_state_functions"):
-            self._state_functions = {}
         if strike_point not in self._state_functions:
             xs = ca.SX.sym("x", len(STATE))
             self._state_functions[strike_point] = ca.Function("state", [xs], list(self.state(xs, strike_point)))

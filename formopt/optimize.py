@@ -198,7 +198,8 @@ class PostureProblem:
             self._T_c_total = ca.Function("T_c_total", [w, p], [landing["T_c_total"]])
         f = sum(wt * terms[k] for k, wt in problem.objective.items())
         self._objective = ca.Function("objective", [w, p], [f])
-        self.scale = 1.0 / max(abs(float(self._objective(self.start(self.reference), self.p0))), 1e-2)
+        self._first = self.start(self.reference)  # the first start, and the objective's scale
+        self.scale = 1.0 / max(abs(float(self._objective(self._first, self.p0))), 1e-2)
         g, self.constraints = self._constraints(x, out, p, landing)
         self.nlp = {"x": w, "p": p, "f": self.scale * f, "g": g}
         opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
@@ -240,8 +241,10 @@ class PostureProblem:
         u = self.to_unit(x)
         if not self.landing:
             return u
-        t_e = self._second_impact(self.to_state(u)) or self._t_ref
-        return np.append(u, t_e / self.duration)
+        posture = self.to_state(u)
+        # the reference (unless the bounds clip it) has been simulated already
+        t_e = self._t_ref if np.allclose(posture, self.reference) else self._second_impact(posture)
+        return np.append(u, (t_e or self._t_ref) / self.duration)
 
     @property
     def p0(self) -> np.ndarray:
@@ -323,9 +326,9 @@ class PostureProblem:
         """
         rng = np.random.default_rng(self.problem.seed)
         if not self.landing:
-            return [self.to_unit(self.reference)] + [rng.uniform(0.0, 1.0, len(self.index))
-                                                     for _ in range(self.problem.starts - 1)]
-        found = [self.start(self.reference)]
+            return [self._first] + [rng.uniform(0.0, 1.0, len(self.index))
+                                    for _ in range(self.problem.starts - 1)]
+        found = [self._first]
         for _ in range(50 * self.problem.starts):
             if len(found) == self.problem.starts:
                 break

@@ -94,8 +94,6 @@ def save(fig, path) -> Path:
 
 def landing_figures(folder, landing, body: Body, model, slope: float, strike: str) -> list[Path]:
     """Stick figures through the landing, and kinetic energy over time with its impact drops."""
-    from .model import positions  # noqa: F401  (positions of model points come from q)
-
     folder = Path(folder)
     fig, ax = plt.subplots(figsize=(8, 5))
     ground(ax, slope, span=(-0.8, 0.8))
