@@ -23,10 +23,13 @@ import casadi as ca
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
-from conftest import SEED, random_states  # noqa: E402  (the tests' touchdown distribution)
+from helpers import SEED, random_states  # noqa: E402  (the tests' touchdown distribution)
 
-from formopt import Impact, build_model, impact_function, paper_body  # noqa: E402
-from formopt.compiled import Compiled, external  # noqa: E402
+from formopt import Impact  # noqa: E402
+from formopt.mechanics.model import build_model  # noqa: E402
+from formopt.mechanics.impact import impact_function  # noqa: E402
+from formopt.mechanics.body import paper_body  # noqa: E402
+from formopt.mechanics.compiled import Compiled, external  # noqa: E402
 
 INDICATORS = ["T", "T_c", "T_a", "impulse", "mu_signed", "dv_trunk", "dv_com"]
 
@@ -113,7 +116,7 @@ def pinocchio_rows(body, model, X, strike):
         import pinocchio as pin
     except ImportError:
         return [("Pinocchio", "not installed", "pip install '.[test]'")]
-    from formopt.oracle import contact_jacobian, pinocchio_leg, pinocchio_state
+    from oracle import contact_jacobian, pinocchio_leg, pinocchio_state
 
     pmodel = pinocchio_leg(body)
     data = pmodel.createData()

@@ -20,8 +20,8 @@ from pathlib import Path
 import casadi as ca
 
 from formopt import load
-from formopt import sweep
-from formopt.landing import LandingModel, absorbed_function, simulate_state
+from formopt.studies import sweep
+from formopt.mechanics.landing import LandingModel, absorbed_function, simulate_state
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -33,7 +33,7 @@ def main():
     args = parser.parse_args()
     scene = load(args.scene)
     t = time.perf_counter()
-    lm = LandingModel(scene.build_model(), scene.joints, scene.slope)
+    lm = scene.landing()
 
     def run(dt):
         return simulate_state(lm, scene.strike, scene.state, scene.friction, dt, 0.2)
@@ -58,7 +58,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         t = time.perf_counter()
         sweep.run(scene, [sweep.parse_param("ankle_deg=-20:20:41")], Path(tmp) / "s.csv", progress=False)
-        print(f"\n41-point ankle sweep (dt {scene.landing['dt_ms']} ms, with its CSV): "
+        print(f"\n41-point ankle sweep (dt {scene.integration.dt * 1e3:g} ms, with its CSV): "
               f"{time.perf_counter() - t:.3f} s")
     t = time.perf_counter()
     absorbed = absorbed_function(lm, scene.strike, ref.impacts[1].time, steps=60)

@@ -17,11 +17,12 @@ import casadi as ca
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
-from conftest import touchdown  # noqa: E402
+from helpers import touchdown  # noqa: E402
 from test_extremes import body_with  # noqa: E402
 
-from formopt import Impact, build_model, load  # noqa: E402
-from formopt.optimize import PostureProblem  # noqa: E402
+from formopt import Impact, load  # noqa: E402
+from formopt.mechanics.model import build_model  # noqa: E402
+from formopt.optim.posture import PostureProblem  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -51,7 +52,7 @@ def main():
         row(f"heel strike on {slope:+g} deg", strike="heel", slope=slope, ankle=10.0)
 
     scene = load(ROOT / "problems" / "demo.toml")
-    problem = PostureProblem(scene.build_model(), scene.strike, scene.state,
+    problem = PostureProblem(scene.model(), scene.strike, scene.state,
                              scene.problem, scene.slope, scene.friction)
     opt = problem.solve()
     w = problem.to_unit(opt.state)
@@ -62,7 +63,7 @@ def main():
     H = np.asarray(ca.Function("H", [x, p, lam], [ca.hessian(lag, x)[0]])(
         sol["x"], problem.p0, sol["lam_g"]), float)
     J = np.asarray(ca.Function("J", [x, p], [ca.jacobian(problem.nlp["g"], x)])(sol["x"], problem.p0), float)
-    g = np.asarray(problem._g(sol["x"], problem.p0), float).ravel()
+    g = np.asarray(problem.constraint_function(sol["x"], problem.p0), float).ravel()
     active = [k for k in range(len(g)) if min(abs(g[k] - problem.lbg[k]), abs(g[k] - problem.ubg[k])) < 1e-6]
     u = np.asarray(sol["x"], float).ravel()
     bounds = np.eye(len(u))[[k for k in range(len(u)) if u[k] < 1e-6 or u[k] > 1 - 1e-6]]

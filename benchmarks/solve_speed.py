@@ -22,8 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
-from formopt import build_model, load
-from formopt.optimize import PostureProblem
+from formopt import load
+from formopt.mechanics.model import build_model
+from formopt.optim.posture import PostureProblem
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -35,7 +36,7 @@ def main():
     args = parser.parse_args()
     os.environ["FORMOPT_CACHE"] = tempfile.mkdtemp(prefix="formopt-bench-")  # a cold cache
     scene = load(args.scene)
-    model = scene.build_model()
+    model = scene.model()
     seed = scene.problem.seed
     print(f"{scene.name}: {len(scene.problem.variables)} variables; seed {seed}; "
           f"medians of {args.repeats} solves; one core\n")
@@ -74,9 +75,7 @@ def main():
     landing = load(ROOT / "problems" / "landing_optimum.toml")
     label = "landing objective (T_c_total), limited-memory"
     t = time.perf_counter()
-    problem = PostureProblem(build_model(landing.body, landing.model), landing.strike, landing.state,
-                             landing.problem, landing.slope, landing.friction, joints=landing.joints,
-                             duration=landing.landing["duration_ms"] * 1e-3)
+    problem = landing.posture_problem()
     rows.append((label, "build", f"{time.perf_counter() - t:.3f} s"))
     times, statuses = [], set()
     for w0 in problem.starts():

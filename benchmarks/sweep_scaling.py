@@ -15,7 +15,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from formopt import load, sweep
+from formopt import load
+from formopt.studies import sweep
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -22,7 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
-from formopt import Impact, build_model, paper_body
+from formopt import Impact
+from formopt.mechanics.model import build_model
+from formopt.mechanics.body import paper_body
 
 DEG = math.pi / 180
 

@@ -31,10 +31,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from formopt import impact  # noqa: E402
-from formopt import sweep  # noqa: E402
-from formopt.landing import land  # noqa: E402
-from formopt.plots import save  # noqa: E402
-from formopt.scene import load, parse  # noqa: E402
+from formopt.studies import sweep  # noqa: E402
+from formopt import simulate as land  # noqa: E402
+from formopt.io.files import save_figure  # noqa: E402
+from formopt.io.scene import load, parse  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 SCENES = {"forefoot": HERE / "landing_spring.toml", "heel": HERE / "landing_heel.toml"}
@@ -57,7 +57,7 @@ def figure4(out: Path) -> list[str]:
             bars[(strike, ankle)] = L
             if len(L.impacts) > 1:
                 q = L.q[-1]
-                model = load(SCENES[strike]).build_model()
+                model = load(SCENES[strike]).model()
                 at = math.degrees(model.segment_angle(q, "foot") - model.segment_angle(q, "shank"))
                 findings.append(f"{strike} strike, ankle {ankle:+.0f} deg: second contact after "
                                 f"{L.impacts[1].time * 1e3:.1f} ms, ankle then {at:+.1f} deg "
@@ -69,7 +69,8 @@ def figure4(out: Path) -> list[str]:
         ax.set_xlabel("time after touchdown (ms)")
         ax.legend(fontsize=8)
     axes[0].set_ylabel("kinetic energy T (J)")
-    save(fig, out / "fig4a_kinetic_energy.png")
+    save_figure(fig, out / "fig4a_kinetic_energy.png")
+    plt.close(fig)
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
     labels = [f"{s[0]}{a:+.0f}" for s, a in bars]
@@ -86,7 +87,8 @@ def figure4(out: Path) -> list[str]:
     axes[1].set_ylabel("trunk velocity change over the impacts (m/s)")
     axes[1].legend(fontsize=8)
     fig.suptitle("h: heel strike, f: forefoot strike, with the touchdown ankle angle (deg)", fontsize=9)
-    save(fig, out / "fig4b_absorbed_and_dv.png")
+    save_figure(fig, out / "fig4b_absorbed_and_dv.png")
+    plt.close(fig)
     heel = np.mean([L.T_c_total for (s, _), L in bars.items() if s == "heel"])
     fore = np.mean([L.T_c_total for (s, _), L in bars.items() if s == "forefoot"])
     findings.append(f"mean T_c_total over these landings: heel strike {heel:.2f} J, forefoot strike {fore:.2f} J")
@@ -118,7 +120,8 @@ def figure5(out: Path) -> list[str]:
     axes[1].set_xlabel("touchdown ankle angle (deg)")
     axes[1].set_ylabel("peak normal contact force (N)")
     axes[1].legend(fontsize=8)
-    save(fig, out / "fig5_ankle_sweep.png")
+    save_figure(fig, out / "fig5_ankle_sweep.png")
+    plt.close(fig)
     return findings
 
 
@@ -138,7 +141,8 @@ def figure6(out: Path) -> list[str]:
     ax.set_xlabel("time after touchdown (ms)")
     ax.set_ylabel("change of kinetic energy (J)")
     ax.legend(fontsize=8)
-    save(fig, out / "fig6_downhill_vs_marathon.png")
+    save_figure(fig, out / "fig6_downhill_vs_marathon.png")
+    plt.close(fig)
     return findings
 
 
@@ -159,7 +163,8 @@ def models(out: Path) -> list[str]:
     ax.set_xlabel("touchdown ankle angle (deg), forefoot strike")
     ax.set_ylabel("T_c of the first impact (J)")
     ax.legend(fontsize=8)
-    save(fig, out / "models_shank_foot_vs_leg.png")
+    save_figure(fig, out / "models_shank_foot_vs_leg.png")
+    plt.close(fig)
     findings = []
     for kind in ("effective-mass", "shank-foot"):
         error = (values[kind] - values["leg"]) / values["leg"]

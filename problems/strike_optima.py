@@ -7,15 +7,15 @@ prints the two optima side by side with what holds each, and draws them over eac
 """
 
 import argparse
-import json
 from dataclasses import replace
 from pathlib import Path
 
 from formopt import load
-from formopt.cli import solve_report
-from formopt.optimize import solve
-from formopt.plots import indicator_figure, posture_figure
-from formopt.scene import touchdown_table
+from formopt.report.tables import solve_report
+from formopt.optim.posture import solve
+from formopt.io.files import save_figure, write_json
+from formopt.report.figures import indicator_figure, posture_figure
+from formopt.io.scene import touchdown_table
 
 
 def main():
@@ -45,14 +45,12 @@ def main():
     for strike, (_, opt) in optima.items():
         held = ", ".join(c.name for c in opt.active) or "nothing (interior)"
         print(f"{strike}: {opt.status}; held by {held}")
-    posture_figure(out / "postures.png", base.body, "forefoot", base.slope,
-                   [(optima["heel"][1].state, "heel-strike optimum", "tab:orange"),
-                    (optima["forefoot"][1].state, "forefoot-strike optimum", "tab:blue")])
-    indicator_figure(out / "indicators.png", {s: o.impact for s, (_, o) in optima.items()})
-    out.mkdir(parents=True, exist_ok=True)
-    tmp = out / ".optima.json.tmp"
-    tmp.write_text(json.dumps(reports, indent=2))
-    tmp.replace(out / "optima.json")  # never a half-written file under the final name
+    save_figure(posture_figure(base.body, "forefoot", base.slope,
+                               [(optima["heel"][1].state, "heel-strike optimum", "tab:orange"),
+                                (optima["forefoot"][1].state, "forefoot-strike optimum", "tab:blue")]),
+                out / "postures.png")
+    save_figure(indicator_figure({s: o.impact for s, (_, o) in optima.items()}), out / "indicators.png")
+    write_json(out / "optima.json", reports)
     print(f"wrote {out / 'postures.png'}, {out / 'indicators.png'}, {out / 'optima.json'}")
 
 

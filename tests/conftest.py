@@ -1,45 +1,9 @@
-"""Shared fixtures: the paper's body, its models, and seeded random touchdown states."""
+"""Fixtures: the paper's body and its models (helpers.py holds the shared functions)."""
 
-import numpy as np
 import pytest
 
-from formopt import STATE, build_model, paper_body
-from formopt.model import Model, Point, PointMass, RigidBody
-
-SEED = 20261122
-DEG = np.pi / 180
-
-
-def random_states(n, seed=SEED, strike="forefoot", slope=0.0):
-    """Touchdown states spanning running (angles in rad, velocities in m/s and rad/s)."""
-    rng = np.random.default_rng(seed)
-    x = np.zeros((n, len(STATE)))
-    lo = np.array([-10, 0, 2, -30, 1.0, -1.5, -100, -400, -200, -200]) * 1.0
-    hi = np.array([20, 40, 60, 20, 7.0, -0.2, 100, 100, 400, 300]) * 1.0
-    x[:] = rng.uniform(lo, hi, size=(n, len(STATE)))
-    angles = [0, 1, 2, 3, 6, 7, 8, 9]
-    x[:, angles] *= DEG
-    if strike == "flat":  # sole parallel to the ground: hip - trunk - knee + ankle = slope
-        x[:, 3] = x[:, 0] - x[:, 1] + x[:, 2] + slope
-    return x
-
-
-def touchdown(trunk=0.0, hip=22.0, knee=18.0, ankle=-12.0, v=(3.5, -0.6), w=(0.0, -150.0, 120.0, 40.0)):
-    """The reference touchdown of issue 2 (degrees and deg/s in, SI out)."""
-    return np.array([trunk * DEG, hip * DEG, knee * DEG, ankle * DEG, v[0], v[1],
-                     *(np.array(w) * DEG)])
-
-
-def split_leg(body) -> Model:
-    """The paper's leg in other natural coordinates: knee points per segment joined by a
-    coincidence constraint, the thigh based knee->hip, the foot based forefoot->heel with the
-    ankle fixed in it (12 coordinates, 7 constraints)."""
-    points = [Point("hip", "hip"), Point("knee_t", "knee"), Point("knee_s", "knee"),
-              Point("ankle", "ankle"), Point("heel", "heel"), Point("forefoot", "forefoot")]
-    bodies = [RigidBody("thigh", ("knee_t", "hip")), RigidBody("shank", ("knee_s", "ankle")),
-              RigidBody("foot", ("forefoot", "heel"), ("ankle",))]
-    return Model(body, points, bodies, [PointMass("trunk", "hip"), PointMass("swing_leg", "hip")],
-                 coincident=[("knee_t", "knee_s")], trunk="trunk")
+from formopt.mechanics.body import paper_body
+from formopt.mechanics.model import build_model
 
 
 @pytest.fixture(scope="session")

@@ -4,9 +4,11 @@ import casadi as ca
 import numpy as np
 import pytest
 
-from formopt import Impact, angular_momentum_impact, build_model
+from formopt import Impact
+from formopt.mechanics.impact import angular_momentum_impact
+from formopt.mechanics.model import build_model
 
-from conftest import random_states, split_leg
+from helpers import random_states, split_leg
 
 
 @pytest.mark.parametrize("kind", ["leg", "shank-foot", "leg-trunk", "split-leg"])

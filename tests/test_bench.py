@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from formopt.bench import LEVELS
+from formopt.studies.bench import LEVELS
 from formopt.cli import main
 
 

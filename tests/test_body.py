@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from formopt import paper_body, scaled_body
-from formopt.body import DE_LEVA
+from formopt.mechanics.body import paper_body, scaled_body
+from formopt.mechanics.body import DE_LEVA
 
 
 def test_paper_body():

@@ -12,11 +12,13 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from formopt import Impact, build_model, paper_body
-from formopt.body import Body, bar, foot, trunk
-from formopt.impact import CONDITION_LIMIT
+from formopt import Impact
+from formopt.mechanics.model import build_model
+from formopt.mechanics.body import paper_body
+from formopt.mechanics.body import Body, bar, foot, trunk
+from formopt.mechanics.impact import CONDITION_LIMIT
 
-from conftest import touchdown
+from helpers import touchdown
 
 EPS = np.finfo(float).eps
 SETTINGS = settings(max_examples=60, deadline=None, derandomize=True,

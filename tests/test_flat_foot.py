@@ -6,7 +6,7 @@ import pytest
 
 from formopt import Impact
 
-from conftest import random_states
+from helpers import random_states
 
 
 def full_system(model, x, slope):

@@ -4,9 +4,9 @@ import casadi as ca
 import numpy as np
 import pytest
 
-from formopt import impact_function
+from formopt.mechanics.impact import impact_function
 
-from conftest import random_states
+from helpers import random_states
 
 OUTPUTS = ("T_c", "impulse", "impulse_total", "dv_trunk", "dv_com", "T_a")
 

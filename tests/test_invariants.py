@@ -4,10 +4,11 @@ import casadi as ca
 import numpy as np
 import pytest
 
-from formopt import Impact, build_model
-from formopt.model import STRIKES
+from formopt import Impact
+from formopt.mechanics.model import build_model
+from formopt.mechanics.model import STRIKES
 
-from conftest import random_states, split_leg
+from helpers import random_states, split_leg
 
 
 def numeric_projection(model, q, points, slope):

@@ -7,14 +7,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from formopt import Impact, SceneError, angular_momentum_impact, build_model, impact, load
-from formopt.landing import land
-from formopt.model import Swing
-from formopt.scene import parse
+from formopt import Impact, SceneError, impact, load
+from formopt.mechanics.impact import angular_momentum_impact
+from formopt.mechanics.model import build_model
+from helpers import land
+from formopt.mechanics.model import Swing
+from formopt.io.scene import parse
 
-from conftest import random_states, touchdown
+from helpers import random_states, touchdown
 
-FULL = Path(__file__).resolve().parent.parent / "problems" / "bench" / "full_body.toml"
+FULL = Path(__file__).resolve().parent.parent / "formopt" / "studies" / "data" / "full_body.toml"
 SWING = Swing(math.radians(-10), math.radians(80), 0.0, math.radians(400), 0.0, 0.0)
 
 
@@ -57,7 +59,7 @@ def test_full_body_kinetic_energy_adds_the_swing_leg(body):
 
 def test_full_body_scene_and_landing():
     scene = load(FULL)
-    assert scene.swing is not None and scene.build_model().kind == "full-body"
+    assert scene.swing is not None and scene.model().kind == "full-body"
     L = land(scene)
     assert L.energy_error < 1e-6 and [e.contact for e in L.impacts][0] == "forefoot"
     assert L.impacts[0].T_c == pytest.approx(impact(scene).T_c, rel=1e-10)

@@ -9,10 +9,12 @@ import casadi as ca
 import numpy as np
 import pytest
 
-from formopt import SceneError, build_model, impact, load
+from formopt import SceneError, impact, load
+from formopt.mechanics.model import build_model
 from formopt.cli import main
-from formopt.landing import LandingModel, absorbed_function, land, landing_function
-from formopt.scene import parse
+from formopt.mechanics.landing import LandingModel, absorbed_function, landing_function
+from helpers import land
+from formopt.io.scene import parse
 
 SPRING = Path(__file__).resolve().parent.parent / "problems" / "landing_spring.toml"
 
@@ -86,7 +88,7 @@ def test_locked_leg_absorbs_more_than_free_hinges(spring):
 
 
 def test_differentiable_landing_matches_the_simulation(spring, spring_landing):
-    model = build_model(spring.body, spring.model)
+    model = spring.model()
     lm = LandingModel(model, spring.joints, spring.slope)
     absorbed = absorbed_function(lm, spring.strike, spring_landing.impacts[1].time, steps=60)
     T_c_total, t_e = (float(v) for v in absorbed(spring.state))
@@ -104,7 +106,7 @@ def test_differentiable_landing_matches_the_simulation(spring, spring_landing):
 
 
 def test_landing_function_needs_a_single_strike(spring):
-    lm = LandingModel(build_model(spring.body, spring.model), spring.joints)
+    lm = LandingModel(spring.model(), spring.joints)
     with pytest.raises(ValueError, match="heel or forefoot"):
         landing_function(lm, "flat")
 
@@ -135,7 +137,7 @@ def test_cli_simulate_json(tmp_path, capsys):
 
 
 def test_sweep_writes_as_it_goes_and_resumes(spring, tmp_path):
-    from formopt import sweep
+    from formopt.studies import sweep
 
     path = tmp_path / "sweep.csv"
     first = sweep.run(spring, [sweep.parse_param("ankle_deg=-14:-10:3")], path, progress=False)
@@ -152,7 +154,7 @@ def test_sweep_writes_as_it_goes_and_resumes(spring, tmp_path):
 
 
 def test_sweep_reports_points_the_model_cannot_take(spring, tmp_path):
-    from formopt import sweep
+    from formopt.studies import sweep
 
     rows = sweep.run(spring, [sweep.parse_param("ankle_deg=0:5:2")], tmp_path / "s.csv", progress=False)
     assert all("below the ground" in r["error"] for r in rows)
@@ -160,7 +162,7 @@ def test_sweep_reports_points_the_model_cannot_take(spring, tmp_path):
 
 @pytest.mark.parametrize("text", ["ankle=-20:20:41", "ankle_deg=-20:20", "ankle_deg=a:b:3"])
 def test_bad_sweep_parameters(text):
-    from formopt import sweep
+    from formopt.studies import sweep
 
     with pytest.raises(ValueError, match="--param"):
         sweep.parse_param(text)
@@ -181,7 +183,7 @@ def test_cli_sweep_bad_param_exits_2(capsys):
 def test_sweep_on_a_process_pool_and_on_dask_gives_the_same_rows(spring, tmp_path):
     from dask.distributed import LocalCluster
 
-    from formopt import sweep
+    from formopt.studies import sweep
 
     params = [sweep.parse_param("ankle_deg=-16:-10:4"), sweep.parse_param("hip_vx=3:4:5")]
     serial = sweep.run(spring, params, tmp_path / "serial.csv", progress=False)

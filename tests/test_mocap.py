@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from formopt import mocap
+from formopt.io import mocap
 from formopt.cli import main
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "rbds"
@@ -146,7 +146,7 @@ def test_short_gaps_are_filled_and_long_ones_leave_their_steps_out(cal, steps):
     markers["R.Heel.Top"][100:103] = np.nan  # 3 frames: interpolated
     side = steps[3.5][1].touchdowns[10].side
     markers[f"{side}.MT1"][frame - 20:frame + 20] = np.nan  # 40 frames around a touchdown
-    trial = mocap._clean(mocap.Trial(markers, 150.0, mocap.read(RUN35).force, 300.0, "damaged"))
+    trial = mocap.fill_gaps(mocap.Trial(markers, 150.0, mocap.read(RUN35).force, 300.0, "damaged"))
     assert np.all(np.isfinite(trial.markers["R.Heel.Top"]))
     assert "R.Heel.Top" not in trial.gaps and f"{side}.MT1" in trial.gaps
     kin = mocap.kinematics(trial, cal)

@@ -9,10 +9,11 @@ import casadi as ca
 import numpy as np
 import pytest
 
-from formopt import load
+from dataclasses import replace
+
+from formopt import load, solve
 from formopt.cli import main
-from formopt.optimize import PostureProblem, solve
-from formopt.scene import parse
+from formopt.io.scene import parse
 
 DEMO = Path(__file__).resolve().parent.parent / "problems" / "demo.toml"
 
@@ -20,8 +21,7 @@ DEMO = Path(__file__).resolve().parent.parent / "problems" / "demo.toml"
 @pytest.fixture(scope="module")
 def demo():
     scene = load(DEMO)
-    problem = PostureProblem(scene.build_model(), scene.strike, scene.state,
-                             scene.problem, scene.slope, scene.friction)
+    problem = scene.posture_problem()
     return scene, problem, problem.solve()
 
 
@@ -42,10 +42,10 @@ def test_feasible_perturbations_do_not_beat_the_optimum(demo):
     tried = 0
     for _ in range(3000):
         u = np.clip(u_opt + rng.normal(scale=0.05, size=u_opt.size), 0.0, 1.0)
-        g = np.asarray(problem._g(u, problem.p0), float).ravel()
+        g = np.asarray(problem.constraint_function(u, problem.p0), float).ravel()
         if np.all(g >= problem.lbg) and np.all(g <= problem.ubg):
             tried += 1
-            value = float(problem._objective(u, problem.p0))
+            value = float(problem.objective_function(u, problem.p0))
             assert value >= opt.objective - 1e-9 * abs(opt.objective)
     assert tried > 50, "the test must try enough feasible neighbours"
 
@@ -113,9 +113,7 @@ def test_box_multiplier_predicts_a_moved_bound(demo):
     k = scene.problem.variables.index("ankle")
     lower = list(scene.problem.lower)
     lower[k] -= np.radians(delta)
-    from dataclasses import replace
-    moved = PostureProblem(problem.model, scene.strike, scene.state,
-                           replace(scene.problem, lower=tuple(lower)), scene.slope, scene.friction)
+    moved = scene.posture_problem(lower=tuple(lower))
     sol, stats, _ = moved.solve_from(moved.to_unit(opt.state))
     assert stats["return_status"] == "Solve_Succeeded"
     change = float(sol["f"]) / moved.scale - opt.objective
@@ -185,8 +183,7 @@ def test_bad_optimize_tables(edit, key):
 def test_compiled_solver_gives_the_same_optimum(demo, tmp_path, monkeypatch):
     monkeypatch.setenv("FORMOPT_CACHE", str(tmp_path))
     scene, problem, opt = demo
-    compiled = PostureProblem(problem.model, scene.strike, scene.state, scene.problem,
-                              scene.slope, scene.friction, compiled=True)
+    compiled = replace(scene, numerics=replace(scene.numerics, compiled=True)).posture_problem()
     sol, stats, _ = compiled.solve_from(problem.to_unit(opt.state))
     assert stats["return_status"] == "Solve_Succeeded"
     assert float(sol["f"]) / compiled.scale == pytest.approx(opt.objective, rel=1e-9)
@@ -203,8 +200,7 @@ def landing_optimum():
 
 
 def test_landing_optimum_agrees_with_the_event_driven_simulation(landing_optimum):
-    from dataclasses import replace
-    from formopt.landing import land
+    from helpers import land
 
     scene, opt = landing_optimum
     assert opt.success and all(s.converged for s in opt.starts)
@@ -220,20 +216,18 @@ def test_landing_optimum_agrees_with_the_event_driven_simulation(landing_optimum
 def test_landing_nlp_gradient_matches_finite_differences(landing_optimum):
 
     scene, opt = landing_optimum
-    problem = PostureProblem(scene.build_model(), scene.strike, scene.state,
-                             scene.problem, scene.slope, scene.friction, joints=scene.joints,
-                             duration=scene.landing["duration_ms"] * 1e-3)
+    problem = scene.posture_problem()
     w0 = problem.start(scene.state)
     w = ca.MX.sym("w", w0.size)
-    f = problem._objective(w, problem.p0)
+    f = problem.objective_function(w, problem.p0)
     grad = ca.Function("grad", [w], [ca.gradient(f, w)])
     exact = np.asarray(grad(w0), float).ravel()
     h = 1e-6
     for k in range(w0.size):
         e = np.zeros_like(w0)
         e[k] = h
-        fd = (float(problem._objective(w0 + e, problem.p0)) -
-              float(problem._objective(w0 - e, problem.p0))) / (2 * h)
+        fd = (float(problem.objective_function(w0 + e, problem.p0)) -
+              float(problem.objective_function(w0 - e, problem.p0))) / (2 * h)
         assert fd == pytest.approx(exact[k], rel=1e-5, abs=1e-7)
 
 
@@ -267,6 +261,6 @@ def test_iteration_limit_is_reported_not_claimed():
 
 
 def test_every_status_has_a_plain_explanation():
-    from formopt.optimize import explain
+    from formopt.optim.posture import explain
     for status in ("Infeasible_Problem_Detected", "Restoration_Failed", "Maximum_Iterations_Exceeded"):
         assert "IPOPT's documentation" not in explain(status)

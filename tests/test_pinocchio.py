@@ -7,9 +7,9 @@ import pinocchio as pin
 import pytest
 
 from formopt import Impact
-from formopt.oracle import contact_jacobian, pinocchio_leg, pinocchio_state, point_velocities
+from oracle import contact_jacobian, pinocchio_leg, pinocchio_state, point_velocities
 
-from conftest import random_states
+from helpers import random_states
 
 
 @pytest.mark.parametrize("strike", ["heel", "forefoot", "flat"])

@@ -12,9 +12,9 @@ import pytest
 
 from formopt import SceneError, impact, load
 from formopt.cli import main
-from formopt.scene import parse
+from formopt.io.scene import parse
 
-from conftest import touchdown
+from helpers import touchdown
 
 PROBLEMS = Path(__file__).resolve().parent.parent / "problems"
 REFERENCE = PROBLEMS / "forefoot_strike.toml"

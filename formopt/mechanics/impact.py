@@ -30,6 +30,7 @@ import numpy as np
 
 from .compiled import Compiled
 from .model import STATE, STRIKES, Model, landmarks
+from .errors import InputError
 # Ill-conditioned beyond this: results lose more than 10 of 16 digits.
 CONDITION_LIMIT = 1e10
 GRAPHS = ("SX", "MX")
@@ -72,7 +73,7 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
     points = STRIKES[strike]
     t, n = ground_axes(slope)
     if graph not in GRAPHS:
-        raise ValueError(f"graph {graph!r}: expected one of {', '.join(GRAPHS)}")
+        raise InputError(f"graph {graph!r}: expected one of {', '.join(GRAPHS)}")
     x = getattr(ca, graph).sym("x", len(STATE))
     q, qd = model.state(x, points[0])
     rows = model.contact_rows(points, slope, tangential=points[:1] if model.tangential else ())
@@ -111,7 +112,7 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
     if outputs is not None:
         unknown = set(outputs) - set(indicators)
         if unknown:
-            raise ValueError(f"unknown impact outputs {sorted(unknown)}: expected {list(indicators)}")
+            raise InputError(f"unknown impact outputs {sorted(unknown)}: expected {list(indicators)}")
         indicators = {k: indicators[k] for k in outputs}
     return ca.Function(f"impact_{strike}", [x], list(indicators.values()), ["x"], list(indicators))
 
@@ -161,7 +162,7 @@ class Impact:
     def __init__(self, model: Model, strike: str, slope: float = 0.0, friction: float = 0.8,
                  compiled: bool = False, graph: str = "SX"):
         if strike not in STRIKES:
-            raise ValueError(f"unknown strike {strike!r}: expected one of {', '.join(STRIKES)}")
+            raise InputError(f"unknown strike {strike!r}: expected one of {', '.join(STRIKES)}")
         self.model, self.strike, self.slope, self.friction = model, strike, slope, friction
         self.function = impact_function(model, strike, slope, graph=graph)
         self._compiled = Compiled(self.function) if compiled else None
@@ -175,18 +176,18 @@ class Impact:
     def __call__(self, x) -> ImpactResult:
         x = np.asarray(x, float).reshape(-1)
         if x.shape != (len(STATE),) or not np.all(np.isfinite(x)):
-            raise ValueError(f"the touchdown state needs {len(STATE)} finite values {STATE}, got {x}")
+            raise InputError(f"the touchdown state needs {len(STATE)} finite values {STATE}, got {x}")
         raw = self.evaluate(x)
         condition = float(np.linalg.cond(raw.pop("G")))
         out = {k: np.asarray(v, float).ravel() for k, v in raw.items()}
         out.update({k: float(v[0]) for k, v in out.items() if v.size == 1})
         points = STRIKES[self.strike]
         if not condition < CONDITION_LIMIT:
-            raise ValueError(f"{self.strike} strike: the constraint Jacobian is singular at this "
+            raise InputError(f"{self.strike} strike: the constraint Jacobian is singular at this "
                              f"posture (condition number {condition:.1e} of Phi_q M^-1 Phi_q^T)")
         warnings = []
         if self.strike == "flat" and abs(out["clearance"]) > 1e-6:
-            raise ValueError(f"flat strike needs the sole on the ground: the forefoot is "
+            raise InputError(f"flat strike needs the sole on the ground: the forefoot is "
                              f"{out['clearance'] * 1e3:.1f} mm above it (adjust the ankle angle)")
         if self.strike != "flat" and out["clearance"] < 0:
             other = "heel" if points == ("forefoot",) else "forefoot"
@@ -246,7 +247,7 @@ def angular_momentum_impact(model: Model, q, qd, point: str) -> np.ndarray:
     A = np.vstack(rows)
     rhs = np.concatenate([np.zeros(Phi_b.shape[0] + 2), A[Phi_b.shape[0] + 2:] @ qd])
     if np.linalg.matrix_rank(A) < model.n:
-        raise ValueError("angular-momentum map: the hinges do not determine the motion "
+        raise InputError("angular-momentum map: the hinges do not determine the motion "
                          "(this method covers open chains with one contact point)")
     return np.linalg.solve(A, rhs)
 
@@ -314,10 +315,3 @@ def _hinges(model: Model, groups, contact_segment):
             if branch & rigid:  # a lone point mass at the hinge has no moment about it
                 yield g, sorted(branch)
             rest = [s for s in rest if s not in branch]
-
-
-def impact(scene) -> ImpactResult:
-    """The indicators of a scene's touchdown (a formopt.scene.Scene)."""
-    numerics = scene.numerics
-    return Impact(scene.build_model(), scene.strike, scene.slope, scene.friction,
-                  numerics["compiled"], numerics["graph"])(scene.state)

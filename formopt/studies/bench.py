@@ -1,7 +1,7 @@
 """`formopt bench`: what each model level and numerical choice costs, and what it gives up.
 
-Over the fixed touchdown states of problems/bench/states.csv and the scene
-problems/bench/full_body.toml (the paper's body, forefoot strike at 3.5 m/s), for each
+Over the fixed touchdown states of data/bench_states.csv and the scene data/full_body.toml
+(package data beside this module, made by benchmarks/make_bench_states.py) (the paper's body, forefoot strike at 3.5 m/s), for each
 ladder level and option: time per indicator evaluation, per landing and per optimisation, and
 the error of T_c, mu_c, dv of the trunk and of the optimal posture against the finest setting
 (the full planar body; SX, interpreted, exact Hessian; RK4 at the smallest step).
@@ -19,15 +19,15 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
-from .compiled import external
-from .impact import Impact, impact_function
-from .landing import LandingModel, simulate_state
-from .model import STATE, build_model
-from .optimize import PostureProblem
-from .scene import load
+from ..mechanics.compiled import external
+from ..mechanics.impact import Impact, impact_function
+from ..mechanics.landing import LandingModel, simulate_state
+from ..mechanics.model import STATE, build_model
+from ..optim.posture import PostureProblem
+from ..io.scene import load
 
 LEVELS = ("effective-mass", "shank-foot", "leg", "leg-trunk", "full-body")
-ROOT = Path(__file__).resolve().parent.parent / "problems" / "bench"
+DATA = Path(__file__).resolve().parent / "data"
 
 
 @dataclass
@@ -43,8 +43,8 @@ class Row:
 
 
 def read_states(path=None) -> np.ndarray:
-    """problems/bench/states.csv as model.STATE vectors (SI)."""
-    with Path(path or ROOT / "states.csv").open() as fh:
+    """The bench states (data/bench_states.csv) as model.STATE vectors (SI)."""
+    with Path(path or DATA / "bench_states.csv").open() as fh:
         rows = list(csv.DictReader(fh))
     deg = math.radians
     return np.array([[deg(float(r["trunk_deg"])), deg(float(r["hip_deg"])), deg(float(r["knee_deg"])),
@@ -66,7 +66,7 @@ def _median_time(f, args, repeats=1):
 def run(quick: bool = False, progress=None) -> tuple[list[Row], float]:
     """All rows, and the compiled batch throughput of the paper's leg (states/s)."""
     say = progress or (lambda text: None)
-    scene = load(ROOT / "full_body.toml")
+    scene = load(DATA / "full_body.toml")
     states = read_states()[: 20 if quick else 200]
     rows: list[Row] = []
     models = {level: build_model(scene.body, level, scene.strike, scene.swing) for level in LEVELS}
@@ -179,31 +179,8 @@ def _batch(model, strike, states, n=10000):
     return n / _median_time(lambda _: batch(X), range(7))
 
 
-def table(rows: list[Row], batch: float) -> str:
-    lines = [f"{'level':15s} {'option':28s} {'work':13s} {'time':>11s} {'error':>10s} "
-             f"{'mu_c err':>9s} {'dv err':>9s}  note"]
-    for r in rows:
-        unit = f"{r.time_s * 1e6:9.1f} us" if r.time_s < 1e-2 else f"{r.time_s * 1e3:9.2f} ms"
-        lines.append(f"{r.level:15s} {r.option:28s} {r.work:13s} {unit:>11s} {r.error:10.2e} "
-                     f"{r.error_mu_c:9.2e} {r.error_dv:9.2e}  {r.note}")
-    lines.append(f"\ncompiled mapped batch, paper's leg: {batch:,.0f} states/s (one core)")
-    return "\n".join(lines)
-
-
 def to_json(rows: list[Row], batch: float) -> dict:
     def clean(v):
         return None if isinstance(v, float) and not math.isfinite(v) else v
     return {"rows": [{k: clean(v) for k, v in asdict(r).items()} for r in rows],
             "batch_states_per_s": batch}
-
-
-def write_csv(rows: list[Row], path) -> Path:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.tmp")
-    with tmp.open("w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(asdict(rows[0])))
-        writer.writeheader()
-        writer.writerows(asdict(r) for r in rows)
-    tmp.replace(path)
-    return path

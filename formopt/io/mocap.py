@@ -33,6 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..mechanics.errors import InputError
+
 SIDES = ("R", "L")
 PELVIS = ("R.ASIS", "L.ASIS", "R.PSIS", "L.PSIS")
 CLUSTER = {"thigh": ("Thigh.Top.Lateral", "Thigh.Bottom.Lateral", "Thigh.Top.Medial", "Thigh.Bottom.Medial"),
@@ -48,7 +50,7 @@ KINEMATIC_LEVEL = 0.01  # m
 REARFOOT_DEG, FOREFOOT_DEG = 8.0, -1.6  # Altman & Davis (2012) foot strike angle thresholds
 
 
-class MocapError(ValueError):
+class MocapError(InputError):
     """A motion-capture file formopt cannot use, and why."""
 
 
@@ -108,7 +110,7 @@ def read_c3d(path) -> Trial:
             force_rate = float(c3d["header"]["analogs"]["frame_rate"])
         else:
             notes.append("the force plate is empty: touchdowns from the kinematics")
-    return _clean(Trial(markers, rate, force, force_rate, str(path), notes=notes))
+    return fill_gaps(Trial(markers, rate, force, force_rate, str(path), notes=notes))
 
 
 def _declared_frames(path) -> int | None:
@@ -159,7 +161,7 @@ def read_text(path, forces=None) -> Trial:
         if not np.any(np.abs(trial.force) > FORCE_THRESHOLD):  # an empty plate: kinematics instead
             trial.force, trial.force_rate = None, None
             trial.notes.append(f"{fpath.name}: the force plate is empty: touchdowns from the kinematics")
-    return _clean(trial)
+    return fill_gaps(trial)
 
 
 def write_text(trial: Trial, markers_path, forces_path=None):
@@ -182,7 +184,7 @@ def _save(path, table, header):
     tmp.replace(path)
 
 
-def _clean(trial: Trial) -> Trial:
+def fill_gaps(trial: Trial) -> Trial:
     """Mark missing samples (NaN or exact zeros), interpolate short gaps, record long ones."""
     for name, xyz in trial.markers.items():
         missing = np.any(~np.isfinite(xyz), axis=1) | np.all(xyz == 0.0, axis=1)

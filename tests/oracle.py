@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .body import Body
+from formopt.mechanics.body import Body
 
 POINTS = ("hip", "knee", "ankle", "heel", "forefoot")
 

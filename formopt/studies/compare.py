@@ -13,11 +13,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import mocap
-from .body import Body, scaled_body
-from .impact import Impact, ImpactResult
-from .model import STATE, build_model
-from .optimize import Optimum, PostureProblem, Problem
+from ..io import mocap
+from ..mechanics.body import Body, scaled_body
+from ..mechanics.impact import Impact, ImpactResult
+from ..mechanics.model import STATE, build_model
+from ..optim.posture import Optimum, PostureProblem, Problem
 
 JOINTS = ("trunk", "hip", "knee", "ankle")
 # The optimum searches hip, knee and ankle within these bounds (deg), the runner's trunk lean,
@@ -117,34 +117,3 @@ def summary(c: Comparison) -> dict:
                      "foot_angle_deg_mean": float(fsa.mean()), "foot_angle_deg_sd": float(fsa.std(ddof=1)) if len(rows) > 1 else 0.0,
                      "T_c_mean": float(T_c.mean()), "T_c_sd": float(T_c.std(ddof=1)) if len(rows) > 1 else 0.0}
     return out
-
-
-def table(c: Comparison) -> str:
-    rep = report(c)
-    lines = [f"touchdowns: {len(c.steps.touchdowns)} ({c.steps.method}); cadence {c.steps.cadence_spm:.1f} "
-             f"steps/min; treadmill belt {c.steps.belt_speed:.2f} m/s",
-             f"lab axes found: {c.axes}", f"model: the paper's leg, {c.body.source}", ""]
-    lines.append(f"  {'':22s} {'steps':>5s} {'strike':>9s} {'trunk':>7s} {'hip':>7s} {'knee':>7s} "
-                 f"{'ankle':>7s} {'foot':>7s} {'T_c (J)':>12s}")
-    for side, s in rep["summary"].items():
-        a, sd = s["angles_deg_mean"], s["angles_deg_sd"]
-        lines.append(f"  {'measured, ' + ('right' if side == 'R' else 'left'):22s} {s['steps']:5d} "
-                     f"{s['strike']:>9s} " + " ".join(f"{a[k]:7.1f}" for k in JOINTS)
-                     + f" {s['foot_angle_deg_mean']:7.1f} {s['T_c_mean']:6.2f} ± {s['T_c_sd']:.2f}")
-        lines.append(f"  {'   sd':22s} {'':5s} {'':9s} " + " ".join(f"{sd[k]:7.1f}" for k in JOINTS)
-                     + f" {s['foot_angle_deg_sd']:7.1f}")
-    ref, opt = rep["reference"], rep["optimum"]
-    lines.append(f"  {'mean ' + c.strike + ' touchdown':22s} {'':5s} {'':9s} "
-                 + " ".join(f"{ref['angles_deg'][k]:7.1f}" for k in JOINTS) + f" {'':7s} {ref['T_c']:6.2f}")
-    status = "" if opt["success"] else f"  (NOT CONVERGED: {opt['status']})"
-    lines.append(f"  {'optimum, same speed':22s} {'':5s} {c.strike:>9s} "
-                 + " ".join(f"{opt['touchdown']['angles_deg'][k]:7.1f}" for k in JOINTS)
-                 + f" {'':7s} {opt['T_c']:6.2f}{status}")
-    lines.append(f"  {'optimum - measured':22s} {'':5s} {'':9s} "
-                 + " ".join(f"{rep['difference_deg'][k]:+7.1f}" for k in JOINTS)
-                 + f" {'':7s} {opt['T_c'] - ref['T_c']:+6.2f}")
-    if opt["active"]:
-        lines.append(f"  the optimum is held by: {', '.join(opt['active'])}")
-    lines += [f"  left out: {x}" for x in c.steps.left_out]
-    lines += [f"note: {n}" for n in c.steps.notes]
-    return "\n".join(lines)

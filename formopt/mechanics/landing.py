@@ -29,6 +29,7 @@ import numpy as np
 from .compiled import Compiled
 from .impact import ground_axes
 from .model import STATE, STRIKES, Model
+from .errors import InputError
 
 GRAVITY = 9.81  # m/s^2
 BAUMGARTE = 50.0  # 1/s, critically damped constraint stabilisation
@@ -102,16 +103,16 @@ class LandingModel:
     def __init__(self, model: Model, joints: Joints = Joints(), slope: float = 0.0,
                  compiled: bool = True, integrator: str = "rk4"):
         if not {"heel", "forefoot"} <= set(model.index):
-            raise ValueError(f"model {model.kind!r} has no foot to land on (it is impact-only)")
+            raise InputError(f"model {model.kind!r} has no foot to land on (it is impact-only)")
         if integrator not in INTEGRATORS:
-            raise ValueError(f"integrator {integrator!r}: expected one of {', '.join(INTEGRATORS)}")
+            raise InputError(f"integrator {integrator!r}: expected one of {', '.join(INTEGRATORS)}")
         self.model, self.joints, self.slope, self.integrator = model, joints, slope, integrator
         self.t_axis, self.n_axis = ground_axes(slope)
         rigid = {b.segment: b for b in model.bodies}
         self.hinges = [(name, rigid[p], rigid[c]) for name, p, c in JOINTS
                        if p in rigid and c in rigid]
         if joints.model not in JOINT_MODELS:
-            raise ValueError(f"joint model {joints.model!r}: expected one of {', '.join(JOINT_MODELS)}")
+            raise InputError(f"joint model {joints.model!r}: expected one of {', '.join(JOINT_MODELS)}")
         self.compiled = compiled
         self._functions = {}
         q = ca.SX.sym("q", model.n)
@@ -290,7 +291,7 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
     E0 = float(start["energy"][0])
     for k, p in enumerate(("heel", "forefoot")):
         if p not in STRIKES[strike] and start["heights"][k] < -1e-9:
-            raise ValueError(f"{strike} strike: the {p} is {-start['heights'][k] * 1e3:.1f} mm below "
+            raise InputError(f"{strike} strike: the {p} is {-start['heights'][k] * 1e3:.1f} mm below "
                              "the ground at touchdown")
     active = ()
     impacts, releases, slip_at, warnings = [], [], [], []
@@ -428,7 +429,7 @@ def landing_function(lm: LandingModel, strike: str, steps: int = 60) -> ca.Funct
     residual = 0 for t_e.
     """
     if strike not in ("heel", "forefoot"):
-        raise ValueError("the two-impact landing starts with a heel or forefoot strike")
+        raise InputError("the two-impact landing starts with a heel or forefoot strike")
     m = lm.model
     point, other = strike, "heel" if strike == "forefoot" else "forefoot"
     xs = ca.SX.sym("x", len(STATE))
@@ -486,15 +487,6 @@ def simulate_state(lm: LandingModel, strike: str, x, friction: float, dt: float,
     """Simulate the landing from a touchdown state x (model.STATE, SI)."""
     q, qd = lm.model.state_numeric(x, STRIKES[strike][0])
     return simulate(lm, strike, q, qd, friction, dt, duration)
-
-
-def land(scene, compiled: bool = True, dt: float | None = None) -> Landing:
-    """Simulate a scene's landing (a formopt.scene.Scene), from its touchdown."""
-    lm = LandingModel(scene.build_model(), scene.joints, scene.slope, compiled,
-                      scene.numerics["integrator"])
-    dt = scene.landing["dt_ms"] * 1e-3 if dt is None else dt
-    return simulate_state(lm, scene.strike, scene.state, scene.friction, dt,
-                          scene.landing["duration_ms"] * 1e-3)
 
 
 def history_rows(landing: Landing, model: Model):

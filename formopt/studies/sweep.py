@@ -21,8 +21,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .landing import LandingModel, simulate_state
-from .model import STATE
+from ..mechanics.landing import simulate_state
+from ..mechanics.model import STATE
+from ..mechanics.errors import InputError
 
 PARAMETERS = {"trunk_deg": "trunk", "hip_deg": "hip", "knee_deg": "knee", "ankle_deg": "ankle",
               "hip_vx": "hip_vx", "hip_vz": "hip_vz", "friction": None, "slope_deg": None}
@@ -35,14 +36,14 @@ def parse_param(text: str) -> tuple[str, np.ndarray]:
     """'ankle_deg=-20:20:41' -> ('ankle_deg', 41 values from -20 to 20)."""
     name, _, spec = text.partition("=")
     if name not in PARAMETERS:
-        raise ValueError(f"--param {name!r}: expected one of {', '.join(PARAMETERS)}")
+        raise InputError(f"--param {name!r}: expected one of {', '.join(PARAMETERS)}")
     try:
         start, stop, count = spec.split(":")
         values = np.linspace(float(start), float(stop), int(count))
     except ValueError:
-        raise ValueError(f"--param {text!r}: expected NAME=START:STOP:COUNT, e.g. ankle_deg=-20:20:41") from None
+        raise InputError(f"--param {text!r}: expected NAME=START:STOP:COUNT, e.g. ankle_deg=-20:20:41") from None
     if not 1 <= len(values) <= 100000 or not np.all(np.isfinite(values)):
-        raise ValueError(f"--param {text!r}: COUNT must be 1 to 100000 and the range finite")
+        raise InputError(f"--param {text!r}: COUNT must be 1 to 100000 and the range finite")
     return name, values
 
 
@@ -134,12 +135,12 @@ def read(path) -> list[dict]:
 def _landing_row(scene, values, models) -> list:
     try:
         s = apply(scene, values)
-        key = (s.path, s.name, s.model, s.slope)
+        key = (s.path, s.name, s.kind, s.slope)
         if key not in models:
-            models[key] = LandingModel(s.build_model(), s.joints, s.slope)
+            models[key] = s.landing()
         lm = models[key]
-        L = simulate_state(lm, s.strike, s.state, s.friction, s.landing["dt_ms"] * 1e-3,
-                           s.landing["duration_ms"] * 1e-3)
+        L = simulate_state(lm, s.strike, s.state, s.friction, s.integration.dt,
+                           s.integration.duration)
         second = L.impacts[1] if len(L.impacts) > 1 else None
         ankle = ""
         if second:
@@ -152,7 +153,7 @@ def _landing_row(scene, values, models) -> list:
         return [L.impacts[0].T_c, second.T_c if second else "", L.T_c_total,
                 second.time * 1e3 if second else "", ankle, f_max, dv[0], dv[1], L.mu_c_max,
                 L.no_slip_held, len(L.releases), L.energy_error, L.ended, ""]
-    except (ValueError, RuntimeError) as err:  # a point the model cannot take: say so, go on
+    except (InputError, RuntimeError) as err:  # a point the model cannot take: say so, go on
         return [""] * (len(COLUMNS) - 1) + [str(err).replace("\n", " ")]
 
 
@@ -167,6 +168,6 @@ def _done(path: Path, header, names) -> set:
     with path.open(newline="") as fh:
         found = next(csv.reader(fh), [])
     if found != header:
-        raise ValueError(f"{path} holds another sweep (columns {found[:4]}...): "
+        raise InputError(f"{path} holds another sweep (columns {found[:4]}...): "
                          "give another --out or remove it")
     return {_key({n: float(r[n]) for n in names}, names) for r in rows}

@@ -9,16 +9,18 @@ from __future__ import annotations
 import difflib
 import math
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
-from . import body as bodies
-from .body import Body, Segment
-from .landing import JOINT_MODELS, Joints
-from .model import MODELS, STATE, STRIKES, Model, Swing, build_model
-from .optimize import OBJECTIVES, RANGE_OF_MOTION_DEG, Problem
+from ..mechanics import body as bodies
+from ..mechanics.body import Body, Segment
+from ..mechanics.impact import GRAPHS, Impact
+from ..mechanics.landing import INTEGRATORS, JOINT_MODELS, Joints, LandingModel
+from ..mechanics.errors import InputError
+from ..mechanics.model import MODELS, STATE, STRIKES, Model, Swing, build_model
+from ..optim.posture import OBJECTIVES, RANGE_OF_MOTION_DEG, PostureProblem, Problem
 
 # The segments each model needs; a segment a model does not use may be given and is ignored.
 # Shank + foot keeps the thigh's geometry: the touchdown state moves the knee through it.
@@ -33,20 +35,56 @@ ANGLES = ("trunk", "hip", "knee", "ankle")
 RATES = ("trunk", "thigh", "shank", "foot")
 
 
-class SceneError(ValueError):
-    """A scene that cannot be used: `key` names the offending entry."""
+class SceneError(InputError):
+    """A scene that cannot be used: `key` names the offending entry (one line, shortened)."""
 
     def __init__(self, key: str, message: str):
-        self.key = key
-        super().__init__(f"{key}: {message}" if key else message)
+        self.key = _one_line(key)
+        message = _one_line(message, 400)
+        super().__init__(f"{self.key}: {message}" if key else message)
+
+
+def _one_line(text: str, limit: int = 120) -> str:
+    """`text` on one line (control characters escaped), cut to `limit` characters."""
+    text = "".join(c if c.isprintable() else repr(c)[1:-1] for c in str(text))
+    return text if len(text) <= limit else text[:limit - 5] + "[...]"
+
+
+def _short(value, limit: int = 60) -> str:
+    """A value as it appears in an error: its repr, one line, at most `limit` characters."""
+    return _one_line(repr(value), limit)
+
+
+@dataclass(frozen=True)
+class Numerics:
+    """Speed against accuracy ([numerics]); every factory of Scene passes each option on."""
+
+    graph: str = "SX"  # CasADi graph of the impact map: "SX" scalar or "MX" matrix expressions
+    # generate C, compile (cached by content) and call it: True, False, or "auto" (where it
+    # pays: the landing's per-step functions, not the impact map or the NLP)
+    compiled: bool | str = "auto"
+    hessian: str = "auto"  # IPOPT: "exact", "limited-memory", or "auto" (exact for impacts)
+    integrator: str = "rk4"  # the landing's fixed-step scheme (mechanics.landing.INTEGRATORS)
+
+
+@dataclass(frozen=True)
+class Integration:
+    """The landing's time grid ([landing]), SI."""
+
+    dt: float = 2e-4  # s, integration step
+    duration: float = 0.2  # s, longest landing simulated
 
 
 @dataclass(frozen=True)
 class Scene:
-    """A validated scene: the body, the model to build and the touchdown to study."""
+    """A validated scene in SI units: the body, the model level, the touchdown, the ground.
+
+    The factories (`model`, `impact`, `landing`, `posture_problem`) are the one path from a
+    scene to a computation: each honours every [numerics] option.
+    """
 
     name: str
-    model: str
+    kind: str  # the model level (model.MODELS)
     body: Body
     strike: str
     state: np.ndarray  # model.STATE, SI
@@ -56,13 +94,38 @@ class Scene:
     notes: tuple[str, ...] = field(default=())  # what the loader did that a user should know
     problem: Problem | None = None  # the [optimize] table, when there is one
     joints: Joints = Joints()  # the [joints] table: the joint model of the landing
-    landing: dict = field(default_factory=lambda: dict(LANDING_DEFAULTS))  # the [landing] table
+    integration: Integration = Integration()  # the [landing] table
     swing: Swing | None = None  # the swing leg's posture (model "full-body")
-    numerics: dict = field(default_factory=lambda: dict(NUMERICS_DEFAULTS))  # the [numerics] table
+    numerics: Numerics = Numerics()  # the [numerics] table
 
-    def build_model(self) -> Model:
+    def model(self) -> Model:
         """The model the scene asks for (only its segments, contacts and swing posture)."""
-        return build_model(self.body, self.model, self.strike, self.swing)
+        return build_model(self.body, self.kind, self.strike, self.swing)
+
+    def impact(self) -> Impact:
+        """The impact map of the scene's touchdown (graph and compilation from [numerics])."""
+        return Impact(self.model(), self.strike, self.slope, self.friction,
+                      self.numerics.compiled is True, self.numerics.graph)
+
+    def landing(self) -> LandingModel:
+        """The landing equations (joints, ground, integrator and compilation from the scene)."""
+        return LandingModel(self.model(), self.joints, self.slope,
+                            self.numerics.compiled is not False, self.numerics.integrator)
+
+    def posture_problem(self, **overrides) -> PostureProblem:
+        """The posture NLP of the [optimize] table; `overrides` replace Problem fields."""
+        if self.problem is None:
+            raise SceneError("optimize", "missing: the scene has nothing to optimise")
+        problem = replace(self.problem, **{k: v for k, v in overrides.items() if v is not None})
+        n = self.numerics
+        return PostureProblem(self.model(), self.strike, self.state, problem, self.slope,
+                              self.friction, joints=self.joints, duration=self.integration.duration,
+                              graph=n.graph, compiled=n.compiled is True, hessian=n.hessian,
+                              integrator=n.integrator)
+
+    def with_state(self, state) -> "Scene":
+        """The same scene with another touchdown state (model.STATE, SI)."""
+        return replace(self, state=np.asarray(state, float))
 
     @property
     def touchdown(self) -> dict:
@@ -125,28 +188,21 @@ def parse(data: dict, path: str = "") -> Scene:
                  problem, joints, landing, swing, _numerics(data.get("numerics", {})))
 
 
-NUMERICS_DEFAULTS = {"graph": "SX", "compiled": False, "hessian": "auto", "integrator": "rk4"}
-
-
-def _numerics(data) -> dict:
+def _numerics(data) -> Numerics:
     """Speed against accuracy: CasADi graph, compiled or not, IPOPT's Hessian, the landing's
     integrator. hessian "auto": exact for impacts, limited-memory through a landing."""
-    from .impact import GRAPHS
-    from .landing import INTEGRATORS
-
     if not isinstance(data, dict):
         raise SceneError("numerics", "must be a table")
-    _keys(data, "numerics", set(NUMERICS_DEFAULTS), set())
-    out = dict(NUMERICS_DEFAULTS)
-    out["graph"] = _choice(data.get("graph", "SX"), "numerics.graph", GRAPHS)
-    out["hessian"] = _choice(data.get("hessian", "auto"), "numerics.hessian",
-                             ("auto", "exact", "limited-memory"))
-    out["integrator"] = _choice(data.get("integrator", "rk4"), "numerics.integrator", INTEGRATORS)
-    compiled = data.get("compiled", False)
-    if not isinstance(compiled, bool):
-        raise SceneError("numerics.compiled", f"must be true or false, not {compiled!r}")
-    out["compiled"] = compiled
-    return out
+    _keys(data, "numerics", {"graph", "compiled", "hessian", "integrator"}, set())
+    default = Numerics()
+    compiled = data.get("compiled", default.compiled)
+    if not isinstance(compiled, bool) and compiled != "auto":
+        raise SceneError("numerics.compiled", f"must be true, false or \"auto\", not {_short(compiled)}")
+    return Numerics(_choice(data.get("graph", default.graph), "numerics.graph", GRAPHS), compiled,
+                    _choice(data.get("hessian", default.hessian), "numerics.hessian",
+                            ("auto", "exact", "limited-memory")),
+                    _choice(data.get("integrator", default.integrator), "numerics.integrator",
+                            INTEGRATORS))
 
 
 def _swing(data) -> Swing:
@@ -162,7 +218,6 @@ def _swing(data) -> Swing:
 
 # -- landing ----------------------------------------------------------------------------
 
-LANDING_DEFAULTS = {"dt_ms": 0.2, "duration_ms": 200.0}
 MODEL_JOINTS = {"effective-mass": (), "shank-foot": ("ankle",), "leg": ("knee", "ankle"),
                 "leg-trunk": ("hip", "knee", "ankle"),
                 "full-body": ("hip", "knee", "ankle", "swing_hip", "swing_knee", "swing_ankle")}
@@ -201,14 +256,15 @@ def _joints(data, model) -> Joints:
     return Joints(kind)
 
 
-def _landing(data) -> dict:
+def _landing(data) -> Integration:
     if not isinstance(data, dict):
         raise SceneError("landing", "must be a table")
-    _keys(data, "landing", set(LANDING_DEFAULTS), set())
-    return {"dt_ms": _number(data, "dt_ms", "landing", default=LANDING_DEFAULTS["dt_ms"],
-                             low=1e-4, high=5.0),
-            "duration_ms": _number(data, "duration_ms", "landing",
-                                   default=LANDING_DEFAULTS["duration_ms"], low=1.0, high=2000.0)}
+    _keys(data, "landing", {"dt_ms", "duration_ms"}, set())
+    default = Integration()
+    return Integration(
+        _number(data, "dt_ms", "landing", default=default.dt * 1e3, low=1e-4, high=5.0) * 1e-3,
+        _number(data, "duration_ms", "landing", default=default.duration * 1e3, low=1.0,
+                high=2000.0) * 1e-3)
 
 
 # -- optimize ---------------------------------------------------------------------------
@@ -286,7 +342,7 @@ def _optimize(data, model, strike) -> tuple[Problem, tuple[str, ...]]:
             raise SceneError("optimize.hip_height_m", "the lower height must be below the upper")
     contact_friction = data.get("contact_friction", False)
     if not isinstance(contact_friction, bool):
-        raise SceneError("optimize.contact_friction", f"must be true or false, not {contact_friction!r}")
+        raise SceneError("optimize.contact_friction", f"must be true or false, not {_short(contact_friction)}")
     max_iterations = _integer(data, "max_iterations", "optimize", default=200, low=1, high=100000)
     problem = Problem(tuple(variables), tuple(lower), tuple(upper), objective, overstride, hip_height,
                       starts, seed, tolerance, contact_friction, max_iterations)
@@ -458,8 +514,11 @@ def _value(value, full, low=-math.inf, high=math.inf, low_open=False) -> float:
     if value is None:
         raise SceneError(full, "missing")
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise SceneError(full, f"must be a number, not {type(value).__name__} {value!r}")
-    value = float(value)
+        raise SceneError(full, f"must be a number, not {type(value).__name__} {_short(value)}")
+    try:
+        value = float(value)
+    except OverflowError:
+        raise SceneError(full, f"must be a finite number, not {_short(value)}") from None
     if not math.isfinite(value):
         raise SceneError(full, f"must be finite, not {value}")
     if value < low or (low_open and value == low) or value > high:
@@ -472,7 +531,7 @@ def _value(value, full, low=-math.inf, high=math.inf, low_open=False) -> float:
 def _integer(data, key, where, default, low, high) -> int:
     value = data.get(key, default)
     if isinstance(value, bool) or not isinstance(value, int):
-        raise SceneError(f"{where}.{key}", f"must be a whole number, not {value!r}")
+        raise SceneError(f"{where}.{key}", f"must be a whole number, not {_short(value)}")
     if not low <= value <= high:
         raise SceneError(f"{where}.{key}", f"must be between {low} and {high}, not {value}")
     return value
@@ -482,14 +541,14 @@ def _pair(data, key, where, limit=math.inf) -> tuple[float, float]:
     full = f"{where}.{key}"
     value = data.get(key)
     if not isinstance(value, list) or len(value) != 2:
-        raise SceneError(full, f"must be a pair of numbers, not {value!r}")
+        raise SceneError(full, f"must be a pair of numbers, not {_short(value)}")
     return tuple(_value(v, f"{full}[{i}]", low=-limit, high=limit) for i, v in enumerate(value))
 
 
 def _string(data, key, where) -> str:
     value = data.get(key)
     if not isinstance(value, str) or not value.strip():
-        raise SceneError(f"{where}.{key}", f"must be a non-empty string, not {value!r}")
+        raise SceneError(f"{where}.{key}", f"must be a non-empty string, not {_short(value)}")
     return value
 
 
@@ -497,5 +556,5 @@ def _choice(value, key, choices) -> str:
     if value not in choices:
         close = difflib.get_close_matches(str(value), choices, n=1)
         hint = f" (did you mean {close[0]!r}?)" if close else ""
-        raise SceneError(key, f"must be one of {', '.join(choices)}, not {value!r}{hint}")
+        raise SceneError(key, f"must be one of {', '.join(choices)}, not {_short(value)}{hint}")
     return value

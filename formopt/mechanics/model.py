@@ -27,6 +27,7 @@ import casadi as ca
 import numpy as np
 
 from .body import Body
+from .errors import InputError
 
 # The touchdown state vector, SI: joint and trunk angles (rad; design.md section 2), the hip
 # velocity (m/s, x forward, z up) and absolute segment angular velocities (rad/s, CCW).
@@ -173,21 +174,21 @@ class Model:
     def _check(self):
         names = [p.name for p in self.points]
         if len(set(names)) != len(names):
-            raise ValueError(f"duplicate point names in {names}")
+            raise InputError(f"duplicate point names in {names}")
         used = {p for b in self.bodies for p in b.base + b.fixed}
         used |= {pm.point for pm in self.point_masses} | {p for c in self.coincident for p in c}
         used |= {p for p, _ in self.guides}
         unknown = used - set(names)
         if unknown:
-            raise ValueError(f"the model refers to undefined points {sorted(unknown)}")
+            raise InputError(f"the model refers to undefined points {sorted(unknown)}")
         carried = {p for b in self.bodies for p in b.base} | {pm.point for pm in self.point_masses}
         massless = [n for n in names if n not in carried]
         if massless:
-            raise ValueError(f"points {massless} carry no mass (the mass matrix would be singular): "
+            raise InputError(f"points {massless} carry no mass (the mass matrix would be singular): "
                              "make each one a base point of a body or give it a point mass")
         for b in self.bodies:
             if self._local(b, b.base[0]) == self._local(b, b.base[1]):
-                raise ValueError(f"{b.segment}: base points coincide, the frame is undefined")
+                raise InputError(f"{b.segment}: base points coincide, the frame is undefined")
 
     @property
     def segments(self) -> tuple[str, ...]:
@@ -235,7 +236,7 @@ class Model:
             M[self.cols(pm.point), self.cols(pm.point)] += self.body[pm.segment].mass * np.eye(2)
         eig = np.linalg.eigvalsh(M)
         if eig[0] <= 1e-12 * max(eig[-1], 1e-300):
-            raise ValueError(f"the mass matrix is singular (eigenvalues {eig[0]:.3g} .. {eig[-1]:.3g}): "
+            raise InputError(f"the mass matrix is singular (eigenvalues {eig[0]:.3g} .. {eig[-1]:.3g}): "
                              "each segment needs a mass and an inertia about its centre of mass > 0")
         return M
 
@@ -360,16 +361,16 @@ def build_model(body: Body, kind: str = "leg", strike: str = "forefoot",
                      [PointMass("trunk", "hip"), *swing_mass], trunk="trunk", kind=kind)
     if kind == "leg-trunk":
         if "shoulder" not in body["trunk"].landmarks or body["trunk"].inertia_com <= 0:
-            raise ValueError("model 'leg-trunk' needs a rigid trunk: its length, centre of mass "
+            raise InputError("model 'leg-trunk' needs a rigid trunk: its length, centre of mass "
                              "and inertia")
         return Model(body, [Point(n, n) for n in ("shoulder", *leg_points)],
                      (RigidBody("trunk", ("hip", "shoulder")), thigh, shank, foot),
                      swing_mass, trunk="trunk", kind=kind)
     if kind == "full-body":
         if swing is None:
-            raise ValueError("model 'full-body' needs the swing leg's touchdown posture")
+            raise InputError("model 'full-body' needs the swing leg's touchdown posture")
         if "shoulder" not in body["trunk"].landmarks or body["trunk"].inertia_com <= 0:
-            raise ValueError("model 'full-body' needs a rigid trunk: its length, centre of mass "
+            raise InputError("model 'full-body' needs a rigid trunk: its length, centre of mass "
                              "and inertia")
         full = Body({**body.segments, **swing_segments(body)}, body.source)
         swing_points = ("swing_knee", "swing_ankle", "swing_heel", "swing_forefoot")
@@ -379,7 +380,7 @@ def build_model(body: Body, kind: str = "leg", strike: str = "forefoot",
                   RigidBody("swing_foot", ("swing_heel", "swing_forefoot"), ("swing_ankle",)))
         return Model(full, [Point(n, n) for n in ("shoulder", *leg_points, *swing_points)], bodies,
                      trunk="trunk", kind=kind, swing=swing)
-    raise ValueError(f"unknown model {kind!r}: expected one of {', '.join(MODELS)}")
+    raise InputError(f"unknown model {kind!r}: expected one of {', '.join(MODELS)}")
 
 
 def swing_segments(body: Body) -> dict:

@@ -1,23 +1,19 @@
-"""Figures: stick figures of touchdown postures and bars of their impact indicators.
-
-Files are written to a temporary name and renamed, so a figure on disk is always whole.
+"""Figures: each function returns a Matplotlib Figure (saved by the caller, for example with
+formopt.io.files.save_figure). Figures are made with `matplotlib.figure.Figure`, not pyplot,
+so importing this module never touches the user's backend or open windows.
 """
 
 from __future__ import annotations
 
 import math
-import os
-from pathlib import Path
 
 import matplotlib
+import numpy as np
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from .body import Body  # noqa: E402
-from .impact import ImpactResult, ground_axes  # noqa: E402
-from .model import STRIKES, positions  # noqa: E402
+from ..mechanics.body import Body
+from ..mechanics.impact import ImpactResult, ground_axes
+from ..mechanics.model import STRIKES, positions
 
 POINT_MASS_TRUNK = 0.45  # m, length of the line that shows a point-mass trunk's lean
 
@@ -45,9 +41,9 @@ def ground(ax, slope: float, span=(-0.6, 0.6)):
     ax.fill_between(ends[:, 0], ends[:, 1], ends[:, 1] - 0.05, color="0.85")
 
 
-def posture_figure(path, body: Body, strike: str, slope: float, postures) -> Path:
+def posture_figure(body: Body, strike: str, slope: float, postures) -> Figure:
     """Overlaid stick figures; `postures` is a list of (state, label, color)."""
-    fig, ax = plt.subplots(figsize=(5.5, 6.5))
+    fig, ax = _subplots(figsize=(5.5, 6.5))
     ground(ax, slope)
     for x, label, color in postures:
         stick_figure(ax, body, x, strike, slope, color, label)
@@ -56,10 +52,10 @@ def posture_figure(path, body: Body, strike: str, slope: float, postures) -> Pat
     ax.set_ylabel("z, up (m)")
     ax.legend(loc="upper left", fontsize=8)
     ax.set_title(f"{strike} strike at touchdown", fontsize=10)
-    return save(fig, path)
+    return fig
 
 
-def indicator_figure(path, results: dict[str, ImpactResult]) -> Path:
+def indicator_figure(results: dict[str, ImpactResult]) -> Figure:
     """Bars of T_c, impulses, mu_c and dv of the trunk for each labelled result."""
     names = ["T_c (J)", "normal impulse (N s)", "tangential impulse (N s)", "mu_c",
              "dv trunk x (m/s)", "dv trunk z (m/s)"]
@@ -69,7 +65,7 @@ def indicator_figure(path, results: dict[str, ImpactResult]) -> Path:
         mu = r.mu_c if r.mu_c is not None else float("nan")  # no bar where undefined
         return [r.T_c, r.impulse_total[1], r.impulse_total[0], mu, dv[0], dv[1]]
 
-    fig, axes = plt.subplots(1, len(names), figsize=(12, 3.2))
+    fig, axes = _subplots(1, len(names), figsize=(12, 3.2))
     colors = ["0.55", "tab:blue", "tab:orange", "tab:green"]
     for k, (ax, name) in enumerate(zip(axes, names)):
         for j, (label, r) in enumerate(results.items()):
@@ -79,26 +75,22 @@ def indicator_figure(path, results: dict[str, ImpactResult]) -> Path:
         ax.axhline(0, color="0.3", lw=0.8)
     axes[0].legend(fontsize=8)
     fig.tight_layout()
-    return save(fig, path)
+    return fig
 
 
-def save(fig, path) -> Path:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.stem}.tmp{path.suffix}")
-    fig.savefig(tmp, dpi=120)
-    plt.close(fig)
-    os.replace(tmp, path)
-    return path
+def _subplots(*args, figsize=(6.4, 4.8), **kwargs):
+    """(figure, axes) of a new Figure, outside pyplot."""
+    fig = Figure(figsize=figsize, dpi=120)
+    return fig, fig.subplots(*args, **kwargs)
 
 
-def landing_figures(folder, landing, body: Body, model, slope: float, strike: str) -> list[Path]:
-    """Stick figures through the landing, and kinetic energy over time with its impact drops."""
-    folder = Path(folder)
-    fig, ax = plt.subplots(figsize=(8, 5))
+def landing_figures(landing, model, slope: float, strike: str) -> dict[str, Figure]:
+    """{"landing_sequence": stick figures through the landing, "kinetic_energy": kinetic
+    energy over time with its impact drops}."""
+    fig, ax = _subplots(figsize=(8, 5))
     ground(ax, slope, span=(-0.8, 0.8))
     frames = np.linspace(0, len(landing.t) - 1, min(8, len(landing.t))).astype(int)
-    cmap = plt.get_cmap("viridis")
+    cmap = matplotlib.colormaps["viridis"]
     for j, k in enumerate(frames):
         q = landing.q[k]
         pts = {p.name: q[model.cols(p.name)] for p in model.points}
@@ -112,9 +104,9 @@ def landing_figures(folder, landing, body: Body, model, slope: float, strike: st
     ax.set_ylabel("z, up (m)")
     ax.legend(fontsize=7, ncol=2)
     ax.set_title(f"landing after a {strike} strike", fontsize=10)
-    sequence = save(fig, folder / "landing_sequence.png")
+    sequence = fig
 
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig, ax = _subplots(figsize=(7, 4))
     ax.plot(landing.t * 1e3, landing.T, color="tab:blue", label="kinetic energy T")
     for e in landing.impacts:
         ax.axvline(e.time * 1e3, color="tab:red", lw=0.8, ls="--")
@@ -125,16 +117,15 @@ def landing_figures(folder, landing, body: Body, model, slope: float, strike: st
     ax.set_title(f"absorbed in all: {landing.T_c_total:.3f} J; energy balance error "
                  f"{landing.energy_error:.1e} J", fontsize=9)
     ax.legend(fontsize=8)
-    energy = save(fig, folder / "kinetic_energy.png")
-    return [sequence, energy]
+    return {"landing_sequence": sequence, "kinetic_energy": fig}
 
 
-def sweep_figure(path, rows: list[dict], param: str) -> Path:
+def sweep_figure(rows: list[dict], param: str) -> Figure:
     """Absorbed energy (first impact, all impacts) and peak normal force against a parameter."""
     good = [r for r in rows if not r["error"]]
     x = np.array([float(r[param]) for r in good])
     order = np.argsort(x)
-    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
+    fig, axes = _subplots(1, 2, figsize=(10, 3.8))
     for key, label in (("T_c_first", "first impact"), ("T_c_total", "all impacts")):
         axes[0].plot(x[order], np.array([float(good[k][key]) for k in order]), "-o", ms=3, label=label)
     axes[0].set_ylabel("absorbed energy T_c (J)")
@@ -145,15 +136,15 @@ def sweep_figure(path, rows: list[dict], param: str) -> Path:
     for ax in axes:
         ax.set_xlabel(param)
     fig.tight_layout()
-    return save(fig, path)
+    return fig
 
 
-def comparison_figure(path, c) -> Path:
+def comparison_figure(c) -> Figure:
     """Measured and optimal touchdowns overlaid, per-joint differences, T_c across steps."""
-    from .compare import JOINTS, report
+    from ..studies.compare import JOINTS, report
 
     rep = report(c)
-    fig, axes = plt.subplots(1, 3, figsize=(14, 4.8), gridspec_kw={"width_ratios": [1.1, 1, 1]})
+    fig, axes = _subplots(1, 3, figsize=(14, 4.8), gridspec_kw={"width_ratios": [1.1, 1, 1]})
     ax = axes[0]
     ground(ax, 0.0)
     stick_figure(ax, c.body, c.reference, c.strike, 0.0, "0.5", f"measured (mean {c.strike} touchdown)")
@@ -184,15 +175,15 @@ def comparison_figure(path, c) -> Path:
     ax.legend(fontsize=7)
     ax.set_title(f"T_c per step (cadence {c.steps.cadence_spm:.0f} steps/min)", fontsize=10)
     fig.tight_layout()
-    return save(fig, path)
+    return fig
 
 
-def pareto_figure(path, rows) -> Path:
+def pareto_figure(rows) -> Figure:
     """Time against error of every bench row, one panel per kind of work. The model ladder
     (errors against the full body) and the numerical options (errors against the paper's leg
     at its finest setting) are drawn apart, each with its Pareto front."""
     works = [w for w in ("impact", "landing", "optimisation") if any(r.work == w for r in rows)]
-    fig, axes = plt.subplots(1, len(works), figsize=(5.5 * len(works), 4.5))
+    fig, axes = _subplots(1, len(works), figsize=(5.5 * len(works), 4.5))
     groups = (("model ladder", "tab:orange", lambda r: r.option.startswith("ladder")),
               ("numerical options, paper's leg", "tab:blue", lambda r: not r.option.startswith("ladder")))
     for ax, work in zip(np.atleast_1d(axes), works):
@@ -218,4 +209,4 @@ def pareto_figure(path, rows) -> Path:
         ax.set_title(work, fontsize=10)
         ax.legend(fontsize=7)
     fig.tight_layout()
-    return save(fig, path)
+    return fig

@@ -21,15 +21,16 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import casadi as ca
 import numpy as np
 
-from .compiled import cached_nlpsol
-from .impact import Impact, ImpactResult, ground_axes, impact_function
-from .landing import Joints, LandingModel, landing_function, simulate_state
-from .model import STATE, STRIKES, Model, landmarks
+from ..mechanics.compiled import cached_nlpsol
+from ..mechanics.impact import Impact, ImpactResult, ground_axes, impact_function
+from ..mechanics.landing import Joints, LandingModel, landing_function, simulate_state
+from ..mechanics.model import STATE, STRIKES, Model, landmarks
+from ..mechanics.errors import InputError
 
 ANGLES = ("trunk", "hip", "knee", "ankle")
 RATES = ("omega_trunk", "omega_thigh", "omega_shank", "omega_foot")
@@ -136,29 +137,16 @@ class Optimum:
     notes: tuple[str, ...] = field(default=())
 
 
-def solve(scene, compiled: bool = False, progress=None, **overrides) -> Optimum:
-    """Optimise a scene's touchdown (a formopt.scene.Scene with an [optimize] table).
-
-    `overrides` replace fields of the scene's Problem (starts, seed, tolerance, ...).
-    """
-    if scene.problem is None:
-        raise ValueError(f"{scene.path or scene.name}: no [optimize] table: nothing to optimise")
-    problem = replace(scene.problem, **{k: v for k, v in overrides.items() if v is not None})
-    model = scene.build_model()
-    numerics = scene.numerics
-    hessian = None if numerics["hessian"] == "auto" else numerics["hessian"]
-    return PostureProblem(model, scene.strike, scene.state, problem, scene.slope,
-                          scene.friction, compiled or numerics["compiled"], hessian=hessian,
-                          joints=scene.joints,
-                          duration=scene.landing["duration_ms"] * 1e-3).solve(progress)
-
-
 class PostureProblem:
     """The NLP of one model, strike, ground and problem; solve() runs the multi-start."""
 
     def __init__(self, model: Model, strike: str, reference, problem: Problem,
-                 slope: float = 0.0, friction: float = 0.8, compiled: bool = False,
-                 hessian: str | None = None, joints: Joints | None = None, duration: float = 0.2):
+                 slope: float = 0.0, friction: float = 0.8, joints: Joints | None = None,
+                 duration: float = 0.2, graph: str = "SX", compiled: bool = False,
+                 hessian: str = "auto", integrator: str = "rk4"):
+        """`reference`: the touchdown state (STATE, SI) whose other values stay fixed;
+        `duration` (s): the longest landing; `graph`, `compiled`, `hessian` ("auto": exact
+        for impacts, limited-memory through a landing), `integrator`: scene [numerics]."""
         t0 = time.perf_counter()
         self.model, self.strike, self.problem = model, strike, problem
         self.slope, self.friction = slope, friction
@@ -169,37 +157,40 @@ class PostureProblem:
         us, ps = ca.SX.sym("u", len(self.index)), ca.SX.sym("p", 2)
         self._state = ca.Function("state", [us, ps], [self.state(us, ps)])
         self.duration = duration
-        self.landing = LandingModel(model, joints or Joints(), slope) if problem.landing else None
+        self.landing = (LandingModel(model, joints or Joints(), slope, integrator=integrator)
+                        if problem.landing else None)
         # exact Hessians pay for the impact alone; through the landing's RK4 chain a
         # limited-memory Hessian solves 4x faster (benchmarks/solve_speed.py)
-        hessian = hessian or ("limited-memory" if self.landing else "exact")
-        sym = ca.MX if self.landing else ca.SX
+        if hessian == "auto":
+            hessian = "limited-memory" if self.landing else "exact"
+        self.graph, self.compiled, self.hessian = graph, compiled, hessian
+        sym = ca.MX if self.landing or graph == "MX" else ca.SX
         u = sym.sym("u", len(self.index))
         p = sym.sym("p", 2)  # running speed (hip_vx, m/s), friction coefficient
         tau = sym.sym("tau", 1 if self.landing else 0)  # second impact at tau * duration
         w = ca.vertcat(u, tau)
         x = self._state(u, p)
-        out = impact_function(model, strike, slope)(x=x)
+        out = impact_function(model, strike, slope, graph=graph)(x=x)
         terms = {"T_c": out["T_c"], "dv_trunk_x": out["dv_trunk"][0],
                  "dv_trunk_z": out["dv_trunk"][1], "dv_com_x": out["dv_com"][0],
                  "dv_com_z": out["dv_com"][1]}
         landing = None
         if self.landing:
             if strike not in ("heel", "forefoot"):
-                raise ValueError("a landing objective needs a heel or forefoot strike (the other "
+                raise InputError("a landing objective needs a heel or forefoot strike (the other "
                                  "point comes down second)")
             self._t_ref = self._second_impact(self.reference)
             if self._t_ref is None:
-                raise ValueError("the reference touchdown's landing never brings the other foot point "
+                raise InputError("the reference touchdown's landing never brings the other foot point "
                                  f"down within {duration * 1e3:g} ms: no landing to optimise "
                                  "(check [joints] and [landing].duration_ms)")
             landing = landing_function(self.landing, strike, LANDING_STEPS)(x=x, t_e=tau * duration)
             terms["T_c_total"] = landing["T_c_total"]
             self._T_c_total = ca.Function("T_c_total", [w, p], [landing["T_c_total"]])
         f = sum(wt * terms[k] for k, wt in problem.objective.items())
-        self._objective = ca.Function("objective", [w, p], [f])
+        self.objective_function = ca.Function("objective", [w, p], [f])
         self._first = self.start(self.reference)  # the first start, and the objective's scale
-        self.scale = 1.0 / max(abs(float(self._objective(self._first, self.p0))), 1e-2)
+        self.scale = 1.0 / max(abs(float(self.objective_function(self._first, self.p0))), 1e-2)
         g, self.constraints = self._constraints(x, out, p, landing)
         self.nlp = {"x": w, "p": p, "f": self.scale * f, "g": g}
         opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
@@ -209,14 +200,14 @@ class PostureProblem:
         lam = sym.sym("lam", g.shape[0])
         lagrangian = self.scale * f + ca.dot(lam, g)
         self._dL_dp = ca.Function("dL_dp", [w, p, lam], [ca.gradient(lagrangian, p) / self.scale])
-        self._g = ca.Function("g", [w, p], [g])
+        self.constraint_function = ca.Function("g", [w, p], [g])
         self.build_time = time.perf_counter() - t0
 
     def _simulate(self, x, dt: float):
         """The event-driven landing from touchdown state x, or None if the state cannot land."""
         try:
             return simulate_state(self.landing, self.strike, x, self.friction, dt, self.duration)
-        except ValueError:
+        except InputError:
             return None
 
     @staticmethod
@@ -388,11 +379,11 @@ class PostureProblem:
                        build_time=self.build_time, notes=tuple(notes))
 
     def _feasible(self, u, tol=1e-6) -> bool:
-        g = np.asarray(self._g(u, self.p0), float).ravel()
+        g = np.asarray(self.constraint_function(u, self.p0), float).ravel()
         return bool(np.all(g >= self.lbg - tol) and np.all(g <= self.ubg + tol))
 
     def _active(self, u, sol) -> tuple[Constraint, ...]:
-        g = np.asarray(self._g(u, self.p0), float).ravel()
+        g = np.asarray(self.constraint_function(u, self.p0), float).ravel()
         # IPOPT's multipliers of L = f + lam' g: d(f*)/d(bound) = -lam (envelope theorem)
         lam_g = -np.asarray(sol["lam_g"], float).ravel() / self.scale
         lam_x = -np.asarray(sol["lam_x"], float).ravel() / self.scale

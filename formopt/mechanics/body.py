@@ -21,6 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from .errors import InputError
 
 SEGMENTS = ("trunk", "swing_leg", "thigh", "shank", "foot")
 
@@ -183,7 +184,7 @@ def scaled_body(mass: float, height: float, sex: str = "male") -> Body:
     geometry).
     """
     if sex not in DE_LEVA:
-        raise ValueError(f"sex must be one of {sorted(DE_LEVA)}, not {sex!r}")
+        raise InputError(f"sex must be one of {sorted(DE_LEVA)}, not {sex!r}")
     table = DE_LEVA[sex]
     scale = height / table["stature"]
 

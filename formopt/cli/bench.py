@@ -1,0 +1,37 @@
+"""formopt bench [--quick]: time and accuracy of each model level and numerical option."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import sys
+from pathlib import Path
+
+from ..io.files import save_figure, write_csv, write_json
+from ..report.figures import pareto_figure
+from ..report.tables import bench_table
+from ..studies import bench
+
+
+def add_parser(commands):
+    cmd = commands.add_parser("bench", help="time and accuracy of each model level and numerical "
+                                            "option (the bench states shipped with formopt)")
+    cmd.add_argument("--quick", action="store_true", help="a reduced set, under a minute")
+    cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
+    cmd.add_argument("--out", default="out/bench", help="folder for bench.csv and pareto.png")
+
+
+def run(args) -> int:
+    rows, batch = bench.run(args.quick, progress=lambda text: print(f"  {text}", file=sys.stderr))
+    out = Path(args.out)
+    table = [dataclasses.asdict(r) for r in rows]
+    files = [write_csv(out / "bench.csv", [list(table[0])] + [list(r.values()) for r in table]),
+             save_figure(pareto_figure(rows), out / "pareto.png")]
+    report = {**bench.to_json(rows, batch), "files": [str(f) for f in files]}
+    write_json(out / "bench.json", report)
+    if args.json:
+        print(json.dumps(report, indent=2))
+    else:
+        print(bench_table(rows, batch))
+        print(f"wrote {', '.join(report['files'])}, {out / 'bench.json'}")
+    return 0

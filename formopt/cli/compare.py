@@ -1,0 +1,57 @@
+"""formopt compare --trial T --static S --mass M --height H: measured against optimal."""
+
+from __future__ import annotations
+
+import json
+
+from ..io import mocap
+from ..io.files import save_figure, write_csv, write_json
+from ..mechanics.errors import InputError
+from ..report.figures import comparison_figure
+from ..report.tables import comparison_table
+from ..studies.compare import compare, report
+from .common import out_folder
+
+
+def add_parser(commands):
+    cmd = commands.add_parser("compare", help="measured touchdowns of a motion-capture trial "
+                                              "against the optimum")
+    cmd.add_argument("--trial", required=True, help="running trial: C3D, or RBDS marker text")
+    cmd.add_argument("--static", required=True, help="standing calibration trial (C3D or text)")
+    cmd.add_argument("--forces", help="force text file for a text trial (RBDS layout)")
+    cmd.add_argument("--mass", type=float, required=True, help="runner's mass (kg)")
+    cmd.add_argument("--height", type=float, required=True, help="runner's stature (m)")
+    cmd.add_argument("--sex", default="male", choices=["male", "female"])
+    cmd.add_argument("--friction", type=float, default=0.8, help="the ground's friction (default 0.8)")
+    cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
+    cmd.add_argument("--out", help="folder for the figure, CSV and JSON (default out/<trial>)")
+
+
+TOUCHDOWN_COLUMNS = ["time_s", "side", "strike", "trunk_deg", "hip_deg", "knee_deg", "ankle_deg",
+                     "foot_angle_deg", "hip_vx", "hip_vz", "T_c_J", "valid"]
+
+
+def run(args) -> int:
+    if not 1.0 <= args.mass <= 500.0 or not 0.5 <= args.height <= 2.5:
+        raise InputError("--mass must be 1 to 500 kg and --height 0.5 to 2.5 m")
+    if not args.friction > 0:
+        raise InputError("--friction must be > 0")
+    trial = mocap.read(args.trial, args.forces)
+    static = mocap.read(args.static)
+    result = compare(trial, static, args.mass, args.height, args.sex, args.friction)
+    out = out_folder(args, args.trial)
+    rep = report(result)
+    rep["figure"] = str(save_figure(comparison_figure(result), out / "comparison.png"))
+    rows = [TOUCHDOWN_COLUMNS]
+    for t in rep["touchdowns"]:
+        a = t["angles_deg"]
+        rows.append([t["time"], t["side"], t["strike"], a["trunk"], a["hip"], a["knee"], a["ankle"],
+                     t["foot_angle_deg"], *t["hip_velocity"], t["T_c"], t["valid"]])
+    write_csv(out / "touchdowns.csv", rows)
+    write_json(out / "comparison.json", rep)
+    if args.json:
+        print(json.dumps(rep, indent=2))
+    else:
+        print(comparison_table(result))
+        print(f"\nwrote {rep['figure']}, {out / 'touchdowns.csv'}, {out / 'comparison.json'}")
+    return 0 if result.optimum.success else 1

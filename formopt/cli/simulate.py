@@ -1,0 +1,40 @@
+"""formopt simulate SCENE: the landing from touchdown (figures, CSV, JSON)."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+from .. import api
+from ..io.files import save_figure, write_csv, write_json
+from ..io.scene import load
+from ..mechanics.landing import history_rows
+from ..report.figures import landing_figures
+from ..report.tables import landing_table
+from .common import out_folder
+
+
+def add_parser(commands):
+    cmd = commands.add_parser("simulate", help="follow the landing from the touchdown")
+    cmd.add_argument("scene", help="scene file, e.g. problems/landing_spring.toml")
+    cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
+    cmd.add_argument("--out", help="folder for figures, CSV and JSON (default out/<scene>)")
+
+
+def run(args) -> int:
+    scene = load(args.scene)
+    landing = api.simulate(scene)
+    model = scene.model()
+    out = out_folder(args, scene.path or scene.name)
+    files = [save_figure(fig, out / f"{name}.png")
+             for name, fig in landing_figures(landing, model, scene.slope, scene.strike).items()]
+    files.append(write_csv(out / "landing.csv", history_rows(landing, model)))
+    report = {"scene": scene.name, "model": scene.kind, "joints": dataclasses.asdict(scene.joints),
+              "touchdown": scene.touchdown, **landing.to_dict(), "files": [str(f) for f in files]}
+    write_json(out / "landing.json", report)
+    if args.json:
+        print(json.dumps(report, indent=2))
+    else:
+        print(landing_table(scene, landing))
+        print(f"\nwrote {', '.join(report['files'])}, {out / 'landing.json'}")
+    return 0

@@ -1,0 +1,59 @@
+"""formopt solve SCENE: the touchdown posture that absorbs the least energy."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import sys
+
+from .. import api
+from ..io.files import save_figure, write_json
+from ..io.scene import load
+from ..mechanics.errors import InputError
+from ..report.figures import indicator_figure, posture_figure
+from ..report.tables import solve_report, solve_table
+from .common import out_folder
+
+
+def add_parser(commands):
+    cmd = commands.add_parser("solve", help="optimise the touchdown posture of a scene")
+    cmd.add_argument("scene", help="scene file with an [optimize] table, e.g. problems/demo.toml")
+    cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
+    cmd.add_argument("--out", help="folder for figures and result files (default out/<scene>)")
+    cmd.add_argument("--starts", type=int, help="number of starts (overrides the scene)")
+    cmd.add_argument("--seed", type=int, help="seed of the random starts (overrides the scene)")
+    cmd.add_argument("--compiled", action="store_true",
+                     help="compile the NLP's functions to C (the scene's [numerics] compiled = true)")
+
+
+def run(args) -> int:
+    scene = load(args.scene)
+    if args.compiled:
+        scene = dataclasses.replace(scene, numerics=dataclasses.replace(scene.numerics, compiled=True))
+    if args.starts is not None and args.starts < 1:
+        raise InputError("--starts must be at least 1")
+    if scene.problem is None:
+        raise InputError("no [optimize] table: nothing to optimise")
+    seed = args.seed if args.seed is not None else scene.problem.seed
+
+    def progress(k, n, start):
+        print(f"  start {k}/{n}: {start.status}, objective {start.objective:.6g} "
+              f"({start.iterations} iterations)", file=sys.stderr)
+
+    print(f"{scene.name}: seed {seed}", file=sys.stderr)
+    opt = api.solve(scene, progress=progress, starts=args.starts, seed=args.seed)
+    out = out_folder(args, scene.path or scene.name)
+    postures = [(scene.state, "reference", "0.55"),
+                (opt.state, "optimum" if opt.success else "not converged", "tab:blue")]
+    figures = [save_figure(posture_figure(scene.body, scene.strike, scene.slope, postures),
+                           out / "posture.png"),
+               save_figure(indicator_figure({"reference": opt.reference, "optimum": opt.impact}),
+                           out / "indicators.png")]
+    report = solve_report(scene, opt, [str(f) for f in figures])
+    write_json(out / "result.json", report)
+    if args.json:
+        print(json.dumps(report, indent=2))
+    else:
+        print(solve_table(scene, opt))
+        print(f"\nwrote {', '.join(str(f) for f in figures)}, {out / 'result.json'}")
+    return 0 if opt.success else 1

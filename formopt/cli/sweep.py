@@ -1,0 +1,46 @@
+"""formopt sweep SCENE --param NAME=START:STOP:COUNT: landings across a grid (resumable)."""
+
+from __future__ import annotations
+
+import os
+
+from ..io.files import save_figure
+from ..io.scene import load
+from ..mechanics.errors import InputError
+from ..report.figures import sweep_figure
+from ..studies import sweep
+
+
+def add_parser(commands):
+    cmd = commands.add_parser("sweep", help="landings across a range of parameters (resumable)")
+    cmd.add_argument("scene", help="scene file, e.g. problems/landing_spring.toml")
+    cmd.add_argument("--param", action="append", required=True,
+                     help="NAME=START:STOP:COUNT (repeat for a grid); NAME one of "
+                          + ", ".join(sweep.PARAMETERS))
+    cmd.add_argument("--out", help="CSV file (default out/<scene>/sweep.csv); an existing one is resumed")
+    cmd.add_argument("--no-progress", action="store_true", help="no progress bar")
+    cmd.add_argument("--workers", type=int, default=os.cpu_count() or 1,
+                     help="local processes (default: one per core)")
+    cmd.add_argument("--scheduler", help="address of a Dask distributed scheduler, e.g. "
+                                         "tcp://10.0.0.5:8786 (pip install 'formopt[dask]')")
+
+
+def run(args) -> int:
+    from pathlib import Path
+
+    scene = load(args.scene)
+    params = [sweep.parse_param(p) for p in args.param]
+    out = Path(args.out) if args.out else Path("out") / Path(scene.path).stem / "sweep.csv"
+    if args.workers < 1:
+        raise InputError("--workers must be at least 1")
+    rows = sweep.run(scene, params, out, progress=not args.no_progress, workers=args.workers,
+                     scheduler=args.scheduler)
+    failed = [r for r in rows if r["error"]]
+    totals = [float(r["T_c_total"]) for r in rows if not r["error"]]
+    print(f"{len(rows)} landings in {out}" + (f", {len(failed)} failed (see the error column)"
+                                              if failed else ""))
+    if totals:
+        print(f"T_c_total from {min(totals):.4f} to {max(totals):.4f} J")
+    if len(params) == 1 and totals:
+        print(f"wrote {save_figure(sweep_figure(rows, params[0][0]), out.with_suffix('.png'))}")
+    return 0

@@ -1,0 +1,1 @@
+"""Input and output at the boundary: scene files, motion capture, atomic output files."""

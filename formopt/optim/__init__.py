@@ -1,0 +1,1 @@
+"""The posture NLP: decision variables, constraints, IPOPT multi-start, post-solve report."""

@@ -1,0 +1,1 @@
+"""Reports: text tables and Matplotlib figures of results (no printing, no backend)."""

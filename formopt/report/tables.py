@@ -1,0 +1,195 @@
+"""Text reports: the terminal tables of every command (plain strings, no printing).
+
+Each function takes results (and the scene that produced them) and returns the table a
+person reads; the JSON reports beside them hold the same numbers for other tools.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from ..io.scene import Scene, touchdown_table
+from ..mechanics.impact import ImpactResult
+from ..optim.posture import explain
+from ..studies.compare import JOINTS, Comparison, report
+
+
+def solve_report(scene: Scene, opt, figures) -> dict:
+    """The JSON report of an optimisation."""
+    return {
+        "scene": scene.name, "model": scene.kind, "success": opt.success, "status": opt.status,
+        "status_explained": explain(opt.status),
+        "objective": opt.objective, "objective_terms": scene.problem.objective,
+        "touchdown": touchdown_table(scene.strike, opt.state),
+        "T_c": opt.impact.T_c, "impulse": {k: list(v) for k, v in opt.impact.impulse.items()},
+        "indicators": opt.impact.to_dict(),
+        "reference": {"touchdown": scene.touchdown, "indicators": opt.reference.to_dict()},
+        "active": [dataclasses.asdict(c) for c in opt.active],
+        "sensitivity": opt.sensitivity,
+        "starts": [dataclasses.asdict(s) for s in opt.starts],
+        "local_optima": opt.local_optima, "seed": opt.seed,
+        "solve_time_s": opt.solve_time, "build_time_s": opt.build_time,
+        "notes": list(scene.notes) + list(opt.notes), "figures": figures,
+    }
+
+
+def impact_table(scene: Scene, r: ImpactResult) -> str:
+    """The indicators of one strike as a terminal table."""
+    lines = [f"{scene.name}  ({scene.path})",
+             f"model {scene.kind}; body {scene.body.source}",
+             f"{r.strike} strike on {math.degrees(scene.slope):+.1f} deg ground, friction {r.friction:g}",
+             ""]
+    lines += _indicator_lines(r)
+    lines += ["", f"valid: {'yes' if r.valid else 'no'}"]
+    lines += [f"warning: {w}" for w in r.warnings] + [f"note: {n}" for n in scene.notes]
+    return "\n".join(lines)
+
+
+def _indicator_lines(r: ImpactResult, other: ImpactResult | None = None) -> list[str]:
+    """Indicator rows; with `other`, a second column (reference, then this one)."""
+    def row(name, symbol, value, unit, fmt="{:+10.4f}"):
+        cells = fmt.format(value(other)) + " " if other else ""
+        return f"  {name:30s} {symbol:5s} {cells}{fmt.format(value(r))} {unit}"
+
+    lines = [row("kinetic energy before", "T", lambda z: z.T, "J", "{:10.3f}"),
+             row("absorbed (CMSKE)", "T_c", lambda z: z.T_c, "J", "{:10.3f}"),
+             row("kinetic energy after", "T_a", lambda z: z.T_a, "J", "{:10.3f}")]
+    for point in r.impulse:
+        if other is None or point in other.impulse:
+            open_ = "" if all(r.impulse_determined[point]) else "   (split not determined)"
+            lines.append(row(f"ground impulse t, {point}", "t", lambda z, p=point: z.impulse[p][0], "N s")
+                         + open_)
+            lines.append(row(f"ground impulse n, {point}", "n", lambda z, p=point: z.impulse[p][1], "N s"))
+    if r.mu_c is not None and (other is None or other.mu_c is not None):
+        lines.append(row("critical friction", "mu_c", lambda z: z.mu_c, "", "{:10.4f}")
+                     + ("" if other else f"   (momentum check {r.mu_c_momentum:.4f})"))
+    else:
+        lines.append(f"  {'critical friction':30s} mu_c  undefined: the ground does not push")
+    if r.dv_trunk is not None:
+        lines.append(row("trunk velocity change x", "dv", lambda z: z.dv_trunk[0], "m/s"))
+        lines.append(row("trunk velocity change z", "dv", lambda z: z.dv_trunk[1], "m/s"))
+    lines.append(row("centre-of-mass change x", "dv", lambda z: z.dv_com[0], "m/s"))
+    lines.append(row("centre-of-mass change z", "dv", lambda z: z.dv_com[1], "m/s"))
+    lines.append(row("condition of Phi M^-1 Phi^T", "", lambda z: z.condition, "", "{:10.3g}"))
+    return lines
+
+
+def solve_table(scene: Scene, opt) -> str:
+    """The optimum against the reference posture, the active constraints, the sensitivities."""
+    ok = "converged" if opt.success else "NOT CONVERGED"
+    lines = [f"{scene.name}  ({scene.path})",
+             f"model {scene.kind}; body {scene.body.source}; {scene.strike} strike on "
+             f"{math.degrees(scene.slope):+.1f} deg ground, friction {scene.friction:g}",
+             f"objective {_objective_text(scene.problem.objective)}: {opt.objective:.6g} "
+             f"({ok}: {opt.status})", ""]
+    ref, best = touchdown_table(scene.strike, scene.state), touchdown_table(scene.strike, opt.state)
+    lines.append(f"  {'posture (deg)':36s} {'reference':>10s} {'optimum':>10s}")
+    for k in ref["angles_deg"]:
+        mark = "  *" if k in scene.problem.variables else ""
+        lines.append(f"  {k:36s} {ref['angles_deg'][k]:10.2f} {best['angles_deg'][k]:10.2f}{mark}")
+    for k in ref["angular_velocity_dps"]:
+        if "omega_" + k in scene.problem.variables:
+            lines.append(f"  {'omega ' + k + ' (deg/s)':36s} {ref['angular_velocity_dps'][k]:10.1f} "
+                         f"{best['angular_velocity_dps'][k]:10.1f}  *")
+    lines += ["  (* decision variable)", "", f"  {'indicators':36s} {'reference':>10s} {'optimum':>10s}"]
+    lines += _indicator_lines(opt.impact, opt.reference)
+    lines += ["", f"valid at the optimum: {'yes' if opt.impact.valid else 'no'}"]
+    lines += [f"warning: {w}" for w in opt.impact.warnings]
+    if opt.active:
+        lines += ["", "what holds the optimum where it is (multiplier = objective change per unit):"]
+        for c in opt.active:
+            lines.append(f"  {c.name:22s} at {c.bound:+.4g}  multiplier {c.multiplier:+.4g}: {c.meaning}")
+    elif opt.success:
+        lines += ["", "no constraint is active: an interior optimum"]
+    if opt.sensitivity:
+        s = opt.sensitivity
+        lines += ["", f"sensitivity of the optimum: objective {s['d_objective_d_speed']:+.4g} per m/s "
+                      f"of running speed, {s['d_objective_d_friction']:+.4g} per unit of friction"]
+        for name, unit in (("speed", "m/s"), ("friction", "unit of friction")):
+            if f"d_posture_d_{name}_deg" in s:
+                moves = ", ".join(f"{k} {v:+.3g}" for k, v in s[f"d_posture_d_{name}_deg"].items())
+                lines.append(f"  posture per {unit}: {moves} deg")
+    converged = sum(st.converged for st in opt.starts)
+    lines += ["", f"multi-start: {len(opt.starts)} starts (seed {opt.seed}), {converged} converged, "
+                  f"{opt.local_optima} distinct optima; median solve {opt.solve_time * 1e3:.1f} ms, "
+                  f"build {opt.build_time * 1e3:.0f} ms"]
+    for st in opt.starts:
+        if not st.converged:
+            lines.append(f"  start {st.index}: {st.status} (objective {st.objective:.4g}), not used: "
+                         f"{explain(st.status)}")
+    lines += [f"note: {n}" for n in list(scene.notes) + list(opt.notes)]
+    return "\n".join(lines)
+
+
+def _objective_text(terms: dict) -> str:
+    return " + ".join(f"{w:g} {k}" if w != 1 else k for k, w in terms.items())
+
+
+def comparison_table(c: Comparison) -> str:
+    rep = report(c)
+    lines = [f"touchdowns: {len(c.steps.touchdowns)} ({c.steps.method}); cadence {c.steps.cadence_spm:.1f} "
+             f"steps/min; treadmill belt {c.steps.belt_speed:.2f} m/s",
+             f"lab axes found: {c.axes}", f"model: the paper's leg, {c.body.source}", ""]
+    lines.append(f"  {'':22s} {'steps':>5s} {'strike':>9s} {'trunk':>7s} {'hip':>7s} {'knee':>7s} "
+                 f"{'ankle':>7s} {'foot':>7s} {'T_c (J)':>12s}")
+    for side, s in rep["summary"].items():
+        a, sd = s["angles_deg_mean"], s["angles_deg_sd"]
+        lines.append(f"  {'measured, ' + ('right' if side == 'R' else 'left'):22s} {s['steps']:5d} "
+                     f"{s['strike']:>9s} " + " ".join(f"{a[k]:7.1f}" for k in JOINTS)
+                     + f" {s['foot_angle_deg_mean']:7.1f} {s['T_c_mean']:6.2f} ± {s['T_c_sd']:.2f}")
+        lines.append(f"  {'   sd':22s} {'':5s} {'':9s} " + " ".join(f"{sd[k]:7.1f}" for k in JOINTS)
+                     + f" {s['foot_angle_deg_sd']:7.1f}")
+    ref, opt = rep["reference"], rep["optimum"]
+    lines.append(f"  {'mean ' + c.strike + ' touchdown':22s} {'':5s} {'':9s} "
+                 + " ".join(f"{ref['angles_deg'][k]:7.1f}" for k in JOINTS) + f" {'':7s} {ref['T_c']:6.2f}")
+    status = "" if opt["success"] else f"  (NOT CONVERGED: {opt['status']})"
+    lines.append(f"  {'optimum, same speed':22s} {'':5s} {c.strike:>9s} "
+                 + " ".join(f"{opt['touchdown']['angles_deg'][k]:7.1f}" for k in JOINTS)
+                 + f" {'':7s} {opt['T_c']:6.2f}{status}")
+    lines.append(f"  {'optimum - measured':22s} {'':5s} {'':9s} "
+                 + " ".join(f"{rep['difference_deg'][k]:+7.1f}" for k in JOINTS)
+                 + f" {'':7s} {opt['T_c'] - ref['T_c']:+6.2f}")
+    if opt["active"]:
+        lines.append(f"  the optimum is held by: {', '.join(opt['active'])}")
+    lines += [f"  left out: {x}" for x in c.steps.left_out]
+    lines += [f"note: {n}" for n in c.steps.notes]
+    return "\n".join(lines)
+
+
+def bench_table(rows, batch: float) -> str:
+    lines = [f"{'level':15s} {'option':28s} {'work':13s} {'time':>11s} {'error':>10s} "
+             f"{'mu_c err':>9s} {'dv err':>9s}  note"]
+    for r in rows:
+        unit = f"{r.time_s * 1e6:9.1f} us" if r.time_s < 1e-2 else f"{r.time_s * 1e3:9.2f} ms"
+        lines.append(f"{r.level:15s} {r.option:28s} {r.work:13s} {unit:>11s} {r.error:10.2e} "
+                     f"{r.error_mu_c:9.2e} {r.error_dv:9.2e}  {r.note}")
+    lines.append(f"\ncompiled mapped batch, paper's leg: {batch:,.0f} states/s (one core)")
+    return "\n".join(lines)
+
+
+def landing_table(scene: Scene, landing) -> str:
+    """The impacts of a landing, what it absorbed, and the checks of its assumptions."""
+    lines = [f"{scene.name}  ({scene.path})",
+             f"model {scene.kind}; joints {scene.joints.model}; {scene.strike} strike; friction "
+             f"{scene.friction:g}; slope {math.degrees(scene.slope):+.1f} deg", "",
+             f"  {'time (ms)':>10s} {'contact':>10s} {'T_c (J)':>10s} {'t (N s)':>9s} "
+             f"{'n (N s)':>9s} {'mu_c':>7s} {'dv trunk x, z (m/s)':>22s}"]
+    for e in landing.impacts:
+        dv = f"{e.dv_trunk[0]:+.4f} {e.dv_trunk[1]:+.4f}" if e.dv_trunk else "-"
+        mu = f"{e.mu_c:7.3f}" if e.mu_c is not None else "  n < 0"
+        lines.append(f"  {e.time * 1e3:10.3f} {e.contact:>10s} {e.T_c:10.4f} {e.impulse[0]:+9.4f} "
+                     f"{e.impulse[1]:+9.4f} {mu} {dv:>22s}")
+    held = "yes" if landing.no_slip_held else \
+        (f"no: mu_c exceeds the friction at {len(landing.slip_at)} instants, first at "
+         f"{landing.slip_at[0] * 1e3:.2f} ms")
+    lines += ["", f"  absorbed in all      T_c_total {landing.T_c_total:.4f} J",
+              f"  largest mu_c         {landing.mu_c_max:.3f} (friction {scene.friction:g})",
+              f"  no-slip held         {held}"]
+    lines += [f"  released             {p} at {t * 1e3:.3f} ms: the ground would have pulled it "
+              f"({f:.1f} N)" for t, p, f in landing.releases]
+    lines += [f"  energy balance error {landing.energy_error:.2e} J; constraint drift "
+              f"{landing.drift:.1e} m",
+              f"  ended                {landing.ended} at {landing.t[-1] * 1e3:.2f} ms"]
+    lines += [f"warning: {w}" for w in landing.warnings]
+    return "\n".join(lines)

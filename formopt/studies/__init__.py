@@ -1,0 +1,1 @@
+"""Studies composed of the layers below: measured against optimal, sweeps, the bench."""
