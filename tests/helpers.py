@@ -2,6 +2,7 @@
 touchdown, the paper's leg in other natural coordinates, a landing with another step."""
 
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 
@@ -12,6 +13,9 @@ from formopt.mechanics.body import paper_body
 from formopt.mechanics.model import Model, Point, PointMass, RigidBody
 
 SEED = 20261122
+ROOT = Path(__file__).resolve().parent.parent  # the repository
+PROBLEMS = ROOT / "problems"
+DATA = ROOT.parent / "shared" / "data"  # the real trials, beside the repository
 DEG = np.pi / 180
 
 

@@ -164,6 +164,7 @@ class Impact:
         if strike not in STRIKES:
             raise InputError(f"unknown strike {strike!r}: expected one of {', '.join(STRIKES)}")
         self.model, self.strike, self.slope, self.friction = model, strike, slope, friction
+        self.compiled, self.graph = compiled, graph
         self.function = impact_function(model, strike, slope, graph=graph)
         self._compiled = Compiled(self.function) if compiled else None
 

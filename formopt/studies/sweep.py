@@ -135,7 +135,7 @@ def read(path) -> list[dict]:
 def _landing_row(scene, values, models) -> list:
     try:
         s = apply(scene, values)
-        key = (s.path, s.name, s.kind, s.slope)
+        key = repr((s.kind, s.body, s.swing, s.joints, s.slope, s.numerics))  # what the model holds
         if key not in models:
             models[key] = s.landing()
         lm = models[key]

@@ -13,10 +13,10 @@ from formopt import SceneError, impact, load
 from formopt.mechanics.model import build_model
 from formopt.cli import main
 from formopt.mechanics.landing import LandingModel, absorbed_function, landing_function
-from helpers import land
+from helpers import PROBLEMS, land
 from formopt.io.scene import parse
 
-SPRING = Path(__file__).resolve().parent.parent / "problems" / "landing_spring.toml"
+SPRING = PROBLEMS / "landing_spring.toml"
 
 
 @pytest.fixture(scope="module")

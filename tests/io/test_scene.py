@@ -14,9 +14,9 @@ from formopt import SceneError, impact, load
 from formopt.cli import main
 from formopt.io.scene import parse
 
-from helpers import touchdown
+from helpers import PROBLEMS, touchdown
 
-PROBLEMS = Path(__file__).resolve().parent.parent / "problems"
+PROBLEMS = PROBLEMS
 REFERENCE = PROBLEMS / "forefoot_strike.toml"
 
 

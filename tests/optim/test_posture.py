@@ -14,8 +14,9 @@ from dataclasses import replace
 from formopt import load, solve
 from formopt.cli import main
 from formopt.io.scene import parse
+from helpers import PROBLEMS
 
-DEMO = Path(__file__).resolve().parent.parent / "problems" / "demo.toml"
+DEMO = PROBLEMS / "demo.toml"
 
 
 @pytest.fixture(scope="module")
@@ -156,7 +157,7 @@ def test_cli_solve_not_converged_exits_1(tmp_path, capsys):
 
 
 def test_solve_without_optimize_table_is_bad_input(capsys):
-    scene = Path(__file__).resolve().parent.parent / "problems" / "heel_strike.toml"
+    scene = PROBLEMS / "heel_strike.toml"
     assert main(["solve", str(scene)]) == 2
     assert "no [optimize] table" in capsys.readouterr().err
 
@@ -190,7 +191,7 @@ def test_compiled_solver_gives_the_same_optimum(demo, tmp_path, monkeypatch):
     assert list(tmp_path.glob("touchdown_nlp_*.so")), "the compiled NLP is cached"
 
 
-LANDING = Path(__file__).resolve().parent.parent / "problems" / "landing_optimum.toml"
+LANDING = PROBLEMS / "landing_optimum.toml"
 
 
 @pytest.fixture(scope="module")

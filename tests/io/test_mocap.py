@@ -11,8 +11,9 @@ import pytest
 
 from formopt.io import mocap
 from formopt.cli import main
+from helpers import DATA
 
-DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "rbds"
+DATA = DATA / "rbds"
 RUN35, STATIC = DATA / "RBDS001runT35.c3d", DATA / "RBDS001static.c3d"
 RUN25, FORCES25 = DATA / "RBDS001runT25markers.txt", DATA / "RBDS001runT25forces.txt"
 

@@ -10,13 +10,13 @@ import pytest
 from formopt import Impact, SceneError, impact, load
 from formopt.mechanics.impact import angular_momentum_impact
 from formopt.mechanics.model import build_model
-from helpers import land
+from helpers import ROOT, land
 from formopt.mechanics.model import Swing
 from formopt.io.scene import parse
 
 from helpers import random_states, touchdown
 
-FULL = Path(__file__).resolve().parent.parent / "formopt" / "studies" / "data" / "full_body.toml"
+FULL = ROOT / "formopt" / "studies" / "data" / "full_body.toml"
 SWING = Swing(math.radians(-10), math.radians(80), 0.0, math.radians(400), 0.0, 0.0)
 
 

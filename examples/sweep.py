@@ -1,0 +1,25 @@
+"""A sweep: the landing of problems/landing_spring.toml across touchdown knee angles, written
+row by row to a CSV file (rerun the same command and it resumes).
+
+    python examples/sweep.py [OUT]
+"""
+
+import sys
+from pathlib import Path
+
+import numpy as np
+
+import formopt
+from formopt.io.files import save_figure
+from formopt.report.figures import sweep_figure
+
+ROOT = Path(__file__).resolve().parent.parent
+out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
+
+scene = formopt.load(ROOT / "problems" / "landing_spring.toml")
+rows = formopt.sweep(scene, [("knee_deg", np.linspace(5.0, 30.0, 11))], out / "sweep_knee.csv",
+                     progress=False)
+done = [r for r in rows if not r["error"]]
+print(f"{len(done)} of {len(rows)} landings; T_c_total from "
+      f"{min(float(r['T_c_total']) for r in done):.3f} to {max(float(r['T_c_total']) for r in done):.3f} J")
+print("wrote", save_figure(sweep_figure(rows, "knee_deg"), out / "sweep_knee.png"))
