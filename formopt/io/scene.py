@@ -16,6 +16,7 @@ import numpy as np
 
 from ..mechanics import body as bodies
 from ..mechanics.body import Body, Segment
+from ..mechanics.contact import LAWS
 from ..mechanics.impact import GRAPHS, Impact
 from ..mechanics.landing import INTEGRATORS, JOINT_MODELS, Joints, LandingModel
 from ..mechanics.errors import InputError
@@ -97,6 +98,7 @@ class Scene:
     integration: Integration = Integration()  # the [landing] table
     swing: Swing | None = None  # the swing leg's posture (model "full-body")
     numerics: Numerics = Numerics()  # the [numerics] table
+    contact: str = "no-slip"  # [ground].contact: the contact law at the impact (contact.LAWS)
 
     def model(self) -> Model:
         """The model the scene asks for (only its segments, contacts and swing posture)."""
@@ -105,7 +107,7 @@ class Scene:
     def impact(self) -> Impact:
         """The impact map of the scene's touchdown (graph and compilation from [numerics])."""
         return Impact(self.model(), self.strike, self.slope, self.friction,
-                      self.numerics.compiled is True, self.numerics.graph)
+                      self.numerics.compiled is True, self.numerics.graph, self.contact)
 
     def landing(self) -> LandingModel:
         """The landing equations (joints, ground, integrator and compilation from the scene)."""
@@ -172,8 +174,15 @@ def parse(data: dict, path: str = "") -> Scene:
     for key in ("swing_angles_deg", "swing_velocity_dps"):
         if key in touchdown and model != "full-body":
             notes += (f"touchdown.{key} is only used by model 'full-body' and was ignored",)
-    ground = _table(data, "ground", {"friction", "slope_deg"}, {"friction"})
+    ground = _table(data, "ground", {"friction", "slope_deg", "contact"}, {"friction"})
     friction = _number(ground, "friction", "ground", low=0.0, low_open=True)
+    contact_law = _choice(ground.get("contact", "no-slip"), "ground.contact", LAWS)
+    if contact_law == "coulomb" and strike == "flat":
+        raise SceneError("ground.contact", "\"coulomb\" takes a heel or forefoot strike: a flat "
+                                           "foot has two frictional contacts (see the README)")
+    if contact_law != "no-slip" and "optimize" in data:
+        raise SceneError("ground.contact", f"{contact_law!r} is not yet available to [optimize]: "
+                                           "the posture NLP holds the no-slip contact")
     slope = _number(ground, "slope_deg", "ground", default=0.0, low=-60.0, high=60.0)
     problem = None
     if "optimize" in data:
@@ -184,8 +193,11 @@ def parse(data: dict, path: str = "") -> Scene:
     if model == "effective-mass" and (problem and problem.landing or data.get("joints")):
         raise SceneError("scene.model", "'effective-mass' is an impact-only model: no [joints], "
                                         "landing or T_c_total")
+    if contact_law != "no-slip" and data.get("joints"):
+        notes += (f"the landing applies the no-slip contact at each impact; ground.contact = "
+                  f"{contact_law!r} applies to the first impact's indicators",)
     return Scene(name, model, body, strike, state, friction, math.radians(slope), path, notes,
-                 problem, joints, landing, swing, _numerics(data.get("numerics", {})))
+                 problem, joints, landing, swing, _numerics(data.get("numerics", {})), contact_law)
 
 
 def _numerics(data) -> Numerics:

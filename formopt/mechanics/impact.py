@@ -23,11 +23,12 @@ external force). They agree to rounding; both are reported as a check.
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 
 import casadi as ca
 import numpy as np
 
+from . import contact
 from .compiled import Compiled
 from .model import STATE, STRIKES, Model, landmarks
 from .errors import InputError
@@ -58,63 +59,128 @@ def projection(model: Model, q, qd, contact_jacobian):
 
 
 def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
-                    graph: str = "SX") -> ca.Function:
+                    graph: str = "SX", law: str = "no-slip", friction: float = 0.8) -> ca.Function:
     """CasADi Function of the touchdown state x (model.STATE, SI) -> every impact indicator.
 
-    Outputs: T, T_c, T_a (J); qd_minus, qd_plus (natural coordinates, m/s); impulse
-    ([t, n] per strike point, N s); impulse_total ([t, n]); mu_signed (total t / total n);
-    mu_momentum_signed; dv_trunk, dv_com ([x, z] m/s; dv_trunk is zero for a model without a
-    trunk); approach (normal velocity of each strike point, m/s, < 0 when it approaches);
-    clearance (height of the other foot point above the ground, m); G (Phi_q M^-1 Phi_q^T).
-    `outputs` keeps only the named ones (the generated code then holds only what they need).
-    `graph`: "SX" (scalar expressions, fast to evaluate) or "MX" (matrix expressions with a
-    linear-solver node, smaller graphs).
+    Outputs under the contact law `law` (contact.LAWS; Coulomb with `friction`): T, T_c, T_a
+    (J); qd_minus, qd_plus (natural coordinates, m/s); impulse ([t, n] per strike point, N s);
+    impulse_total ([t, n]); mu_signed (total t / total n); mu_momentum_signed (the same from
+    the linear-momentum change, eq. 8's check); dv_trunk, dv_com ([x, z] m/s; dv_trunk is zero
+    for a model without a trunk); slip (tangential velocity of the strike point after the
+    impact, m/s; zero under no-slip). Law-independent: approach (normal velocity of each
+    strike point, m/s, < 0 when it approaches); clearance (height of the other foot point, m);
+    G (Phi_q M^-1 Phi_q^T of the no-slip contact); mu_posture (eq. 7, signed; zero for a flat
+    strike, where it is not defined); mode (Coulomb's contact.MODES, -1 under other laws).
+    For every law L of contact.LAWS also T_c_L, impulse_L, slip_L, dv_trunk_L, dv_com_L, and
+    mode_coulomb. `outputs` keeps only the named ones (the generated code then holds only what
+    they need). `graph`: "SX" (scalar expressions, fast to evaluate) or "MX" (matrix
+    expressions with a linear-solver node, smaller graphs).
+
+    A flat strike has no Coulomb law here (two frictional contacts need a complementarity
+    problem per impulse step): its Coulomb outputs are NaN and the Impact refuses it.
     """
     points = STRIKES[strike]
     t, n = ground_axes(slope)
     if graph not in GRAPHS:
         raise InputError(f"graph {graph!r}: expected one of {', '.join(GRAPHS)}")
+    if law not in contact.LAWS:
+        raise InputError(f"contact law {law!r}: expected one of {', '.join(contact.LAWS)}")
     x = getattr(ca, graph).sym("x", len(STATE))
     q, qd = model.state(x, points[0])
     rows = model.contact_rows(points, slope, tangential=points[:1] if model.tangential else ())
     imp = projection(model, q, qd, rows)
     lam = imp["lambda"][imp["n_body"]:]
-    if not model.tangential:  # the impact acts along the normal only
+    if not model.tangential:  # normal only: the guide holds the rest (see _momentum_impulse)
         lam = ca.vertcat(0, lam)
     if strike == "flat":
         total_t, normals = lam[0], ca.vertcat(lam[1], lam[2])
         total_n = normals[0] + normals[1]
-        impulse = ca.vertcat(total_t * normals[0] / total_n, normals[0],
-                             total_t * normals[1] / total_n, normals[1])
+        no_slip_impulse = ca.vertcat(total_t * normals[0] / total_n, normals[0],
+                                     total_t * normals[1] / total_n, normals[1])
     else:
-        total_t, total_n = lam[0], lam[1]
-        impulse = lam
-    dqd = imp["qd_plus"] - qd
-    momentum = ca.DM(model.momentum_matrix) @ dqd
-    trunk = ca.DM(model.com_matrix(model.trunk)) @ dqd if model.trunk else ca.DM.zeros(2)
+        no_slip_impulse = lam
+    # the contact laws, in impulse space of the strike points' rows (contact.py)
+    W = contact.admissible_inverse_inertia(ca.DM(model.M_inv), model.constraint_jacobian(q))
+    normal_rows = ca.DM(model.contact_rows(points, slope, tangential=()))
+    laws = {"no-slip": (no_slip_impulse, imp["qd_plus"], imp["T_c"], ca.DM(0), ca.DM(-1))}
+    W_n = normal_rows @ W @ normal_rows.T
+    p_n = -ca.solve(W_n, normal_rows @ qd)
+    frictionless = ca.vertcat(*[ca.vertcat(0, p_n[k]) for k in range(len(points))])
+    laws["frictionless"] = (frictionless, qd + W @ normal_rows.T @ p_n,
+                            contact.absorbed(W_n, normal_rows @ qd, p_n),
+                            _slip(model, points, qd + W @ normal_rows.T @ p_n, t), ca.DM(-1))
+    if strike != "flat" and model.tangential:
+        C = ca.DM(model.contact_rows(points, slope))
+        W_c, v0 = C @ W @ C.T, C @ qd
+        p, mode, slip = contact.coulomb(W_c, v0, friction)
+        laws["coulomb"] = (p, qd + W @ C.T @ p, contact.absorbed(W_c, v0, p), slip, mode)
+        mu_posture = W_c[0, 1] / W_c[0, 0]
+    elif strike != "flat":  # normal only: every law is the frictionless one
+        laws["coulomb"] = laws["frictionless"]
+        mu_posture = ca.DM(0)
+    else:
+        laws["coulomb"] = tuple(ca.DM.nan(*v.shape) for v in laws["no-slip"][:4]) + (ca.DM(-1),)
+        mu_posture = ca.DM(0)
+    laws["no-slip"] = laws["no-slip"][:3] + (_slip(model, points, imp["qd_plus"], t), ca.DM(-1))
+    momentum_matrix = ca.DM(model.momentum_matrix)
+    trunk_matrix = ca.DM(model.com_matrix(model.trunk)) if model.trunk else ca.DM.zeros(2, model.n)
+    per_law = {}
+    for name, (impulse, qd_plus, T_c, slip, mode) in laws.items():
+        dqd = qd_plus - qd
+        momentum = momentum_matrix @ dqd
+        if not model.tangential:
+            impulse = _momentum_impulse(momentum, t, n)
+        per_law[name] = {"T_c": T_c, "qd_plus": qd_plus, "impulse": impulse, "slip": slip,
+                         "mode": mode, "momentum": momentum, "dv_trunk": trunk_matrix @ dqd,
+                         "dv_com": momentum / model.mass}
+    chosen = per_law[law]
+    impulse = chosen["impulse"]
+    total_t = sum(impulse[2 * k] for k in range(len(points)))
+    total_n = sum(impulse[2 * k + 1] for k in range(len(points)))
     other = "heel" if points == ("forefoot",) else "forefoot"
     indicators = {
         "T": model.kinetic_energy(qd),
-        "T_c": imp["T_c"],
-        "T_a": model.kinetic_energy(imp["qd_plus"]),
+        "T_c": chosen["T_c"],
+        "T_a": model.kinetic_energy(chosen["qd_plus"]),
         "qd_minus": qd,
-        "qd_plus": imp["qd_plus"],
+        "qd_plus": chosen["qd_plus"],
         "impulse": impulse,
         "impulse_total": ca.vertcat(total_t, total_n),
         "mu_signed": total_t / total_n,
-        "mu_momentum_signed": ca.dot(momentum, t) / ca.dot(momentum, n),
-        "dv_trunk": trunk,
-        "dv_com": momentum / model.mass,
+        "mu_momentum_signed": ca.dot(chosen["momentum"], t) / ca.dot(chosen["momentum"], n),
+        "dv_trunk": chosen["dv_trunk"],
+        "dv_com": chosen["dv_com"],
+        "slip": chosen["slip"],
+        "mode": chosen["mode"],
         "approach": ca.vertcat(*[ca.dot(qd[model.cols(p)], n) for p in points]),
         "clearance": ca.dot(landmarks(x, model.body, points[0])[other][0], n),
         "G": imp["G"],
+        "mu_posture": mu_posture,
     }
+    for name, values in per_law.items():
+        key = name.replace("-", "_")
+        for item in ("T_c", "impulse", "slip", "dv_trunk", "dv_com"):
+            indicators[f"{item}_{key}"] = values[item]
+    indicators["mode_coulomb"] = per_law["coulomb"]["mode"]
     if outputs is not None:
         unknown = set(outputs) - set(indicators)
         if unknown:
             raise InputError(f"unknown impact outputs {sorted(unknown)}: expected {list(indicators)}")
         indicators = {k: indicators[k] for k in outputs}
     return ca.Function(f"impact_{strike}", [x], list(indicators.values()), ["x"], list(indicators))
+
+
+def _slip(model: Model, points, qd_plus, t):
+    """Tangential velocity (m/s) of the first strike point after the impact."""
+    return ca.dot(qd_plus[model.cols(points[0])], ca.DM(t))
+
+
+def _momentum_impulse(momentum, t, n):
+    """The ground's impulse [t, n] (N s) on a model whose contact holds the normal only (the
+    effective mass, guided vertically): the whole linear-momentum change, since the guide
+    stands for the rest of the runner, not for the ground. On a slope it is not normal to the
+    ground: a vertical impulse needs |t| / n = tan(slope)."""
+    return ca.vertcat(ca.dot(momentum, ca.DM(t)), ca.dot(momentum, ca.DM(n)))
 
 
 @dataclass(frozen=True)
@@ -138,6 +204,12 @@ class ImpactResult:
     friction: float  # the ground's friction coefficient used for `valid`
     valid: bool  # every assumption of the impact model holds
     warnings: tuple[str, ...]
+    law: str = "no-slip"  # the contact law of the fields above (contact.LAWS)
+    slip_velocity: float = 0.0  # m/s, tangential velocity of the strike point after the impact
+    mode: str | None = None  # Coulomb's mode (slide, stick, reversed slide); None otherwise
+    mu_c_posture: float | None = None  # eq. 7, |W_tn / W_tt|; None for a flat strike
+    contact_laws: dict = field(default_factory=dict)  # law -> its T_c, impulse, mode, slip,
+    # dv_trunk, dv_com, valid (JSON-ready); None for a law that cannot take this strike
 
     def to_dict(self) -> dict:
         """JSON-ready dictionary (lists instead of arrays)."""
@@ -160,12 +232,17 @@ class Impact:
     """
 
     def __init__(self, model: Model, strike: str, slope: float = 0.0, friction: float = 0.8,
-                 compiled: bool = False, graph: str = "SX"):
+                 compiled: bool = False, graph: str = "SX", law: str = "no-slip"):
         if strike not in STRIKES:
             raise InputError(f"unknown strike {strike!r}: expected one of {', '.join(STRIKES)}")
         self.model, self.strike, self.slope, self.friction = model, strike, slope, friction
-        self.compiled, self.graph = compiled, graph
-        self.function = impact_function(model, strike, slope, graph=graph)
+        if law == "coulomb" and strike == "flat":
+            raise InputError("a flat-foot strike under Coulomb friction has two frictional "
+                             "contacts, which need a complementarity problem; formopt refuses it "
+                             "(use \"no-slip\" or \"frictionless\", or a heel or forefoot strike)")
+        self.compiled, self.graph, self.law = compiled, graph, law
+        self.function = impact_function(model, strike, slope, graph=graph, law=law,
+                                        friction=friction)
         self._compiled = Compiled(self.function) if compiled else None
 
     def evaluate(self, x) -> dict[str, np.ndarray]:
@@ -196,11 +273,9 @@ class Impact:
         for p, v in zip(points, np.atleast_1d(out["approach"])):
             if v >= 0:
                 warnings.append(f"the {p} does not approach the ground (normal velocity {v:.3f} m/s)")
+        ahead = list(warnings)  # the checks every law shares
         impulse = out["impulse"].reshape(-1, 2)
-        scale = max(float(np.max(np.abs(impulse))), 1e-300)
-        for p, (_, normal) in zip(points, impulse):
-            if normal < -RTOL * scale:
-                warnings.append(f"the ground pulls the {p} (normal impulse {normal:.4f} N s)")
+        warnings += self._pull_warnings(points, impulse)
         total_t, total_n = out["impulse_total"]
         pushes = total_n > RTOL * max(abs(total_t), 1e-300)
         mu_c = abs(out["mu_signed"]) if pushes else None
@@ -208,12 +283,14 @@ class Impact:
         if not pushes:
             warnings.append("mu_c is undefined: the ground does not push (total normal impulse "
                             f"{total_n:.3g} N s)")
-        elif mu_c > self.friction * (1 + RTOL):
+        elif self.law == "no-slip" and mu_c > self.friction * (1 + RTOL):
             warnings.append(f"the foot slips: mu_c {mu_c:.3f} exceeds the friction {self.friction:g}")
-        if self.strike == "flat":
+        if self.strike == "flat" and self.law == "no-slip":
             warnings.append("flat foot: the tangential split between heel and forefoot is not "
                             "determined (shown in proportion to the normal impulses; the total is exact)")
-        determined = {p: (self.strike != "flat", True) for p in points}
+        determined = {p: (self.strike != "flat" or self.law != "no-slip", True) for p in points}
+        laws = {law: self._law_summary(out, law, points, ahead) for law in contact.LAWS}
+        mode = int(round(out["mode"]))
         return ImpactResult(
             strike=self.strike,
             T=out["T"], T_c=out["T_c"], T_a=out["T_a"],
@@ -226,7 +303,35 @@ class Impact:
             qd_minus=out["qd_minus"], qd_plus=out["qd_plus"],
             condition=condition, friction=self.friction,
             valid=not any(w for w in warnings if not w.startswith("flat foot")),
-            warnings=tuple(warnings))
+            warnings=tuple(warnings), law=self.law, slip_velocity=out["slip"],
+            mode=contact.MODES.get(mode), contact_laws=laws,
+            mu_c_posture=abs(out["mu_posture"]) if self.strike != "flat" else None)
+
+    def _pull_warnings(self, points, impulse) -> list[str]:
+        """Warnings for every strike point the ground would have to pull."""
+        scale = max(float(np.max(np.abs(impulse))), 1e-300)
+        return [f"the ground pulls the {p} (normal impulse {normal:.4f} N s)"
+                for p, (_, normal) in zip(points, impulse) if normal < -RTOL * scale]
+
+    def _law_summary(self, out, law, points, shared) -> dict | None:
+        """One law's indicators, JSON-ready; `valid`: the shared checks hold, the ground
+        pushes, and (no-slip) the friction suffices."""
+        key = law.replace("-", "_")
+        impulse = np.asarray(out[f"impulse_{key}"], float).reshape(-1, 2)
+        if not np.all(np.isfinite(impulse)):
+            return None  # Coulomb at a flat strike: refused
+        valid = not shared and not self._pull_warnings(points, impulse)
+        t, n = impulse.sum(axis=0)
+        if law == "no-slip":
+            valid = valid and n > 0 and abs(t) <= self.friction * n * (1 + RTOL)
+        mode = contact.MODES.get(int(round(out["mode_coulomb"]))) if law == "coulomb" else None
+        return {"T_c": float(out[f"T_c_{key}"]),
+                "impulse": {p: [float(a), float(b)] for p, (a, b) in zip(points, impulse)},
+                "mode": mode if self.model.tangential else None,
+                "slip_velocity": float(out[f"slip_{key}"]),
+                "dv_trunk": [float(v) for v in np.ravel(out[f"dv_trunk_{key}"])] if self.model.trunk else None,
+                "dv_com": [float(v) for v in np.ravel(out[f"dv_com_{key}"])],
+                "valid": bool(valid)}
 
 
 def angular_momentum_impact(model: Model, q, qd, point: str) -> np.ndarray:

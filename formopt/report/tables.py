@@ -40,10 +40,39 @@ def impact_table(scene: Scene, r: ImpactResult) -> str:
              f"model {scene.kind}; body {scene.body.source}",
              f"{r.strike} strike on {math.degrees(scene.slope):+.1f} deg ground, friction {r.friction:g}",
              ""]
+    lines += [f"contact law: {r.law}" + (f" ({r.mode} at the end, slip {r.slip_velocity:+.3f} m/s)"
+                                         if r.mode else ""),
+              f"valid: {'yes' if r.valid else 'NO: ' + '; '.join(r.warnings)}", ""]
     lines += _indicator_lines(r)
-    lines += ["", f"valid: {'yes' if r.valid else 'no'}"]
-    lines += [f"warning: {w}" for w in r.warnings] + [f"note: {n}" for n in scene.notes]
+    lines += [""] + contact_law_lines(r)
+    lines += [f"warning: {w}" for w in r.warnings if r.valid] + [f"note: {n}" for n in scene.notes]
     return "\n".join(lines)
+
+
+def contact_law_lines(r: ImpactResult) -> list[str]:
+    """The same touchdown under each contact law, side by side (the scene's law marked *)."""
+    laws = r.contact_laws
+    lines = ["  the same touchdown under each contact law (* the scene's):",
+             f"  {'':30s} " + " ".join(f"{(law + (' *' if law == r.law else '')):>14s}" for law in laws)]
+
+    def row(name, value, fmt):
+        cells = [fmt.format(value(v)) if v is not None else "refused" for v in laws.values()]
+        return f"  {name:30s} " + " ".join(f"{c:>14s}" for c in cells)
+
+    total = lambda v, k: sum(p[k] for p in v["impulse"].values())  # noqa: E731
+    lines += [row("absorbed T_c (J)", lambda v: v["T_c"], "{:.4f}"),
+              row("impulse t (N s)", lambda v: total(v, 0), "{:+.4f}"),
+              row("impulse n (N s)", lambda v: total(v, 1), "{:+.4f}"),
+              row("|t| / n", lambda v: abs(total(v, 0)) / total(v, 1) if total(v, 1) > 0 else float("nan"), "{:.3f}"),
+              row("slip after (m/s)", lambda v: v["slip_velocity"], "{:+.3f}"),
+              row("mode", lambda v: v["mode"] or "-", "{}")]
+    if r.dv_trunk is not None:
+        lines.append(row("trunk dv x, z (m/s)", lambda v: v["dv_trunk"],
+                         "{0[0]:+.3f} {0[1]:+.3f}"))
+    lines.append(row("valid", lambda v: "yes" if v["valid"] else "no", "{}"))
+    if r.mu_c_posture is not None:
+        lines.append(f"  posture-only critical friction (eq. 7) |W_tn / W_tt| = {r.mu_c_posture:.3f}")
+    return lines
 
 
 def _indicator_lines(r: ImpactResult, other: ImpactResult | None = None) -> list[str]:

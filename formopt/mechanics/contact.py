@@ -1,0 +1,92 @@
+"""Contact laws at the impact of one foot point: no-slip, frictionless, Coulomb.
+
+In impulse space the contact point's velocity v = (v_t, v_n) (tangential along the ground,
+normal out of it) changes with the ground's impulse p = (p_t, p_n) as
+
+    v = v0 + W_c p,    W_c = C W C^T = [[a, b], [b, c]],
+    W = M^-1 - M^-1 Phi_b^T (Phi_b M^-1 Phi_b^T)^-1 Phi_b M^-1
+
+(C the contact rows, W the inverse inertia on the body's admissible motion), and the
+generalised velocity by q'+ = q'- + W C^T p. The energy absorbed by any impulse is
+
+    T_c(p) = -p . v0 - 1/2 p^T W_c p,
+
+and the laws choose p:
+
+- no-slip (the paper's): v_t and v_n both end at zero, p = -W_c^-1 v0;
+- frictionless (normal only): p_t = 0, v_n ends at zero, p_n = -v_n0 / c;
+- Coulomb, rigid and perfectly plastic (e = 0), Darboux-Keller equations with the normal
+  impulse p_n as the clock (Routh's method; Stronge, Impact Mechanics, 2000): while the point
+  slides in direction s = sign(v_t), dp_t = -mu s dp_n, so dv/dp_n = (k_t, k_n) =
+  (b - mu s a, c - mu s b); the impact ends when v_n reaches 0. If v_t reaches 0 first, the
+  point sticks when |b / a| <= mu (then dv_n/dp_n = det W_c / a) and otherwise slides on in
+  the direction sign(b), reversed. Modes: SLIDE (0), STICK (1, slide then stick, or stick
+  from the start), REVERSE (2, slide then reversed slide). Each is a closed form; when
+  mu > c / |b| with s b > 0, v_n falls while sliding (Painleve's inequality), and the impact
+  still ends, because sticking is then possible (|b| / a < c / |b| < mu).
+
+The Coulomb impulse is selected by `if_else` between the closed forms: exact values and
+exact derivatives inside each mode, a kink at the switches. An NLP that uses it must hold the
+mode fixed and check it after the solve (the mode is an output).
+
+`posture_friction` is the paper's eq. 7: b / a, the friction a touchdown with no tangential
+velocity at the contact point would need (signed; its magnitude is the critical value).
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+
+LAWS = ("no-slip", "coulomb", "frictionless")
+SLIDE, STICK, REVERSE = 0, 1, 2
+MODES = {SLIDE: "slide", STICK: "stick", REVERSE: "reversed slide"}
+
+
+def admissible_inverse_inertia(M_inv, Phi_b):
+    """W = M^-1 - M^-1 Phi_b^T (Phi_b M^-1 Phi_b^T)^-1 Phi_b M^-1 (n x n, symbolic)."""
+    A = M_inv @ Phi_b.T
+    return M_inv - A @ ca.solve(Phi_b @ A, A.T)
+
+
+def no_slip(W_c, v0):
+    """Impulse (N s) that brings both velocity components of the point to zero."""
+    return -ca.solve(W_c, v0)
+
+
+def frictionless(W_c, v0):
+    """Impulse (N s) along the normal only that brings the normal velocity to zero."""
+    return ca.vertcat(0, -v0[1] / W_c[1, 1])
+
+
+def coulomb(W_c, v0, mu):
+    """(impulse (N s), mode, final tangential velocity (m/s)) of the rigid, perfectly plastic
+    impact with Coulomb friction mu, by the closed form of each mode (module docstring)."""
+    a, b, c = W_c[0, 0], W_c[0, 1], W_c[1, 1]
+    vt, vn = v0[0], v0[1]
+    s = ca.if_else(vt >= 0, 1, -1)
+    k_t, k_n = b - mu * s * a, c - mu * s * b
+    # slide to the end: the normal velocity reaches zero before the tangential one
+    p_slide = -vn / k_n
+    sticks_first = s * k_t < 0  # sliding decelerates the point
+    # |v_t| / |k_t| < -v_n / k_n, multiplied out so that no branch divides by zero
+    slide_only = ca.logic_and(k_n > 0, ca.logic_or(ca.logic_not(sticks_first),
+                                                   ca.fabs(vt) * k_n >= -vn * ca.fabs(k_t)))
+    p_stick = -vt / k_t  # normal impulse when v_t reaches zero
+    vn_1 = vn + k_n * p_stick
+    holds = ca.fabs(b) <= mu * a
+    det = a * c - b * b
+    p_rest_stick = -vn_1 * a / det
+    p_rest_reverse = -vn_1 / (c + mu * s * b)
+    impulse_slide = ca.vertcat(-mu * s * p_slide, p_slide)
+    impulse_stick = ca.vertcat(-mu * s * p_stick - b / a * p_rest_stick, p_stick + p_rest_stick)
+    impulse_reverse = ca.vertcat(mu * s * (p_rest_reverse - p_stick), p_stick + p_rest_reverse)
+    impulse = ca.if_else(slide_only, impulse_slide,
+                         ca.if_else(holds, impulse_stick, impulse_reverse))
+    mode = ca.if_else(slide_only, SLIDE, ca.if_else(holds, STICK, REVERSE))
+    slip = (v0 + W_c @ impulse)[0]
+    return impulse, mode, ca.if_else(mode == STICK, 0, slip)
+
+
+def absorbed(W_c, v0, p):
+    """T_c(p) = -p . v0 - 1/2 p^T W_c p (J): the energy an impulse p takes out."""
+    return -ca.dot(p, v0) - 0.5 * ca.dot(p, W_c @ p)
