@@ -6,7 +6,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test bench clean
+.PHONY: demo test bench gallery clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV) || python3 -m venv $(VENV)
@@ -25,9 +25,13 @@ test: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/formopt bench
 	$(BIN)/python benchmarks/impact_speed.py
+	$(BIN)/python benchmarks/contact_laws_speed.py
 	$(BIN)/python benchmarks/solve_speed.py
 	$(BIN)/python benchmarks/landing_speed.py
 	$(BIN)/python benchmarks/sweep_scaling.py
+
+gallery: $(STAMP)
+	for f in examples/*.py; do $(BIN)/python $$f docs/gallery || exit 1; done
 
 clean:
 	rm -rf $(VENV) build *.egg-info
