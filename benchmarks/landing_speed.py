@@ -21,7 +21,7 @@ import casadi as ca
 
 from formopt import load
 from formopt.studies import sweep
-from formopt.mechanics.landing import LandingModel, absorbed_function, simulate_state
+from formopt.mechanics.landing import absorbed_function, simulate_state
 
 ROOT = Path(__file__).resolve().parent.parent
 

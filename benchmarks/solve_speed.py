@@ -23,7 +23,6 @@ from pathlib import Path
 import numpy as np
 
 from formopt import load
-from formopt.mechanics.model import build_model
 from formopt.optim.posture import PostureProblem
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -8,8 +8,7 @@ import numpy as np
 
 import formopt
 
-from formopt.mechanics.model import STATE, build_model
-from formopt.mechanics.body import paper_body
+from formopt.mechanics.model import STATE
 from formopt.mechanics.model import Model, Point, PointMass, RigidBody
 
 SEED = 20261122

@@ -1,6 +1,5 @@
 """Every notebook runs top to bottom without an error."""
 
-from pathlib import Path
 
 import nbclient
 import nbformat

@@ -3,14 +3,14 @@
 from __future__ import annotations
 
 import dataclasses
-import json
 import sys
 from pathlib import Path
 
-from ..io.files import save_figure, write_csv, write_json
+from ..io.files import save_figure, write_csv
 from ..report.figures import pareto_figure
 from ..report.tables import bench_table
 from ..studies import bench
+from .common import emit
 
 
 def add_parser(commands):
@@ -28,10 +28,5 @@ def run(args) -> int:
     files = [write_csv(out / "bench.csv", [list(table[0])] + [list(r.values()) for r in table]),
              save_figure(pareto_figure(rows), out / "pareto.png")]
     report = {**bench.to_json(rows, batch), "files": [str(f) for f in files]}
-    write_json(out / "bench.json", report)
-    if args.json:
-        print(json.dumps(report, indent=2))
-    else:
-        print(bench_table(rows, batch))
-        print(f"wrote {', '.join(report['files'])}, {out / 'bench.json'}")
+    emit(args, report, out / "bench.json", bench_table(rows, batch), files)
     return 0

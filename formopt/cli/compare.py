@@ -2,15 +2,14 @@
 
 from __future__ import annotations
 
-import json
 
 from ..io import mocap
-from ..io.files import save_figure, write_csv, write_json
+from ..io.files import save_figure, write_csv
 from ..mechanics.errors import InputError
 from ..report.figures import comparison_figure
 from ..report.tables import comparison_table
 from ..studies.compare import compare, report
-from .common import out_folder
+from .common import emit, out_folder
 
 
 def add_parser(commands):
@@ -47,11 +46,6 @@ def run(args) -> int:
         a = t["angles_deg"]
         rows.append([t["time"], t["side"], t["strike"], a["trunk"], a["hip"], a["knee"], a["ankle"],
                      t["foot_angle_deg"], *t["hip_velocity"], t["T_c"], t["valid"]])
-    write_csv(out / "touchdowns.csv", rows)
-    write_json(out / "comparison.json", rep)
-    if args.json:
-        print(json.dumps(rep, indent=2))
-    else:
-        print(comparison_table(result))
-        print(f"\nwrote {rep['figure']}, {out / 'touchdowns.csv'}, {out / 'comparison.json'}")
+    csv_path = write_csv(out / "touchdowns.csv", rows)
+    emit(args, rep, out / "comparison.json", comparison_table(result), [rep["figure"], csv_path])
     return 0 if result.optimum.success else 1

@@ -3,15 +3,14 @@
 from __future__ import annotations
 
 import dataclasses
-import json
 
 from .. import api
-from ..io.files import save_figure, write_csv, write_json
+from ..io.files import save_figure, write_csv
 from ..io.scene import load
 from ..mechanics.landing import history_rows
 from ..report.figures import landing_figures
 from ..report.tables import landing_table
-from .common import out_folder
+from .common import emit, out_folder
 
 
 def add_parser(commands):
@@ -31,10 +30,5 @@ def run(args) -> int:
     files.append(write_csv(out / "landing.csv", history_rows(landing, model)))
     report = {"scene": scene.name, "model": scene.kind, "joints": dataclasses.asdict(scene.joints),
               "touchdown": scene.touchdown, **landing.to_dict(), "files": [str(f) for f in files]}
-    write_json(out / "landing.json", report)
-    if args.json:
-        print(json.dumps(report, indent=2))
-    else:
-        print(landing_table(scene, landing))
-        print(f"\nwrote {', '.join(report['files'])}, {out / 'landing.json'}")
+    emit(args, report, out / "landing.json", landing_table(scene, landing), files)
     return 0

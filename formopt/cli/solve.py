@@ -3,16 +3,15 @@
 from __future__ import annotations
 
 import dataclasses
-import json
 import sys
 
 from .. import api
-from ..io.files import save_figure, write_json
+from ..io.files import save_figure
 from ..io.scene import load
 from ..mechanics.errors import InputError
 from ..report.figures import indicator_figure, posture_figure
 from ..report.tables import solve_report, solve_table
-from .common import out_folder
+from .common import emit, out_folder
 
 
 def add_parser(commands):
@@ -49,11 +48,6 @@ def run(args) -> int:
                            out / "posture.png"),
                save_figure(indicator_figure({"reference": opt.reference, "optimum": opt.impact}),
                            out / "indicators.png")]
-    report = solve_report(scene, opt, [str(f) for f in figures])
-    write_json(out / "result.json", report)
-    if args.json:
-        print(json.dumps(report, indent=2))
-    else:
-        print(solve_table(scene, opt))
-        print(f"\nwrote {', '.join(str(f) for f in figures)}, {out / 'result.json'}")
+    emit(args, solve_report(scene, opt, [str(f) for f in figures]), out / "result.json",
+         solve_table(scene, opt), figures)
     return 0 if opt.success else 1

@@ -3,14 +3,12 @@
 import copy
 import json
 import tomllib
-from pathlib import Path
 
 import casadi as ca
 import numpy as np
 import pytest
 
 from formopt import SceneError, impact, load
-from formopt.mechanics.model import build_model
 from formopt.cli import main
 from formopt.mechanics.landing import LandingModel, absorbed_function, landing_function
 from helpers import PROBLEMS, land

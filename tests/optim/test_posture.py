@@ -3,7 +3,6 @@
 import copy
 import json
 import tomllib
-from pathlib import Path
 
 import casadi as ca
 import numpy as np
