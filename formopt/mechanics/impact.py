@@ -102,13 +102,14 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
     # the contact laws, in impulse space of the strike points' rows (contact.py)
     W = contact.admissible_inverse_inertia(ca.DM(model.M_inv), model.constraint_jacobian(q))
     normal_rows = ca.DM(model.contact_rows(points, slope, tangential=()))
-    laws = {"no-slip": (no_slip_impulse, imp["qd_plus"], imp["T_c"], ca.DM(0), ca.DM(-1))}
-    W_n = normal_rows @ W @ normal_rows.T
-    p_n = -ca.solve(W_n, normal_rows @ qd)
-    frictionless = ca.vertcat(*[ca.vertcat(0, p_n[k]) for k in range(len(points))])
-    laws["frictionless"] = (frictionless, qd + W @ normal_rows.T @ p_n,
-                            contact.absorbed(W_n, normal_rows @ qd, p_n),
-                            _slip(model, points, qd + W @ normal_rows.T @ p_n, t), ca.DM(-1))
+    laws = {"no-slip": (no_slip_impulse, imp["qd_plus"], imp["T_c"],
+                        _slip(model, points, imp["qd_plus"], t), ca.DM(-1))}
+    W_n, v_n = normal_rows @ W @ normal_rows.T, normal_rows @ qd
+    p_n = -ca.solve(W_n, v_n)
+    qd_frictionless = qd + W @ normal_rows.T @ p_n
+    laws["frictionless"] = (ca.vertcat(*[ca.vertcat(0, p_n[k]) for k in range(len(points))]),
+                            qd_frictionless, contact.absorbed(W_n, v_n, p_n),
+                            _slip(model, points, qd_frictionless, t), ca.DM(-1))
     if strike != "flat" and model.tangential:
         C = ca.DM(model.contact_rows(points, slope))
         W_c, v0 = C @ W @ C.T, C @ qd
@@ -121,7 +122,6 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
     else:
         laws["coulomb"] = tuple(ca.DM.nan(*v.shape) for v in laws["no-slip"][:4]) + (ca.DM(-1),)
         mu_posture = ca.DM(0)
-    laws["no-slip"] = laws["no-slip"][:3] + (_slip(model, points, imp["qd_plus"], t), ca.DM(-1))
     momentum_matrix = ca.DM(model.momentum_matrix)
     trunk_matrix = ca.DM(model.com_matrix(model.trunk)) if model.trunk else ca.DM.zeros(2, model.n)
     per_law = {}
