@@ -4,6 +4,7 @@ touchdown, the paper's leg in other natural coordinates, a landing with another 
 from dataclasses import replace
 from pathlib import Path
 
+import casadi as ca
 import numpy as np
 
 import formopt
@@ -55,3 +56,26 @@ def land(scene, dt=None):
     if dt is not None:
         scene = replace(scene, integration=replace(scene.integration, dt=dt))
     return formopt.simulate(scene)
+
+
+def assert_nlp_derivatives(problem, points, h=1e-5, hessian=True):
+    """The posture NLP's gradient, constraint Jacobian (and Hessian of the objective) match
+    central differences at each scaled point u."""
+    nlp = ca.Function("nlp", [problem.nlp["x"], problem.nlp["p"]],
+                      [problem.nlp["f"], problem.nlp["g"]])
+    u = ca.SX.sym("u", len(problem.index))
+    f, g = nlp(u, problem.p0)
+    jac = ca.Function("jacobians", [u], [ca.gradient(f, u), ca.jacobian(g, u), ca.hessian(f, u)[0]])
+    for u0 in points:
+        grad, J, H = (np.asarray(a, float) for a in jac(u0))
+        for k in range(u0.size):
+            e = np.zeros_like(u0)
+            e[k] = h
+            fp, gp = (np.asarray(a, float).ravel() for a in nlp(u0 + e, problem.p0))
+            fm, gm = (np.asarray(a, float).ravel() for a in nlp(u0 - e, problem.p0))
+            assert abs((fp[0] - fm[0]) / (2 * h) - grad[k, 0]) < 1e-6 * max(1, abs(grad[k, 0]))
+            np.testing.assert_allclose((gp - gm) / (2 * h), J[:, k], rtol=1e-5, atol=1e-6)
+            if hessian:
+                gradp = np.asarray(jac(u0 + e)[0], float).ravel()
+                gradm = np.asarray(jac(u0 - e)[0], float).ravel()
+                np.testing.assert_allclose((gradp - gradm) / (2 * h), H[:, k], rtol=1e-5, atol=1e-5)

@@ -16,3 +16,15 @@ def test_example_runs_and_writes_its_figure(example, tmp_path):
                          text=True, timeout=600)
     assert out.returncode == 0, out.stderr[-2000:]
     assert list(tmp_path.rglob("*.png")), "the example's figure"
+
+
+def test_strike_laws_script_reads_the_real_trial(tmp_path):
+    """problems/strike_laws.py: the fair heel-against-forefoot comparison on RBDS001."""
+    out = subprocess.run([sys.executable, str(ROOT / "problems" / "strike_laws.py"), "--out",
+                          str(tmp_path)], capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr[-2000:]
+    table = {line.split()[0]: line.split() for line in out.stdout.splitlines()
+             if line.split() and line.split()[0] in ("no-slip", "coulomb", "frictionless")}
+    assert float(table["no-slip"][3]) > 1 > float(table["coulomb"][3])  # forefoot / heel
+    assert table["coulomb"][6] == "10/10" and table["no-slip"][7] == "0/10"
+    assert (tmp_path / "strike_laws.png").exists() and (tmp_path / "strike_laws.csv").exists()

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from ..io import mocap
 from ..io.files import save_figure, write_csv
+from ..mechanics.contact import LAWS
 from ..mechanics.errors import InputError
 from ..report.figures import comparison_figure
 from ..report.tables import comparison_table
@@ -22,12 +23,16 @@ def add_parser(commands):
     cmd.add_argument("--height", type=float, required=True, help="runner's stature (m)")
     cmd.add_argument("--sex", default="male", choices=["male", "female"])
     cmd.add_argument("--friction", type=float, default=0.8, help="the ground's friction (default 0.8)")
+    cmd.add_argument("--contact", default="no-slip", choices=LAWS,
+                     help="contact law of the impacts and the optimum (default no-slip, the "
+                          "paper's); every law's T_c and validity are shown either way")
     cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
     cmd.add_argument("--out", help="folder for the figure, CSV and JSON (default out/<trial>)")
 
 
 TOUCHDOWN_COLUMNS = ["time_s", "side", "strike", "trunk_deg", "hip_deg", "knee_deg", "ankle_deg",
-                     "foot_angle_deg", "hip_vx", "hip_vz", "T_c_J", "valid"]
+                     "foot_angle_deg", "hip_vx", "hip_vz", "T_c_J", "valid",
+                     *[f"{column}_{law}" for law in LAWS for column in ("T_c_J", "valid")]]
 
 
 def run(args) -> int:
@@ -37,7 +42,8 @@ def run(args) -> int:
         raise InputError("--friction must be > 0")
     trial = mocap.read(args.trial, args.forces)
     static = mocap.read(args.static)
-    result = compare(trial, static, args.mass, args.height, args.sex, args.friction)
+    result = compare(trial, static, args.mass, args.height, args.sex, args.friction,
+                     law=args.contact)
     out = out_folder(args, args.trial)
     rep = report(result)
     rep["figure"] = str(save_figure(comparison_figure(result), out / "comparison.png"))
@@ -45,7 +51,8 @@ def run(args) -> int:
     for t in rep["touchdowns"]:
         a = t["angles_deg"]
         rows.append([t["time"], t["side"], t["strike"], a["trunk"], a["hip"], a["knee"], a["ankle"],
-                     t["foot_angle_deg"], *t["hip_velocity"], t["T_c"], t["valid"]])
+                     t["foot_angle_deg"], *t["hip_velocity"], t["T_c"], t["valid"],
+                     *[t["contact_laws"][law][k] for law in LAWS for k in ("T_c", "valid")]])
     csv_path = write_csv(out / "touchdowns.csv", rows)
     emit(args, rep, out / "comparison.json", comparison_table(result), [rep["figure"], csv_path])
     return 0 if result.optimum.success else 1

@@ -112,7 +112,8 @@ class Scene:
     def landing(self) -> LandingModel:
         """The landing equations (joints, ground, integrator and compilation from the scene)."""
         return LandingModel(self.model(), self.joints, self.slope,
-                            self.numerics.compiled is not False, self.numerics.integrator)
+                            self.numerics.compiled is not False, self.numerics.integrator,
+                            self.contact)
 
     def posture_problem(self, **overrides) -> PostureProblem:
         """The posture NLP of the [optimize] table; `overrides` replace Problem fields."""
@@ -123,7 +124,7 @@ class Scene:
         return PostureProblem(self.model(), self.strike, self.state, problem, self.slope,
                               self.friction, joints=self.joints, duration=self.integration.duration,
                               graph=n.graph, compiled=n.compiled is True, hessian=n.hessian,
-                              integrator=n.integrator)
+                              integrator=n.integrator, law=self.contact)
 
     def with_state(self, state) -> "Scene":
         """The same scene with another touchdown state (model.STATE, SI)."""
@@ -177,25 +178,16 @@ def parse(data: dict, path: str = "") -> Scene:
     ground = _table(data, "ground", {"friction", "slope_deg", "contact"}, {"friction"})
     friction = _number(ground, "friction", "ground", low=0.0, low_open=True)
     contact_law = _choice(ground.get("contact", "no-slip"), "ground.contact", LAWS)
-    if contact_law == "coulomb" and strike == "flat":
-        raise SceneError("ground.contact", "\"coulomb\" takes a heel or forefoot strike: a flat "
-                                           "foot has two frictional contacts (see the README)")
-    if contact_law != "no-slip" and "optimize" in data:
-        raise SceneError("ground.contact", f"{contact_law!r} is not yet available to [optimize]: "
-                                           "the posture NLP holds the no-slip contact")
     slope = _number(ground, "slope_deg", "ground", default=0.0, low=-60.0, high=60.0)
     problem = None
     if "optimize" in data:
-        problem, more = _optimize(data["optimize"], model, strike)
+        problem, more = _optimize(data["optimize"], model, strike, contact_law)
         notes += more
     joints = _joints(data.get("joints", {}), model)
     landing = _landing(data.get("landing", {}))
     if model == "effective-mass" and (problem and problem.landing or data.get("joints")):
         raise SceneError("scene.model", "'effective-mass' is an impact-only model: no [joints], "
                                         "landing or T_c_total")
-    if contact_law != "no-slip" and data.get("joints"):
-        notes += (f"the landing applies the no-slip contact at each impact; ground.contact = "
-                  f"{contact_law!r} applies to the first impact's indicators",)
     return Scene(name, model, body, strike, state, friction, math.radians(slope), path, notes,
                  problem, joints, landing, swing, _numerics(data.get("numerics", {})), contact_law)
 
@@ -283,11 +275,11 @@ def _landing(data) -> Integration:
 
 OPTIMIZE_KEYS = {"variables", "objective", "bounds_deg", "bounds_dps", "starts", "seed",
                  "tolerance", "max_overstride_m", "hip_height_m", "contact_friction",
-                 "max_iterations"}
+                 "max_iterations", "max_slip_mps"}
 RATE_VARIABLES = tuple("omega_" + r for r in RATES)
 
 
-def _optimize(data, model, strike) -> tuple[Problem, tuple[str, ...]]:
+def _optimize(data, model, strike, law) -> tuple[Problem, tuple[str, ...]]:
     if not isinstance(data, dict):
         raise SceneError("optimize", "must be a table")
     _keys(data, "optimize", OPTIMIZE_KEYS, ("variables", "objective"))
@@ -356,11 +348,25 @@ def _optimize(data, model, strike) -> tuple[Problem, tuple[str, ...]]:
     if not isinstance(contact_friction, bool):
         raise SceneError("optimize.contact_friction", f"must be true or false, not {_short(contact_friction)}")
     max_iterations = _integer(data, "max_iterations", "optimize", default=200, low=1, high=100000)
+    max_slip = None
+    if "max_slip_mps" in data:
+        if law == "no-slip":
+            raise SceneError("optimize.max_slip_mps", "bounds the slip that ground.contact = "
+                                                      "\"coulomb\" or \"frictionless\" allows; "
+                                                      "under \"no-slip\" the foot never slips")
+        max_slip = _number(data, "max_slip_mps", "optimize", low=0.0, high=100.0)
     problem = Problem(tuple(variables), tuple(lower), tuple(upper), objective, overstride, hip_height,
-                      starts, seed, tolerance, contact_friction, max_iterations)
+                      starts, seed, tolerance, contact_friction, max_iterations, max_slip)
     if problem.landing and strike == "flat":
         raise SceneError("optimize.objective", "the landing (T_c_total, contact_friction) starts with "
                                                "a heel or forefoot strike, not a flat one")
+    if problem.landing and law != "no-slip":
+        raise SceneError("ground.contact", f"the landing objective (T_c_total, contact_friction) "
+                                           f"holds the strike point: no-slip only, not {law!r}")
+    if law == "coulomb" and strike == "flat":
+        raise SceneError("ground.contact", "optimising a flat strike under \"coulomb\" is not "
+                                           "available (see the README): use \"no-slip\" or "
+                                           "\"frictionless\"")
     return problem, tuple(notes)
 
 

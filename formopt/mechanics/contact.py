@@ -58,33 +58,76 @@ def frictionless(W_c, v0):
     return ca.vertcat(0, -v0[1] / W_c[1, 1])
 
 
+def _closed_forms(W_c, v0, mu, s):
+    """Each mode's impulse, for sliding direction s (+1 or -1), and the two switches:
+    `before_end` (> 0: v_t reaches zero before v_n does) and `holds` (> 0: sticking holds)."""
+    a, b, c = W_c[0, 0], W_c[0, 1], W_c[1, 1]
+    vt, vn = v0[0], v0[1]
+    k_t, k_n = b - mu * s * a, c - mu * s * b
+    p_slide = -vn / k_n  # slide to the end: the normal velocity reaches zero first
+    p_stick = -vt / k_t  # normal impulse when v_t reaches zero
+    vn_1 = vn + k_n * p_stick
+    p_rest_stick = -vn_1 * a / (a * c - b * b)
+    p_rest_reverse = -vn_1 / (c + mu * s * b)
+    return {
+        SLIDE: ca.vertcat(-mu * s * p_slide, p_slide),
+        STICK: ca.vertcat(-mu * s * p_stick - b / a * p_rest_stick, p_stick + p_rest_stick),
+        REVERSE: ca.vertcat(mu * s * (p_rest_reverse - p_stick), p_stick + p_rest_reverse),
+        # |v_t| / |k_t| < -v_n / k_n, multiplied out so that no branch divides by zero
+        "before_end": -s * (vt * k_n - vn * k_t),
+        "holds": mu * mu * a * a - b * b,
+    }
+
+
 def coulomb(W_c, v0, mu):
     """(impulse (N s), mode, final tangential velocity (m/s)) of the rigid, perfectly plastic
     impact with Coulomb friction mu, by the closed form of each mode (module docstring)."""
-    a, b, c = W_c[0, 0], W_c[0, 1], W_c[1, 1]
-    vt, vn = v0[0], v0[1]
-    s = ca.if_else(vt >= 0, 1, -1)
-    k_t, k_n = b - mu * s * a, c - mu * s * b
-    # slide to the end: the normal velocity reaches zero before the tangential one
-    p_slide = -vn / k_n
-    sticks_first = s * k_t < 0  # sliding decelerates the point
-    # |v_t| / |k_t| < -v_n / k_n, multiplied out so that no branch divides by zero
-    slide_only = ca.logic_and(k_n > 0, ca.logic_or(ca.logic_not(sticks_first),
-                                                   ca.fabs(vt) * k_n >= -vn * ca.fabs(k_t)))
-    p_stick = -vt / k_t  # normal impulse when v_t reaches zero
-    vn_1 = vn + k_n * p_stick
+    b, c, a = W_c[0, 1], W_c[1, 1], W_c[0, 0]
+    s = ca.if_else(v0[0] >= 0, 1, -1)
+    forms = _closed_forms(W_c, v0, mu, s)
+    slide_only = ca.logic_and(c - mu * s * b > 0, forms["before_end"] <= 0)
     holds = ca.fabs(b) <= mu * a
-    det = a * c - b * b
-    p_rest_stick = -vn_1 * a / det
-    p_rest_reverse = -vn_1 / (c + mu * s * b)
-    impulse_slide = ca.vertcat(-mu * s * p_slide, p_slide)
-    impulse_stick = ca.vertcat(-mu * s * p_stick - b / a * p_rest_stick, p_stick + p_rest_stick)
-    impulse_reverse = ca.vertcat(mu * s * (p_rest_reverse - p_stick), p_stick + p_rest_reverse)
-    impulse = ca.if_else(slide_only, impulse_slide,
-                         ca.if_else(holds, impulse_stick, impulse_reverse))
+    impulse = ca.if_else(slide_only, forms[SLIDE], ca.if_else(holds, forms[STICK], forms[REVERSE]))
     mode = ca.if_else(slide_only, SLIDE, ca.if_else(holds, STICK, REVERSE))
     slip = (v0 + W_c @ impulse)[0]
     return impulse, mode, ca.if_else(mode == STICK, 0, slip)
+
+
+def coulomb_in_mode(W_c, v0, mu, mode: int, s: int):
+    """(impulse, region) of one Coulomb mode and sliding direction s, both smooth: the closed
+    form of `mode`, and the expressions that are all >= 0 exactly where the impact is in that
+    mode (s v_t >= 0; SLIDE: k_n > 0 and v_n reaches zero first; STICK and REVERSE: v_t
+    reaches zero first, and sticking holds or not). An NLP fixes the mode and keeps these."""
+    forms = _closed_forms(W_c, v0, mu, s)
+    region = [s * v0[0]]
+    if mode == SLIDE:
+        region += [W_c[1, 1] - mu * s * W_c[0, 1], -forms["before_end"]]
+    else:
+        region += [forms["before_end"], forms["holds"] if mode == STICK else -forms["holds"]]
+    return forms[mode], ca.vertcat(*region)
+
+
+def velocity_level(W_c, v0, mu):
+    """(impulse, mode, final tangential velocity) of a plastic Coulomb impact at one or more
+    points of one rigid foot, by the velocity-level law (Moreau 1988; the impact step of
+    Stewart & Trinkle 1996). Rows: [t, n_1, ..., n_k], the points sharing their tangential
+    motion (a flat foot). Every normal velocity ends at zero; the foot sticks when the impulse
+    that stops it lies in the friction cone, |p_t| <= mu sum p_n, and otherwise slides with
+    p_t = mu s_f sum p_n, s_f the sign of the sticking impulse. For one point it gives the
+    Darboux-Keller impulse wherever that one slides or sticks, and differs after a reversed
+    slide (tests/mechanics/test_contact.py); two frictional contacts have no single
+    normal-impulse clock, so this is the law formopt applies to them."""
+    k = v0.shape[0] - 1
+    p_stick = -ca.solve(W_c, v0)
+    total = ca.sum1(p_stick[1:])
+    holds = ca.fabs(p_stick[0]) <= mu * total
+    s_f = ca.if_else(p_stick[0] >= 0, 1, -1)
+    W_nn, W_nt = W_c[1:, 1:], W_c[1:, 0]
+    p_n = -ca.solve(W_nn + mu * s_f * W_nt @ ca.DM.ones(1, k), v0[1:])
+    p_slide = ca.vertcat(mu * s_f * ca.sum1(p_n), p_n)
+    impulse = ca.if_else(holds, p_stick, p_slide)
+    slip = (v0 + W_c @ impulse)[0]
+    return impulse, ca.if_else(holds, STICK, SLIDE), ca.if_else(holds, 0, slip)
 
 
 def absorbed(W_c, v0, p):

@@ -30,7 +30,7 @@ import numpy as np
 
 from . import contact
 from .compiled import Compiled
-from .model import STATE, STRIKES, Model, landmarks
+from .model import STATE, STRIKES, Model, ground_axes, landmarks
 from .errors import InputError
 # Ill-conditioned beyond this: results lose more than 10 of 16 digits.
 CONDITION_LIMIT = 1e10
@@ -38,11 +38,6 @@ GRAPHS = ("SX", "MX")
 # Relative tolerance of the validity checks: an optimum on a constraint (mu_c = friction,
 # normal impulse = 0) is valid, not a rounding error away from invalid.
 RTOL = 1e-6
-
-
-def ground_axes(slope: float):
-    """Tangent (forward, along the ground) and normal (up, out of the ground) unit vectors."""
-    return np.array([np.cos(slope), np.sin(slope)]), np.array([-np.sin(slope), np.cos(slope)])
 
 
 def projection(model: Model, q, qd, contact_jacobian):
@@ -72,12 +67,16 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
     G (Phi_q M^-1 Phi_q^T of the no-slip contact); mu_posture (eq. 7, signed; zero for a flat
     strike, where it is not defined); mode (Coulomb's contact.MODES, -1 under other laws).
     For every law L of contact.LAWS also T_c_L, impulse_L, slip_L, dv_trunk_L, dv_com_L, and
-    mode_coulomb. `outputs` keeps only the named ones (the generated code then holds only what
+    mode_coulomb. The strike point's contact space (NaN for a flat strike or a normal-only
+    model): W_c (2 x 2, m/s per N s), v_contact (its pre-impact [t, n] velocity, m/s), and
+    dv_trunk_per_impulse, dv_com_per_impulse (2 x 2: dv = D p). `outputs` keeps only the named ones (the generated code then holds only what
     they need). `graph`: "SX" (scalar expressions, fast to evaluate) or "MX" (matrix
     expressions with a linear-solver node, smaller graphs).
 
-    A flat strike has no Coulomb law here (two frictional contacts need a complementarity
-    problem per impulse step): its Coulomb outputs are NaN and the Impact refuses it.
+    Coulomb at a flat strike: heel and forefoot share one tangential motion and have no
+    single normal-impulse clock, so the impact takes the velocity-level law
+    (contact.velocity_level), which equals Darboux-Keller for one point outside a reversed
+    slide; its mode is stick or slide.
     """
     points = STRIKES[strike]
     t, n = ground_axes(slope)
@@ -92,13 +91,7 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
     lam = imp["lambda"][imp["n_body"]:]
     if not model.tangential:  # normal only: the guide holds the rest (see _momentum_impulse)
         lam = ca.vertcat(0, lam)
-    if strike == "flat":
-        total_t, normals = lam[0], ca.vertcat(lam[1], lam[2])
-        total_n = normals[0] + normals[1]
-        no_slip_impulse = ca.vertcat(total_t * normals[0] / total_n, normals[0],
-                                     total_t * normals[1] / total_n, normals[1])
-    else:
-        no_slip_impulse = lam
+    no_slip_impulse = _split(lam) if strike == "flat" else lam
     # the contact laws, in impulse space of the strike points' rows (contact.py)
     W = contact.admissible_inverse_inertia(ca.DM(model.M_inv), model.constraint_jacobian(q))
     normal_rows = ca.DM(model.contact_rows(points, slope, tangential=()))
@@ -110,20 +103,28 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
     laws["frictionless"] = (ca.vertcat(*[ca.vertcat(0, p_n[k]) for k in range(len(points))]),
                             qd_frictionless, contact.absorbed(W_n, v_n, p_n),
                             _slip(model, points, qd_frictionless, t), ca.DM(-1))
+    momentum_matrix = ca.DM(model.momentum_matrix)
+    trunk_matrix = ca.DM(model.com_matrix(model.trunk)) if model.trunk else ca.DM.zeros(2, model.n)
+    # the strike point's contact space, for a law built outside (an NLP's fixed Coulomb mode)
+    space = {"W_c": ca.DM.nan(2, 2), "v_contact": ca.DM.nan(2, 1),
+             "dv_trunk_per_impulse": ca.DM.nan(2, 2), "dv_com_per_impulse": ca.DM.nan(2, 2)}
     if strike != "flat" and model.tangential:
         C = ca.DM(model.contact_rows(points, slope))
         W_c, v0 = C @ W @ C.T, C @ qd
+        space = {"W_c": W_c, "v_contact": v0, "dv_trunk_per_impulse": trunk_matrix @ W @ C.T,
+                 "dv_com_per_impulse": momentum_matrix @ W @ C.T / model.mass}
         p, mode, slip = contact.coulomb(W_c, v0, friction)
         laws["coulomb"] = (p, qd + W @ C.T @ p, contact.absorbed(W_c, v0, p), slip, mode)
         mu_posture = W_c[0, 1] / W_c[0, 0]
     elif strike != "flat":  # normal only: every law is the frictionless one
         laws["coulomb"] = laws["frictionless"]
         mu_posture = ca.DM(0)
-    else:
-        laws["coulomb"] = tuple(ca.DM.nan(*v.shape) for v in laws["no-slip"][:4]) + (ca.DM(-1),)
+    else:  # two contacts of one rigid foot: the velocity-level law
+        C = ca.DM(model.contact_rows(points, slope, tangential=points[:1]))
+        W_c, v0 = C @ W @ C.T, C @ qd
+        p, mode, slip = contact.velocity_level(W_c, v0, friction)
+        laws["coulomb"] = (_split(p), qd + W @ C.T @ p, contact.absorbed(W_c, v0, p), slip, mode)
         mu_posture = ca.DM(0)
-    momentum_matrix = ca.DM(model.momentum_matrix)
-    trunk_matrix = ca.DM(model.com_matrix(model.trunk)) if model.trunk else ca.DM.zeros(2, model.n)
     per_law = {}
     for name, (impulse, qd_plus, T_c, slip, mode) in laws.items():
         dqd = qd_plus - qd
@@ -156,6 +157,7 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
         "clearance": ca.dot(landmarks(x, model.body, points[0])[other][0], n),
         "G": imp["G"],
         "mu_posture": mu_posture,
+        **space,
     }
     for name, values in per_law.items():
         key = name.replace("-", "_")
@@ -168,6 +170,14 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
             raise InputError(f"unknown impact outputs {sorted(unknown)}: expected {list(indicators)}")
         indicators = {k: indicators[k] for k in outputs}
     return ca.Function(f"impact_{strike}", [x], list(indicators.values()), ["x"], list(indicators))
+
+
+def _split(impulse):
+    """A flat foot's impulse [t, n_heel, n_forefoot] as [t, n] per point, the tangential
+    impulse shared in proportion to the normal ones (the module docstring)."""
+    total_t, n_heel, n_fore = impulse[0], impulse[1], impulse[2]
+    total_n = n_heel + n_fore
+    return ca.vertcat(total_t * n_heel / total_n, n_heel, total_t * n_fore / total_n, n_fore)
 
 
 def _slip(model: Model, points, qd_plus, t):
@@ -209,7 +219,7 @@ class ImpactResult:
     mode: str | None = None  # Coulomb's mode (slide, stick, reversed slide); None otherwise
     mu_c_posture: float | None = None  # eq. 7, |W_tn / W_tt|; None for a flat strike
     contact_laws: dict = field(default_factory=dict)  # law -> its T_c, impulse, mode, slip,
-    # dv_trunk, dv_com, valid (JSON-ready); None for a law that cannot take this strike
+    # dv_trunk, dv_com, valid (JSON-ready)
 
     def to_dict(self) -> dict:
         """JSON-ready dictionary (lists instead of arrays)."""
@@ -236,10 +246,6 @@ class Impact:
         if strike not in STRIKES:
             raise InputError(f"unknown strike {strike!r}: expected one of {', '.join(STRIKES)}")
         self.model, self.strike, self.slope, self.friction = model, strike, slope, friction
-        if law == "coulomb" and strike == "flat":
-            raise InputError("a flat-foot strike under Coulomb friction has two frictional "
-                             "contacts, which need a complementarity problem; formopt refuses it "
-                             "(use \"no-slip\" or \"frictionless\", or a heel or forefoot strike)")
         self.compiled, self.graph, self.law = compiled, graph, law
         self.function = impact_function(model, strike, slope, graph=graph, law=law,
                                         friction=friction)
@@ -285,10 +291,10 @@ class Impact:
                             f"{total_n:.3g} N s)")
         elif self.law == "no-slip" and mu_c > self.friction * (1 + RTOL):
             warnings.append(f"the foot slips: mu_c {mu_c:.3f} exceeds the friction {self.friction:g}")
-        if self.strike == "flat" and self.law == "no-slip":
+        if self.strike == "flat" and self.law != "frictionless":
             warnings.append("flat foot: the tangential split between heel and forefoot is not "
                             "determined (shown in proportion to the normal impulses; the total is exact)")
-        determined = {p: (self.strike != "flat" or self.law != "no-slip", True) for p in points}
+        determined = {p: (self.strike != "flat" or self.law == "frictionless", True) for p in points}
         laws = {law: self._law_summary(out, law, points, ahead) for law in contact.LAWS}
         mode = int(round(out["mode"]))
         return ImpactResult(
@@ -318,8 +324,6 @@ class Impact:
         pushes, and (no-slip) the friction suffices."""
         key = law.replace("-", "_")
         impulse = np.asarray(out[f"impulse_{key}"], float).reshape(-1, 2)
-        if not np.all(np.isfinite(impulse)):
-            return None  # Coulomb at a flat strike: refused
         valid = not shared and not self._pull_warnings(points, impulse)
         t, n = impulse.sum(axis=0)
         if law == "no-slip":

@@ -1,22 +1,36 @@
 """The landing: finite motion between impacts, contact events, the impact sequence.
 
-Between impacts the natural coordinates follow M q'' = Q + Phi_q^T lambda with Phi the body
-constraints, the locked joints and the active contacts (each held in both directions; on a
-flat foot the forefoot's tangential row is implied by the heel's, as at the impact). With
-G = Phi_q M^-1 Phi_q^T (the impact's matrix):
+Between impacts the natural coordinates follow M q'' = Q + F^T lambda with Phi the body
+constraints, the locked joints and the active contacts, and F = Phi except where a point
+slides. With G = Phi_q M^-1 F_q^T (the impact's matrix when nothing slides):
 
-    lambda = G^-1 (gamma - Phi_q M^-1 Q)     q'' = M^-1 (Q + Phi_q^T lambda)
+    lambda = G^-1 (gamma - Phi_q M^-1 Q)     q'' = M^-1 (Q + F_q^T lambda)
     gamma = -(Phi_q q')_q q' - 2 a Phi_q q' - a^2 Phi        (Baumgarte, a = BAUMGARTE / s)
 
-Contact rows of lambda are the ground's force on the foot point (N, tangential, normal).
+A held (sticking) point keeps both rows, the first held point carrying the tangential one (on
+a flat foot the forefoot's tangential row is implied by the heel's, as at the impact). A
+sliding point in direction s keeps its normal row, and kinetic friction f_t = -mu s f_n
+turns that row's force direction into n - mu s t (F's row). Contact rows of lambda are the
+ground's force on the foot point (N, tangential, normal).
+
+The contact law (contact.LAWS) decides what the foot points do:
+- no-slip: held from the impact on (the ground's friction is only checked: `slip_at`);
+- frictionless: every point slides with mu = 0;
+- coulomb: the impact's mode (contact.coulomb, one point; contact.velocity_level, two)
+  decides whether the point leaves it stuck or sliding; a sliding point sticks when its
+  tangential velocity reaches zero (an event), a stuck point slides when holding it would
+  need |f_t| > mu f_n, in the direction -sign(f_t).
+
 Q holds gravity and the joint torques: free hinges (none), spring-damper (tau = -k (theta -
 theta_0) - c theta', theta_0 the touchdown angle: a holding law on the touchdown posture), or
-locked (a constraint). Events: a foot point reaching the ground (an impact, by the projection,
-with the new contact set), a contact whose normal force would pull (released: a contact can
-only push). The landing ends when heel and forefoot are both down, or at `t_max`.
+locked (a constraint). Events: a foot point reaching the ground (an impact, with the new
+contact set), a contact whose normal force would pull (released: a contact can only push),
+a sliding point coming to rest. The landing ends when heel and forefoot are both down, or
+at `t_max`.
 
-Energy bookkeeping: T + V_gravity + V_springs + E_damped + sum of T_c stays equal to its value
-before the first impact, to the integration tolerance; `energy_error` is its largest drift.
+Energy bookkeeping: T + V_gravity + V_springs + E_dissipated (dampers and sliding friction)
++ sum of T_c stays equal to its value before the first impact, to the integration
+tolerance; `energy_error` is its largest drift.
 """
 
 from __future__ import annotations
@@ -26,16 +40,17 @@ from dataclasses import dataclass, field
 import casadi as ca
 import numpy as np
 
+from . import contact
 from .compiled import Compiled
-from .impact import ground_axes
-from .model import STATE, STRIKES, Model
 from .errors import InputError
+from .model import STATE, STRIKES, Model, ground_axes
 
 GRAVITY = 9.81  # m/s^2
 BAUMGARTE = 50.0  # 1/s, critically damped constraint stabilisation
 JOINT_MODELS = ("free", "spring-damper", "locked")
 # Fixed-step explicit schemes: classical Runge-Kutta (4th order) and the midpoint rule (2nd)
 INTEGRATORS = ("rk4", "midpoint")
+MAX_SWITCHES = 50  # contact changes (releases, stick-slip) before a landing counts as chatter
 # Joints: (name, parent segment, child segment); the hip only where the trunk is a rigid body.
 JOINTS = (("hip", "trunk", "thigh"), ("knee", "thigh", "shank"), ("ankle", "shank", "foot"),
           ("swing_hip", "trunk", "swing_thigh"), ("swing_knee", "swing_thigh", "swing_shank"),
@@ -61,6 +76,8 @@ class ImpactEvent:
     dv_trunk: tuple[float, float] | None  # m/s
     impulse: tuple[float, float]  # total (tangential, normal), N s
     mu_c: float | None  # |t| / n of the impulse; None when the ground does not push
+    mode: str  # contact.MODES: how the foot leaves the impact (stick or slide)
+    slip: float  # m/s, tangential velocity of the first held point after the impact
 
 
 @dataclass(frozen=True)
@@ -74,12 +91,14 @@ class Landing:
     energy: np.ndarray  # J, T + V + springs + damped + absorbed: constant up to drift
     force: np.ndarray  # (len(t), 2): total contact force (tangential, normal), N; nan in flight
     active: list  # contact set at each sample
+    slide: np.ndarray  # sliding direction at each sample: +1 forward, -1 backward, 0 held
     impacts: list[ImpactEvent]
     releases: list[tuple[float, str, float]]  # (time, point, normal force N < 0): contacts let go
     T_c_total: float  # J
     mu_c_max: float  # largest |f_t| / f_n where the ground pushes (impacts and contact phases)
-    no_slip_held: bool  # mu_c stayed within the ground's friction everywhere
-    slip_at: list[float]  # times where it did not
+    no_slip_held: bool  # the contact law's friction held: no-slip never needed more than mu
+    slip_at: list[float]  # times where it did (no-slip law only: the others let the foot slide)
+    law: str  # the contact law (contact.LAWS)
     energy_error: float  # J
     drift: float  # largest constraint violation, m
     ended: str  # why the simulation stopped
@@ -88,7 +107,9 @@ class Landing:
     def to_dict(self) -> dict:
         return {"impacts": [{"time": e.time, "contact": e.contact, "active": list(e.active),
                              "T_c": e.T_c, "dv_trunk": list(e.dv_trunk) if e.dv_trunk else None,
-                             "impulse": list(e.impulse), "mu_c": e.mu_c} for e in self.impacts],
+                             "impulse": list(e.impulse), "mu_c": e.mu_c, "mode": e.mode,
+                             "slip": e.slip} for e in self.impacts],
+                "law": self.law, "sliding_ms": self.sliding_time * 1e3,
                 "T_c_total": self.T_c_total, "mu_c_max": self.mu_c_max,
                 "no_slip_held": self.no_slip_held, "slip_at": self.slip_at,
                 "releases": [{"time": t, "contact": p, "normal_force": f} for t, p, f in self.releases],
@@ -96,17 +117,27 @@ class Landing:
                 "warnings": self.warnings,
                 "duration": float(self.t[-1])}
 
+    @property
+    def sliding_time(self) -> float:
+        """Time (s) during which a held foot point slid on the ground."""
+        if len(self.t) < 2:
+            return 0.0
+        return float(np.sum(np.diff(self.t)[self.slide[:-1] != 0]))
+
 
 class LandingModel:
     """The landing equations of one model, joint model and ground, compiled per contact set."""
 
     def __init__(self, model: Model, joints: Joints = Joints(), slope: float = 0.0,
-                 compiled: bool = True, integrator: str = "rk4"):
+                 compiled: bool = True, integrator: str = "rk4", law: str = "no-slip"):
         if not {"heel", "forefoot"} <= set(model.index):
             raise InputError(f"model {model.kind!r} has no foot to land on (it is impact-only)")
         if integrator not in INTEGRATORS:
             raise InputError(f"integrator {integrator!r}: expected one of {', '.join(INTEGRATORS)}")
+        if law not in contact.LAWS:
+            raise InputError(f"contact law {law!r}: expected one of {', '.join(contact.LAWS)}")
         self.model, self.joints, self.slope, self.integrator = model, joints, slope, integrator
+        self.law = law
         self.t_axis, self.n_axis = ground_axes(slope)
         rigid = {b.segment: b for b in model.bodies}
         self.hinges = [(name, rigid[p], rigid[c]) for name, p, c in JOINTS
@@ -133,8 +164,8 @@ class LandingModel:
     def joint_angles(self, q) -> np.ndarray:
         return np.asarray(self._angles(q), float).ravel()
 
-    def _constraints(self, q, active, s_anchor, rest):
-        """Body, locked-joint and contact constraints (SX)."""
+    def _constraints(self, q, active, s_anchor, rest, sliding=False):
+        """Body, locked-joint and contact constraints (SX); a sliding foot has no tangential row."""
         rows = [self.model.constraints(q)]
         if self.joints.model == "locked":
             for k, (name, p, c) in enumerate(self.hinges):
@@ -142,7 +173,7 @@ class LandingModel:
                     rows.append(self._angle(q, p, c) - rest[k])
         for k, point in enumerate(active):
             r = q[self.model.cols(point)]
-            if k == 0:
+            if k == 0 and not sliding:
                 rows.append(ca.dot(r, ca.DM(self.t_axis)) - s_anchor)
             rows.append(ca.dot(r, ca.DM(self.n_axis)))
         return ca.vertcat(*rows)
@@ -171,41 +202,62 @@ class LandingModel:
         return sum(0.5 * self.joints.stiffness.get(name, 0.0) * (theta[k] - rest[k]) ** 2
                    for k, (name, _, _) in enumerate(self.hinges))
 
-    def rhs(self, active: tuple[str, ...]) -> ca.Function:
-        """(q, q', s_anchor, rest) -> (q', q'', damping power, contact force [t, n] total,
-        normal force per held point, constraint residual, mechanical energy), symbolic."""
-        key = ("rhs",) + tuple(active)
+    def rhs(self, active: tuple[str, ...], sliding: bool = False) -> ca.Function:
+        """(q, q', s_anchor, rest, friction) -> (q', q'', dissipated power, contact force
+        [t, n] total, normal force per held point, tangential velocity of the first held
+        point, constraint residual, mechanical energy), symbolic. `friction` is mu s of a
+        sliding foot (unused when it is held)."""
+        key = ("rhs", sliding) + tuple(active)
         if key not in self._functions:
             m = self.model
             q, qd = ca.SX.sym("q", m.n), ca.SX.sym("qd", m.n)
             s_anchor, rest = ca.SX.sym("s_anchor"), ca.SX.sym("rest", len(self.hinges))
-            phi = self._constraints(q, active, s_anchor, rest)
+            mu_s = ca.SX.sym("friction")
+            phi = self._constraints(q, active, s_anchor, rest, sliding)
             Phi = ca.jacobian(phi, q)
+            tangents = [self._row(p, self.t_axis) for p in active]
+            F = Phi
+            if sliding and active:  # kinetic friction -mu s f_n on each sliding point
+                F = ca.vertcat(Phi[:-len(active), :],
+                               Phi[-len(active):, :] - mu_s * ca.vertcat(*tangents))
             M_inv = ca.DM(m.M_inv)
             Q_joint, power = self._torques(q, qd, rest)
             Q = ca.DM(self.gravity) + Q_joint
             phid = Phi @ qd
             gamma = -ca.jtimes(phid, q, qd) - 2 * BAUMGARTE * phid - BAUMGARTE**2 * phi
-            lam = ca.solve(Phi @ M_inv @ Phi.T, gamma - Phi @ (M_inv @ Q))
-            qdd = M_inv @ (Q + Phi.T @ lam)
-            contact = lam[phi.shape[0] - (len(active) + 1):] if active else ca.SX.zeros(0)
-            normal = contact[1:] if active else ca.SX.zeros(1)
-            force = ca.vertcat(contact[0], ca.sum1(normal)) if active else ca.SX.zeros(2)
+            lam = ca.solve(Phi @ M_inv @ F.T, gamma - Phi @ (M_inv @ Q))
+            qdd = M_inv @ (Q + F.T @ lam)
+            slip = tangents[0] @ qd if active else ca.SX(0)
+            if not active:
+                normal, force = ca.SX.zeros(1), ca.SX.zeros(2)
+            elif sliding:
+                normal = lam[-len(active):]
+                force = ca.vertcat(-mu_s * ca.sum1(normal), ca.sum1(normal))
+                power += sum(mu_s * normal[k] * (tangents[k] @ qd) for k in range(len(active)))
+            else:
+                contact_rows = lam[-(len(active) + 1):]
+                normal = contact_rows[1:]
+                force = ca.vertcat(contact_rows[0], ca.sum1(normal))
             energy = m.kinetic_energy(qd) + GRAVITY * ca.dot(ca.DM(m.momentum_matrix[1]), q) \
                 + self._spring_energy(q, rest)
             self._functions[key] = ca.Function(
-                "rhs", [q, qd, s_anchor, rest],
-                [qd, qdd, power, force, normal, ca.norm_inf(phi), energy],
-                ["q", "qd", "s_anchor", "rest"],
-                ["qd_out", "qdd", "power", "force", "normal", "residual", "energy"])
+                "rhs", [q, qd, s_anchor, rest, mu_s],
+                [qd, qdd, power, force, normal, slip, ca.norm_inf(phi), energy],
+                ["q", "qd", "s_anchor", "rest", "friction"],
+                ["qd_out", "qdd", "power", "force", "normal", "slip", "residual", "energy"])
         return self._functions[key]
 
-    def rk4(self, active, x, h, s_anchor, rest):
-        """One step of [q, q', E_damped] by the model's integrator (symbolic or numeric)."""
-        n, rhs = self.model.n, self.rhs(active)
+    def _row(self, point, axis) -> ca.DM:
+        """(1 x n) row taking q (or q') to `point`'s component along `axis`."""
+        return ca.DM(self.model.scatter(np.asarray(axis)[None, :], [point]))
+
+    def advance(self, active, x, h, s_anchor, rest, sliding=False, mu_s=0.0):
+        """One step of [q, q', E_dissipated] by the model's integrator (rk4 or midpoint),
+        symbolic or numeric."""
+        n, rhs = self.model.n, self.rhs(active, sliding)
 
         def f(state):
-            out = rhs(state[:n], state[n:2 * n], s_anchor, rest)
+            out = rhs(state[:n], state[n:2 * n], s_anchor, rest, mu_s)
             return ca.vertcat(out[0], out[1], out[2])
 
         if self.integrator == "midpoint":
@@ -222,43 +274,63 @@ class LandingModel:
                             for p in ("heel", "forefoot")])
 
     def impact_map(self, active) -> ca.Function:
-        """(q, q'-, rest) -> (q'+, T_c, total impulse [t, n]) with contact set `active`."""
+        """(q, q'-, rest, mu) -> (q'+, T_c, total impulse [t, n], mode, slip) of an impact
+        with contact set `active` under the model's law, in the contact space of rows
+        [t of the first point, n of each] (contact.py): no-slip, frictionless, or Coulomb
+        (Darboux-Keller for one point, the velocity-level law for two). Locked joints stop
+        first (q' projected on the body's admissible motion, W M q'); T_c = T- - T+ counts
+        both. mode: contact.MODES; slip: the first point's tangential velocity after it (m/s)."""
         key = ("impact",) + tuple(active)
         if key not in self._functions:
             m = self.model
             q, qd = ca.SX.sym("q", m.n), ca.SX.sym("qd", m.n)
-            rest = ca.SX.sym("rest", len(self.hinges))
-            phi = self._constraints(q, active, ca.SX.sym("s"), rest)
-            Phi = ca.jacobian(phi, q)
-            M_inv = ca.DM(m.M_inv)
-            b = Phi @ qd
-            lam = -ca.solve(Phi @ M_inv @ Phi.T, b)
-            contact = lam[phi.shape[0] - (len(active) + 1):]
+            rest, mu = ca.SX.sym("rest", len(self.hinges)), ca.SX.sym("mu")
+            Phi_b = ca.jacobian(self._constraints(q, (), 0, rest), q)
+            W = contact.admissible_inverse_inertia(ca.DM(m.M_inv), Phi_b)
+            qd_b = W @ (ca.DM(m.M) @ qd)  # locked joints stop first (a no-op when none are)
+            C = ca.vertcat(self._row(active[0], self.t_axis),
+                           *[self._row(p, self.n_axis) for p in active])
+            W_c, v0 = C @ W @ C.T, C @ qd_b
+            if self.law == "no-slip":
+                p, mode = contact.no_slip(W_c, v0), contact.STICK
+            elif self.law == "frictionless":
+                p, mode = ca.vertcat(0, -ca.solve(W_c[1:, 1:], v0[1:])), contact.SLIDE
+            elif len(active) == 1:
+                p, mode, _ = contact.coulomb(W_c, v0, mu)
+            else:
+                p, mode, _ = contact.velocity_level(W_c, v0, mu)
+            qd_plus = qd_b + W @ C.T @ p
             self._functions[key] = ca.Function(
-                "impact_map", [q, qd, rest],
-                [qd + M_inv @ (Phi.T @ lam), -0.5 * ca.dot(lam, b),
-                 ca.vertcat(contact[0], ca.sum1(contact[1:]))],
-                ["q", "qd", "rest"], ["qd_plus", "T_c", "impulse"])
+                "impact_map", [q, qd, rest, mu],
+                [qd_plus, m.kinetic_energy(qd) - m.kinetic_energy(qd_plus),
+                 ca.vertcat(p[0], ca.sum1(p[1:])), mode,
+                 (C @ qd_plus)[0]],
+                ["q", "qd", "rest", "mu"], ["qd_plus", "T_c", "impulse", "mode", "slip"])
         return self._functions[key]
 
-    def functions(self, active: tuple[str, ...]):
-        """(step, forces), compiled, for a contact set: one RK4 step with the foot heights
-        after it, and the forces, residual and energy at a state. Built once per set."""
-        key = ("numeric",) + tuple(active)
+    def functions(self, active: tuple[str, ...], sliding: bool = False):
+        """(step, forces), compiled, for a contact set held or sliding: one integrator step
+        with the event values after it (heel and forefoot heights, m; the first held point's
+        tangential velocity, m/s), and the forces, residual and energy at a state."""
+        key = ("numeric", sliding) + tuple(active)
         if key in self._functions:
             return self._functions[key]
         m = self.model
         x, h = ca.SX.sym("x", 2 * m.n + 1), ca.SX.sym("h")
         s_anchor, rest = ca.SX.sym("s_anchor"), ca.SX.sym("rest", len(self.hinges))
-        x_next = self.rk4(active, x, h, s_anchor, rest)
-        step = ca.Function("step", [x, h, s_anchor, rest], [x_next, self.heights(x_next[:m.n])],
-                           ["x", "h", "s_anchor", "rest"], ["x_next", "heights"])
+        mu_s = ca.SX.sym("friction")
+        x_next = self.advance(active, x, h, s_anchor, rest, sliding, mu_s)
+        q_next, qd_next = x_next[:m.n], x_next[m.n:2 * m.n]
+        slip = self._row(active[0], self.t_axis) @ qd_next if active else ca.SX(0)
+        step = ca.Function("step", [x, h, s_anchor, rest, mu_s],
+                           [x_next, ca.vertcat(self.heights(q_next), slip)],
+                           ["x", "h", "s_anchor", "rest", "friction"], ["x_next", "events"])
         q, qd = ca.SX.sym("q", m.n), ca.SX.sym("qd", m.n)
-        out = self.rhs(active)(q=q, qd=qd, s_anchor=s_anchor, rest=rest)
-        forces = ca.Function("forces", [q, qd, s_anchor, rest],
+        out = self.rhs(active, sliding)(q=q, qd=qd, s_anchor=s_anchor, rest=rest, friction=mu_s)
+        forces = ca.Function("forces", [q, qd, s_anchor, rest, mu_s],
                              [out["force"], out["normal"], out["residual"], out["energy"],
                               self.heights(q)],
-                             ["q", "qd", "s_anchor", "rest"],
+                             ["q", "qd", "s_anchor", "rest", "friction"],
                              ["force", "normal", "residual", "energy", "heights"])
         wrap = Compiled if self.compiled else _Interpreted
         self._functions[key] = (wrap(step), wrap(forces))
@@ -277,47 +349,51 @@ class _Interpreted:
 
 
 def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float = 2e-4,
-             t_max: float = 0.2, impact_map=None) -> Landing:
-    """Follow the landing from the touchdown (q0, qd0 just before the first impact).
-
-    `impact_map(q, qd, active) -> (qd_plus, T_c, impulse_total)` applies an impact with a
-    contact set (landing.impact_for by default).
-    """
+             t_max: float = 0.2) -> Landing:
+    """Follow the landing from the touchdown (q0, qd0 just before the first impact), under
+    the model's contact law with the ground's friction coefficient `friction`."""
     m = lm.model
-    impact_map = impact_map or (lambda q, qd, active: impact_for(lm, q, qd, active))
     q, qd = np.asarray(q0, float), np.asarray(qd0, float)
     rest = lm.joint_angles(q)
-    start = lm.functions(())[1](q, qd, 0.0, rest)
+    start = lm.functions(())[1](q, qd, 0.0, rest, 0.0)
     E0 = float(start["energy"][0])
     for k, p in enumerate(("heel", "forefoot")):
         if p not in STRIKES[strike] and start["heights"][k] < -1e-9:
             raise InputError(f"{strike} strike: the {p} is {-start['heights'][k] * 1e3:.1f} mm below "
                              "the ground at touchdown")
-    active = ()
+    mu = 0.0 if lm.law == "frictionless" else friction
+    active, slide = (), 0  # contact set; sliding direction of the held foot (0: held)
     impacts, releases, slip_at, warnings = [], [], [], []
-    absorbed, damped, t = 0.0, 0.0, 0.0
-    record = {"t": [], "q": [], "qd": [], "T": [], "energy": [], "force": [], "active": []}
-    drift, mu_max = 0.0, 0.0
+    absorbed, dissipated, t = 0.0, 0.0, 0.0
+    record = {"t": [], "q": [], "qd": [], "T": [], "energy": [], "force": [], "active": [],
+              "slide": []}
+    drift, mu_max, switches = 0.0, 0.0, 0
     s_anchor = 0.0
-    pending = list(STRIKES[strike])
+
+    def anchor(q):
+        return float(q[m.cols(active[0])] @ lm.t_axis)
 
     def strike_now(q, qd, points, time):
-        nonlocal active, absorbed, s_anchor, mu_max
+        nonlocal active, absorbed, s_anchor, mu_max, slide
         new = tuple(active) + tuple(p for p in points if p not in active)
-        if not active:
-            s_anchor = float(q[m.cols(new[0])] @ lm.t_axis)
-        qd_plus, T_c, total = impact_map(q, qd, new)
+        out = lm.impact_map(new)(q, qd, rest, friction)
+        qd_plus, T_c, total = (np.asarray(v, float).ravel() for v in out[:3])
+        mode, slip = int(out[3]), float(out[4])
+        T_c = float(T_c[0])
         dv = (m.com_matrix(m.trunk) @ (qd_plus - qd)) if m.trunk else None
-        mu = abs(total[0]) / total[1] if total[1] > 0 else None  # undefined when not pushed
-        if mu is None or mu > friction:
+        mu_c = abs(total[0]) / total[1] if total[1] > 0 else None  # undefined when not pushed
+        if mu_c is None or (lm.law == "no-slip" and mu_c > friction):
             slip_at.append(time)
-        else:
-            mu_max = max(mu_max, mu)
+        elif mu_c is not None:
+            mu_max = max(mu_max, mu_c)
         impacts.append(ImpactEvent(time, "+".join(points), new, T_c,
                                    tuple(map(float, dv)) if dv is not None else None,
-                                   (float(total[0]), float(total[1])), mu))
+                                   (float(total[0]), float(total[1])), mu_c,
+                                   contact.MODES[mode], slip))
         absorbed += T_c
         active = new
+        slide = 0 if mode == contact.STICK else (1 if slip >= 0 else -1)
+        s_anchor = anchor(q)
         return qd_plus
 
     def sample(q, qd, force, mechanical):
@@ -325,18 +401,19 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
         record["q"].append(q.copy())
         record["qd"].append(qd.copy())
         record["T"].append(0.5 * qd @ m.M @ qd)
-        record["energy"].append(mechanical + damped + absorbed)
+        record["energy"].append(mechanical + dissipated + absorbed)
         record["force"].append(force)
         record["active"].append(active)
+        record["slide"].append(slide)
 
     sample(q, qd, np.full(2, np.nan), E0)  # just before the first impact
-    qd = strike_now(q, qd, pending, 0.0)
+    qd = strike_now(q, qd, list(STRIKES[strike]), 0.0)
     # a foot point can strike only after it has been above the ground since its last contact
     armed = {p: p not in active for p in ("heel", "forefoot")}
     ended = "duration reached"
     while True:
-        step, forces = lm.functions(active)
-        out = forces(q, qd, s_anchor, rest)
+        step, forces = lm.functions(active, slide != 0)
+        out = forces(q, qd, s_anchor, rest, mu * slide)
         force, normals = out["force"], out["normal"]
         drift = max(drift, float(out["residual"][0]))
         for k, p in enumerate(("heel", "forefoot")):
@@ -350,70 +427,85 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
                                 f"{' and '.join(p for p, n in zip(active, normals) if n < 0)}: "
                                 "it would lift again")
             break
-        if pulling:
-            pulled = [p for p, n in zip(active, normals) if n < 0]
-            releases.append((t, "+".join(pulled), float(min(normals))))
-            active = tuple(p for p in active if p not in pulled)
-            if active:  # the first held point carries the tangential row
-                s_anchor = float(q[m.cols(active[0])] @ lm.t_axis)
-            if len(releases) > 20:
-                ended = "contact chatter: more than 20 releases"
+        if pulling or (lm.law == "coulomb" and active and not slide
+                       and abs(force[0]) > friction * force[1]):
+            switches += 1
+            if switches > MAX_SWITCHES:
+                ended = f"contact chatter: more than {MAX_SWITCHES} contact changes"
                 warnings.append(ended)
                 break
+            if pulling:
+                pulled = [p for p, n in zip(active, normals) if n < 0]
+                releases.append((t, "+".join(pulled), float(min(normals))))
+                active = tuple(p for p in active if p not in pulled)
+                slide = slide if active else 0
+            else:  # holding the point needs more friction than the ground has: it slides
+                slide = -1 if force[0] > 0 else 1
+            if active:  # the first held point carries the tangential row
+                s_anchor = anchor(q)
             continue
         if active and force[1] > 0:
-            mu = abs(force[0]) / force[1]
-            mu_max = max(mu_max, mu)
-            if mu > friction:
+            mu_c = abs(force[0]) / force[1]
+            mu_max = max(mu_max, mu_c)
+            if lm.law == "no-slip" and mu_c > friction:
                 slip_at.append(t)
         sample(q, qd, force if active else np.full(2, np.nan), float(out["energy"][0]))
         if t >= t_max - 1e-12:
             break
-        x = np.concatenate([q, qd, [damped]])
+        x = np.concatenate([q, qd, [dissipated]])
+        args = (s_anchor, rest, mu * slide)
         h = min(dt, t_max - t)
-        res = step(x, h, s_anchor, rest)
-        x_next, heights = res["x_next"], res["heights"]
+        events = step(x, h, *args)["events"]
         hits = [k for k, p in enumerate(("heel", "forefoot"))
-                if p not in active and armed[p] and heights[k] <= 0.0]
-        if hits:
-            h = _event_step(step, x, h, s_anchor, rest, hits)
-            x_next = step(x, h, s_anchor, rest)["x_next"]
+                if p not in active and armed[p] and events[k] <= 0.0]
+        stops = lm.law == "coulomb" and slide != 0 and slide * events[2] <= 0.0
+        if hits or stops:  # the earliest event ends the step
+            candidates = [(_event_step(step, x, h, args, lambda e, hits=hits: min(e[k] for k in hits)), "hit")
+                          ] if hits else []
+            if stops:
+                candidates.append((_event_step(step, x, h, args, lambda e, s=slide: s * e[2]), "stop"))
+            h, what = min(candidates)
+        x_next = step(x, h, *args)["x_next"]
         t += h
-        q, qd, damped = x_next[:m.n], x_next[m.n:2 * m.n], float(x_next[-1])
-        if hits:
-            out = forces(q, qd, s_anchor, rest)
+        q, qd, dissipated = x_next[:m.n], x_next[m.n:2 * m.n], float(x_next[-1])
+        if hits and what == "hit":
+            out = forces(q, qd, s_anchor, rest, mu * slide)
             sample(q, qd, np.full(2, np.nan), float(out["energy"][0]))
             points = [("heel", "forefoot")[k] for k in hits]
             for p in points:
                 armed[p] = False
             qd = strike_now(q, qd, points, t)
+        elif stops:  # the sliding point comes to rest: it sticks where it is
+            slide, s_anchor = 0, anchor(q)
     energy = np.array(record["energy"])
     return Landing(t=np.array(record["t"]), q=np.array(record["q"]), qd=np.array(record["qd"]),
                    T=np.array(record["T"]), energy=energy, force=np.array(record["force"]),
-                   active=record["active"], impacts=impacts, releases=releases,
-                   T_c_total=absorbed, mu_c_max=mu_max, no_slip_held=not slip_at,
-                   slip_at=slip_at, energy_error=float(np.max(np.abs(energy - E0))),
-                   drift=drift, ended=ended, warnings=warnings)
+                   active=record["active"], slide=np.array(record["slide"]), impacts=impacts,
+                   releases=releases, T_c_total=absorbed, mu_c_max=mu_max,
+                   no_slip_held=not slip_at, slip_at=slip_at, law=lm.law,
+                   energy_error=float(np.max(np.abs(energy - E0))), drift=drift, ended=ended,
+                   warnings=warnings)
 
 
-def _event_step(step, x, h, s_anchor, rest, hits, tol=1e-13):
-    """The step length at which the first of `hits` reaches the ground (secant + bisection)."""
-    def height(s):
-        return min(step(x, s, s_anchor, rest)["heights"][k] for k in hits)
+def _event_step(step, x, h, args, value, tol=1e-13):
+    """The step length in (0, h] at which value(events after the step) reaches zero from
+    above (secant + bisection)."""
+    def g(s):
+        return value(step(x, s, *args)["events"])
 
     lo, hi = 0.0, h
-    g_lo, g_hi = height(0.0), height(h)
+    g_lo, g_hi = g(0.0), g(h)
     for _ in range(60):
         s = hi - g_hi * (hi - lo) / (g_hi - g_lo) if g_hi != g_lo else 0.5 * (lo + hi)
         if not lo < s < hi:
             s = 0.5 * (lo + hi)
-        g = height(s)
-        if abs(g) < tol or hi - lo < 1e-15:
+        v = g(s)
+        if abs(v) < tol or hi - lo < 1e-15:
             return s
-        if g > 0:
-            lo, g_lo = s, g
+        if v > 0:
+            lo, g_lo = s, v
         else:
-            hi, g_hi = s, g
+            hi, g_hi = s, v
     return hi
 
 
@@ -426,10 +518,13 @@ def landing_function(lm: LandingModel, strike: str, steps: int = 60) -> ca.Funct
     other point's height (zero at the event) and `approach` its normal velocity then (m/s,
     negative when it strikes); force_t, force_n are the contact force (N) and
     height the other point's height (m) after each step. `absorbed_function` solves
-    residual = 0 for t_e.
+    residual = 0 for t_e. The strike point is held throughout: the no-slip law only.
     """
     if strike not in ("heel", "forefoot"):
         raise InputError("the two-impact landing starts with a heel or forefoot strike")
+    if lm.law != "no-slip":
+        raise InputError(f"the differentiable landing holds the strike point (no-slip), not "
+                         f"{lm.law!r}: a sliding contact phase has events an NLP cannot follow")
     m = lm.model
     point, other = strike, "heel" if strike == "forefoot" else "forefoot"
     xs = ca.SX.sym("x", len(STATE))
@@ -439,8 +534,8 @@ def landing_function(lm: LandingModel, strike: str, steps: int = 60) -> ca.Funct
     n = 2 * m.n + 1
     xk, h = ca.SX.sym("xk", n), ca.SX.sym("h")
     s_anchor, rest = ca.SX.sym("s_anchor"), ca.SX.sym("rest", len(lm.hinges))
-    x_next = lm.rk4((point,), xk, h, s_anchor, rest)
-    forces = lm.rhs((point,))(x_next[:m.n], x_next[m.n:2 * m.n], s_anchor, rest)[3]
+    x_next = lm.advance((point,), xk, h, s_anchor, rest)
+    forces = lm.rhs((point,))(x_next[:m.n], x_next[m.n:2 * m.n], s_anchor, rest, 0)[3]
     height = ca.dot(x_next[m.cols(other)], ca.DM(lm.n_axis))
     step = ca.Function("step", [xk, ca.vertcat(h, s_anchor, rest)],
                        [x_next, ca.vertcat(forces, height)])
@@ -449,13 +544,13 @@ def landing_function(lm: LandingModel, strike: str, steps: int = 60) -> ca.Funct
     x = ca.MX.sym("x", len(STATE))
     t_e = ca.MX.sym("t_e")
     q, qd, rest_mx, s_mx = touchdown(x)
-    qd1, T_c1, _ = lm.impact_map((point,))(q, qd, rest_mx)
+    qd1, T_c1 = lm.impact_map((point,))(q, qd, rest_mx, 0)[:2]
     params = ca.repmat(ca.vertcat(t_e / steps, s_mx, rest_mx), 1, steps)
     states, f = run(ca.vertcat(q, qd1, 0), params)
     end = states[:, -1]
     q_e, qd_e = end[:m.n], end[m.n:2 * m.n]
     residual = ca.dot(q_e[m.cols(other)], ca.DM(lm.n_axis))
-    _, T_c2, _ = lm.impact_map((point, other))(q_e, qd_e, rest_mx)
+    T_c2 = lm.impact_map((point, other))(q_e, qd_e, rest_mx, 0)[1]
     approach = ca.dot(qd_e[m.cols(other)], ca.DM(lm.n_axis))
     return ca.Function("landing", [x, t_e],
                        [T_c1 + T_c2, ca.vertcat(T_c1, T_c2), residual, approach, f[0, :].T,
@@ -476,12 +571,6 @@ def absorbed_function(lm: LandingModel, strike: str, t_guess: float, steps: int 
     return ca.Function("absorbed", [x], [landing(x, t_star)[0], t_star], ["x"], ["T_c_total", "t_e"])
 
 
-def impact_for(lm: LandingModel, q, qd, active):
-    """Projection impact with contact set `active` (numeric): (q'+, T_c, total impulse)."""
-    out = lm.impact_map(tuple(active))(q, qd, lm.joint_angles(q))
-    return tuple(np.asarray(v, float).ravel() if k != 1 else float(v) for k, v in enumerate(out))
-
-
 def simulate_state(lm: LandingModel, strike: str, x, friction: float, dt: float,
                    duration: float) -> Landing:
     """Simulate the landing from a touchdown state x (model.STATE, SI)."""
@@ -490,11 +579,12 @@ def simulate_state(lm: LandingModel, strike: str, x, friction: float, dt: float,
 
 
 def history_rows(landing: Landing, model: Model):
-    """Time histories as CSV rows: time, energies, contact forces, mu_c, active set, q."""
+    """Time histories as CSV rows: time, energies, contact forces, mu_c, active set, sliding
+    direction (+1 forward, -1 backward, 0 held), q."""
     names = [f"{p.name}_{axis}" for p in model.points for axis in ("x", "z")]
-    yield ["t_s", "T_J", "energy_J", "f_t_N", "f_n_N", "mu_c", "active", *names]
+    yield ["t_s", "T_J", "energy_J", "f_t_N", "f_n_N", "mu_c", "active", "slide", *names]
     for k, t in enumerate(landing.t):
         f_t, f_n = landing.force[k]
         mu = abs(f_t) / f_n if f_n > 0 else float("nan")
         yield [t, landing.T[k], landing.energy[k], f_t, f_n, mu, "+".join(landing.active[k]),
-               *landing.q[k]]
+               int(landing.slide[k]), *landing.q[k]]

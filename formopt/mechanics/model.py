@@ -80,6 +80,11 @@ CHAIN = (("shank", "thigh", "knee"), ("foot", "shank", "ankle"),
          ("swing_shank", "swing_thigh", "swing_knee"), ("swing_foot", "swing_shank", "swing_ankle"))
 
 
+def ground_axes(slope: float):
+    """Tangent (forward, along the ground) and normal (up, out of the ground) unit vectors."""
+    return np.array([np.cos(slope), np.sin(slope)]), np.array([-np.sin(slope), np.cos(slope)])
+
+
 def segment_kinematics(x, body: Body, swing: Swing | None = None):
     """Origin, angle, origin velocity and angular velocity of each segment frame (SX).
 
@@ -285,8 +290,7 @@ class Model:
 
         `tangential` lists the points whose tangential row is kept (default: all).
         """
-        t = np.array([np.cos(slope), np.sin(slope)])
-        n = np.array([-np.sin(slope), np.cos(slope)])
+        t, n = ground_axes(slope)
         keep = points if tangential is None else tangential
         rows = []
         for p in points:

@@ -4,8 +4,14 @@ The decision variables are some of the touchdown state's angles (and, if asked, 
 angular velocities), scaled to [0, 1] between their bounds; the rest of the state stays as
 the scene gives it. Every constraint is smooth:
 
-- no slip at the strike: t - mu n <= 0 and -t - mu n <= 0 (t, n: the ground's impulse; the
-  total over heel and forefoot for a flat strike), and n >= 0 at every strike point;
+- under the no-slip law, no slip at the strike: t - mu n <= 0 and -t - mu n <= 0 (t, n: the
+  ground's impulse; the total over heel and forefoot for a flat strike); under every law
+  n >= 0 at every strike point; under Coulomb and frictionless optionally |slip| <= max_slip
+  (as slip^2 <= max_slip^2);
+- under Coulomb, the impact's mode and sliding direction fixed for the solve, from the
+  reference touchdown: the mode's closed form is smooth, and the inequalities that bound
+  the mode's region (contact.coulomb_in_mode) are constraints, so an optimum on a mode
+  switch says so among its active constraints;
 - the strike point approaches the ground (normal velocity < 0), the other foot point is
   not below it;
 - joint ranges of motion (RANGE_OF_MOTION_DEG) and the scene's bounds (box constraints);
@@ -26,10 +32,11 @@ from dataclasses import dataclass, field
 import casadi as ca
 import numpy as np
 
+from ..mechanics import contact
 from ..mechanics.compiled import cached_nlpsol
-from ..mechanics.impact import Impact, ImpactResult, ground_axes, impact_function
+from ..mechanics.impact import Impact, ImpactResult, impact_function
 from ..mechanics.landing import Joints, LandingModel, landing_function, simulate_state
-from ..mechanics.model import STATE, STRIKES, Model, landmarks
+from ..mechanics.model import STATE, STRIKES, Model, ground_axes, landmarks
 from ..mechanics.errors import InputError
 
 ANGLES = ("trunk", "hip", "knee", "ankle")
@@ -86,6 +93,7 @@ class Problem:
     tolerance: float = 1e-8
     contact_friction: bool = False  # |f_t| <= mu f_n, f_n >= 0 through the contact phase
     max_iterations: int = 200  # IPOPT's max_iter
+    max_slip: float | None = None  # m/s, |tangential velocity| of the strike point after the impact
 
     @property
     def landing(self) -> bool:
@@ -143,17 +151,27 @@ class PostureProblem:
     def __init__(self, model: Model, strike: str, reference, problem: Problem,
                  slope: float = 0.0, friction: float = 0.8, joints: Joints | None = None,
                  duration: float = 0.2, graph: str = "SX", compiled: bool = False,
-                 hessian: str = "auto", integrator: str = "rk4"):
+                 hessian: str = "auto", integrator: str = "rk4", law: str = "no-slip"):
         """`reference`: the touchdown state (STATE, SI) whose other values stay fixed;
         `duration` (s): the longest landing; `graph`, `compiled`, `hessian` ("auto": exact
-        for impacts, limited-memory through a landing), `integrator`: scene [numerics]."""
+        for impacts, limited-memory through a landing), `integrator`: scene [numerics];
+        `law`: the contact law at the impact (contact.LAWS)."""
         t0 = time.perf_counter()
         self.model, self.strike, self.problem = model, strike, problem
         self.slope, self.friction = slope, friction
         self.reference = np.asarray(reference, float)
         self.index = [STATE.index(v) for v in problem.variables]
         self.lower, self.upper = np.array(problem.lower), np.array(problem.upper)
-        self.impact = Impact(model, strike, slope, friction)
+        self.law = law
+        if law != "no-slip" and problem.landing:
+            raise InputError(f"a landing objective (T_c_total, contact_friction) holds the strike "
+                             f"point: it takes the no-slip law, not {law!r}")
+        if law == "coulomb" and strike == "flat":
+            raise InputError("a flat strike's Coulomb impact (two contacts, the velocity-level "
+                             "law) switches mode inside the NLP: optimise it as no-slip or "
+                             "frictionless")
+        self.impact = Impact(model, strike, slope, friction, law=law)
+        self.mode = self._coulomb_mode() if law == "coulomb" else None
         us, ps = ca.SX.sym("u", len(self.index)), ca.SX.sym("p", 2)
         self._state = ca.Function("state", [us, ps], [self.state(us, ps)])
         self.duration = duration
@@ -170,7 +188,7 @@ class PostureProblem:
         tau = sym.sym("tau", 1 if self.landing else 0)  # second impact at tau * duration
         w = ca.vertcat(u, tau)
         x = self._state(u, p)
-        out = impact_function(model, strike, slope, graph=graph)(x=x)
+        out = self._law(impact_function(model, strike, slope, graph=graph)(x=x), p[1])
         terms = {"T_c": out["T_c"], "dv_trunk_x": out["dv_trunk"][0],
                  "dv_trunk_z": out["dv_trunk"][1], "dv_com_x": out["dv_com"][0],
                  "dv_com_z": out["dv_com"][1]}
@@ -202,6 +220,32 @@ class PostureProblem:
         self._dL_dp = ca.Function("dL_dp", [w, p, lam], [ca.gradient(lagrangian, p) / self.scale])
         self.constraint_function = ca.Function("g", [w, p], [g])
         self.build_time = time.perf_counter() - t0
+
+    def _coulomb_mode(self) -> tuple[int, int]:
+        """(mode, sliding direction s) of the reference touchdown's Coulomb impact."""
+        f = impact_function(self.model, self.strike, self.slope, ["mode_coulomb", "v_contact"],
+                            law="coulomb", friction=self.friction)
+        mode, v0 = f(self.reference)
+        return int(round(float(mode))), 1 if float(v0[0]) >= 0 else -1
+
+    def _law(self, out, mu) -> dict:
+        """The impact indicators under the problem's law, smooth in the posture: no-slip and
+        frictionless as impact_function gives them, Coulomb in the fixed mode (with mu the
+        NLP's parameter) and the inequalities of its region."""
+        if self.law != "coulomb":
+            key = self.law.replace("-", "_")
+            law = {k: out[f"{k}_{key}"] for k in ("T_c", "impulse", "slip", "dv_trunk", "dv_com")}
+        else:
+            W_c, v0 = out["W_c"], out["v_contact"]
+            impulse, region = contact.coulomb_in_mode(W_c, v0, mu, *self.mode)
+            law = {"T_c": contact.absorbed(W_c, v0, impulse), "impulse": impulse,
+                   "slip": (v0 + W_c @ impulse)[0], "region": region,
+                   "dv_trunk": out["dv_trunk_per_impulse"] @ impulse,
+                   "dv_com": out["dv_com_per_impulse"] @ impulse}
+        points = len(STRIKES[self.strike])
+        law["impulse_total"] = ca.vertcat(sum(law["impulse"][2 * k] for k in range(points)),
+                                          sum(law["impulse"][2 * k + 1] for k in range(points)))
+        return {**out, **law}
 
     def _simulate(self, x, dt: float):
         """The event-driven landing from touchdown state x, or None if the state cannot land."""
@@ -268,8 +312,15 @@ class PostureProblem:
         t_axis, n_axis = ground_axes(self.slope)
         mu = p[1]
         total_t, total_n = out["impulse_total"][0], out["impulse_total"][1]
-        rows += [total_t - mu * total_n, -total_t - mu * total_n]
-        names += [("no_slip_forward", "upper", 0.0), ("no_slip_backward", "upper", 0.0)]
+        if self.law == "no-slip":
+            rows += [total_t - mu * total_n, -total_t - mu * total_n]
+            names += [("no_slip_forward", "upper", 0.0), ("no_slip_backward", "upper", 0.0)]
+        if "region" in out:
+            rows.append(out["region"])
+            names += [(f"coulomb_mode_{k + 1}", "lower", 0.0) for k in range(out["region"].shape[0])]
+        if self.problem.max_slip is not None:
+            rows.append(out["slip"] ** 2)
+            names.append(("max_slip", "upper", self.problem.max_slip ** 2))
         points = STRIKES[self.strike]
         for k, point in enumerate(points):
             rows.append(out["impulse"][2 * k + 1])
@@ -368,6 +419,11 @@ class PostureProblem:
             notes.append(f"no start converged: {'; '.join(f'{s}: {explain(s)}' for s in statuses)}. "
                          "The state shown is the best last iterate, not an optimum")
         impact = self.impact(x)
+        if self.mode is not None:
+            mode, direction = self.mode
+            notes.append(f"Coulomb mode fixed for every start from the reference touchdown: "
+                         f"{contact.MODES[mode]}, sliding {'forward' if direction > 0 else 'backward'}"
+                         f" at first; the impact at the state shown ends in {impact.mode}")
         active = self._active(u, sol) if converged else ()
         sensitivity = self._sensitivity(u, sol) if converged else {}
         return Optimum(success=bool(converged), status=best.status, objective=best.objective,
@@ -423,6 +479,11 @@ class PostureProblem:
 
 
 def _meaning(name: str) -> str:
+    if name.startswith("coulomb_mode"):
+        return ("the impact's Coulomb mode changes past here (slide, stick or reversed slide, "
+                "or the sliding direction): solve again from a posture in the next mode")
+    if name == "max_slip":
+        return "the strike point leaves the impact sliding as fast as allowed ([optimize] max_slip_mps)"
     if name.startswith("contact_no_slip"):
         return "friction during the contact phase holds the optimum: the held point would slide"
     if name.startswith("no_slip"):

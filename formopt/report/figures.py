@@ -12,8 +12,8 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..mechanics.body import Body
-from ..mechanics.impact import ImpactResult, ground_axes
-from ..mechanics.model import STRIKES, positions
+from ..mechanics.impact import ImpactResult
+from ..mechanics.model import STRIKES, ground_axes, positions
 
 POINT_MASS_TRUNK = 0.45  # m, length of the line that shows a point-mass trunk's lean
 

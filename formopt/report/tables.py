@@ -10,6 +10,7 @@ import dataclasses
 import math
 
 from ..io.scene import Scene, touchdown_table
+from ..mechanics.contact import LAWS
 from ..mechanics.impact import ImpactResult
 from ..optim.posture import explain
 from ..studies.compare import JOINTS, Comparison, report
@@ -56,7 +57,7 @@ def contact_law_lines(r: ImpactResult) -> list[str]:
              f"  {'':30s} " + " ".join(f"{(law + (' *' if law == r.law else '')):>14s}" for law in laws)]
 
     def row(name, value, fmt):
-        cells = [fmt.format(value(v)) if v is not None else "refused" for v in laws.values()]
+        cells = [fmt.format(value(v)) for v in laws.values()]
         return f"  {name:30s} " + " ".join(f"{c:>14s}" for c in cells)
 
     total = lambda v, k: sum(p[k] for p in v["impulse"].values())  # noqa: E731
@@ -181,6 +182,13 @@ def comparison_table(c: Comparison) -> str:
                  + f" {'':7s} {opt['T_c'] - ref['T_c']:+6.2f}")
     if opt["active"]:
         lines.append(f"  the optimum is held by: {', '.join(opt['active'])}")
+    lines += ["", f"  every touchdown under each contact law (T_c mean, J; valid touchdowns; * {c.law}, "
+                  "the law above):",
+              f"  {'':22s} " + " ".join(f"{law + (' *' if law == c.law else ''):>20s}" for law in LAWS)]
+    for side, s in rep["summary"].items():
+        lines.append(f"  {'measured, ' + ('right' if side == 'R' else 'left'):22s} " + " ".join(
+            f"{s['laws'][law]['T_c_mean']:8.2f} {s['laws'][law]['valid']:4d}/{s['steps']:<4d}  "
+            for law in LAWS))
     lines += [f"  left out: {x}" for x in c.steps.left_out]
     lines += [f"note: {n}" for n in c.steps.notes]
     return "\n".join(lines)
@@ -201,20 +209,23 @@ def landing_table(scene: Scene, landing) -> str:
     """The impacts of a landing, what it absorbed, and the checks of its assumptions."""
     lines = [f"{scene.name}  ({scene.path})",
              f"model {scene.kind}; joints {scene.joints.model}; {scene.strike} strike; friction "
-             f"{scene.friction:g}; slope {math.degrees(scene.slope):+.1f} deg", "",
+             f"{scene.friction:g}; slope {math.degrees(scene.slope):+.1f} deg; contact law "
+             f"{landing.law}", "",
              f"  {'time (ms)':>10s} {'contact':>10s} {'T_c (J)':>10s} {'t (N s)':>9s} "
-             f"{'n (N s)':>9s} {'mu_c':>7s} {'dv trunk x, z (m/s)':>22s}"]
+             f"{'n (N s)':>9s} {'mu_c':>7s} {'dv trunk x, z (m/s)':>22s} {'leaves':>8s} {'slip (m/s)':>10s}"]
     for e in landing.impacts:
         dv = f"{e.dv_trunk[0]:+.4f} {e.dv_trunk[1]:+.4f}" if e.dv_trunk else "-"
         mu = f"{e.mu_c:7.3f}" if e.mu_c is not None else "  n < 0"
         lines.append(f"  {e.time * 1e3:10.3f} {e.contact:>10s} {e.T_c:10.4f} {e.impulse[0]:+9.4f} "
-                     f"{e.impulse[1]:+9.4f} {mu} {dv:>22s}")
-    held = "yes" if landing.no_slip_held else \
+                     f"{e.impulse[1]:+9.4f} {mu} {dv:>22s} {e.mode:>8s} {e.slip:+10.3f}")
+    held = ("not checked: the law lets the foot slide" if landing.law != "no-slip" else "yes") \
+        if landing.no_slip_held else \
         (f"no: mu_c exceeds the friction at {len(landing.slip_at)} instants, first at "
          f"{landing.slip_at[0] * 1e3:.2f} ms")
     lines += ["", f"  absorbed in all      T_c_total {landing.T_c_total:.4f} J",
               f"  largest mu_c         {landing.mu_c_max:.3f} (friction {scene.friction:g})",
-              f"  no-slip held         {held}"]
+              f"  no-slip held         {held}",
+              f"  slid                 {landing.sliding_time * 1e3:.2f} ms on the ground"]
     lines += [f"  released             {p} at {t * 1e3:.3f} ms: the ground would have pulled it "
               f"({f:.1f} N)" for t, p, f in landing.releases]
     lines += [f"  energy balance error {landing.energy_error:.2e} J; constraint drift "

@@ -15,6 +15,7 @@ import numpy as np
 
 from ..io import mocap
 from ..mechanics.body import Body, scaled_body
+from ..mechanics.contact import LAWS
 from ..mechanics.impact import Impact, ImpactResult
 from ..mechanics.model import STATE, build_model
 from ..optim.posture import Optimum, PostureProblem, Problem
@@ -35,6 +36,7 @@ class Comparison:
     strike: str  # the dominant strike point
     optimum: Optimum
     body: Body
+    law: str  # the contact law of `results` and of the optimum (contact.LAWS)
 
 
 def impact_strike(td: mocap.Touchdown, kin: mocap.Kinematics) -> str:
@@ -47,7 +49,10 @@ def impact_strike(td: mocap.Touchdown, kin: mocap.Kinematics) -> str:
 
 
 def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
-            sex: str = "male", friction: float = 0.8, starts: int = 4, seed: int = 0) -> Comparison:
+            sex: str = "male", friction: float = 0.8, starts: int = 4, seed: int = 0,
+            law: str = "no-slip") -> Comparison:
+    """Every touchdown of `trial` through the impact under `law` (each result also carries
+    the other laws, ImpactResult.contact_laws), and the optimum under `law`."""
     cal = mocap.calibrate(static)
     kin = mocap.kinematics(trial, cal)
     steps = mocap.touchdowns(trial, kin, cal)
@@ -55,7 +60,7 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
         raise mocap.MocapError(f"{trial.source}: no usable touchdown ({'; '.join(steps.left_out)})")
     body = scaled_body(mass, height, sex)
     model = build_model(body, "leg")
-    impacts = {s: Impact(model, s, 0.0, friction) for s in ("heel", "forefoot")}
+    impacts = {s: Impact(model, s, 0.0, friction, law=law) for s in ("heel", "forefoot")}
     strikes = [impact_strike(td, kin) for td in steps.touchdowns]
     results = [impacts[s](td.state()) for s, td in zip(strikes, steps.touchdowns)]
     patterns = [td.strike for td in steps.touchdowns]  # the runner's pattern decides the optimum's
@@ -67,8 +72,9 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
     problem = Problem(("hip", "knee", "ankle"), lower, upper, {"T_c": 1.0},
                       hip_height=(float(heights.min() - 0.02), float(heights.max() + 0.02)),
                       starts=starts, seed=seed)
-    optimum = PostureProblem(model, strike, reference, problem, 0.0, friction).solve()
-    return Comparison(steps, cal.axes.describe(), results, strikes, reference, strike, optimum, body)
+    optimum = PostureProblem(model, strike, reference, problem, 0.0, friction, law=law).solve()
+    return Comparison(steps, cal.axes.describe(), results, strikes, reference, strike, optimum,
+                      body, law)
 
 
 def report(c: Comparison) -> dict:
@@ -81,11 +87,13 @@ def report(c: Comparison) -> dict:
                    "foot_angle_deg": math.degrees(td.foot_strike_angle),
                    "rates_dps": {k: math.degrees(v) for k, v in td.rates.items()},
                    "hip_velocity": list(td.hip_velocity), "hip_height": td.hip_height,
-                   "T_c": r.T_c, "mu_c": r.mu_c, "valid": r.valid}
+                   "T_c": r.T_c, "mu_c": r.mu_c, "valid": r.valid,
+                   "contact_laws": {law: {k: v[k] for k in ("T_c", "valid", "mode", "slip_velocity")}
+                                    for law, v in r.contact_laws.items()}}
                   for td, s, r in zip(c.steps.touchdowns, c.strikes, c.results)]
     opt = c.optimum
     return {
-        "cadence_spm": c.steps.cadence_spm, "belt_speed": c.steps.belt_speed,
+        "law": c.law, "cadence_spm": c.steps.cadence_spm, "belt_speed": c.steps.belt_speed,
         "touchdown_method": c.steps.method, "axes": c.axes, "body": c.body.source,
         "left_out": c.steps.left_out, "notes": c.steps.notes, "touchdowns": touchdowns,
         "summary": summary(c),
@@ -99,7 +107,8 @@ def report(c: Comparison) -> dict:
 
 
 def summary(c: Comparison) -> dict:
-    """Mean and standard deviation per side: joint angles, foot strike angle, T_c."""
+    """Mean and standard deviation per side: joint angles, foot strike angle, T_c; and per
+    contact law the mean T_c and how many touchdowns are valid under it."""
     out = {}
     for side in mocap.SIDES:
         rows = [(td, r) for td, r in zip(c.steps.touchdowns, c.results) if td.side == side]
@@ -115,5 +124,8 @@ def summary(c: Comparison) -> dict:
                      "angles_deg_sd": dict(zip(JOINTS, angles.std(axis=0, ddof=1) if len(rows) > 1
                                                else np.zeros(4))),
                      "foot_angle_deg_mean": float(fsa.mean()), "foot_angle_deg_sd": float(fsa.std(ddof=1)) if len(rows) > 1 else 0.0,
-                     "T_c_mean": float(T_c.mean()), "T_c_sd": float(T_c.std(ddof=1)) if len(rows) > 1 else 0.0}
+                     "T_c_mean": float(T_c.mean()), "T_c_sd": float(T_c.std(ddof=1)) if len(rows) > 1 else 0.0,
+                     "laws": {law: {"T_c_mean": float(np.mean([r.contact_laws[law]["T_c"] for _, r in rows])),
+                                    "valid": sum(r.contact_laws[law]["valid"] for _, r in rows)}
+                              for law in LAWS}}
     return out

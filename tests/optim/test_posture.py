@@ -13,7 +13,7 @@ from dataclasses import replace
 from formopt import load, solve
 from formopt.cli import main
 from formopt.io.scene import parse
-from helpers import PROBLEMS
+from helpers import PROBLEMS, assert_nlp_derivatives
 
 DEMO = PROBLEMS / "demo.toml"
 
@@ -52,26 +52,9 @@ def test_feasible_perturbations_do_not_beat_the_optimum(demo):
 
 def test_nlp_derivatives_match_finite_differences(demo):
     scene, problem, opt = demo
-    u, p = ca.SX.sym("u", len(problem.index)), ca.SX.sym("p", 2)
-    nlp = ca.Function("nlp", [problem.nlp["x"], problem.nlp["p"]],
-                      [problem.nlp["f"], problem.nlp["g"]])
-    f, g = nlp(u, p)
-    jac = ca.Function("jacobians", [u, p], [ca.gradient(f, u), ca.jacobian(g, u),
-                                            ca.hessian(f, u)[0]])
     rng = np.random.default_rng(4)
-    for u0 in [problem.to_unit(opt.state), *rng.uniform(0.1, 0.9, (4, len(problem.index)))]:
-        grad, J, H = (np.asarray(a, float) for a in jac(u0, problem.p0))
-        h = 1e-5
-        for k in range(u0.size):
-            e = np.zeros_like(u0)
-            e[k] = h
-            fp, gp = (np.asarray(a, float).ravel() for a in nlp(u0 + e, problem.p0))
-            fm, gm = (np.asarray(a, float).ravel() for a in nlp(u0 - e, problem.p0))
-            assert abs((fp[0] - fm[0]) / (2 * h) - grad[k, 0]) < 1e-6 * max(1, abs(grad[k, 0]))
-            assert np.allclose((gp - gm) / (2 * h), J[:, k], rtol=1e-5, atol=1e-6)
-            gradp = np.asarray(jac(u0 + e, problem.p0)[0], float).ravel()
-            gradm = np.asarray(jac(u0 - e, problem.p0)[0], float).ravel()
-            assert np.allclose((gradp - gradm) / (2 * h), H[:, k], rtol=1e-5, atol=1e-5)
+    assert_nlp_derivatives(problem, [problem.to_unit(opt.state),
+                                     *rng.uniform(0.1, 0.9, (4, len(problem.index)))])
 
 
 def test_speed_sensitivity_matches_a_resolve(demo):
