@@ -47,8 +47,8 @@ def main(argv=None) -> int:
             not str(err).startswith(str(where)) else ""
         print(f"formopt: error: {prefix}{err}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
-        print(f"formopt: interrupted{getattr(args, 'interrupted', '')}", file=sys.stderr)
+    except KeyboardInterrupt as err:
+        print("formopt: interrupted" + (f": {err}" if str(err) else ""), file=sys.stderr)
         return 130
 
 

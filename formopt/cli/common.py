@@ -5,12 +5,14 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ..io.files import write_json
+from ..io.files import output_folder, write_json
 
 
 def out_folder(args, default_name: str) -> Path:
-    """--out if given, else out/<default_name> (a scene's or a trial's file stem)."""
-    return Path(args.out) if getattr(args, "out", None) else Path("out") / Path(default_name).stem
+    """--out if given, else out/<default_name> (a scene's or a trial's file stem), created
+    now: a command checks where its output goes before it computes anything."""
+    return output_folder(Path(args.out) if getattr(args, "out", None)
+                         else Path("out") / Path(default_name).stem)
 
 
 def emit(args, report: dict, json_path, table: str, files) -> None:

@@ -42,9 +42,9 @@ def run(args) -> int:
         raise InputError("--friction must be > 0")
     trial = mocap.read(args.trial, args.forces)
     static = mocap.read(args.static)
+    out = out_folder(args, args.trial)
     result = compare(trial, static, args.mass, args.height, args.sex, args.friction,
                      law=args.contact)
-    out = out_folder(args, args.trial)
     rep = report(result)
     rep["figure"] = str(save_figure(comparison_figure(result), out / "comparison.png"))
     rows = [TOUCHDOWN_COLUMNS]

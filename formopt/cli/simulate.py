@@ -22,9 +22,9 @@ def add_parser(commands):
 
 def run(args) -> int:
     scene = load(args.scene)
+    out = out_folder(args, scene.path or scene.name)
     landing = api.simulate(scene)
     model = scene.model()
-    out = out_folder(args, scene.path or scene.name)
     files = [save_figure(fig, out / f"{name}.png")
              for name, fig in landing_figures(landing, model, scene.slope, scene.strike).items()]
     files.append(write_csv(out / "landing.csv", history_rows(landing, model)))

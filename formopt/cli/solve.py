@@ -36,12 +36,13 @@ def run(args) -> int:
     seed = args.seed if args.seed is not None else scene.problem.seed
 
     def progress(k, n, start):
+        if k == 1:  # once the problem is built: a bad scene's error comes alone
+            print(f"{scene.name}: seed {seed}", file=sys.stderr)
         print(f"  start {k}/{n}: {start.status}, objective {start.objective:.6g} "
               f"({start.iterations} iterations)", file=sys.stderr)
 
-    print(f"{scene.name}: seed {seed}", file=sys.stderr)
-    opt = api.solve(scene, progress=progress, starts=args.starts, seed=args.seed)
     out = out_folder(args, scene.path or scene.name)
+    opt = api.solve(scene, progress=progress, starts=args.starts, seed=args.seed)
     postures = [(scene.state, "reference", "0.55"),
                 (opt.state, "optimum" if opt.success else "not converged", "tab:blue")]
     figures = [save_figure(posture_figure(scene.body, scene.strike, scene.slope, postures),

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import sys
 
 from ..io.files import save_figure
 from ..io.scene import load
@@ -34,7 +35,7 @@ def run(args) -> int:
     if args.workers < 1:
         raise InputError("--workers must be at least 1")
     rows = sweep.run(scene, params, out, progress=not args.no_progress, workers=args.workers,
-                     scheduler=args.scheduler)
+                     scheduler=args.scheduler, note=lambda text: print(f"note: {text}", file=sys.stderr))
     failed = [r for r in rows if r["error"]]
     totals = [float(r["T_c_total"]) for r in rows if not r["error"]]
     print(f"{len(rows)} landings in {out}" + (f", {len(failed)} failed (see the error column)"

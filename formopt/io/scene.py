@@ -20,7 +20,7 @@ from ..mechanics.contact import LAWS
 from ..mechanics.impact import GRAPHS, Impact
 from ..mechanics.landing import INTEGRATORS, JOINT_MODELS, Joints, LandingModel
 from ..mechanics.errors import InputError
-from ..mechanics.model import MODELS, STATE, STRIKES, Model, Swing, build_model
+from ..mechanics.model import MODELS, RATE_LIMIT, SPEED_LIMIT, STATE, STRIKES, Model, Swing, build_model
 from ..optim.posture import OBJECTIVES, RANGE_OF_MOTION_DEG, PostureProblem, Problem
 
 # The segments each model needs; a segment a model does not use may be given and is ignored.
@@ -145,17 +145,29 @@ def touchdown_table(strike: str, state) -> dict:
             "angular_velocity_dps": {k: math.degrees(s["omega_" + k]) for k in RATES}}
 
 
+MAX_SCENE_BYTES = 1_000_000  # a scene is a page of text; larger is a mistake
+
+
 def load(path) -> Scene:
     """Read and validate a scene file."""
     path = Path(path)
     try:
-        text = path.read_text()
+        size = path.stat().st_size
+        if size > MAX_SCENE_BYTES:
+            raise SceneError("", f"{path} is {size / 1e6:.1f} MB: a scene file is text of at most "
+                                 f"{MAX_SCENE_BYTES // 1000} kB")
+        text = path.read_text(encoding="utf-8")
     except OSError as err:
         raise SceneError("", f"cannot read {path}: {err.strerror}") from None
+    except UnicodeDecodeError as err:
+        raise SceneError("", f"{path} is not UTF-8 text (byte {err.start}): a scene is a TOML "
+                             "file") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise SceneError("", f"{path} is not valid TOML: {err}") from None
+    except RecursionError:
+        raise SceneError("", f"{path}: values nested too deeply to be a scene") from None
     return parse(data, str(path))
 
 
@@ -487,12 +499,13 @@ def _segment_values(seg: Segment) -> dict:
 
 def _touchdown(data) -> tuple[str, np.ndarray]:
     strike = _choice(data["strike"], "touchdown.strike", tuple(STRIKES))
-    velocity = _pair(data, "hip_velocity", "touchdown", limit=30.0)
+    velocity = _pair(data, "hip_velocity", "touchdown", limit=SPEED_LIMIT)
     angles = _table(data, "angles_deg", set(ANGLES), set(ANGLES), "touchdown")
     rates = _table(data, "angular_velocity_dps", set(RATES), set(RATES) - {"trunk"}, "touchdown")
     where_a, where_r = "touchdown.angles_deg", "touchdown.angular_velocity_dps"
     a = {k: math.radians(_number(angles, k, where_a, low=-180.0, high=180.0)) for k in ANGLES}
-    w = {k: math.radians(_number(rates, k, where_r, default=0.0, low=-5000.0, high=5000.0))
+    top = math.degrees(RATE_LIMIT)
+    w = {k: math.radians(_number(rates, k, where_r, default=0.0, low=-top, high=top))
          for k in RATES}
     values = {**a, "hip_vx": velocity[0], "hip_vz": velocity[1],
               **{"omega_" + k: v for k, v in w.items()}}

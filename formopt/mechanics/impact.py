@@ -30,7 +30,7 @@ import numpy as np
 
 from . import contact
 from .compiled import Compiled
-from .model import STATE, STRIKES, Model, ground_axes, landmarks
+from .model import STATE, STRIKES, Model, check_state, ground_axes, landmarks
 from .errors import InputError
 # Ill-conditioned beyond this: results lose more than 10 of 16 digits.
 CONDITION_LIMIT = 1e10
@@ -258,9 +258,7 @@ class Impact:
         return {k: v.full() for k, v in zip(self.function.name_out(), self.function.call([x]))}
 
     def __call__(self, x) -> ImpactResult:
-        x = np.asarray(x, float).reshape(-1)
-        if x.shape != (len(STATE),) or not np.all(np.isfinite(x)):
-            raise InputError(f"the touchdown state needs {len(STATE)} finite values {STATE}, got {x}")
+        x = check_state(x)
         raw = self.evaluate(x)
         condition = float(np.linalg.cond(raw.pop("G")))
         out = {k: np.asarray(v, float).ravel() for k, v in raw.items()}

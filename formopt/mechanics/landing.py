@@ -43,7 +43,7 @@ import numpy as np
 from . import contact
 from .compiled import Compiled
 from .errors import InputError
-from .model import STATE, STRIKES, Model, ground_axes
+from .model import STATE, STRIKES, Model, check_state, ground_axes
 
 GRAVITY = 9.81  # m/s^2
 BAUMGARTE = 50.0  # 1/s, critically damped constraint stabilisation
@@ -574,7 +574,7 @@ def absorbed_function(lm: LandingModel, strike: str, t_guess: float, steps: int 
 def simulate_state(lm: LandingModel, strike: str, x, friction: float, dt: float,
                    duration: float) -> Landing:
     """Simulate the landing from a touchdown state x (model.STATE, SI)."""
-    q, qd = lm.model.state_numeric(x, STRIKES[strike][0])
+    q, qd = lm.model.state_numeric(check_state(x), STRIKES[strike][0])
     return simulate(lm, strike, q, qd, friction, dt, duration)
 
 

@@ -21,6 +21,7 @@ The kinematic state at touchdown (`STATE`) is mapped to (q, q') by segment kinem
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import casadi as ca
@@ -33,6 +34,15 @@ from .errors import InputError
 # velocity (m/s, x forward, z up) and absolute segment angular velocities (rad/s, CCW).
 STATE = ("trunk", "hip", "knee", "ankle", "hip_vx", "hip_vz",
          "omega_trunk", "omega_thigh", "omega_shank", "omega_foot")
+# What a touchdown state may hold (SI): angles within a turn; the hip at most 30 m/s (2.4
+# times the fastest human sprint, 12.4 m/s); segment rates at most 5000 deg/s (sprinting
+# limbs reach about 2000). Beyond them a result is an overflow, not a runner.
+ANGLE_LIMIT = math.pi  # rad
+SPEED_LIMIT = 30.0  # m/s
+RATE_LIMIT = math.radians(5000.0)  # rad/s
+STATE_LIMITS = tuple(ANGLE_LIMIT if k < 4 else SPEED_LIMIT if k < 6 else RATE_LIMIT
+                     for k in range(len(STATE)))
+STATE_UNITS = ("rad",) * 4 + ("m/s",) * 2 + ("rad/s",) * 4
 STRIKES = {"heel": ("heel",), "forefoot": ("forefoot",), "flat": ("heel", "forefoot")}
 MODELS = ("effective-mass", "shank-foot", "leg", "leg-trunk", "full-body")
 
@@ -78,6 +88,18 @@ class Swing:
 
 CHAIN = (("shank", "thigh", "knee"), ("foot", "shank", "ankle"),
          ("swing_shank", "swing_thigh", "swing_knee"), ("swing_foot", "swing_shank", "swing_ankle"))
+
+
+def check_state(x) -> np.ndarray:
+    """x as a float array of len(STATE), or an InputError naming the first bad entry."""
+    x = np.asarray(x, float).reshape(-1)
+    if x.shape != (len(STATE),):
+        raise InputError(f"a touchdown state has {len(STATE)} values {STATE}, not {x.size}")
+    for name, value, limit, unit in zip(STATE, x, STATE_LIMITS, STATE_UNITS):
+        if not abs(value) <= limit:  # also NaN
+            raise InputError(f"touchdown {name} = {value:.4g} {unit} is outside "
+                             f"[-{limit:.4g}, {limit:.4g}] {unit} (model.STATE_LIMITS)")
+    return x
 
 
 def ground_axes(slope: float):

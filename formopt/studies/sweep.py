@@ -4,7 +4,9 @@
 points; several --param make a grid. Parameters: trunk_deg, hip_deg, knee_deg, ankle_deg
 (touchdown angles), hip_vx, hip_vz (m/s), friction, slope_deg. Rows go to a CSV file as soon
 as each landing is done; a second run with the same file skips the rows already there, so an
-interruption loses nothing and repeats nothing.
+interruption loses nothing and repeats nothing. A sweep holds a lock on its file while it
+runs (a second writer is refused), drops a torn last row (a killed run, a full disk) before
+it resumes, and on Ctrl-C stops its workers and says how many rows are written.
 
 The landings run in chunks on a local process pool (`workers`), or on a Dask distributed
 cluster when given its scheduler's address; each worker builds its landing model once
@@ -16,11 +18,16 @@ from __future__ import annotations
 import csv
 import itertools
 import math
+import os
+import signal
+import threading
+import time
 from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
+from ..io.files import OutputError
 from ..mechanics.landing import simulate_state
 from ..mechanics.model import STATE
 from ..mechanics.errors import InputError
@@ -66,36 +73,78 @@ CHUNK = 8  # landings per task: enough to pay for a worker's model, small enough
 
 
 def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True,
-        workers: int = 1, scheduler: str | None = None) -> list[dict]:
+        workers: int = 1, scheduler: str | None = None, note=None) -> list[dict]:
     """Sweep the landing of `scene` over the grid of `params`, appending rows to `path` (CSV).
 
-    workers > 1: a local process pool; scheduler: a Dask distributed scheduler's address.
+    workers > 1: a local process pool; scheduler: a Dask distributed scheduler's address;
+    note(text): told of a repaired file. Ctrl-C raises KeyboardInterrupt("N rows written ...").
     """
     path = Path(path)
     names = [n for n, _ in params]
     header = names + COLUMNS
-    done = _done(path, header, names)
     grid = [dict(zip(names, combo)) for combo in itertools.product(*[v for _, v in params])]
-    todo = [g for g in grid if _key(g, names) not in done]
-    chunks = [todo[k:k + CHUNK] for k in range(0, len(todo), CHUNK)]
-    path.parent.mkdir(parents=True, exist_ok=True)
-    new_file = not path.exists() or path.stat().st_size == 0
-    bar = None
-    if progress:
-        from tqdm import tqdm
-        bar = tqdm(total=len(grid), initial=len(grid) - len(todo), unit="landing", desc="sweep")
-    with path.open("a", newline="") as fh:
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fh = path.open("a+", newline="")
+    except OSError as err:
+        raise OutputError(f"{path}: cannot write the sweep ({err.strerror})") from None
+    with fh:
+        _lock(fh, path)
+        if _repair(fh) and note:
+            note(f"{path}: dropped a torn last row (an interrupted write); it is computed again")
+        done = _done(path, header, names)
+        todo = [g for g in grid if _key(g, names) not in done]
+        chunks = [todo[k:k + CHUNK] for k in range(0, len(todo), CHUNK)]
         writer = csv.writer(fh)
-        if new_file:
+        if fh.tell() == 0:
             writer.writerow(header)
-        for chunk, rows in _results(scene, chunks, workers, scheduler):
-            writer.writerows([values[n] for n in names] + row for values, row in zip(chunk, rows))
-            fh.flush()
+        bar = None
+        if progress:
+            from tqdm import tqdm
+            bar = tqdm(total=len(grid), initial=len(grid) - len(todo), unit="landing", desc="sweep")
+        written = len(grid) - len(todo)
+        try:
+            for chunk, rows in _results(scene, chunks, workers, scheduler):
+                writer.writerows([values[n] for n in names] + row for values, row in zip(chunk, rows))
+                fh.flush()
+                written += len(chunk)
+                if bar:
+                    bar.update(len(chunk))
+        except KeyboardInterrupt:
+            raise KeyboardInterrupt(f"{written} of {len(grid)} rows written to {path}; the same "
+                                    "command resumes") from None
+        finally:
             if bar:
-                bar.update(len(chunk))
-    if bar:
-        bar.close()
+                bar.close()
     return read(path)
+
+
+def _lock(fh, path):
+    """An exclusive lock on the open sweep file, or OutputError if another sweep holds it."""
+    try:
+        import fcntl
+    except ImportError:  # not a POSIX system: no lock
+        return
+    try:
+        fcntl.flock(fh.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        raise OutputError(f"{path}: another sweep is writing this file; wait for it to end or "
+                          "give another --out") from None
+
+
+def _repair(fh) -> bool:
+    """Cut a torn last line (no newline at the end of the file); True if one was cut."""
+    fh.seek(0, os.SEEK_END)
+    size = fh.tell()
+    if size == 0:
+        return False
+    fh.seek(0)
+    text = fh.read()
+    if text.endswith("\n"):
+        return False
+    fh.truncate(len(text[:text.rfind("\n") + 1].encode()))
+    fh.seek(0, os.SEEK_END)
+    return True
 
 
 def _results(scene, chunks, workers, scheduler):
@@ -108,15 +157,35 @@ def _results(scene, chunks, workers, scheduler):
             for future in as_completed(futures):
                 yield futures[future], future.result()
     elif workers > 1 and len(chunks) > 1:
-        from concurrent.futures import ProcessPoolExecutor, as_completed
+        import multiprocessing
 
-        with ProcessPoolExecutor(workers) as pool:
-            futures = {pool.submit(landing_rows, scene, chunk): chunk for chunk in chunks}
-            for future in as_completed(futures):
-                yield futures[future], future.result()
+        pool = multiprocessing.Pool(workers, _worker_start, (os.getpid(),))
+        try:
+            yield from pool.imap_unordered(_chunk_rows, [(scene, chunk) for chunk in chunks])
+            pool.close()
+        finally:  # Ctrl-C or an error: the workers end with the sweep
+            pool.terminate()
+            pool.join()
     else:
         for chunk in chunks:
             yield chunk, landing_rows(scene, chunk)
+
+
+def _worker_start(parent: int):
+    """A pool worker ignores Ctrl-C (its sweep stops it) and ends when its sweep is killed."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+    def watch():
+        while os.getppid() == parent:
+            time.sleep(0.5)
+        os._exit(1)
+
+    threading.Thread(target=watch, daemon=True).start()
+
+
+def _chunk_rows(task):
+    scene, chunk = task
+    return chunk, landing_rows(scene, chunk)
 
 
 _MODELS: dict = {}  # per process: landing models by scene and slope, built once

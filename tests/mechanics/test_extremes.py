@@ -179,5 +179,5 @@ def test_a_massless_foot_is_refused():
 def test_nonfinite_state_is_refused(leg):
     x = touchdown()
     x[2] = np.nan
-    with pytest.raises(ValueError, match="finite"):
+    with pytest.raises(ValueError, match="touchdown knee = nan rad is outside"):
         Impact(leg, "forefoot")(x)

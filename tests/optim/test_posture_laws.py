@@ -32,12 +32,13 @@ def test_fixed_mode_objective_is_the_impact_maps_where_the_mode_holds(coulomb):
     s, problem = coulomb
     mode, _ = problem.mode
     rng = np.random.default_rng(7)
+    impact = s.impact()
     compared = 0
     for u in rng.uniform(0, 1, (200, len(problem.index))):
         x = problem.to_state(u)
         g = np.asarray(problem.constraint_function(u, problem.p0), float).ravel()
         region = [k for k, (name, _, _) in enumerate(problem.constraints) if name.startswith("coulomb_mode")]
-        r = s.impact()(x)
+        r = impact(x)
         if np.all(g[region] > 1e-9):  # inside the fixed mode: the same impact
             assert r.mode == contact.MODES[mode]
             assert float(problem.objective_function(u, problem.p0)) == pytest.approx(r.T_c, rel=1e-9)

@@ -1,0 +1,258 @@
+"""Bad input never crashes: mutated scenes through every command, bad output paths, and
+sweeps that are interrupted, torn or run twice. Each either exits 2 with one line naming
+what is wrong, or succeeds (or exits 1 with its reason) with finite numbers."""
+
+import copy
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+import tomllib
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from formopt.cli import main
+from formopt.studies import sweep
+from helpers import PROBLEMS
+
+SCENES = {p.name: tomllib.loads(p.read_text()) for p in sorted(PROBLEMS.glob("*.toml"))}
+FAST = settings(max_examples=150, deadline=None, derandomize=True,
+                suppress_health_check=[HealthCheck.function_scoped_fixture])
+
+
+def toml(value, depth=0) -> str:
+    """Any parsed-TOML value (and the mutants below) back as TOML text, inline."""
+    if isinstance(value, dict):
+        items = ", ".join(f"{json.dumps(k)} = {toml(v, depth + 1)}" for k, v in value.items())
+        return "\n".join(f"{json.dumps(k)} = {toml(v, 1)}" for k, v in value.items()) \
+            if depth == 0 else "{" + items + "}"
+    if isinstance(value, list):
+        return "[" + ", ".join(toml(v, depth + 1) for v in value) + "]"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float) and not math.isfinite(value):
+        return "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
+    if isinstance(value, (int, float)):
+        return repr(value)
+    return json.dumps(value)
+
+
+def paths(value, prefix=()):
+    """Every key path into a scene's tables."""
+    if isinstance(value, dict):
+        for k, v in value.items():
+            yield prefix + (k,)
+            yield from paths(v, prefix + (k,))
+
+
+REPLACEMENTS = st.sampled_from([
+    "text", "", "ünïcødé\nnew line", True, [], {}, [1.0, 2.0, 3.0], {"a": 1},
+    float("nan"), float("inf"), -float("inf"), 10**400, -1e308, 1e-320, 0, -1, 2**63,
+    "nested", "long",
+])
+
+
+def mutant(data, path, action, replacement):
+    data = copy.deepcopy(data)
+    *parents, key = path
+    holder = data
+    for p in parents:
+        holder = holder[p]
+    if action == "delete":
+        del holder[key]
+    elif action == "misspell":
+        holder[key + "x"] = holder.pop(key)
+    elif action == "unicode key":
+        holder[key + "\n\u00e9"] = holder.pop(key)
+    else:
+        if replacement == "nested":
+            replacement = 1.0
+            for _ in range(60):
+                replacement = [replacement]
+        elif replacement == "long":
+            replacement = [1.0] * 20000
+        holder[key] = replacement
+    return data
+
+
+@st.composite
+def scene_mutants(draw, needs=None):
+    names = [n for n, d in SCENES.items() if needs is None or needs in d]
+    name = draw(st.sampled_from(names))
+    data = SCENES[name]
+    path = draw(st.sampled_from(list(paths(data))))
+    action = draw(st.sampled_from(["delete", "misspell", "unicode key", "replace", "replace"]))
+    return mutant(data, path, action, draw(REPLACEMENTS))
+
+
+def finite(value) -> bool:
+    if isinstance(value, float):
+        return math.isfinite(value)
+    if isinstance(value, dict):
+        return all(finite(v) for v in value.values())
+    if isinstance(value, list):
+        return all(finite(v) for v in value)
+    return True
+
+
+def check(argv, capsys, json_out=True):
+    """Run the command; exit 2 means one line on stderr, otherwise finite JSON on stdout."""
+    code = main(argv)
+    out, err = capsys.readouterr()
+    if code == 2:
+        lines = err.strip().splitlines()
+        assert len(lines) == 1 and lines[0].startswith("formopt: error: "), err[-2000:]
+        assert len(lines[0]) < 600
+    else:
+        assert code in (0, 1), code
+        if json_out:
+            assert finite(json.loads(out)), "a success prints finite numbers"
+    return code
+
+
+def write(tmp_path, data, name="mutant.toml"):
+    path = tmp_path / name
+    path.write_text(toml(data), encoding="utf-8")
+    return path
+
+
+def test_the_writer_round_trips_every_shipped_scene(tmp_path):
+    for name, data in SCENES.items():
+        assert tomllib.loads(write(tmp_path, data).read_text()) == data, name
+
+
+@FAST
+@given(data=scene_mutants())
+def test_mutated_scenes_through_impact(tmp_path, capsys, data):
+    check(["impact", str(write(tmp_path, data)), "--json"], capsys)
+
+
+@settings(FAST, max_examples=40)
+@given(data=scene_mutants(needs="joints"))
+def test_mutated_scenes_through_simulate(tmp_path, capsys, data):
+    check(["simulate", str(write(tmp_path, data)), "--json", "--out", str(tmp_path / "out")], capsys)
+
+
+@settings(FAST, max_examples=40)
+@given(data=scene_mutants(needs="optimize"))
+def test_mutated_scenes_through_solve(tmp_path, capsys, data):
+    check(["solve", str(write(tmp_path, data)), "--json", "--starts", "1", "--out",
+           str(tmp_path / "out")], capsys)
+
+
+@settings(FAST, max_examples=10)
+@given(data=scene_mutants(needs="joints"))
+def test_mutated_scenes_through_sweep(tmp_path, capsys, data):
+    out = tmp_path / f"sweep{time.monotonic_ns()}.csv"
+    check(["sweep", str(write(tmp_path, data)), "--param", "knee_deg=10:12:2", "--out", str(out),
+           "--no-progress", "--workers", "1"], capsys, json_out=False)
+
+
+@pytest.mark.parametrize("content", [b"", b"\x00\xff\xfe" * 100, b"[scene\nname = ", b"a = " +
+                                     b"[" * 5000 + b"]" * 5000, b"x = 1\n" * 300000])
+@pytest.mark.parametrize("command", ["impact", "simulate", "solve"])
+def test_broken_files_exit_2_with_one_line(tmp_path, capsys, content, command):
+    path = tmp_path / "broken.toml"
+    path.write_bytes(content)
+    assert check([command, str(path), "--out" if command != "impact" else "--json",
+                  *([str(tmp_path / "o")] if command != "impact" else [])], capsys) == 2
+
+
+@pytest.mark.parametrize("out", ["a_file", "a_file/below", "a_file/below/deeper"])
+@pytest.mark.parametrize("command", ["simulate", "solve"])
+def test_bad_output_paths_exit_2_and_leave_no_temporary_files(tmp_path, capsys, out, command):
+    (tmp_path / "a_file").write_text("not a folder")
+    scene = PROBLEMS / ("landing_spring.toml" if command == "simulate" else "demo.toml")
+    extra = ["--starts", "1"] if command == "solve" else []
+    assert check([command, str(scene), "--out", str(tmp_path / out), *extra], capsys,
+                 json_out=False) == 2
+    assert not [p for p in tmp_path.rglob("*") if ".tmp" in p.name]
+
+
+def test_numeric_api_refuses_absurd_states():
+    from formopt import Impact
+    from formopt.mechanics.body import paper_body
+    from formopt.mechanics.errors import InputError
+    from formopt.mechanics.model import build_model
+    impact = Impact(build_model(paper_body(), "leg"), "forefoot")
+    good = [0.0, 0.4, 0.3, -0.2, 3.5, -0.6, 0.0, 0.0, 0.0, 0.0]
+    for k, bad in ((4, 1e200), (0, float("nan")), (9, -float("inf")), (2, 40.0)):
+        x = list(good)
+        x[k] = bad
+        with pytest.raises(InputError, match="touchdown"):
+            impact(x)
+
+
+SPRING = str(PROBLEMS / "landing_spring.toml")
+
+
+def sweep_args(out, points=9, workers=1):
+    return ["sweep", SPRING, "--param", f"ankle_deg=-12:-8:{points}", "--out", str(out),
+            "--no-progress", "--workers", str(workers)]
+
+
+def rows(path):
+    return path.read_text().splitlines()
+
+
+def test_a_second_writer_is_refused(tmp_path, capsys):
+    import fcntl
+    out = tmp_path / "sweep.csv"
+    with out.open("a") as fh:
+        fcntl.flock(fh.fileno(), fcntl.LOCK_EX)
+        assert check(sweep_args(out), capsys, json_out=False) == 2
+    assert out.read_text() == ""  # nothing written by the refused sweep
+
+
+def test_a_torn_last_row_is_repaired_on_resume(tmp_path, capsys):
+    whole, torn = tmp_path / "whole.csv", tmp_path / "torn.csv"
+    assert main(sweep_args(whole)) == 0
+    torn.write_bytes(whole.read_bytes()[:-25])  # the last row cut by a full disk
+    assert main(sweep_args(torn)) == 0
+    assert "torn last row" in capsys.readouterr().err
+    assert sorted(rows(torn)) == sorted(rows(whole))
+
+
+def test_ctrl_c_ends_with_one_line_and_the_same_command_resumes(tmp_path, capsys, monkeypatch):
+    out = tmp_path / "sweep.csv"
+    calls = []
+    original = sweep.landing_rows
+
+    def interrupted(scene, chunk):
+        calls.append(1)
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        return original(scene, chunk)
+
+    monkeypatch.setattr(sweep, "landing_rows", interrupted)
+    assert main(sweep_args(out, points=20)) == 130
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"formopt: interrupted: 8 of 20 rows written to {out}; the same command resumes"]
+    monkeypatch.setattr(sweep, "landing_rows", original)
+    assert main(sweep_args(out, points=20)) == 0
+    assert len(rows(out)) == 21 and len(set(rows(out))) == 21  # the header and 20 rows, once
+
+
+def test_killed_sweep_takes_its_pool_workers_with_it(tmp_path):
+    out = tmp_path / "sweep.csv"
+    proc = subprocess.Popen([sys.executable, "-m", "formopt.cli", *sweep_args(out, 3000, workers=2)],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 30
+    while time.monotonic() < deadline and not (out.exists() and len(rows(out)) > 20):
+        time.sleep(0.1)
+    children = subprocess.run(["pgrep", "-P", str(proc.pid)], capture_output=True,
+                              text=True).stdout.split()
+    assert children, "the pool's workers"
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    deadline = time.monotonic() + 5.0  # the workers look for their parent every 0.5 s
+    while time.monotonic() < deadline and any(os.path.exists(f"/proc/{c}") for c in children):
+        time.sleep(0.05)
+    assert not [c for c in children if os.path.exists(f"/proc/{c}")]
+    written = rows(out)
+    assert all(len(r.split(",")) == len(written[0].split(",")) for r in written[:-1])
