@@ -256,3 +256,8 @@ def test_killed_sweep_takes_its_pool_workers_with_it(tmp_path):
     assert not [c for c in children if os.path.exists(f"/proc/{c}")]
     written = rows(out)
     assert all(len(r.split(",")) == len(written[0].split(",")) for r in written[:-1])
+
+
+def test_a_newline_in_a_file_name_stays_on_one_line(tmp_path, capsys):
+    assert check(["impact", str(tmp_path / "no\nsuch.toml")], capsys, json_out=False) == 2
+    assert check(["simulate", SPRING, "--out", str(tmp_path / "a\nb" / "c")], capsys, json_out=False) in (0, 2)

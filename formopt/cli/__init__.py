@@ -20,7 +20,7 @@ import sys
 
 from .. import __version__
 from ..io.files import OutputError
-from ..mechanics.errors import InputError
+from ..mechanics.errors import InputError, one_line
 from . import bench, compare, impact, simulate, solve, sweep
 
 COMMANDS = {"impact": impact, "solve": solve, "simulate": simulate, "sweep": sweep,
@@ -45,7 +45,7 @@ def main(argv=None) -> int:
         where = getattr(args, "scene", None)
         prefix = f"{where}: " if where and isinstance(err, InputError) and \
             not str(err).startswith(str(where)) else ""
-        print(f"formopt: error: {prefix}{err}", file=sys.stderr)
+        print(f"formopt: error: {one_line(f'{prefix}{err}', 600)}", file=sys.stderr)
         return 2
     except KeyboardInterrupt as err:
         print("formopt: interrupted" + (f": {err}" if str(err) else ""), file=sys.stderr)

@@ -19,7 +19,7 @@ from ..mechanics.body import Body, Segment
 from ..mechanics.contact import LAWS
 from ..mechanics.impact import GRAPHS, Impact
 from ..mechanics.landing import INTEGRATORS, JOINT_MODELS, Joints, LandingModel
-from ..mechanics.errors import InputError
+from ..mechanics.errors import InputError, one_line
 from ..mechanics.model import MODELS, RATE_LIMIT, SPEED_LIMIT, STATE, STRIKES, Model, Swing, build_model
 from ..optim.posture import OBJECTIVES, RANGE_OF_MOTION_DEG, PostureProblem, Problem
 
@@ -40,20 +40,14 @@ class SceneError(InputError):
     """A scene that cannot be used: `key` names the offending entry (one line, shortened)."""
 
     def __init__(self, key: str, message: str):
-        self.key = _one_line(key)
-        message = _one_line(message, 400)
+        self.key = one_line(key)
+        message = one_line(message, 400)
         super().__init__(f"{self.key}: {message}" if key else message)
-
-
-def _one_line(text: str, limit: int = 120) -> str:
-    """`text` on one line (control characters escaped), cut to `limit` characters."""
-    text = "".join(c if c.isprintable() else repr(c)[1:-1] for c in str(text))
-    return text if len(text) <= limit else text[:limit - 5] + "[...]"
 
 
 def _short(value, limit: int = 60) -> str:
     """A value as it appears in an error: its repr, one line, at most `limit` characters."""
-    return _one_line(repr(value), limit)
+    return one_line(repr(value), limit)
 
 
 @dataclass(frozen=True)
