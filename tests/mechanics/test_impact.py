@@ -43,7 +43,8 @@ def test_energy_split_and_projection(body, kind, strike, slope):
 
 def test_energy_is_never_created(leg):
     for strike in ("heel", "forefoot"):
-        results = [Impact(leg, strike)(x) for x in random_states(200, strike=strike)]
+        impact = Impact(leg, strike)
+        results = [impact(x) for x in random_states(200, strike=strike)]
         assert all(r.T_a <= r.T * (1 + 1e-12) for r in results)
 
 
