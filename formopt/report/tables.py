@@ -167,7 +167,9 @@ def comparison_table(c: Comparison) -> str:
         a, sd = s["angles_deg_mean"], s["angles_deg_sd"]
         lines.append(f"  {'measured, ' + ('right' if side == 'R' else 'left'):22s} {s['steps']:5d} "
                      f"{s['strike']:>9s} " + " ".join(f"{a[k]:7.1f}" for k in JOINTS)
-                     + f" {s['foot_angle_deg_mean']:7.1f} {s['T_c_mean']:6.2f} ± {s['T_c_sd']:.2f}")
+                     + f" {s['foot_angle_deg_mean']:7.1f} {s['T_c_mean']:6.2f} ± {s['T_c_sd']:.2f}"
+                     + f"  valid {s['laws'][c.law]['valid']}/{s['steps']}"
+                     + (" (NOT ONE VALID)" if not s['laws'][c.law]['valid'] else ""))
         lines.append(f"  {'   sd':22s} {'':5s} {'':9s} " + " ".join(f"{sd[k]:7.1f}" for k in JOINTS)
                      + f" {s['foot_angle_deg_sd']:7.1f}")
     ref, opt = rep["reference"], rep["optimum"]
