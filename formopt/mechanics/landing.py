@@ -418,6 +418,16 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
         drift = max(drift, float(out["residual"][0]))
         for k, p in enumerate(("heel", "forefoot")):
             armed[p] = armed[p] or (p not in active and out["heights"][k] > 1e-9)
+        # a point at or below the ground moving into it strikes, armed or not (one released
+        # where it stood, and never lifted, would otherwise pass through the floor)
+        sinking = [p for k, p in enumerate(("heel", "forefoot")) if p not in active
+                   and out["heights"][k] <= 1e-9 and qd[m.cols(p)] @ lm.n_axis < 0]
+        if sinking and switches <= MAX_SWITCHES:
+            switches += 1
+            for p in sinking:
+                armed[p] = False
+            qd = strike_now(q, qd, sinking, t)
+            continue
         pulling = active and np.any(normals < -1e-9 * max(1.0, float(np.max(np.abs(normals)))))
         if set(active) == {"heel", "forefoot"}:
             sample(q, qd, force, float(out["energy"][0]))
@@ -431,7 +441,9 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
                        and abs(force[0]) > friction * force[1]):
             switches += 1
             if switches > MAX_SWITCHES:
-                ended = f"contact chatter: more than {MAX_SWITCHES} contact changes"
+                ended = f"contact chatter: more than {MAX_SWITCHES} contact changes" + (
+                    " (held, the ground would pull the point; let go, it sinks: the no-slip "
+                    "law has no motion here, \"coulomb\" may)" if lm.law == "no-slip" else "")
                 warnings.append(ended)
                 break
             if pulling:

@@ -193,3 +193,15 @@ def test_sweep_on_a_process_pool_and_on_dask_gives_the_same_rows(spring, tmp_pat
     def key(rows):
         return sorted((r["ankle_deg"], r["hip_vx"], r["T_c_total"]) for r in rows)
     assert len(serial) == 20 and key(pool) == key(serial) and key(dask) == key(serial)
+
+
+@pytest.mark.parametrize("name", ["forefoot_strike.toml", "heel_strike.toml", "demo.toml",
+                                  "landing_spring.toml"])
+def test_no_foot_point_passes_through_the_floor(name):
+    """A point released where it stood, never lifted, strikes again when it moves into the
+    ground: the foot stays above it (to the integration's drift), whatever the end."""
+    scene = load(PROBLEMS / name)
+    L = land(scene)
+    model = scene.model()
+    heights = np.array([[q[model.cols(p)][1] for p in ("heel", "forefoot")] for q in L.q])
+    assert heights.min() > -1e-5, f"{name}: {heights.min() * 1e3:.2f} mm below the ground ({L.ended})"
