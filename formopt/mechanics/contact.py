@@ -54,13 +54,15 @@ def no_slip(W_c, v0):
 
 
 def frictionless(W_c, v0):
-    """Impulse (N s) along the normal only that brings the normal velocity to zero."""
-    return ca.vertcat(0, -v0[1] / W_c[1, 1])
+    """Impulse (N s) along the normals only that brings every normal velocity to zero
+    (rows [t, n_1, ..., n_k]; the tangential impulse is zero)."""
+    return ca.vertcat(0, -ca.solve(W_c[1:, 1:], v0[1:]))
 
 
 def _closed_forms(W_c, v0, mu, s):
-    """Each mode's impulse, for sliding direction s (+1 or -1), and the two switches:
-    `before_end` (> 0: v_t reaches zero before v_n does) and `holds` (> 0: sticking holds)."""
+    """Each mode's impulse, for sliding direction s (+1 or -1), and the switches: `k_n`
+    (> 0: sliding brings v_n toward zero), `before_end` (> 0: v_t reaches zero before v_n
+    does) and `holds` (>= 0: sticking holds)."""
     a, b, c = W_c[0, 0], W_c[0, 1], W_c[1, 1]
     vt, vn = v0[0], v0[1]
     k_t, k_n = b - mu * s * a, c - mu * s * b
@@ -74,6 +76,7 @@ def _closed_forms(W_c, v0, mu, s):
         STICK: ca.vertcat(-mu * s * p_stick - b / a * p_rest_stick, p_stick + p_rest_stick),
         REVERSE: ca.vertcat(mu * s * (p_rest_reverse - p_stick), p_stick + p_rest_reverse),
         # |v_t| / |k_t| < -v_n / k_n, multiplied out so that no branch divides by zero
+        "k_n": k_n,
         "before_end": -s * (vt * k_n - vn * k_t),
         "holds": mu * mu * a * a - b * b,
     }
@@ -82,11 +85,10 @@ def _closed_forms(W_c, v0, mu, s):
 def coulomb(W_c, v0, mu):
     """(impulse (N s), mode, final tangential velocity (m/s)) of the rigid, perfectly plastic
     impact with Coulomb friction mu, by the closed form of each mode (module docstring)."""
-    b, c, a = W_c[0, 1], W_c[1, 1], W_c[0, 0]
     s = ca.if_else(v0[0] >= 0, 1, -1)
     forms = _closed_forms(W_c, v0, mu, s)
-    slide_only = ca.logic_and(c - mu * s * b > 0, forms["before_end"] <= 0)
-    holds = ca.fabs(b) <= mu * a
+    slide_only = ca.logic_and(forms["k_n"] > 0, forms["before_end"] <= 0)
+    holds = forms["holds"] >= 0
     impulse = ca.if_else(slide_only, forms[SLIDE], ca.if_else(holds, forms[STICK], forms[REVERSE]))
     mode = ca.if_else(slide_only, SLIDE, ca.if_else(holds, STICK, REVERSE))
     slip = (v0 + W_c @ impulse)[0]
@@ -101,7 +103,7 @@ def coulomb_in_mode(W_c, v0, mu, mode: int, s: int):
     forms = _closed_forms(W_c, v0, mu, s)
     region = [s * v0[0]]
     if mode == SLIDE:
-        region += [W_c[1, 1] - mu * s * W_c[0, 1], -forms["before_end"]]
+        region += [forms["k_n"], -forms["before_end"]]
     else:
         region += [forms["before_end"], forms["holds"] if mode == STICK else -forms["holds"]]
     return forms[mode], ca.vertcat(*region)
@@ -118,7 +120,7 @@ def velocity_level(W_c, v0, mu):
     slide (tests/mechanics/test_contact.py); two frictional contacts have no single
     normal-impulse clock, so this is the law formopt applies to them."""
     k = v0.shape[0] - 1
-    p_stick = -ca.solve(W_c, v0)
+    p_stick = no_slip(W_c, v0)
     total = ca.sum1(p_stick[1:])
     holds = ca.fabs(p_stick[0]) <= mu * total
     s_f = ca.if_else(p_stick[0] >= 0, 1, -1)

@@ -69,9 +69,10 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
     For every law L of contact.LAWS also T_c_L, impulse_L, slip_L, dv_trunk_L, dv_com_L, and
     mode_coulomb. The strike point's contact space (NaN for a flat strike or a normal-only
     model): W_c (2 x 2, m/s per N s), v_contact (its pre-impact [t, n] velocity, m/s), and
-    dv_trunk_per_impulse, dv_com_per_impulse (2 x 2: dv = D p). `outputs` keeps only the named ones (the generated code then holds only what
-    they need). `graph`: "SX" (scalar expressions, fast to evaluate) or "MX" (matrix
-    expressions with a linear-solver node, smaller graphs).
+    dv_trunk_per_impulse, dv_com_per_impulse (2 x 2: dv = D p). `outputs` keeps only the
+    named ones (the generated code then holds only what they need). `graph`: "SX" (scalar
+    expressions, fast to evaluate) or "MX" (matrix expressions with a linear-solver node,
+    smaller graphs).
 
     Coulomb at a flat strike: heel and forefoot share one tangential motion and have no
     single normal-impulse clock, so the impact takes the velocity-level law

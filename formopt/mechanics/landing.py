@@ -294,7 +294,7 @@ class LandingModel:
             if self.law == "no-slip":
                 p, mode = contact.no_slip(W_c, v0), contact.STICK
             elif self.law == "frictionless":
-                p, mode = ca.vertcat(0, -ca.solve(W_c[1:, 1:], v0[1:])), contact.SLIDE
+                p, mode = contact.frictionless(W_c, v0), contact.SLIDE
             elif len(active) == 1:
                 p, mode, _ = contact.coulomb(W_c, v0, mu)
             else:
@@ -382,9 +382,9 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
         T_c = float(T_c[0])
         dv = (m.com_matrix(m.trunk) @ (qd_plus - qd)) if m.trunk else None
         mu_c = abs(total[0]) / total[1] if total[1] > 0 else None  # undefined when not pushed
-        if mu_c is None or (lm.law == "no-slip" and mu_c > friction):
+        if lm.law == "no-slip" and (mu_c is None or mu_c > friction):
             slip_at.append(time)
-        elif mu_c is not None:
+        if mu_c is not None:
             mu_max = max(mu_max, mu_c)
         impacts.append(ImpactEvent(time, "+".join(points), new, T_c,
                                    tuple(map(float, dv)) if dv is not None else None,
