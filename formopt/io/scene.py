@@ -18,7 +18,8 @@ from ..mechanics import body as bodies
 from ..mechanics.body import Body, Segment
 from ..mechanics.contact import LAWS
 from ..mechanics.impact import GRAPHS, Impact
-from ..mechanics.landing import INTEGRATORS, JOINT_MODELS, Joints, LandingModel
+from ..mechanics.landing import (INTEGRATORS, JOINT_LIMITS, JOINT_MODELS, RUNNING_JOINTS, Joints,
+                                 LandingModel)
 from ..mechanics.errors import InputError, one_line
 from ..mechanics.model import MODELS, RATE_LIMIT, SPEED_LIMIT, STATE, STRIKES, Model, Swing, build_model
 from ..optim.posture import OBJECTIVES, RANGE_OF_MOTION_DEG, PostureProblem, Problem
@@ -59,14 +60,14 @@ class Numerics:
     # pays: the landing's per-step functions, not the impact map or the NLP)
     compiled: bool | str = "auto"
     hessian: str = "auto"  # IPOPT: "exact", "limited-memory", or "auto" (exact for impacts)
-    integrator: str = "rk4"  # the landing's fixed-step scheme (mechanics.landing.INTEGRATORS)
+    integrator: str = "adaptive"  # the landing's integrator (mechanics.landing.INTEGRATORS)
 
 
 @dataclass(frozen=True)
 class Integration:
     """The landing's time grid ([landing]), SI."""
 
-    dt: float = 2e-4  # s, integration step
+    dt: float = 1e-3  # s, the fixed integrators' step, the adaptive one's largest
     duration: float = 0.2  # s, longest landing simulated
 
 
@@ -189,7 +190,7 @@ def parse(data: dict, path: str = "") -> Scene:
     if "optimize" in data:
         problem, more = _optimize(data["optimize"], model, strike, contact_law)
         notes += more
-    joints = _joints(data.get("joints", {}), model)
+    joints = _joints(data.get("joints", {}), model, body.mass)
     landing = _landing(data.get("landing", {}))
     if model == "effective-mass" and (problem and problem.landing or data.get("joints")):
         raise SceneError("scene.model", "'effective-mass' is an impact-only model: no [joints], "
@@ -233,27 +234,39 @@ MODEL_JOINTS = {"effective-mass": (), "shank-foot": ("ankle",), "leg": ("knee", 
                 "full-body": ("hip", "knee", "ankle", "swing_hip", "swing_knee", "swing_ankle")}
 
 
-def _joints(data, model) -> Joints:
+JOINT_KEYS = {"model", "stiffness_nm_per_deg", "damping_nms_per_deg", "preload_nm", "locked",
+              "moments"}
+SPRING_KEYS = ("stiffness_nm_per_deg", "damping_nms_per_deg", "preload_nm")
+
+
+def _joints(data, model, mass) -> Joints:
+    """[joints]: the landing's joint model. Spring-damper values not given take the running
+    defaults scaled to the body's mass (landing.RUNNING_JOINTS), within landing.JOINT_LIMITS."""
     if not isinstance(data, dict):
         raise SceneError("joints", "must be a table")
-    _keys(data, "joints", {"model", "stiffness_nm_per_deg", "damping_nms_per_deg", "locked"}, set())
-    kind = _choice(data.get("model", "free"), "joints.model", JOINT_MODELS)
+    _keys(data, "joints", JOINT_KEYS, set())
+    kind = _choice(data.get("model", "spring-damper"), "joints.model", JOINT_MODELS)
     names = MODEL_JOINTS[model]
+    for key in (*SPRING_KEYS, "locked", "moments"):
+        wanted = "locked" if key == "locked" else "torque" if key == "moments" else "spring-damper"
+        if key in data and kind != wanted:
+            raise SceneError(f"joints.{key}", f"only for joints.model = \"{wanted}\", not {kind!r}")
     if not names:
         return Joints(kind)
     if kind == "spring-damper":
-        tables = {}
-        for key in ("stiffness_nm_per_deg", "damping_nms_per_deg"):
+        values = {}
+        for key, what in zip(SPRING_KEYS, ("stiffness", "damping", "preload")):
             table = _table(data, key, set(names), set(), "joints") if key in data else {}
-            tables[key] = {j: math.degrees(_number(table, j, f"joints.{key}", low=0.0, high=1e5))
-                           for j in table}
-        if not tables["stiffness_nm_per_deg"] and not tables["damping_nms_per_deg"]:
-            raise SceneError("joints.stiffness_nm_per_deg", "missing: a spring-damper model needs "
-                                                            "stiffness or damping for some joint")
-        return Joints(kind, tables["stiffness_nm_per_deg"], tables["damping_nms_per_deg"])
-    for key in ("stiffness_nm_per_deg", "damping_nms_per_deg"):
-        if key in data:
-            raise SceneError(f"joints.{key}", f"only for joints.model = \"spring-damper\", not {kind!r}")
+            high = JOINT_LIMITS[what] * mass
+            values[key] = {j: _number(table, j, f"joints.{key}", low=-high if what == "preload" else 0.0,
+                                      high=high, default=RUNNING_JOINTS[what].get(j, 0.0) * mass)
+                           for j in names}
+        per_deg = math.degrees(1.0)  # N m/deg -> N m/rad
+        return Joints(kind, {j: v * per_deg for j, v in values["stiffness_nm_per_deg"].items()},
+                      {j: v * per_deg for j, v in values["damping_nms_per_deg"].items()},
+                      preload=values["preload_nm"])
+    if kind == "torque":
+        return _torque_joints(data, names)
     if kind == "locked":
         locked = data.get("locked", list(names))
         if not isinstance(locked, list) or not locked:
@@ -261,9 +274,33 @@ def _joints(data, model) -> Joints:
         for j in locked:
             _choice(j, "joints.locked", names)
         return Joints(kind, locked=tuple(locked))
-    if "locked" in data:
-        raise SceneError("joints.locked", "only for joints.model = \"locked\"")
     return Joints(kind)
+
+
+def _torque_joints(data, names) -> Joints:
+    """[joints.moments]: time_ms (increasing, from 0) and <joint>_nm columns of the same
+    length, extensor / plantarflexor positive, linear between samples."""
+    allowed = {"time_ms"} | {f"{j}_nm" for j in names}
+    table = _table(data, "moments", allowed, {"time_ms"}, "joints")
+    columns = {}
+    for key in sorted(table):
+        column = table[key]
+        if not isinstance(column, list) or len(column) < 2:
+            raise SceneError(f"joints.moments.{key}", "must be a list of at least two numbers")
+        limit = 1e4 if key == "time_ms" else 5e3
+        columns[key] = [_value(v, f"joints.moments.{key}[{i}]", -limit, limit)
+                        for i, v in enumerate(column)]
+    times = columns.pop("time_ms")
+    if times[0] != 0.0 or any(b <= a for a, b in zip(times, times[1:])):
+        raise SceneError("joints.moments.time_ms", "must start at 0 (the touchdown) and increase")
+    if not columns:
+        raise SceneError("joints.moments", f"missing: give a moment column ({', '.join(sorted(allowed - {'time_ms'}))})")
+    for key, column in columns.items():
+        if len(column) != len(times):
+            raise SceneError(f"joints.moments.{key}", f"has {len(column)} values for "
+                                                      f"{len(times)} times")
+    return Joints("torque", times=tuple(t * 1e-3 for t in times),
+                  moments={key[:-3]: tuple(column) for key, column in columns.items()})
 
 
 def _landing(data) -> Integration:

@@ -28,7 +28,7 @@ FLAGS = ("-fPIC", "-shared", "-fno-math-errno")
 # Small functions evaluated millions of times get -O3; an NLP's generated derivatives (tens of
 # thousands of lines, called a few dozen times per solve) compile ten times faster at -O0 and
 # solve almost as fast: IPOPT's own work dominates (benchmarks/solve_speed.py).
-FUNCTION_OPT, NLP_OPT = "-O3", "-O0"
+FUNCTION_OPT, NLP_OPT = "-O1", "-O0"
 
 
 def cache_dir() -> Path:
@@ -121,7 +121,10 @@ class Compiled:
 
     def __call__(self, *args) -> dict[str, np.ndarray]:
         for buffer, value in zip(self._ins, args):
-            buffer[:] = value if np.ndim(value) <= 1 else np.ravel(value, order="F")
+            if isinstance(value, np.ndarray) and value.ndim > 1:
+                buffer[:] = np.ravel(value, order="F")
+            else:  # a number or a vector
+                buffer[:] = value
         if self._call(self._arg, self._res, self._iw_p, self._w_p, 0) != 0:
             raise RuntimeError(f"{self.function.name()}: evaluation failed")
         out = {}

@@ -21,16 +21,24 @@ The contact law (contact.LAWS) decides what the foot points do:
   tangential velocity reaches zero (an event), a stuck point slides when holding it would
   need |f_t| > mu f_n, in the direction -sign(f_t).
 
-Q holds gravity and the joint torques: free hinges (none), spring-damper (tau = -k (theta -
-theta_0) - c theta', theta_0 the touchdown angle: a holding law on the touchdown posture), or
-locked (a constraint). Events: a foot point reaching the ground (an impact, with the new
+Q holds gravity and the joint moments (`Joints`): free hinges (none); spring-damper
+(M = M_0 + k (phi - phi_0) + c phi', phi the flexion angle, phi_0 its touchdown value, M_0 the
+moment already held at touchdown); torque (M(t) from a table); or locked (a constraint).
+Joint moments are the muscles' internal moments, extensor (hip, knee) and plantarflexor
+(ankle) positive, the sign of RBDS's processed knee and ankle moments. Events: a foot point reaching the ground (an impact, with the new
 contact set), a contact whose normal force would pull (released: a contact can only push),
 a sliding point coming to rest. The landing ends when heel and forefoot are both down, or
 at `t_max`.
 
-Energy bookkeeping: T + V_gravity + V_springs + E_dissipated (dampers and sliding friction)
-+ sum of T_c stays equal to its value before the first impact, to the integration
-tolerance; `energy_error` is its largest drift.
+Energy bookkeeping: T + V_gravity + V_springs + E_joints (the work the dampers and the
+moments take from the body) + E_friction + sum of T_c stays equal to its value before the
+first impact, to the integration tolerance; `energy_error` is its largest drift. A landing
+whose balance drifts by more than DIVERGED of its touchdown kinetic energy, or whose state
+stops being finite, raises `Diverged`: it is not a result.
+
+Integrators (`INTEGRATORS`): "adaptive" (Dormand & Prince 1980, 5th order with an embedded
+4th-order error estimate; the step shrinks where the joints are stiff, so stiff dampers stay
+stable, and grows up to dt between events), or the fixed-step "rk4" and "midpoint".
 """
 
 from __future__ import annotations
@@ -47,24 +55,67 @@ from .model import STATE, STRIKES, Model, check_state, ground_axes
 
 GRAVITY = 9.81  # m/s^2
 BAUMGARTE = 50.0  # 1/s, critically damped constraint stabilisation
-JOINT_MODELS = ("free", "spring-damper", "locked")
-# Fixed-step explicit schemes: classical Runge-Kutta (4th order) and the midpoint rule (2nd)
-INTEGRATORS = ("rk4", "midpoint")
+JOINT_MODELS = ("free", "spring-damper", "locked", "torque")
+# Error-controlled Dormand-Prince 5(4), or fixed steps: classical Runge-Kutta (4th order) and
+# the midpoint rule (2nd)
+INTEGRATORS = ("adaptive", "rk4", "midpoint")
+TOLERANCE = 1e-8  # adaptive: largest local error per step, absolute and relative (m, m/s, J)
+DIVERGED = 1e-4  # energy-balance drift, relative to the touchdown kinetic energy, that is a divergence
+MIN_STEP = 1e-9  # s: an adaptive step shorter than this is a divergence
 MAX_SWITCHES = 50  # contact changes (releases, stick-slip) before a landing counts as chatter
 # Joints: (name, parent segment, child segment); the hip only where the trunk is a rigid body.
 JOINTS = (("hip", "trunk", "thigh"), ("knee", "thigh", "shank"), ("ankle", "shank", "foot"),
           ("swing_hip", "trunk", "swing_thigh"), ("swing_knee", "swing_thigh", "swing_shank"),
           ("swing_ankle", "swing_shank", "swing_foot"))
+# Joints that carry a runner, per kg of body mass: RBDS001 (Fukuchi et al. 2017) at 3.5 m/s,
+# measured by problems/joint_stiffness.py from the data set's own inverse dynamics. Stiffness:
+# the slope of moment against angle from touchdown to peak knee flexion (r > 0.99); preload: the
+# moment at touchdown (the knee's is a flexor moment, the hamstrings still braking the swing).
+# Damping cannot be identified from those curves (the fit gives c < 0); 6.8e-4 N m s/(kg deg)
+# (0.05 N m s/deg for the paper's 73 kg, about a tenth of the knee's critical damping) is the
+# smallest round value with which no shipped landing's contact pulls. The hip has none: in
+# early stance it extends under an extensor moment, no spring.
+RUNNING_JOINTS = {"stiffness": {"knee": 0.13, "ankle": 0.083},  # N m / (kg deg)
+                  "damping": {"knee": 6.8e-4, "ankle": 6.8e-4},  # N m s / (kg deg)
+                  "preload": {"knee": -0.52, "ankle": 0.086}}  # N m / kg, extensor positive
+# What a scene may set, per kg: stiffness 1 N m/(kg deg), three times the knee of sprinters
+# (17-24 N m/deg, Kuitunen, Komi & Kyrolainen 2002); damping 0.02 N m s/(kg deg), the critical
+# damping of the paper's shank and foot about the knee at that stiffness (beyond it the joint is locked
+# over a landing: use model "locked"); preload 5 N m/kg, above any stance moment of running
+# (RBDS001 peaks at 2.8 knee, 2.5 ankle at 3.5 m/s).
+JOINT_LIMITS = {"stiffness": 1.0, "damping": 0.02, "preload": 5.0}
+# d(flexion)/d(hinge angle): hip and knee flex clockwise (x forward, z up), the ankle
+# dorsiflexes counter-clockwise (tests/mechanics/test_joint_moments.py checks it on the model).
+FLEXION = {"hip": -1.0, "knee": -1.0, "ankle": 1.0, "swing_hip": -1.0, "swing_knee": -1.0,
+           "swing_ankle": 1.0}
+# Dormand & Prince (1980) 5(4): nodes, stage coefficients, 5th- and 4th-order weights
+DP_C = (0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0)
+DP_A = ((), (1 / 5,), (3 / 40, 9 / 40), (44 / 45, -56 / 15, 32 / 9),
+        (19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729),
+        (9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656),
+        (35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84))
+DP_B5 = (35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0.0)
+DP_B4 = (5179 / 57600, 0.0, 7571 / 16695, 393 / 640, -92097 / 339200, 187 / 2100, 1 / 40)
+
+
+class Diverged(RuntimeError):
+    """The landing's integration broke its energy balance or left the finite numbers: the
+    message says when, by how much, and what to change."""
 
 
 @dataclass(frozen=True)
 class Joints:
-    """The joint model of a landing: free hinges, passive springs and dampers, or locked."""
+    """The joint model of a landing: free hinges, springs and dampers, moments over time, or
+    locked. Moments are extensor (hip, knee) / plantarflexor (ankle) positive; stiffness and
+    damping resist flexion (hip, knee) and dorsiflexion (ankle)."""
 
     model: str = "free"
     stiffness: dict[str, float] = field(default_factory=dict)  # N m / rad per joint
     damping: dict[str, float] = field(default_factory=dict)  # N m s / rad per joint
     locked: tuple[str, ...] = ()  # with model "locked": the joints held at their touchdown angle
+    preload: dict[str, float] = field(default_factory=dict)  # N m held at touchdown (spring-damper)
+    times: tuple[float, ...] = ()  # s after touchdown, increasing (torque)
+    moments: dict[str, tuple[float, ...]] = field(default_factory=dict)  # N m at `times` (torque)
 
 
 @dataclass(frozen=True)
@@ -178,41 +229,66 @@ class LandingModel:
             rows.append(ca.dot(r, ca.DM(self.n_axis)))
         return ca.vertcat(*rows)
 
-    def _torques(self, q, qd, rest):
-        """Generalised joint forces (spring-damper) and the damping power (W)."""
+    def joint_parameters(self, q) -> np.ndarray:
+        """The joint vector every landing function takes, numeric: [theta_0 (rad, the hinge
+        angles at q, the touchdown), k (N m/rad), c (N m s/rad), tau_0 (N m, the preload as a
+        hinge torque)] per hinge. Parameters, not constants, so one compiled function serves
+        every joint setting."""
+        j, names = self.joints, [name for name, _, _ in self.hinges]
+        spring = j.model == "spring-damper"
+        return np.concatenate([self.joint_angles(q) if len(names) else [],
+                               [j.stiffness.get(n, 0.0) if spring else 0.0 for n in names],
+                               [j.damping.get(n, 0.0) if spring else 0.0 for n in names],
+                               [-FLEXION[n] * j.preload.get(n, 0.0) if spring else 0.0
+                                for n in names]])
+
+    def _torques(self, q, qd, joint, t):
+        """Generalised joint forces J^T tau and the power the joints take from the body (W).
+
+        tau = tau_0 - k (theta - theta_0) - c theta' (spring-damper; its conservative part is
+        in `_spring_energy`, the power counts the damper, c theta'^2) or tau = -s M(t)
+        (torque, s = FLEXION; power -tau theta')."""
         Q, power = ca.SX.zeros(self.model.n), 0
-        if self.joints.model != "spring-damper":
+        if self.joints.model not in ("spring-damper", "torque"):
             return Q, power
+        rest, stiff, damp, tau_0 = ca.vertsplit(joint, len(self.hinges))
         theta = self._angles(q)
         rate = ca.jtimes(theta, q, qd)
         J = ca.jacobian(theta, q)
         for k, (name, _, _) in enumerate(self.hinges):
-            stiff = self.joints.stiffness.get(name, 0.0)
-            damp = self.joints.damping.get(name, 0.0)
-            tau = -stiff * (theta[k] - rest[k]) - damp * rate[k]
+            if self.joints.model == "spring-damper":
+                tau = tau_0[k] - stiff[k] * (theta[k] - rest[k]) - damp[k] * rate[k]
+                power += damp[k] * rate[k] ** 2
+            elif name in self.joints.moments:
+                tau = -FLEXION[name] * ca.pw_lin(t, ca.DM(self.joints.times),
+                                                 ca.DM(self.joints.moments[name]))
+                power -= tau * rate[k]
+            else:
+                continue
             Q += J[k, :].T * tau
-            power += damp * rate[k] ** 2
         return Q, power
 
-    def _spring_energy(self, q, rest):
-        """Elastic energy of the joint springs (J, SX)."""
+    def _spring_energy(self, q, joint):
+        """Elastic energy of the joint springs with their preload (J, SX): V = k/2 (theta -
+        theta_0)^2 - tau_0 (theta - theta_0), zero at touchdown, -dV/dtheta the spring's torque."""
         if self.joints.model != "spring-damper":
             return 0
+        rest, stiff, _, tau_0 = ca.vertsplit(joint, len(self.hinges))
         theta = self._angles(q)
-        return sum(0.5 * self.joints.stiffness.get(name, 0.0) * (theta[k] - rest[k]) ** 2
-                   for k, (name, _, _) in enumerate(self.hinges))
+        return ca.sum1(0.5 * stiff * (theta - rest) ** 2 - tau_0 * (theta - rest))
 
     def rhs(self, active: tuple[str, ...], sliding: bool = False) -> ca.Function:
-        """(q, q', s_anchor, rest, friction) -> (q', q'', dissipated power, contact force
-        [t, n] total, normal force per held point, tangential velocity of the first held
-        point, constraint residual, mechanical energy), symbolic. `friction` is mu s of a
-        sliding foot (unused when it is held)."""
+        """(q, q', s_anchor, joint, friction, t) -> (q', q'', power taken by the joints and
+        friction, contact force [t, n] total, normal force per held point, tangential
+        velocity of the first held point, constraint residual, mechanical energy), symbolic.
+        `friction` is mu s of a sliding foot (unused when it is held); t (s after touchdown)
+        drives the torque joints' moments."""
         key = ("rhs", sliding) + tuple(active)
         if key not in self._functions:
             m = self.model
             q, qd = ca.SX.sym("q", m.n), ca.SX.sym("qd", m.n)
-            s_anchor, rest = ca.SX.sym("s_anchor"), ca.SX.sym("rest", len(self.hinges))
-            mu_s = ca.SX.sym("friction")
+            s_anchor, rest = ca.SX.sym("s_anchor"), ca.SX.sym("joint", 4 * len(self.hinges))
+            mu_s, t = ca.SX.sym("friction"), ca.SX.sym("t")
             phi = self._constraints(q, active, s_anchor, rest, sliding)
             Phi = ca.jacobian(phi, q)
             tangents = [self._row(p, self.t_axis) for p in active]
@@ -221,7 +297,7 @@ class LandingModel:
                 F = ca.vertcat(Phi[:-len(active), :],
                                Phi[-len(active):, :] - mu_s * ca.vertcat(*tangents))
             M_inv = ca.DM(m.M_inv)
-            Q_joint, power = self._torques(q, qd, rest)
+            Q_joint, power = self._torques(q, qd, rest, t)
             Q = ca.DM(self.gravity) + Q_joint
             phid = Phi @ qd
             gamma = -ca.jtimes(phid, q, qd) - 2 * BAUMGARTE * phid - BAUMGARTE**2 * phi
@@ -241,9 +317,9 @@ class LandingModel:
             energy = m.kinetic_energy(qd) + GRAVITY * ca.dot(ca.DM(m.momentum_matrix[1]), q) \
                 + self._spring_energy(q, rest)
             self._functions[key] = ca.Function(
-                "rhs", [q, qd, s_anchor, rest, mu_s],
+                "rhs", [q, qd, s_anchor, rest, mu_s, t],
                 [qd, qdd, power, force, normal, slip, ca.norm_inf(phi), energy],
-                ["q", "qd", "s_anchor", "rest", "friction"],
+                ["q", "qd", "s_anchor", "joint", "friction", "t"],
                 ["qd_out", "qdd", "power", "force", "normal", "slip", "residual", "energy"])
         return self._functions[key]
 
@@ -251,22 +327,32 @@ class LandingModel:
         """(1 x n) row taking q (or q') to `point`'s component along `axis`."""
         return ca.DM(self.model.scatter(np.asarray(axis)[None, :], [point]))
 
-    def advance(self, active, x, h, s_anchor, rest, sliding=False, mu_s=0.0):
-        """One step of [q, q', E_dissipated] by the model's integrator (rk4 or midpoint),
-        symbolic or numeric."""
+    def advance(self, active, x, h, s_anchor, rest, sliding=False, mu_s=0.0, t=0.0, scheme=None):
+        """One step of [q, q', E_joints] from time t by `scheme` (default: the model's
+        integrator), symbolic: (x_next, error), error the adaptive scheme's local error
+        estimate in units of TOLERANCE (1 is the largest accepted), zero for fixed steps."""
         n, rhs = self.model.n, self.rhs(active, sliding)
+        scheme = scheme or self.integrator
 
-        def f(state):
-            out = rhs(state[:n], state[n:2 * n], s_anchor, rest, mu_s)
+        def f(state, time):
+            out = rhs(state[:n], state[n:2 * n], s_anchor, rest, mu_s, time)
             return ca.vertcat(out[0], out[1], out[2])
 
-        if self.integrator == "midpoint":
-            return x + h * f(x + h / 2 * f(x))
-        k1 = f(x)
-        k2 = f(x + h / 2 * k1)
-        k3 = f(x + h / 2 * k2)
-        k4 = f(x + h * k3)
-        return x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+        if scheme == "midpoint":
+            return x + h * f(x + h / 2 * f(x, t), t + h / 2), 0
+        if scheme == "rk4":
+            k1 = f(x, t)
+            k2 = f(x + h / 2 * k1, t + h / 2)
+            k3 = f(x + h / 2 * k2, t + h / 2)
+            k4 = f(x + h * k3, t + h)
+            return x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4), 0
+        k = []
+        for c, a in zip(DP_C, DP_A):
+            k.append(f(x + h * sum((a_i * k_i for a_i, k_i in zip(a, k)), ca.SX.zeros(x.shape)),
+                       t + c * h))
+        x5 = x + h * sum((b * k_i for b, k_i in zip(DP_B5, k) if b), ca.SX.zeros(x.shape))
+        e = h * sum((b5 - b4) * k_i for b5, b4, k_i in zip(DP_B5, DP_B4, k))
+        return x5, ca.mmax(ca.fabs(e) / (TOLERANCE * (1 + ca.fabs(x))))
 
     def heights(self, q):
         """Height of heel and forefoot above the ground (m)."""
@@ -274,7 +360,7 @@ class LandingModel:
                             for p in ("heel", "forefoot")])
 
     def impact_map(self, active) -> ca.Function:
-        """(q, q'-, rest, mu) -> (q'+, T_c, total impulse [t, n], mode, slip) of an impact
+        """(q, q'-, joint, mu) -> (q'+, T_c, total impulse [t, n], mode, slip) of an impact
         with contact set `active` under the model's law, in the contact space of rows
         [t of the first point, n of each] (contact.py): no-slip, frictionless, or Coulomb
         (Darboux-Keller for one point, the velocity-level law for two). Locked joints stop
@@ -284,7 +370,7 @@ class LandingModel:
         if key not in self._functions:
             m = self.model
             q, qd = ca.SX.sym("q", m.n), ca.SX.sym("qd", m.n)
-            rest, mu = ca.SX.sym("rest", len(self.hinges)), ca.SX.sym("mu")
+            rest, mu = ca.SX.sym("joint", 4 * len(self.hinges)), ca.SX.sym("mu")
             Phi_b = ca.jacobian(self._constraints(q, (), 0, rest), q)
             W = contact.admissible_inverse_inertia(ca.DM(m.M_inv), Phi_b)
             qd_b = W @ (ca.DM(m.M) @ qd)  # locked joints stop first (a no-op when none are)
@@ -305,32 +391,34 @@ class LandingModel:
                 [qd_plus, m.kinetic_energy(qd) - m.kinetic_energy(qd_plus),
                  ca.vertcat(p[0], ca.sum1(p[1:])), mode,
                  (C @ qd_plus)[0]],
-                ["q", "qd", "rest", "mu"], ["qd_plus", "T_c", "impulse", "mode", "slip"])
+                ["q", "qd", "joint", "mu"], ["qd_plus", "T_c", "impulse", "mode", "slip"])
         return self._functions[key]
 
     def functions(self, active: tuple[str, ...], sliding: bool = False):
         """(step, forces), compiled, for a contact set held or sliding: one integrator step
-        with the event values after it (heel and forefoot heights, m; the first held point's
-        tangential velocity, m/s), and the forces, residual and energy at a state."""
+        from time t with its error estimate (`advance`) and the event values after it (heel
+        and forefoot heights, m; the first held point's tangential velocity, m/s), and the
+        forces, residual and energy at a state."""
         key = ("numeric", sliding) + tuple(active)
         if key in self._functions:
             return self._functions[key]
         m = self.model
-        x, h = ca.SX.sym("x", 2 * m.n + 1), ca.SX.sym("h")
-        s_anchor, rest = ca.SX.sym("s_anchor"), ca.SX.sym("rest", len(self.hinges))
+        x, h, t = ca.SX.sym("x", 2 * m.n + 1), ca.SX.sym("h"), ca.SX.sym("t")
+        s_anchor, rest = ca.SX.sym("s_anchor"), ca.SX.sym("joint", 4 * len(self.hinges))
         mu_s = ca.SX.sym("friction")
-        x_next = self.advance(active, x, h, s_anchor, rest, sliding, mu_s)
+        x_next, error = self.advance(active, x, h, s_anchor, rest, sliding, mu_s, t)
         q_next, qd_next = x_next[:m.n], x_next[m.n:2 * m.n]
         slip = self._row(active[0], self.t_axis) @ qd_next if active else ca.SX(0)
-        step = ca.Function("step", [x, h, s_anchor, rest, mu_s],
-                           [x_next, ca.vertcat(self.heights(q_next), slip)],
-                           ["x", "h", "s_anchor", "rest", "friction"], ["x_next", "events"])
+        names = ["x", "h", "s_anchor", "joint", "friction", "t"]
+        step = ca.Function("step", [x, h, s_anchor, rest, mu_s, t],
+                           [x_next, ca.vertcat(self.heights(q_next), slip), error],
+                           names, ["x_next", "events", "error"])
         q, qd = ca.SX.sym("q", m.n), ca.SX.sym("qd", m.n)
-        out = self.rhs(active, sliding)(q=q, qd=qd, s_anchor=s_anchor, rest=rest, friction=mu_s)
-        forces = ca.Function("forces", [q, qd, s_anchor, rest, mu_s],
+        out = self.rhs(active, sliding)(q=q, qd=qd, s_anchor=s_anchor, joint=rest, friction=mu_s, t=t)
+        forces = ca.Function("forces", [q, qd, s_anchor, rest, mu_s, t],
                              [out["force"], out["normal"], out["residual"], out["energy"],
                               self.heights(q)],
-                             ["q", "qd", "s_anchor", "rest", "friction"],
+                             ["q", "qd", "s_anchor", "joint", "friction", "t"],
                              ["force", "normal", "residual", "energy", "heights"])
         wrap = Compiled if self.compiled else _Interpreted
         self._functions[key] = (wrap(step), wrap(forces))
@@ -348,15 +436,21 @@ class _Interpreted:
                 for k, v in zip(self.function.name_out(), self.function.call(list(args)))}
 
 
-def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float = 2e-4,
+def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float = 1e-3,
              t_max: float = 0.2) -> Landing:
     """Follow the landing from the touchdown (q0, qd0 just before the first impact), under
-    the model's contact law with the ground's friction coefficient `friction`."""
+    the model's contact law with the ground's friction coefficient `friction`. dt (s) is the
+    fixed integrators' step and the adaptive one's largest. Raises Diverged when the energy
+    balance or the finite numbers break."""
     m = lm.model
     q, qd = np.asarray(q0, float), np.asarray(qd0, float)
-    rest = lm.joint_angles(q)
-    start = lm.functions(())[1](q, qd, 0.0, rest, 0.0)
+    rest = lm.joint_parameters(q)
+    if lm.joints.model == "torque" and lm.joints.times[-1] < t_max - 1e-12:
+        raise InputError(f"the joint moments end at {lm.joints.times[-1] * 1e3:g} ms, before the "
+                         f"landing's {t_max * 1e3:g} ms: give them up to the landing's duration")
+    start = lm.functions(())[1](q, qd, 0.0, rest, 0.0, 0.0)
     E0 = float(start["energy"][0])
+    T0 = 0.5 * qd @ m.M @ qd  # J, the scale of a divergence
     for k, p in enumerate(("heel", "forefoot")):
         if p not in STRIKES[strike] and start["heights"][k] < -1e-9:
             raise InputError(f"{strike} strike: the {p} is {-start['heights'][k] * 1e3:.1f} mm below "
@@ -397,6 +491,12 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
         return qd_plus
 
     def sample(q, qd, force, mechanical):
+        error = abs(mechanical + dissipated + absorbed - E0)
+        if not error <= DIVERGED * T0:  # also when not finite
+            raise Diverged(f"the landing diverged at {t * 1e3:.2f} ms: the energy balance is off by "
+                           f"{error:.3g} J ({error / T0:.1e} of the touchdown kinetic energy) with "
+                           f"integrator {lm.integrator!r} at dt {dt * 1e3:g} ms: the joints are too "
+                           "stiff for it; use integrator \"adaptive\" or a smaller dt_ms")
         record["t"].append(t)
         record["q"].append(q.copy())
         record["qd"].append(qd.copy())
@@ -411,9 +511,10 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
     # a foot point can strike only after it has been above the ground since its last contact
     armed = {p: p not in active for p in ("heel", "forefoot")}
     ended = "duration reached"
+    h_next = dt
     while True:
         step, forces = lm.functions(active, slide != 0)
-        out = forces(q, qd, s_anchor, rest, mu * slide)
+        out = forces(q, qd, s_anchor, rest, mu * slide, t)
         force, normals = out["force"], out["normal"]
         drift = max(drift, float(out["residual"][0]))
         for k, p in enumerate(("heel", "forefoot")):
@@ -465,9 +566,20 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
         if t >= t_max - 1e-12:
             break
         x = np.concatenate([q, qd, [dissipated]])
-        args = (s_anchor, rest, mu * slide)
-        h = min(dt, t_max - t)
-        events = step(x, h, *args)["events"]
+        args = (s_anchor, rest, mu * slide, t)
+        h = min(h_next, dt, t_max - t)
+        taken = step(x, h, *args)
+        while not taken["error"][0] <= 1.0:  # adaptive: shrink until the local error is accepted
+            if h < MIN_STEP:
+                raise Diverged(f"the landing diverged at {t * 1e3:.2f} ms: the adaptive step fell "
+                               f"below {MIN_STEP * 1e9:g} ns (the joints are too stiff or the state "
+                               "left the finite numbers)")
+            error = taken["error"][0]
+            h *= max(0.1, 0.9 * error ** -0.2) if np.isfinite(error) else 0.1
+            taken = step(x, h, *args)
+        if lm.integrator == "adaptive":  # the next step's length from this one's error
+            h_next = h * min(5.0, 0.9 * max(taken["error"][0], 1e-12) ** -0.2)
+        events = taken["events"]
         hits = [k for k, p in enumerate(("heel", "forefoot"))
                 if p not in active and armed[p] and events[k] <= 0.0]
         stops = lm.law == "coulomb" and slide != 0 and slide * events[2] <= 0.0
@@ -478,10 +590,14 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
                 candidates.append((_event_step(step, x, h, args, lambda e, s=slide: s * e[2]), "stop"))
             h, what = min(candidates)
         x_next = step(x, h, *args)["x_next"]
+        if not np.all(np.isfinite(x_next)):
+            raise Diverged(f"the landing diverged at {t * 1e3:.2f} ms: the state is no longer finite "
+                           f"with integrator {lm.integrator!r} at dt {dt * 1e3:g} ms; use integrator "
+                           "\"adaptive\" or a smaller dt_ms")
         t += h
         q, qd, dissipated = x_next[:m.n], x_next[m.n:2 * m.n], float(x_next[-1])
         if hits and what == "hit":
-            out = forces(q, qd, s_anchor, rest, mu * slide)
+            out = forces(q, qd, s_anchor, rest, mu * slide, t)
             sample(q, qd, np.full(2, np.nan), float(out["energy"][0]))
             points = [("heel", "forefoot")[k] for k in hits]
             for p in points:
@@ -526,7 +642,8 @@ def landing_function(lm: LandingModel, strike: str, steps: int = 60) -> ca.Funct
 
     (x, t_e) -> T_c_total, T_c (both impacts), residual, force_t, force_n: x the touchdown state
     (model.STATE), t_e the time (s) of the second impact. The strike point is held from the
-    first impact; `steps` RK4 steps of t_e / steps integrate to t_e, where `residual` is the
+    first impact; `steps` fixed steps of t_e / steps (the model's fixed-step integrator; RK4
+    in place of the adaptive one) integrate to t_e, where `residual` is the
     other point's height (zero at the event) and `approach` its normal velocity then (m/s,
     negative when it strikes); force_t, force_n are the contact force (N) and
     height the other point's height (m) after each step. `absorbed_function` solves
@@ -541,15 +658,17 @@ def landing_function(lm: LandingModel, strike: str, steps: int = 60) -> ca.Funct
     point, other = strike, "heel" if strike == "forefoot" else "forefoot"
     xs = ca.SX.sym("x", len(STATE))
     q0, qd0 = m.state(xs, point)
-    touchdown = ca.Function("touchdown", [xs], [q0, qd0, lm._angles(q0),
+    spring = lm.joint_parameters(np.zeros(m.n))[len(lm.hinges):]
+    touchdown = ca.Function("touchdown", [xs], [q0, qd0, ca.vertcat(lm._angles(q0), spring),
                                                 ca.dot(q0[m.cols(point)], ca.DM(lm.t_axis))])
     n = 2 * m.n + 1
-    xk, h = ca.SX.sym("xk", n), ca.SX.sym("h")
-    s_anchor, rest = ca.SX.sym("s_anchor"), ca.SX.sym("rest", len(lm.hinges))
-    x_next = lm.advance((point,), xk, h, s_anchor, rest)
-    forces = lm.rhs((point,))(x_next[:m.n], x_next[m.n:2 * m.n], s_anchor, rest, 0)[3]
+    xk, h, t = ca.SX.sym("xk", n), ca.SX.sym("h"), ca.SX.sym("t")
+    s_anchor, rest = ca.SX.sym("s_anchor"), ca.SX.sym("joint", 4 * len(lm.hinges))
+    x_next = lm.advance((point,), xk, h, s_anchor, rest, t=t,
+                        scheme="rk4" if lm.integrator == "adaptive" else None)[0]
+    forces = lm.rhs((point,))(x_next[:m.n], x_next[m.n:2 * m.n], s_anchor, rest, 0, t + h)[3]
     height = ca.dot(x_next[m.cols(other)], ca.DM(lm.n_axis))
-    step = ca.Function("step", [xk, ca.vertcat(h, s_anchor, rest)],
+    step = ca.Function("step", [xk, ca.vertcat(h, t, s_anchor, rest)],
                        [x_next, ca.vertcat(forces, height)])
     run = step.mapaccum("run", steps, [0], [0])
 
@@ -557,7 +676,8 @@ def landing_function(lm: LandingModel, strike: str, steps: int = 60) -> ca.Funct
     t_e = ca.MX.sym("t_e")
     q, qd, rest_mx, s_mx = touchdown(x)
     qd1, T_c1 = lm.impact_map((point,))(q, qd, rest_mx, 0)[:2]
-    params = ca.repmat(ca.vertcat(t_e / steps, s_mx, rest_mx), 1, steps)
+    params = ca.vertcat(ca.repmat(t_e / steps, 1, steps), ca.DM(np.arange(steps)).T * t_e / steps,
+                        ca.repmat(ca.vertcat(s_mx, rest_mx), 1, steps))
     states, f = run(ca.vertcat(q, qd1, 0), params)
     end = states[:, -1]
     q_e, qd_e = end[:m.n], end[m.n:2 * m.n]

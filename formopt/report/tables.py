@@ -207,12 +207,29 @@ def bench_table(rows, batch: float) -> str:
     return "\n".join(lines)
 
 
+def joints_text(joints) -> str:
+    """The joint model and its values as a scene gives them (N m/deg, N m s/deg, N m)."""
+    if joints.model == "spring-damper":
+        per_deg = math.pi / 180
+        return "spring-damper: " + "; ".join(
+            f"{j} k {joints.stiffness.get(j, 0.0) * per_deg:.2f} N m/deg, c "
+            f"{joints.damping.get(j, 0.0) * per_deg:.3f} N m s/deg, preload "
+            f"{joints.preload.get(j, 0.0):+.1f} N m" for j in joints.stiffness)
+    if joints.model == "torque":
+        return (f"torque: {', '.join(sorted(joints.moments))} moments over "
+                f"{joints.times[-1] * 1e3:g} ms ({len(joints.times)} samples)")
+    if joints.model == "locked":
+        return f"locked: {', '.join(joints.locked)}"
+    return "free hinges"
+
+
 def landing_table(scene: Scene, landing) -> str:
     """The impacts of a landing, what it absorbed, and the checks of its assumptions."""
     lines = [f"{scene.name}  ({scene.path})",
-             f"model {scene.kind}; joints {scene.joints.model}; {scene.strike} strike; friction "
-             f"{scene.friction:g}; slope {math.degrees(scene.slope):+.1f} deg; contact law "
-             f"{landing.law}", "",
+             f"model {scene.kind}; {scene.strike} strike; friction {scene.friction:g}; slope "
+             f"{math.degrees(scene.slope):+.1f} deg; contact law {landing.law}; integrator "
+             f"{scene.numerics.integrator} (dt {scene.integration.dt * 1e3:g} ms)",
+             f"joints {joints_text(scene.joints)}", "",
              f"  {'time (ms)':>10s} {'contact':>10s} {'T_c (J)':>10s} {'t (N s)':>9s} "
              f"{'n (N s)':>9s} {'mu_c':>7s} {'dv trunk x, z (m/s)':>22s} {'leaves':>8s} {'slip (m/s)':>10s}"]
     for e in landing.impacts:
@@ -228,8 +245,13 @@ def landing_table(scene: Scene, landing) -> str:
               f"  largest mu_c         {landing.mu_c_max:.3f} (friction {scene.friction:g})",
               f"  no-slip held         {held}",
               f"  slid                 {landing.sliding_time * 1e3:.2f} ms on the ground"]
+    shown = landing.releases if len(landing.releases) <= 4 else landing.releases[:2]
     lines += [f"  released             {p} at {t * 1e3:.3f} ms: the ground would have pulled it "
-              f"({f:.1f} N)" for t, p, f in landing.releases]
+              f"({f:.1f} N)" for t, p, f in shown]
+    if len(shown) < len(landing.releases):
+        t, p, f = landing.releases[-1]
+        lines.append(f"  released             ... {len(landing.releases) - len(shown)} more, the last "
+                     f"{p} at {t * 1e3:.3f} ms ({f:.1f} N)")
     lines += [f"  energy balance error {landing.energy_error:.2e} J; constraint drift "
               f"{landing.drift:.1e} m",
               f"  ended                {landing.ended} at {landing.t[-1] * 1e3:.2f} ms"]

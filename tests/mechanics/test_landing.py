@@ -111,7 +111,11 @@ def test_landing_function_needs_a_single_strike(spring):
 
 @pytest.mark.parametrize("joints,key", [
     ({"model": "springy"}, "joints.model"),
-    ({"model": "spring-damper"}, "joints.stiffness_nm_per_deg"),
+    ({"model": "spring-damper", "stiffness_nm_per_deg": {"knee": 1e4}},
+     "joints.stiffness_nm_per_deg.knee"),
+    ({"model": "spring-damper", "damping_nms_per_deg": {"knee": 70.0}},
+     "joints.damping_nms_per_deg.knee"),
+    ({"model": "free", "preload_nm": {"knee": 1.0}}, "joints.preload_nm"),
     ({"model": "spring-damper", "stiffness_nm_per_deg": {"hip": 5.0}}, "joints.stiffness_nm_per_deg.hip"),
     ({"model": "free", "locked": ["knee"]}, "joints.locked"),
     ({"model": "locked", "locked": ["elbow"]}, "joints.locked"),
