@@ -22,4 +22,4 @@ rows = formopt.sweep(scene, [("knee_deg", np.linspace(5.0, 30.0, 11))], out / "s
 done = [r for r in rows if not r["error"]]
 print(f"{len(done)} of {len(rows)} landings; T_c_total from "
       f"{min(float(r['T_c_total']) for r in done):.3f} to {max(float(r['T_c_total']) for r in done):.3f} J")
-print("wrote", save_figure(sweep_figure(rows, "knee_deg"), out / "sweep_knee.png"))
+print("wrote", save_figure(sweep_figure(rows, ["knee_deg"]), out / "sweep_knee.png"))

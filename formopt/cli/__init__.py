@@ -21,6 +21,7 @@ import sys
 from .. import __version__
 from ..io.files import OutputError
 from ..mechanics.errors import InputError, one_line
+from ..mechanics.landing import Diverged
 from . import bench, compare, impact, simulate, solve, sweep
 
 COMMANDS = {"impact": impact, "solve": solve, "simulate": simulate, "sweep": sweep,
@@ -47,6 +48,9 @@ def main(argv=None) -> int:
             not str(err).startswith(str(where)) else ""
         print(f"formopt: error: {one_line(f'{prefix}{err}', 600)}", file=sys.stderr)
         return 2
+    except Diverged as err:  # not a result: the run did not reach its goal
+        print(f"formopt: {one_line(err, 600)}", file=sys.stderr)
+        return 1
     except KeyboardInterrupt as err:
         print("formopt: interrupted" + (f": {err}" if str(err) else ""), file=sys.stderr)
         return 130

@@ -10,12 +10,13 @@ from ..io.files import save_figure, write_csv
 from ..report.figures import pareto_figure
 from ..report.tables import bench_table
 from ..studies import bench
-from .common import emit
+from .common import add_format, emit
 
 
 def add_parser(commands):
     cmd = commands.add_parser("bench", help="time and accuracy of each model level and numerical "
                                             "option (the bench states shipped with formopt)")
+    add_format(cmd)
     cmd.add_argument("--quick", action="store_true", help="a reduced set, under a minute")
     cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
     cmd.add_argument("--out", default="out/bench", help="folder for bench.csv and pareto.png")
@@ -26,7 +27,7 @@ def run(args) -> int:
     out = Path(args.out)
     table = [dataclasses.asdict(r) for r in rows]
     files = [write_csv(out / "bench.csv", [list(table[0])] + [list(r.values()) for r in table]),
-             save_figure(pareto_figure(rows), out / "pareto.png")]
+             save_figure(pareto_figure(rows), out / f"pareto.{args.format}")]
     report = {**bench.to_json(rows, batch), "files": [str(f) for f in files]}
     emit(args, report, out / "bench.json", bench_table(rows, batch), files)
     return 0

@@ -15,6 +15,15 @@ def out_folder(args, default_name: str) -> Path:
                          else Path("out") / Path(default_name).stem)
 
 
+FORMATS = ("png", "svg", "pdf")
+
+
+def add_format(cmd) -> None:
+    """--format: the figures' file format."""
+    cmd.add_argument("--format", choices=FORMATS, default="png",
+                     help="figure format: png (default), svg or pdf (vector, for publication)")
+
+
 def emit(args, report: dict, json_path, table: str, files) -> None:
     """Write the JSON report, then print it (--json) or the table and the files written."""
     write_json(json_path, report)

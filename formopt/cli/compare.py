@@ -10,12 +10,13 @@ from ..mechanics.errors import InputError
 from ..report.figures import comparison_figure
 from ..report.tables import comparison_table
 from ..studies.compare import compare, report
-from .common import emit, out_folder
+from .common import add_format, emit, out_folder
 
 
 def add_parser(commands):
     cmd = commands.add_parser("compare", help="measured touchdowns of a motion-capture trial "
                                               "against the optimum")
+    add_format(cmd)
     cmd.add_argument("--trial", required=True, help="running trial: C3D, or RBDS marker text")
     cmd.add_argument("--static", required=True, help="standing calibration trial (C3D or text)")
     cmd.add_argument("--forces", help="force text file for a text trial (RBDS layout)")
@@ -46,7 +47,7 @@ def run(args) -> int:
     result = compare(trial, static, args.mass, args.height, args.sex, args.friction,
                      law=args.contact)
     rep = report(result)
-    rep["figure"] = str(save_figure(comparison_figure(result), out / "comparison.png"))
+    rep["figure"] = str(save_figure(comparison_figure(result), out / f"comparison.{args.format}"))
     rows = [TOUCHDOWN_COLUMNS]
     for t in rep["touchdowns"]:
         a = t["angles_deg"]

@@ -10,11 +10,12 @@ from ..io.scene import load
 from ..mechanics.landing import history_rows
 from ..report.figures import landing_figures
 from ..report.tables import landing_table
-from .common import emit, out_folder
+from .common import add_format, emit, out_folder
 
 
 def add_parser(commands):
     cmd = commands.add_parser("simulate", help="follow the landing from the touchdown")
+    add_format(cmd)
     cmd.add_argument("scene", help="scene file, e.g. problems/landing_spring.toml")
     cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
     cmd.add_argument("--out", help="folder for figures, CSV and JSON (default out/<scene>)")
@@ -25,7 +26,7 @@ def run(args) -> int:
     out = out_folder(args, scene.path or scene.name)
     landing = api.simulate(scene)
     model = scene.model()
-    files = [save_figure(fig, out / f"{name}.png")
+    files = [save_figure(fig, out / f"{name}.{args.format}")
              for name, fig in landing_figures(landing, model, scene.slope, scene.strike).items()]
     files.append(write_csv(out / "landing.csv", history_rows(landing, model)))
     report = {"scene": scene.name, "model": scene.kind, "joints": dataclasses.asdict(scene.joints),

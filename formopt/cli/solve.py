@@ -11,11 +11,12 @@ from ..io.scene import load
 from ..mechanics.errors import InputError
 from ..report.figures import indicator_figure, posture_figure
 from ..report.tables import solve_report, solve_table
-from .common import emit, out_folder
+from .common import add_format, emit, out_folder
 
 
 def add_parser(commands):
     cmd = commands.add_parser("solve", help="optimise the touchdown posture of a scene")
+    add_format(cmd)
     cmd.add_argument("scene", help="scene file with an [optimize] table, e.g. problems/demo.toml")
     cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
     cmd.add_argument("--out", help="folder for figures and result files (default out/<scene>)")
@@ -46,9 +47,9 @@ def run(args) -> int:
     postures = [(scene.state, "reference", "0.55"),
                 (opt.state, "optimum" if opt.success else "not converged", "tab:blue")]
     figures = [save_figure(posture_figure(scene.body, scene.strike, scene.slope, postures),
-                           out / "posture.png"),
+                           out / f"posture.{args.format}"),
                save_figure(indicator_figure({"reference": opt.reference, "optimum": opt.impact}),
-                           out / "indicators.png")]
+                           out / f"indicators.{args.format}")]
     emit(args, solve_report(scene, opt, [str(f) for f in figures]), out / "result.json",
          solve_table(scene, opt), figures)
     return 0 if opt.success else 1

@@ -4,20 +4,25 @@ from __future__ import annotations
 
 import os
 import sys
+from collections import Counter
 
 from ..io.files import save_figure
 from ..io.scene import load
 from ..mechanics.errors import InputError
 from ..report.figures import sweep_figure
 from ..studies import sweep
+from .common import add_format
 
 
 def add_parser(commands):
     cmd = commands.add_parser("sweep", help="landings across a range of parameters (resumable)")
+    add_format(cmd)
     cmd.add_argument("scene", help="scene file, e.g. problems/landing_spring.toml")
     cmd.add_argument("--param", action="append", required=True,
                      help="NAME=START:STOP:COUNT (repeat for a grid); NAME one of "
-                          + ", ".join(sweep.PARAMETERS))
+                          + ", ".join(f"{n} ({u})" for n, u in sweep.UNITS.items())
+                          + ". Choose a range the scene can take: a forefoot strike needs the "
+                          "heel above the ground at touchdown")
     cmd.add_argument("--out", help="CSV file (default out/<scene>/sweep.csv); an existing one is resumed")
     cmd.add_argument("--no-progress", action="store_true", help="no progress bar")
     cmd.add_argument("--workers", type=int, default=os.cpu_count() or 1,
@@ -37,11 +42,19 @@ def run(args) -> int:
     rows = sweep.run(scene, params, out, progress=not args.no_progress, workers=args.workers,
                      scheduler=args.scheduler, note=lambda text: print(f"note: {text}", file=sys.stderr))
     failed = [r for r in rows if r["error"]]
-    totals = [float(r["T_c_total"]) for r in rows if not r["error"]]
-    print(f"{len(rows)} landings in {out}" + (f", {len(failed)} failed (see the error column)"
-                                              if failed else ""))
-    if totals:
-        print(f"T_c_total from {min(totals):.4f} to {max(totals):.4f} J")
-    if len(params) == 1 and totals:
-        print(f"wrote {save_figure(sweep_figure(rows, params[0][0]), out.with_suffix('.png'))}")
+    good = [r for r in rows if sweep.valid(r)]
+    print(f"{len(rows)} landings in {out}, in parameter order: {len(good)} valid, "
+          f"{len(rows) - len(good) - len(failed)} invalid (a slip, a pulled contact or an unfinished "
+          f"landing), {len(failed)} failed")
+    if failed:
+        reasons = Counter(r["error"].split(":")[0] if "below the ground" not in r["error"]
+                          else "a foot point starts below the ground" for r in failed)
+        print("  failed: " + "; ".join(f"{n} x {why}" for why, n in reasons.most_common(3))
+              + " (the error column says each)")
+    if good:
+        totals = [float(r["T_c_total"]) for r in good]
+        print(f"T_c_total of the valid landings from {min(totals):.4f} to {max(totals):.4f} J")
+    if len(rows) > len(failed):
+        figure = sweep_figure(rows, [name for name, _ in params])
+        print(f"wrote {save_figure(figure, out.with_suffix(f'.{args.format}'))}")
     return 0

@@ -138,8 +138,12 @@ class Landing:
     t: np.ndarray  # s
     q: np.ndarray  # (len(t), n) natural coordinates, m
     qd: np.ndarray  # m/s
-    T: np.ndarray  # J
-    energy: np.ndarray  # J, T + V + springs + damped + absorbed: constant up to drift
+    T: np.ndarray  # J, kinetic energy
+    V: np.ndarray  # J, gravitational potential energy relative to the touchdown
+    spring: np.ndarray  # J, elastic energy of the joint springs (zero at touchdown)
+    dissipated: np.ndarray  # J, work taken by the joints (dampers, moments) and sliding friction
+    absorbed: np.ndarray  # J, T_c of the impacts so far
+    energy: np.ndarray  # J, T + V + spring + dissipated + absorbed: constant up to drift
     force: np.ndarray  # (len(t), 2): total contact force (tangential, normal), N; nan in flight
     active: list  # contact set at each sample
     slide: np.ndarray  # sliding direction at each sample: +1 forward, -1 backward, 0 held
@@ -459,8 +463,10 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
     active, slide = (), 0  # contact set; sliding direction of the held foot (0: held)
     impacts, releases, slip_at, warnings = [], [], [], []
     absorbed, dissipated, t = 0.0, 0.0, 0.0
-    record = {"t": [], "q": [], "qd": [], "T": [], "energy": [], "force": [], "active": [],
-              "slide": []}
+    record = {"t": [], "q": [], "qd": [], "T": [], "V": [], "spring": [], "dissipated": [],
+              "absorbed": [], "energy": [], "force": [], "active": [], "slide": []}
+    height = GRAVITY * m.momentum_matrix[1]  # q -> gravitational potential energy (J)
+    V0 = float(height @ q)
     drift, mu_max, switches = 0.0, 0.0, 0
     s_anchor = 0.0
 
@@ -500,7 +506,12 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
         record["t"].append(t)
         record["q"].append(q.copy())
         record["qd"].append(qd.copy())
-        record["T"].append(0.5 * qd @ m.M @ qd)
+        T, V = 0.5 * qd @ m.M @ qd, float(height @ q)
+        record["T"].append(T)
+        record["V"].append(V - V0)
+        record["spring"].append(mechanical - T - V)
+        record["dissipated"].append(dissipated)
+        record["absorbed"].append(absorbed)
         record["energy"].append(mechanical + dissipated + absorbed)
         record["force"].append(force)
         record["active"].append(active)
@@ -607,7 +618,9 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
             slide, s_anchor = 0, anchor(q)
     energy = np.array(record["energy"])
     return Landing(t=np.array(record["t"]), q=np.array(record["q"]), qd=np.array(record["qd"]),
-                   T=np.array(record["T"]), energy=energy, force=np.array(record["force"]),
+                   T=np.array(record["T"]), V=np.array(record["V"]), spring=np.array(record["spring"]),
+                   dissipated=np.array(record["dissipated"]), absorbed=np.array(record["absorbed"]),
+                   energy=energy, force=np.array(record["force"]),
                    active=record["active"], slide=np.array(record["slide"]), impacts=impacts,
                    releases=releases, T_c_total=absorbed, mu_c_max=mu_max,
                    no_slip_held=not slip_at, slip_at=slip_at, law=lm.law,
@@ -711,12 +724,15 @@ def simulate_state(lm: LandingModel, strike: str, x, friction: float, dt: float,
 
 
 def history_rows(landing: Landing, model: Model):
-    """Time histories as CSV rows: time, energies, contact forces, mu_c, active set, sliding
-    direction (+1 forward, -1 backward, 0 held), q."""
+    """Time histories as CSV rows: time, energies (kinetic, potential and spring, taken by the
+    joints and friction, absorbed at impacts, their sum), contact forces, mu_c, active set,
+    sliding direction (+1 forward, -1 backward, 0 held), q."""
     names = [f"{p.name}_{axis}" for p in model.points for axis in ("x", "z")]
-    yield ["t_s", "T_J", "energy_J", "f_t_N", "f_n_N", "mu_c", "active", "slide", *names]
+    yield ["t_s", "T_J", "V_J", "spring_J", "dissipated_J", "absorbed_J", "energy_J", "f_t_N",
+           "f_n_N", "mu_c", "active", "slide", *names]
     for k, t in enumerate(landing.t):
         f_t, f_n = landing.force[k]
         mu = abs(f_t) / f_n if f_n > 0 else float("nan")
-        yield [t, landing.T[k], landing.energy[k], f_t, f_n, mu, "+".join(landing.active[k]),
+        yield [t, landing.T[k], landing.V[k], landing.spring[k], landing.dissipated[k],
+               landing.absorbed[k], landing.energy[k], f_t, f_n, mu, "+".join(landing.active[k]),
                int(landing.slide[k]), *landing.q[k]]

@@ -85,11 +85,10 @@ def _subplots(*args, figsize=(6.4, 4.8), **kwargs):
 
 
 def landing_figures(landing, model, slope: float, strike: str) -> dict[str, Figure]:
-    """{"landing_sequence": stick figures through the landing, "kinetic_energy": kinetic
-    energy over time with its impact drops}."""
+    """{"landing_sequence": stick figures through the landing, "energy": `energy_figure`}."""
     fig, ax = _subplots(figsize=(8, 5))
     ground(ax, slope, span=(-0.8, 0.8))
-    frames = np.linspace(0, len(landing.t) - 1, min(8, len(landing.t))).astype(int)
+    frames = np.unique(np.searchsorted(landing.t, np.linspace(0, landing.t[-1], 8)).clip(0, len(landing.t) - 1))
     cmap = matplotlib.colormaps["viridis"]
     for j, k in enumerate(frames):
         q = landing.q[k]
@@ -106,37 +105,124 @@ def landing_figures(landing, model, slope: float, strike: str) -> dict[str, Figu
     ax.set_title(f"landing after a {strike} strike", fontsize=10)
     sequence = fig
 
-    fig, ax = _subplots(figsize=(7, 4))
-    ax.plot(landing.t * 1e3, landing.T, color="tab:blue", label="kinetic energy T")
+    return {"landing_sequence": sequence, "energy": energy_figure(landing)}
+
+
+def invalid_phases(landing) -> list[tuple[float, str]]:
+    """(time ms, why) where a landing breaks its own assumptions: no-slip needing more
+    friction than the ground has, a contact the ground would have pulled (released there)."""
+    return [(s * 1e3, "no-slip needs more friction than the ground has") for s in landing.slip_at] \
+        + [(r * 1e3, "the ground would pull: contact released") for r, _, _ in landing.releases]
+
+
+def energy_figure(landing) -> Figure:
+    """Each energy's change since touchdown (J) against time (ms): kinetic, gravitational
+    potential, joint springs, taken by the joints and friction, absorbed at the impacts, and
+    their sum (the balance, flat but for integration drift); impacts as dashed lines, invalid
+    stretches shaded."""
+    fig, ax = _subplots(figsize=(8, 4.5))
+    t = landing.t * 1e3
+    for values, label, color in (
+            (landing.T - landing.T[0], "kinetic T", "tab:blue"),
+            (landing.V, "gravitational potential V", "tab:green"),
+            (landing.spring, "joint springs", "tab:purple"),
+            (landing.dissipated, "taken by joints and friction", "tab:brown"),
+            (landing.absorbed, "absorbed at impacts (sum of T_c)", "tab:red"),
+            (landing.energy - landing.energy[0], "total (balance)", "black")):
+        ax.plot(t, values, color=color, lw=2.2 if color == "black" else 1.5, label=label,
+                ls="--" if color == "black" else "-")
     for e in landing.impacts:
-        ax.axvline(e.time * 1e3, color="tab:red", lw=0.8, ls="--")
-        ax.annotate(f"{e.contact}: T_c {e.T_c:.2f} J", (e.time * 1e3, ax.get_ylim()[1]),
-                    rotation=90, va="top", ha="right", fontsize=8, color="tab:red")
+        ax.axvline(e.time * 1e3, color="tab:red", lw=0.8, ls=":")
+    sliding = landing.slide[:-1] != 0
+    for k in np.flatnonzero(sliding):  # the Coulomb law's sliding: valid, shown
+        ax.axvspan(t[k], t[k + 1], color="0.8", lw=0, label="foot sliding" if k == np.argmax(sliding) else None)
+    width = 0.005 * (t[-1] - t[0] or 1.0)
+    shown = set()
+    for at, why in invalid_phases(landing):
+        ax.axvspan(at - width / 2, at + width / 2, color="tab:orange", alpha=0.6, lw=0,
+                   label=None if why in shown else f"invalid: {why}")
+        shown.add(why)
     ax.set_xlabel("time after touchdown (ms)")
-    ax.set_ylabel("J")
-    ax.set_title(f"absorbed in all: {landing.T_c_total:.3f} J; energy balance error "
+    ax.set_ylabel("change since touchdown (J)")
+    impacts = ", ".join(f"{e.contact} {e.T_c:.2f} J" for e in landing.impacts[:4])
+    ax.set_title(f"T_c {landing.T_c_total:.3f} J in all ({impacts}); energy balance error "
                  f"{landing.energy_error:.1e} J", fontsize=9)
-    ax.legend(fontsize=8)
-    return {"landing_sequence": sequence, "kinetic_energy": fig}
-
-
-def sweep_figure(rows: list[dict], param: str) -> Figure:
-    """Absorbed energy (first impact, all impacts) and peak normal force against a parameter."""
-    good = [r for r in rows if not r["error"]]
-    x = np.array([float(r[param]) for r in good])
-    order = np.argsort(x)
-    fig, axes = _subplots(1, 2, figsize=(10, 3.8))
-    for key, label in (("T_c_first", "first impact"), ("T_c_total", "all impacts")):
-        axes[0].plot(x[order], np.array([float(good[k][key]) for k in order]), "-o", ms=3, label=label)
-    axes[0].set_ylabel("absorbed energy T_c (J)")
-    axes[0].legend(fontsize=8)
-    force = np.array([float(good[k]["f_n_max_N"]) if good[k]["f_n_max_N"] else np.nan for k in order])
-    axes[1].plot(x[order], force, "-o", ms=3, color="tab:red")
-    axes[1].set_ylabel("peak normal contact force (N)")
-    for ax in axes:
-        ax.set_xlabel(param)
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5), frameon=False)
     fig.tight_layout()
     return fig
+
+
+def sweep_figure(rows: list[dict], params: list[str]) -> Figure:
+    """One parameter: absorbed energy (first impact, all impacts) and peak normal force
+    against it. Two: maps of T_c_total and of the first impact's T_c over the grid. Valid
+    landings (studies.sweep.valid) filled, invalid ones hollow (a slip, a pulled contact, an
+    unfinished landing), failed points (no landing: the error column) as red crosses."""
+    from ..studies.sweep import valid
+
+    def value(r, key):
+        return float(r[key]) if r[key] not in ("", None) else np.nan
+
+    failed = [r for r in rows if r["error"]]
+    counts = (f"{sum(valid(r) for r in rows)} valid, {sum(not r['error'] and not valid(r) for r in rows)} "
+              f"invalid, {len(failed)} failed of {len(rows)}")
+    if len(params) == 1:
+        (param,) = params
+        rows = sorted(rows, key=lambda r: float(r[param]))
+        x = np.array([float(r[param]) for r in rows])
+        ok = np.array([valid(r) for r in rows])
+        bad = np.array([not valid(r) and not r["error"] for r in rows])
+        fig, axes = _subplots(1, 2, figsize=(11, 4))
+        panels = ((axes[0], (("T_c_first", "first impact", "tab:blue"), ("T_c_total", "all impacts", "tab:red")),
+                   "absorbed energy T_c (J)"),
+                  (axes[1], (("f_n_max_N", "peak normal force", "tab:green"),), "peak normal contact force (N)"))
+        for ax, series, ylabel in panels:
+            for key, label, color in series:
+                y = np.array([value(r, key) for r in rows])
+                ax.plot(x, y, "-", color=color, lw=1, alpha=0.5)
+                ax.plot(x[ok], y[ok], "o", ms=4, color=color, label=f"{label}, valid")
+                if bad.any():
+                    ax.plot(x[bad], y[bad], "o", ms=5, mfc="none", color=color, label=f"{label}, invalid")
+            if failed:
+                ax.plot([float(r[param]) for r in failed], np.zeros(len(failed)), "x", color="red",
+                        ms=6, label="failed (no landing)")
+            ax.set_xlabel(_axis_label(param))
+            ax.set_ylabel(ylabel)
+            ax.legend(fontsize=7)
+        fig.suptitle(counts, fontsize=9)
+        fig.tight_layout()
+        return fig
+    px, py = params[:2]
+    xs = sorted({float(r[px]) for r in rows})
+    ys = sorted({float(r[py]) for r in rows})
+    fig, axes = _subplots(1, 2, figsize=(12, 4.8))
+    for ax, key, title in ((axes[0], "T_c_total", "T_c over the landing (J)"),
+                           (axes[1], "T_c_first", "T_c at the first impact (J)")):
+        grid = np.full((len(ys), len(xs)), np.nan)
+        for r in rows:
+            grid[ys.index(float(r[py])), xs.index(float(r[px]))] = value(r, key)
+        mesh = ax.pcolormesh(xs, ys, np.ma.masked_invalid(grid), shading="nearest", cmap="viridis")
+        fig.colorbar(mesh, ax=ax, label=title)
+        bad = [(float(r[px]), float(r[py])) for r in rows if not r["error"] and not valid(r)]
+        if bad:
+            ax.plot(*np.array(bad).T, "o", mfc="none", mec="white", ms=5, label="invalid")
+        if failed:
+            ax.plot([float(r[px]) for r in failed], [float(r[py]) for r in failed], "x",
+                    color="red", ms=5, label="failed (no landing)")
+        ax.set_xlabel(_axis_label(px))
+        ax.set_ylabel(_axis_label(py))
+        if bad or failed:
+            ax.legend(fontsize=7, loc="lower right", bbox_to_anchor=(1.0, 1.0), ncol=2, frameon=False)
+    fig.suptitle(counts + (f"; further parameters ({', '.join(params[2:])}) overlaid" if len(params) > 2 else ""),
+                 fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def _axis_label(param: str) -> str:
+    """'ankle_deg' -> 'ankle (deg)', 'hip_vx' -> 'hip_vx (m/s)'."""
+    if param.endswith("_deg"):
+        return f"{param[:-4]} (deg)"
+    return {"hip_vx": "hip_vx (m/s)", "hip_vz": "hip_vz (m/s)", "friction": "friction coefficient"}.get(param, param)
 
 
 def comparison_figure(c) -> Figure:

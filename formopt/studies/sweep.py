@@ -27,13 +27,17 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io.files import OutputError
+from ..io.files import OutputError, write_csv
 from ..mechanics.landing import simulate_state
 from ..mechanics.model import STATE
 from ..mechanics.errors import InputError
 
 PARAMETERS = {"trunk_deg": "trunk", "hip_deg": "hip", "knee_deg": "knee", "ankle_deg": "ankle",
               "hip_vx": "hip_vx", "hip_vz": "hip_vz", "friction": None, "slope_deg": None}
+UNITS = {"trunk_deg": "touchdown trunk lean, deg", "hip_deg": "hip flexion, deg",
+         "knee_deg": "knee flexion, deg", "ankle_deg": "ankle dorsiflexion, deg",
+         "hip_vx": "m/s forward", "hip_vz": "m/s up", "friction": "coefficient",
+         "slope_deg": "ground slope, deg uphill"}
 COLUMNS = ["T_c_first", "T_c_second", "T_c_total", "t_second_ms", "ankle_at_second_deg",
            "f_n_max_N", "dv_trunk_x", "dv_trunk_z", "mu_c_max", "no_slip_held", "releases",
            "energy_error", "ended", "error"]
@@ -116,7 +120,23 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
         finally:
             if bar:
                 bar.close()
+        _sort(path, header, names, grid)
     return read(path)
+
+
+def _sort(path: Path, header, names, grid) -> None:
+    """Rewrite the finished sweep in parameter order (rows arrive in completion order)."""
+    order = {_key(g, names): k for k, g in enumerate(grid)}
+    rows = read(path)
+    rows.sort(key=lambda r: order.get(_key({n: float(r[n]) for n in names}, names), len(order)))
+    write_csv(path, [header] + [[r[c] for c in header] for r in rows])
+
+
+def valid(row: dict) -> bool:
+    """A computed landing that holds its own assumptions: no-slip held (or not needed), no
+    contact the ground would have pulled, ended by both points down."""
+    return not row["error"] and row["no_slip_held"] == "True" and row["releases"] == "0" \
+        and row["ended"].startswith("heel and forefoot both down")
 
 
 def _lock(fh, path):

@@ -134,8 +134,8 @@ def test_cli_simulate_json(tmp_path, capsys):
         assert key in data
     assert {"time", "contact", "T_c", "dv_trunk"} <= set(data["impacts"][0])
     rows = (tmp_path / "landing.csv").read_text().splitlines()
-    assert rows[0].startswith("t_s,T_J,energy_J") and len(rows) > 10
-    assert (tmp_path / "kinetic_energy.png").stat().st_size > 0
+    assert rows[0].startswith("t_s,T_J,V_J,spring_J,dissipated_J,absorbed_J,energy_J") and len(rows) > 10
+    assert (tmp_path / "energy.png").stat().st_size > 0
 
 
 def test_sweep_writes_as_it_goes_and_resumes(spring, tmp_path):
