@@ -61,6 +61,7 @@ JOINT_MODELS = ("free", "spring-damper", "locked", "torque")
 INTEGRATORS = ("adaptive", "rk4", "midpoint")
 TOLERANCE = 1e-8  # adaptive: largest local error per step, absolute and relative (m, m/s, J)
 DIVERGED = 1e-4  # energy-balance drift, relative to the touchdown kinetic energy, that is a divergence
+SINK = 1e-7  # m: how far below the ground a point let go where it stood strikes again
 MIN_STEP = 1e-9  # s: an adaptive step shorter than this is a divergence
 MAX_SWITCHES = 50  # contact changes (releases, stick-slip) before a landing counts as chatter
 # Joints: (name, parent segment, child segment); the hip only where the trunk is a rigid body.
@@ -591,11 +592,14 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
         if lm.integrator == "adaptive":  # the next step's length from this one's error
             h_next = h * min(5.0, 0.9 * max(taken["error"][0], 1e-12) ** -0.2)
         events = taken["events"]
+        # an armed point strikes at the ground; one that never rose since it was let go, a
+        # hair below it (SINK), so that the event has a root and the point cannot sink further
+        sink = [0.0 if armed[p] else SINK for p in ("heel", "forefoot")]
         hits = [k for k, p in enumerate(("heel", "forefoot"))
-                if p not in active and armed[p] and events[k] <= 0.0]
+                if p not in active and events[k] + sink[k] <= 0.0]
         stops = lm.law == "coulomb" and slide != 0 and slide * events[2] <= 0.0
         if hits or stops:  # the earliest event ends the step
-            candidates = [(_event_step(step, x, h, args, lambda e, hits=hits: min(e[k] for k in hits)), "hit")
+            candidates = [(_event_step(step, x, h, args, lambda e, hits=hits: min(e[k] + sink[k] for k in hits)), "hit")
                           ] if hits else []
             if stops:
                 candidates.append((_event_step(step, x, h, args, lambda e, s=slide: s * e[2]), "stop"))
@@ -630,13 +634,15 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
 
 def _event_step(step, x, h, args, value, tol=1e-13):
     """The step length in (0, h] at which value(events after the step) reaches zero from
-    above (secant + bisection)."""
+    above: regula falsi with the Illinois rule (the end kept twice has its value halved, so
+    neither end stalls), bisection where the secant leaves the bracket."""
     def g(s):
         return value(step(x, s, *args)["events"])
 
     lo, hi = 0.0, h
     g_lo, g_hi = g(0.0), g(h)
-    for _ in range(60):
+    kept = 0  # +1: lo kept last time, -1: hi kept
+    for _ in range(100):
         s = hi - g_hi * (hi - lo) / (g_hi - g_lo) if g_hi != g_lo else 0.5 * (lo + hi)
         if not lo < s < hi:
             s = 0.5 * (lo + hi)
@@ -645,8 +651,14 @@ def _event_step(step, x, h, args, value, tol=1e-13):
             return s
         if v > 0:
             lo, g_lo = s, v
+            if kept == -1:
+                g_hi *= 0.5
+            kept = -1
         else:
             hi, g_hi = s, v
+            if kept == 1:
+                g_lo *= 0.5
+            kept = 1
     return hi
 
 
