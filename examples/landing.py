@@ -1,5 +1,5 @@
 """A landing: from the forefoot's touchdown until the heel comes down, with passive knee and
-ankle springs and dampers (problems/landing_spring.toml).
+ankle: the running joints (problems/landing_spring.toml).
 
     python examples/landing.py [OUT]
 """

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 import formopt
+import formopt.studies.sweep
 from formopt.io.files import save_figure
 from formopt.report.figures import sweep_figure
 
@@ -19,7 +20,9 @@ out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 scene = formopt.load(ROOT / "problems" / "landing_spring.toml")
 rows = formopt.sweep(scene, [("knee_deg", np.linspace(5.0, 30.0, 11))], out / "sweep_knee.csv",
                      progress=False)
-done = [r for r in rows if not r["error"]]
-print(f"{len(done)} of {len(rows)} landings; T_c_total from "
-      f"{min(float(r['T_c_total']) for r in done):.3f} to {max(float(r['T_c_total']) for r in done):.3f} J")
+good = [r for r in rows if formopt.studies.sweep.valid(r)]
+failed = sum(bool(r["error"]) for r in rows)
+print(f"{len(good)} valid, {len(rows) - len(good) - failed} invalid, {failed} failed of {len(rows)} "
+      f"landings; T_c_total of the valid ones from {min(float(r['T_c_total']) for r in good):.3f} to "
+      f"{max(float(r['T_c_total']) for r in good):.3f} J")
 print("wrote", save_figure(sweep_figure(rows, ["knee_deg"]), out / "sweep_knee.png"))
