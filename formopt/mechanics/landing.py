@@ -239,13 +239,16 @@ class LandingModel:
         angles at q, the touchdown), k (N m/rad), c (N m s/rad), tau_0 (N m, the preload as a
         hinge torque)] per hinge. Parameters, not constants, so one compiled function serves
         every joint setting."""
+        return np.concatenate([self.joint_angles(q) if self.hinges else [], self.spring_parameters()])
+
+    def spring_parameters(self) -> np.ndarray:
+        """[k, c, tau_0] per hinge (zero unless the joints are springs and dampers)."""
         j, names = self.joints, [name for name, _, _ in self.hinges]
-        spring = j.model == "spring-damper"
-        return np.concatenate([self.joint_angles(q) if len(names) else [],
-                               [j.stiffness.get(n, 0.0) if spring else 0.0 for n in names],
-                               [j.damping.get(n, 0.0) if spring else 0.0 for n in names],
-                               [-FLEXION[n] * j.preload.get(n, 0.0) if spring else 0.0
-                                for n in names]])
+        if j.model != "spring-damper":
+            return np.zeros(3 * len(names))
+        return np.array([j.stiffness.get(n, 0.0) for n in names]
+                        + [j.damping.get(n, 0.0) for n in names]
+                        + [-FLEXION[n] * j.preload.get(n, 0.0) for n in names])
 
     def _torques(self, q, qd, joint, t):
         """Generalised joint forces J^T tau and the power the joints take from the body (W).
@@ -683,8 +686,7 @@ def landing_function(lm: LandingModel, strike: str, steps: int = 60) -> ca.Funct
     point, other = strike, "heel" if strike == "forefoot" else "forefoot"
     xs = ca.SX.sym("x", len(STATE))
     q0, qd0 = m.state(xs, point)
-    spring = lm.joint_parameters(np.zeros(m.n))[len(lm.hinges):]
-    touchdown = ca.Function("touchdown", [xs], [q0, qd0, ca.vertcat(lm._angles(q0), spring),
+    touchdown = ca.Function("touchdown", [xs], [q0, qd0, ca.vertcat(lm._angles(q0), lm.spring_parameters()),
                                                 ca.dot(q0[m.cols(point)], ca.DM(lm.t_axis))])
     n = 2 * m.n + 1
     xk, h, t = ca.SX.sym("xk", n), ca.SX.sym("h"), ca.SX.sym("t")
