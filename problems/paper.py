@@ -62,12 +62,6 @@ def touchdown(strike: str, foot_deg: float, law: str, **values):
     return replace(scene, strike=strike, contact=law)
 
 
-def landing_valid(L) -> bool:
-    """The landing holds its assumptions: no slip needed beyond friction, no contact pulled,
-    both points down."""
-    return L.no_slip_held and not L.releases and L.ended.startswith("heel and forefoot both down")
-
-
 def verdict(name: str, by_law: dict) -> str:
     """'reproduced' / 'refuted' / 'depends on the contact law' from {law: True/False/None}
     (None: no valid case under that law)."""
@@ -99,7 +93,7 @@ def figure4(out: Path) -> list[str]:
                 dv = np.sum([e.dv_trunk for e in L.impacts], axis=0)
                 totals.append(L.T_c_total)
                 dvs.append(dv[0])
-                oks.append(landing_valid(L))
+                oks.append(L.valid)
             x = np.arange(len(FOOT_ANGLES)) + (k - 0.5) * 0.38
             for ax, values in ((axes[0, j], totals), (axes[1, j], dvs)):
                 ax.bar(x, values, 0.36, color=[COLORS[strike] if ok else "none" for ok in oks],
@@ -187,7 +181,7 @@ def figure6(out: Path) -> list[str]:
                              ("flat, 5 m/s", {"hip_vx": 5.0})):
             L = land(touchdown("forefoot", -10.0, law, **values))
             braking = -sum(e.dv_trunk[0] for e in L.impacts)
-            ok = landing_valid(L)
+            ok = L.valid
             results[name] = (L.T_c_total, ok)
             ax.bar(j + (0.2 if "flat" in name else -0.2), L.T_c_total, 0.38,
                    color=("tab:brown" if "down" in name else "tab:gray") if ok else "none",

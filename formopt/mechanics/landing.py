@@ -25,7 +25,8 @@ Q holds gravity and the joint moments (`Joints`): free hinges (none); spring-dam
 (M = M_0 + k (phi - phi_0) + c phi', phi the flexion angle, phi_0 its touchdown value, M_0 the
 moment already held at touchdown); torque (M(t) from a table); or locked (a constraint).
 Joint moments are the muscles' internal moments, extensor (hip, knee) and plantarflexor
-(ankle) positive, the sign of RBDS's processed knee and ankle moments. Events: a foot point reaching the ground (an impact, with the new
+(ankle) positive, the sign of RBDS's processed knee and ankle moments. Events: a foot point
+reaching the ground (an impact, with the new
 contact set), a contact whose normal force would pull (released: a contact can only push),
 a sliding point coming to rest. The landing ends when heel and forefoot are both down, or
 at `t_max`.
@@ -80,10 +81,10 @@ RUNNING_JOINTS = {"stiffness": {"knee": 0.13, "ankle": 0.083},  # N m / (kg deg)
                   "damping": {"knee": 6.8e-4, "ankle": 6.8e-4},  # N m s / (kg deg)
                   "preload": {"knee": -0.52, "ankle": 0.086}}  # N m / kg, extensor positive
 # What a scene may set, per kg: stiffness 1 N m/(kg deg), three times the knee of sprinters
-# (17-24 N m/deg, Kuitunen, Komi & Kyrolainen 2002); damping 0.02 N m s/(kg deg), the critical
-# damping of the paper's shank and foot about the knee at that stiffness (beyond it the joint is locked
-# over a landing: use model "locked"); preload 5 N m/kg, above any stance moment of running
-# (RBDS001 peaks at 2.8 knee, 2.5 ankle at 3.5 m/s).
+# (17-24 N m/deg, Kuitunen, Komi & Kyrolainen 2002); damping 0.02 N m s/(kg deg), the
+# critical damping of the paper's shank and foot about the knee at that stiffness (beyond it
+# the joint is locked over a landing: use model "locked"); preload 5 N m/kg, above any stance
+# moment of running (RBDS001 peaks at 2.8 knee, 2.5 ankle at 3.5 m/s).
 JOINT_LIMITS = {"stiffness": 1.0, "damping": 0.02, "preload": 5.0}
 # d(flexion)/d(hinge angle): hip and knee flex clockwise (x forward, z up), the ankle
 # dorsiflexes counter-clockwise (tests/mechanics/test_joint_moments.py checks it on the model).
@@ -168,10 +169,29 @@ class Landing:
                 "law": self.law, "sliding_ms": self.sliding_time * 1e3,
                 "T_c_total": self.T_c_total, "mu_c_max": self.mu_c_max,
                 "no_slip_held": self.no_slip_held, "slip_at": self.slip_at,
+                "valid": self.valid, "violations": self.violations,
                 "releases": [{"time": t, "contact": p, "normal_force": f} for t, p, f in self.releases],
                 "energy_error": self.energy_error, "drift": self.drift, "ended": self.ended,
                 "warnings": self.warnings,
                 "duration": float(self.t[-1])}
+
+    @property
+    def violations(self) -> list[str]:
+        """How the landing breaks its own assumptions (empty: valid): no-slip needing more
+        friction than the ground has, a contact the ground would have pulled, a second point
+        that never comes down within the duration."""
+        found = []
+        if not self.no_slip_held:
+            found.append(f"no-slip needs friction {self.mu_c_max:.2f}")
+        if self.releases:
+            found.append(f"the ground would pull {len(self.releases)} time(s)")
+        if not self.ended.startswith("heel and forefoot both down"):
+            found.append(self.ended.split(":")[0])
+        return found
+
+    @property
+    def valid(self) -> bool:
+        return not self.violations
 
     @property
     def sliding_time(self) -> float:
@@ -220,13 +240,13 @@ class LandingModel:
     def joint_angles(self, q) -> np.ndarray:
         return np.asarray(self._angles(q), float).ravel()
 
-    def _constraints(self, q, active, s_anchor, rest, sliding=False):
+    def _constraints(self, q, active, s_anchor, joint, sliding=False):
         """Body, locked-joint and contact constraints (SX); a sliding foot has no tangential row."""
         rows = [self.model.constraints(q)]
         if self.joints.model == "locked":
             for k, (name, p, c) in enumerate(self.hinges):
                 if name in self.joints.locked:
-                    rows.append(self._angle(q, p, c) - rest[k])
+                    rows.append(self._angle(q, p, c) - joint[k])
         for k, point in enumerate(active):
             r = q[self.model.cols(point)]
             if k == 0 and not sliding:
@@ -259,13 +279,13 @@ class LandingModel:
         Q, power = ca.SX.zeros(self.model.n), 0
         if self.joints.model not in ("spring-damper", "torque"):
             return Q, power
-        rest, stiff, damp, tau_0 = ca.vertsplit(joint, len(self.hinges))
+        theta_0, stiff, damp, tau_0 = ca.vertsplit(joint, len(self.hinges))
         theta = self._angles(q)
         rate = ca.jtimes(theta, q, qd)
         J = ca.jacobian(theta, q)
         for k, (name, _, _) in enumerate(self.hinges):
             if self.joints.model == "spring-damper":
-                tau = tau_0[k] - stiff[k] * (theta[k] - rest[k]) - damp[k] * rate[k]
+                tau = tau_0[k] - stiff[k] * (theta[k] - theta_0[k]) - damp[k] * rate[k]
                 power += damp[k] * rate[k] ** 2
             elif name in self.joints.moments:
                 tau = -FLEXION[name] * ca.pw_lin(t, ca.DM(self.joints.times),
@@ -281,9 +301,9 @@ class LandingModel:
         theta_0)^2 - tau_0 (theta - theta_0), zero at touchdown, -dV/dtheta the spring's torque."""
         if self.joints.model != "spring-damper":
             return 0
-        rest, stiff, _, tau_0 = ca.vertsplit(joint, len(self.hinges))
+        theta_0, stiff, _, tau_0 = ca.vertsplit(joint, len(self.hinges))
         theta = self._angles(q)
-        return ca.sum1(0.5 * stiff * (theta - rest) ** 2 - tau_0 * (theta - rest))
+        return ca.sum1(0.5 * stiff * (theta - theta_0) ** 2 - tau_0 * (theta - theta_0))
 
     def rhs(self, active: tuple[str, ...], sliding: bool = False) -> ca.Function:
         """(q, q', s_anchor, joint, friction, t) -> (q', q'', power taken by the joints and
@@ -295,9 +315,9 @@ class LandingModel:
         if key not in self._functions:
             m = self.model
             q, qd = ca.SX.sym("q", m.n), ca.SX.sym("qd", m.n)
-            s_anchor, rest = ca.SX.sym("s_anchor"), ca.SX.sym("joint", 4 * len(self.hinges))
+            s_anchor, joint = ca.SX.sym("s_anchor"), ca.SX.sym("joint", 4 * len(self.hinges))
             mu_s, t = ca.SX.sym("friction"), ca.SX.sym("t")
-            phi = self._constraints(q, active, s_anchor, rest, sliding)
+            phi = self._constraints(q, active, s_anchor, joint, sliding)
             Phi = ca.jacobian(phi, q)
             tangents = [self._row(p, self.t_axis) for p in active]
             F = Phi
@@ -305,7 +325,7 @@ class LandingModel:
                 F = ca.vertcat(Phi[:-len(active), :],
                                Phi[-len(active):, :] - mu_s * ca.vertcat(*tangents))
             M_inv = ca.DM(m.M_inv)
-            Q_joint, power = self._torques(q, qd, rest, t)
+            Q_joint, power = self._torques(q, qd, joint, t)
             Q = ca.DM(self.gravity) + Q_joint
             phid = Phi @ qd
             gamma = -ca.jtimes(phid, q, qd) - 2 * BAUMGARTE * phid - BAUMGARTE**2 * phi
@@ -323,9 +343,9 @@ class LandingModel:
                 normal = contact_rows[1:]
                 force = ca.vertcat(contact_rows[0], ca.sum1(normal))
             energy = m.kinetic_energy(qd) + GRAVITY * ca.dot(ca.DM(m.momentum_matrix[1]), q) \
-                + self._spring_energy(q, rest)
+                + self._spring_energy(q, joint)
             self._functions[key] = ca.Function(
-                "rhs", [q, qd, s_anchor, rest, mu_s, t],
+                "rhs", [q, qd, s_anchor, joint, mu_s, t],
                 [qd, qdd, power, force, normal, slip, ca.norm_inf(phi), energy],
                 ["q", "qd", "s_anchor", "joint", "friction", "t"],
                 ["qd_out", "qdd", "power", "force", "normal", "slip", "residual", "energy"])
@@ -335,7 +355,7 @@ class LandingModel:
         """(1 x n) row taking q (or q') to `point`'s component along `axis`."""
         return ca.DM(self.model.scatter(np.asarray(axis)[None, :], [point]))
 
-    def advance(self, active, x, h, s_anchor, rest, sliding=False, mu_s=0.0, t=0.0, scheme=None):
+    def advance(self, active, x, h, s_anchor, joint, sliding=False, mu_s=0.0, t=0.0, scheme=None):
         """One step of [q, q', E_joints] from time t by `scheme` (default: the model's
         integrator), symbolic: (x_next, error), error the adaptive scheme's local error
         estimate in units of TOLERANCE (1 is the largest accepted), zero for fixed steps."""
@@ -343,7 +363,7 @@ class LandingModel:
         scheme = scheme or self.integrator
 
         def f(state, time):
-            out = rhs(state[:n], state[n:2 * n], s_anchor, rest, mu_s, time)
+            out = rhs(state[:n], state[n:2 * n], s_anchor, joint, mu_s, time)
             return ca.vertcat(out[0], out[1], out[2])
 
         if scheme == "midpoint":
@@ -378,8 +398,8 @@ class LandingModel:
         if key not in self._functions:
             m = self.model
             q, qd = ca.SX.sym("q", m.n), ca.SX.sym("qd", m.n)
-            rest, mu = ca.SX.sym("joint", 4 * len(self.hinges)), ca.SX.sym("mu")
-            Phi_b = ca.jacobian(self._constraints(q, (), 0, rest), q)
+            joint, mu = ca.SX.sym("joint", 4 * len(self.hinges)), ca.SX.sym("mu")
+            Phi_b = ca.jacobian(self._constraints(q, (), 0, joint), q)
             W = contact.admissible_inverse_inertia(ca.DM(m.M_inv), Phi_b)
             qd_b = W @ (ca.DM(m.M) @ qd)  # locked joints stop first (a no-op when none are)
             C = ca.vertcat(self._row(active[0], self.t_axis),
@@ -395,7 +415,7 @@ class LandingModel:
                 p, mode, _ = contact.velocity_level(W_c, v0, mu)
             qd_plus = qd_b + W @ C.T @ p
             self._functions[key] = ca.Function(
-                "impact_map", [q, qd, rest, mu],
+                "impact_map", [q, qd, joint, mu],
                 [qd_plus, m.kinetic_energy(qd) - m.kinetic_energy(qd_plus),
                  ca.vertcat(p[0], ca.sum1(p[1:])), mode,
                  (C @ qd_plus)[0]],
@@ -412,18 +432,18 @@ class LandingModel:
             return self._functions[key]
         m = self.model
         x, h, t = ca.SX.sym("x", 2 * m.n + 1), ca.SX.sym("h"), ca.SX.sym("t")
-        s_anchor, rest = ca.SX.sym("s_anchor"), ca.SX.sym("joint", 4 * len(self.hinges))
+        s_anchor, joint = ca.SX.sym("s_anchor"), ca.SX.sym("joint", 4 * len(self.hinges))
         mu_s = ca.SX.sym("friction")
-        x_next, error = self.advance(active, x, h, s_anchor, rest, sliding, mu_s, t)
+        x_next, error = self.advance(active, x, h, s_anchor, joint, sliding, mu_s, t)
         q_next, qd_next = x_next[:m.n], x_next[m.n:2 * m.n]
         slip = self._row(active[0], self.t_axis) @ qd_next if active else ca.SX(0)
         names = ["x", "h", "s_anchor", "joint", "friction", "t"]
-        step = ca.Function("step", [x, h, s_anchor, rest, mu_s, t],
+        step = ca.Function("step", [x, h, s_anchor, joint, mu_s, t],
                            [x_next, ca.vertcat(self.heights(q_next), slip), error],
                            names, ["x_next", "events", "error"])
         q, qd = ca.SX.sym("q", m.n), ca.SX.sym("qd", m.n)
-        out = self.rhs(active, sliding)(q=q, qd=qd, s_anchor=s_anchor, joint=rest, friction=mu_s, t=t)
-        forces = ca.Function("forces", [q, qd, s_anchor, rest, mu_s, t],
+        out = self.rhs(active, sliding)(q=q, qd=qd, s_anchor=s_anchor, joint=joint, friction=mu_s, t=t)
+        forces = ca.Function("forces", [q, qd, s_anchor, joint, mu_s, t],
                              [out["force"], out["normal"], out["residual"], out["energy"],
                               self.heights(q)],
                              ["q", "qd", "s_anchor", "joint", "friction", "t"],
@@ -452,13 +472,16 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
     balance or the finite numbers break."""
     m = lm.model
     q, qd = np.asarray(q0, float), np.asarray(qd0, float)
-    rest = lm.joint_parameters(q)
+    joint = lm.joint_parameters(q)
     if lm.joints.model == "torque" and lm.joints.times[-1] < t_max - 1e-12:
         raise InputError(f"the joint moments end at {lm.joints.times[-1] * 1e3:g} ms, before the "
                          f"landing's {t_max * 1e3:g} ms: give them up to the landing's duration")
-    start = lm.functions(())[1](q, qd, 0.0, rest, 0.0, 0.0)
+    start = lm.functions(())[1](q, qd, 0.0, joint, 0.0, 0.0)
     E0 = float(start["energy"][0])
     T0 = 0.5 * qd @ m.M @ qd  # J, the scale of a divergence
+    remedy = (f"with integrator {lm.integrator!r} at dt {dt * 1e3:g} ms: the joints are too stiff "
+              "for it; use integrator \"adaptive\" or a smaller dt_ms" if lm.integrator != "adaptive"
+              else "with the adaptive integrator: check the joints' values against their limits")
     for k, p in enumerate(("heel", "forefoot")):
         if p not in STRIKES[strike] and start["heights"][k] < -1e-9:
             raise InputError(f"{strike} strike: the {p} is {-start['heights'][k] * 1e3:.1f} mm below "
@@ -480,7 +503,7 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
     def strike_now(q, qd, points, time):
         nonlocal active, absorbed, s_anchor, mu_max, slide
         new = tuple(active) + tuple(p for p in points if p not in active)
-        out = lm.impact_map(new)(q, qd, rest, friction)
+        out = lm.impact_map(new)(q, qd, joint, friction)
         qd_plus, T_c, total = (np.asarray(v, float).ravel() for v in out[:3])
         mode, slip = int(out[3]), float(out[4])
         T_c = float(T_c[0])
@@ -504,9 +527,7 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
         error = abs(mechanical + dissipated + absorbed - E0)
         if not error <= DIVERGED * T0:  # also when not finite
             raise Diverged(f"the landing diverged at {t * 1e3:.2f} ms: the energy balance is off by "
-                           f"{error:.3g} J ({error / T0:.1e} of the touchdown kinetic energy) with "
-                           f"integrator {lm.integrator!r} at dt {dt * 1e3:g} ms: the joints are too "
-                           "stiff for it; use integrator \"adaptive\" or a smaller dt_ms")
+                           f"{error:.3g} J ({error / T0:.1e} of the touchdown kinetic energy) {remedy}")
         record["t"].append(t)
         record["q"].append(q.copy())
         record["qd"].append(qd.copy())
@@ -529,7 +550,7 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
     h_next = dt
     while True:
         step, forces = lm.functions(active, slide != 0)
-        out = forces(q, qd, s_anchor, rest, mu * slide, t)
+        out = forces(q, qd, s_anchor, joint, mu * slide, t)
         force, normals = out["force"], out["normal"]
         drift = max(drift, float(out["residual"][0]))
         for k, p in enumerate(("heel", "forefoot")):
@@ -581,7 +602,7 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
         if t >= t_max - 1e-12:
             break
         x = np.concatenate([q, qd, [dissipated]])
-        args = (s_anchor, rest, mu * slide, t)
+        args = (s_anchor, joint, mu * slide, t)
         h = min(h_next, dt, t_max - t)
         taken = step(x, h, *args)
         while not taken["error"][0] <= 1.0:  # adaptive: shrink until the local error is accepted
@@ -602,20 +623,21 @@ def simulate(lm: LandingModel, strike: str, q0, qd0, friction: float, dt: float 
                 if p not in active and events[k] + sink[k] <= 0.0]
         stops = lm.law == "coulomb" and slide != 0 and slide * events[2] <= 0.0
         if hits or stops:  # the earliest event ends the step
-            candidates = [(_event_step(step, x, h, args, lambda e, hits=hits: min(e[k] + sink[k] for k in hits)), "hit")
-                          ] if hits else []
+            candidates = []
+            if hits:
+                first_hit = _event_step(step, x, h, args, lambda e: min(e[k] + sink[k] for k in hits))
+                candidates.append((first_hit, "hit"))
             if stops:
                 candidates.append((_event_step(step, x, h, args, lambda e, s=slide: s * e[2]), "stop"))
             h, what = min(candidates)
         x_next = step(x, h, *args)["x_next"]
         if not np.all(np.isfinite(x_next)):
             raise Diverged(f"the landing diverged at {t * 1e3:.2f} ms: the state is no longer finite "
-                           f"with integrator {lm.integrator!r} at dt {dt * 1e3:g} ms; use integrator "
-                           "\"adaptive\" or a smaller dt_ms")
+                           f"{remedy}")
         t += h
         q, qd, dissipated = x_next[:m.n], x_next[m.n:2 * m.n], float(x_next[-1])
         if hits and what == "hit":
-            out = forces(q, qd, s_anchor, rest, mu * slide, t)
+            out = forces(q, qd, s_anchor, joint, mu * slide, t)
             sample(q, qd, np.full(2, np.nan), float(out["energy"][0]))
             points = [("heel", "forefoot")[k] for k in hits]
             for p in points:
@@ -690,26 +712,26 @@ def landing_function(lm: LandingModel, strike: str, steps: int = 60) -> ca.Funct
                                                 ca.dot(q0[m.cols(point)], ca.DM(lm.t_axis))])
     n = 2 * m.n + 1
     xk, h, t = ca.SX.sym("xk", n), ca.SX.sym("h"), ca.SX.sym("t")
-    s_anchor, rest = ca.SX.sym("s_anchor"), ca.SX.sym("joint", 4 * len(lm.hinges))
-    x_next = lm.advance((point,), xk, h, s_anchor, rest, t=t,
+    s_anchor, joint = ca.SX.sym("s_anchor"), ca.SX.sym("joint", 4 * len(lm.hinges))
+    x_next = lm.advance((point,), xk, h, s_anchor, joint, t=t,
                         scheme="rk4" if lm.integrator == "adaptive" else None)[0]
-    forces = lm.rhs((point,))(x_next[:m.n], x_next[m.n:2 * m.n], s_anchor, rest, 0, t + h)[3]
+    forces = lm.rhs((point,))(x_next[:m.n], x_next[m.n:2 * m.n], s_anchor, joint, 0, t + h)[3]
     height = ca.dot(x_next[m.cols(other)], ca.DM(lm.n_axis))
-    step = ca.Function("step", [xk, ca.vertcat(h, t, s_anchor, rest)],
+    step = ca.Function("step", [xk, ca.vertcat(h, t, s_anchor, joint)],
                        [x_next, ca.vertcat(forces, height)])
     run = step.mapaccum("run", steps, [0], [0])
 
     x = ca.MX.sym("x", len(STATE))
     t_e = ca.MX.sym("t_e")
-    q, qd, rest_mx, s_mx = touchdown(x)
-    qd1, T_c1 = lm.impact_map((point,))(q, qd, rest_mx, 0)[:2]
+    q, qd, joint_mx, s_mx = touchdown(x)
+    qd1, T_c1 = lm.impact_map((point,))(q, qd, joint_mx, 0)[:2]
     params = ca.vertcat(ca.repmat(t_e / steps, 1, steps), ca.DM(np.arange(steps)).T * t_e / steps,
-                        ca.repmat(ca.vertcat(s_mx, rest_mx), 1, steps))
+                        ca.repmat(ca.vertcat(s_mx, joint_mx), 1, steps))
     states, f = run(ca.vertcat(q, qd1, 0), params)
     end = states[:, -1]
     q_e, qd_e = end[:m.n], end[m.n:2 * m.n]
     residual = ca.dot(q_e[m.cols(other)], ca.DM(lm.n_axis))
-    T_c2 = lm.impact_map((point, other))(q_e, qd_e, rest_mx, 0)[1]
+    T_c2 = lm.impact_map((point, other))(q_e, qd_e, joint_mx, 0)[1]
     approach = ca.dot(qd_e[m.cols(other)], ca.DM(lm.n_axis))
     return ca.Function("landing", [x, t_e],
                        [T_c1 + T_c2, ca.vertcat(T_c1, T_c2), residual, approach, f[0, :].T,

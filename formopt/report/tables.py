@@ -241,7 +241,8 @@ def landing_table(scene: Scene, landing) -> str:
         if landing.no_slip_held else \
         (f"no: mu_c exceeds the friction at {len(landing.slip_at)} instants, first at "
          f"{landing.slip_at[0] * 1e3:.2f} ms")
-    lines += ["", f"  absorbed in all      T_c_total {landing.T_c_total:.4f} J",
+    verdict = "valid" if landing.valid else "INVALID: " + "; ".join(landing.violations)
+    lines += ["", f"  absorbed in all      T_c_total {landing.T_c_total:.4f} J ({verdict})",
               f"  largest mu_c         {landing.mu_c_max:.3f} (friction {scene.friction:g})",
               f"  no-slip held         {held}",
               f"  slid                 {landing.sliding_time * 1e3:.2f} ms on the ground"]

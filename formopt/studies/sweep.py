@@ -40,7 +40,7 @@ UNITS = {"trunk_deg": "touchdown trunk lean, deg", "hip_deg": "hip flexion, deg"
          "slope_deg": "ground slope, deg uphill"}
 COLUMNS = ["T_c_first", "T_c_second", "T_c_total", "t_second_ms", "ankle_at_second_deg",
            "f_n_max_N", "dv_trunk_x", "dv_trunk_z", "mu_c_max", "no_slip_held", "releases",
-           "energy_error", "ended", "error"]
+           "energy_error", "ended", "valid", "error"]
 
 
 def parse_param(text: str) -> tuple[str, np.ndarray]:
@@ -133,10 +133,8 @@ def _sort(path: Path, header, names, grid) -> None:
 
 
 def valid(row: dict) -> bool:
-    """A computed landing that holds its own assumptions: no-slip held (or not needed), no
-    contact the ground would have pulled, ended by both points down."""
-    return not row["error"] and row["no_slip_held"] == "True" and row["releases"] == "0" \
-        and row["ended"].startswith("heel and forefoot both down")
+    """A computed landing that holds its own assumptions (Landing.valid)."""
+    return not row["error"] and row["valid"] == "True"
 
 
 def _lock(fh, path):
@@ -241,7 +239,7 @@ def _landing_row(scene, values, models) -> list:
         dv = np.sum([e.dv_trunk for e in L.impacts if e.dv_trunk], axis=0) if lm.model.trunk else ("", "")
         return [L.impacts[0].T_c, second.T_c if second else "", L.T_c_total,
                 second.time * 1e3 if second else "", ankle, f_max, dv[0], dv[1], L.mu_c_max,
-                L.no_slip_held, len(L.releases), L.energy_error, L.ended, ""]
+                L.no_slip_held, len(L.releases), L.energy_error, L.ended, L.valid, ""]
     except (InputError, RuntimeError) as err:  # a point the model cannot take: say so, go on
         return [""] * (len(COLUMNS) - 1) + [str(err).replace("\n", " ")]
 
