@@ -16,7 +16,7 @@ from .api import compare, impact, load, simulate, solve, sweep
 from .io.scene import Scene, SceneError
 from .mechanics.impact import Impact, ImpactResult
 from .mechanics.landing import Landing
-from .optim.posture import Optimum
+from .optim.solution import Optimum
 
 try:
     __version__ = version("formopt")

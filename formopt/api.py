@@ -16,7 +16,7 @@ from __future__ import annotations
 from .io.scene import Scene, load
 from .mechanics.impact import ImpactResult
 from .mechanics.landing import Landing, simulate_state
-from .optim.posture import Optimum
+from .optim.solution import Optimum
 from .studies.compare import compare
 from .studies.sweep import run as sweep
 

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from formopt import load
 from formopt.report.tables import solve_report
-from formopt.optim.posture import solve
+from formopt import solve
 from formopt.io.files import save_figure, write_json
 from formopt.report.figures import indicator_figure, posture_figure
 from formopt.io.scene import touchdown_table

@@ -22,7 +22,9 @@ from ..mechanics.landing import (INTEGRATORS, JOINT_LIMITS, JOINT_MODELS, RUNNIN
                                  LandingModel)
 from ..mechanics.errors import InputError, one_line
 from ..mechanics.model import MODELS, RATE_LIMIT, SPEED_LIMIT, STATE, STRIKES, Model, Swing, build_model
-from ..optim.posture import OBJECTIVES, RANGE_OF_MOTION_DEG, PostureProblem, Problem
+from ..optim.objective import OBJECTIVES, STANCE_PEAK_BW
+from ..optim.posture import Gait, PostureProblem, Problem
+from ..optim.variables import RANGE_OF_MOTION_DEG
 
 # The segments each model needs; a segment a model does not use may be given and is ignored.
 # Shank + foot keeps the thigh's geometry: the touchdown state moves the knee through it.
@@ -318,7 +320,9 @@ def _landing(data) -> Integration:
 
 OPTIMIZE_KEYS = {"variables", "objective", "bounds_deg", "bounds_dps", "starts", "seed",
                  "tolerance", "max_overstride_m", "hip_height_m", "contact_friction",
-                 "max_iterations", "max_slip_mps"}
+                 "max_iterations", "max_slip_mps", "gait", "around", "radius_deg", "stance_peak_bw"}
+GAIT_KEYS = {"hip_from_strike_m", "foot_velocity_mps", "cadence_spm"}
+HIP_MODELS = ("leg", "leg-trunk", "full-body")  # models with a thigh: a hip to place
 RATE_VARIABLES = tuple("omega_" + r for r in RATES)
 
 
@@ -398,8 +402,21 @@ def _optimize(data, model, strike, law) -> tuple[Problem, tuple[str, ...]]:
                                                       "\"coulomb\" or \"frictionless\" allows; "
                                                       "under \"no-slip\" the foot never slips")
         max_slip = _number(data, "max_slip_mps", "optimize", low=0.0, high=100.0)
+    gait = _gait(data["gait"], model) if "gait" in data else None
+    radius = None
+    if "around" in data or "radius_deg" in data:
+        if data.get("around", "reference") != "reference":
+            raise SceneError("optimize.around", f"must be \"reference\" (the scene's touchdown), "
+                                                f"not {_short(data['around'])}")
+        radius = math.radians(_number(data, "radius_deg", "optimize", default=5.0, low=0.0,
+                                      high=90.0, low_open=True))
+    if "support" in objective and model not in HIP_MODELS:
+        raise SceneError("optimize.objective.support", f"the stance's support needs a knee and a "
+                                                       f"hip: scene.model {', '.join(HIP_MODELS)}")
+    peak = _number(data, "stance_peak_bw", "optimize", default=STANCE_PEAK_BW, low=0.5, high=10.0)
     problem = Problem(tuple(variables), tuple(lower), tuple(upper), objective, overstride, hip_height,
-                      starts, seed, tolerance, contact_friction, max_iterations, max_slip)
+                      starts, seed, tolerance, contact_friction, max_iterations, max_slip, gait,
+                      radius, peak)
     if problem.landing and strike == "flat":
         raise SceneError("optimize.objective", "the landing (T_c_total, contact_friction) starts with "
                                                "a heel or forefoot strike, not a flat one")
@@ -411,6 +428,30 @@ def _optimize(data, model, strike, law) -> tuple[Problem, tuple[str, ...]]:
                                            "available (see the README): use \"no-slip\" or "
                                            "\"frictionless\"")
     return problem, tuple(notes)
+
+
+def _gait(data, model) -> Gait:
+    """[optimize.gait]: the hip's place over the strike point (absent: the touchdown's), the
+    foot's speed along the ground, the cadence."""
+    if not isinstance(data, dict):
+        raise SceneError("optimize.gait", "must be a table")
+    _keys(data, "optimize.gait", GAIT_KEYS, set())
+    if model not in HIP_MODELS:
+        raise SceneError("optimize.gait", f"places the hip over the strike point: scene.model "
+                                          f"{', '.join(HIP_MODELS)}, not {model!r}")
+    place = None
+    if "hip_from_strike_m" in data:
+        value = data["hip_from_strike_m"]
+        key = "optimize.gait.hip_from_strike_m"
+        if not (isinstance(value, list) and len(value) == 2):
+            raise SceneError(key, "must be [x, z] in m: x forward along the ground (a foot landing "
+                                  "ahead of the hip gives x < 0), z normal to it")
+        place = (_value(value[0], key, -1.5, 1.5), _value(value[1], key, 0.1, 2.0))
+    velocity = (_number(data, "foot_velocity_mps", "optimize.gait", low=-20.0, high=20.0)
+                if "foot_velocity_mps" in data else None)
+    cadence = (_number(data, "cadence_spm", "optimize.gait", low=60.0, high=300.0)
+               if "cadence_spm" in data else None)
+    return Gait(place, velocity, cadence)
 
 
 # -- body -------------------------------------------------------------------------------

@@ -12,7 +12,8 @@ import math
 from ..io.scene import Scene, touchdown_table
 from ..mechanics.contact import LAWS
 from ..mechanics.impact import ImpactResult
-from ..optim.posture import explain
+from ..optim.objective import UNITS
+from ..optim.solution import explain
 from ..studies.compare import JOINTS, Comparison, report
 
 
@@ -26,7 +27,11 @@ def solve_report(scene: Scene, opt, figures) -> dict:
         "T_c": opt.impact.T_c, "impulse": {k: list(v) for k, v in opt.impact.impulse.items()},
         "indicators": opt.impact.to_dict(),
         "reference": {"touchdown": scene.touchdown, "indicators": opt.reference.to_dict()},
+        "verdict": opt.verdict, "terms": opt.terms, "reference_objective": opt.reference_objective,
+        "reference_terms": opt.reference_terms, "saving_per_step": opt.saving, "saving_W": opt.power,
         "active": [dataclasses.asdict(c) for c in opt.active],
+        "held_by": [c.name for c in opt.held_by],
+        "local": dataclasses.asdict(opt.local) if opt.local else None,
         "sensitivity": opt.sensitivity,
         "starts": [dataclasses.asdict(s) for s in opt.starts],
         "local_optima": opt.local_optima, "seed": opt.seed,
@@ -106,40 +111,31 @@ def _indicator_lines(r: ImpactResult, other: ImpactResult | None = None) -> list
 
 
 def solve_table(scene: Scene, opt) -> str:
-    """The optimum against the reference posture, the active constraints, the sensitivities."""
+    """The optimum against the reference posture, what it is (interior, or held by named
+    limits), the gait held, the objective's terms, the sensitivities."""
     ok = "converged" if opt.success else "NOT CONVERGED"
+    problem = scene.problem
     lines = [f"{scene.name}  ({scene.path})",
              f"model {scene.kind}; body {scene.body.source}; {scene.strike} strike on "
-             f"{math.degrees(scene.slope):+.1f} deg ground, friction {scene.friction:g}",
-             f"objective {_objective_text(scene.problem.objective)}: {opt.objective:.6g} "
-             f"({ok}: {opt.status})", ""]
+             f"{math.degrees(scene.slope):+.1f} deg ground, friction {scene.friction:g}, "
+             f"contact law {scene.contact}",
+             f"objective {_objective_text(problem.objective)}: {opt.objective:.6g} "
+             f"({ok}: {opt.status}): {opt.verdict}", ""]
+    lines += gait_lines(problem, opt)
     ref, best = touchdown_table(scene.strike, scene.state), touchdown_table(scene.strike, opt.state)
     lines.append(f"  {'posture (deg)':36s} {'reference':>10s} {'optimum':>10s}")
     for k in ref["angles_deg"]:
-        mark = "  *" if k in scene.problem.variables else ""
+        mark = "  *" if k in problem.variables else ""
         lines.append(f"  {k:36s} {ref['angles_deg'][k]:10.2f} {best['angles_deg'][k]:10.2f}{mark}")
     for k in ref["angular_velocity_dps"]:
-        if "omega_" + k in scene.problem.variables:
+        if "omega_" + k in problem.variables:
             lines.append(f"  {'omega ' + k + ' (deg/s)':36s} {ref['angular_velocity_dps'][k]:10.1f} "
                          f"{best['angular_velocity_dps'][k]:10.1f}  *")
     lines += ["  (* decision variable)", "", f"  {'indicators':36s} {'reference':>10s} {'optimum':>10s}"]
     lines += _indicator_lines(opt.impact, opt.reference)
     lines += ["", f"valid at the optimum: {'yes' if opt.impact.valid else 'no'}"]
     lines += [f"warning: {w}" for w in opt.impact.warnings]
-    if opt.active:
-        lines += ["", "what holds the optimum where it is (multiplier = objective change per unit):"]
-        for c in opt.active:
-            lines.append(f"  {c.name:22s} at {c.bound:+.4g}  multiplier {c.multiplier:+.4g}: {c.meaning}")
-    elif opt.success:
-        lines += ["", "no constraint is active: an interior optimum"]
-    if opt.sensitivity:
-        s = opt.sensitivity
-        lines += ["", f"sensitivity of the optimum: objective {s['d_objective_d_speed']:+.4g} per m/s "
-                      f"of running speed, {s['d_objective_d_friction']:+.4g} per unit of friction"]
-        for name, unit in (("speed", "m/s"), ("friction", "unit of friction")):
-            if f"d_posture_d_{name}_deg" in s:
-                moves = ", ".join(f"{k} {v:+.3g}" for k, v in s[f"d_posture_d_{name}_deg"].items())
-                lines.append(f"  posture per {unit}: {moves} deg")
+    lines += [""] + optimum_lines(opt)
     converged = sum(st.converged for st in opt.starts)
     lines += ["", f"multi-start: {len(opt.starts)} starts (seed {opt.seed}), {converged} converged, "
                   f"{opt.local_optima} distinct optima; median solve {opt.solve_time * 1e3:.1f} ms, "
@@ -150,6 +146,60 @@ def solve_table(scene: Scene, opt) -> str:
                          f"{explain(st.status)}")
     lines += [f"note: {n}" for n in list(scene.notes) + list(opt.notes)]
     return "\n".join(lines)
+
+
+def gait_lines(problem, opt) -> list[str]:
+    """What the gait holds, when it is held: the hip's place, its velocity, the cadence."""
+    if problem.gait is None:
+        return []
+    held = {c.name: c for c in opt.active if c.equality}
+    x, z = (held[k].bound if k in held else float("nan") for k in ("hip_from_strike_x", "hip_from_strike_z"))
+    lines = [f"gait held: hip {x:+.3f} m along and {z:.3f} m above the strike point, hip velocity "
+             f"({opt.state[4]:+.2f}, {opt.state[5]:+.2f}) m/s, segment rates of the touchdown"]
+    if problem.gait.foot_velocity is not None:
+        lines.append(f"  strike point velocity along the ground {problem.gait.foot_velocity:+.2f} m/s")
+    if problem.gait.cadence_spm:
+        lines.append(f"  cadence {problem.gait.cadence_spm:g} steps/min")
+    return lines + [""]
+
+
+def optimum_lines(opt) -> list[str]:
+    """What the optimum is and what it is worth: the objective's terms, what holds it (with
+    multipliers), the local mode's marginal values, the sensitivities."""
+    lines = []
+    if opt.terms:
+        lines.append("per step, reference -> optimum: " + ", ".join(
+            f"{k} {opt.reference_terms[k]:.4g} -> {v:.4g} {UNITS[k]}" for k, v in opt.terms.items()))
+    if opt.success:
+        if opt.held_by:
+            lines.append("HELD BY (multiplier = objective change per unit of the bound):")
+            for c in opt.held_by:
+                lines.append(f"  {c.name:22s} at {c.bound:+.4g}  multiplier {c.multiplier:+.4g}: {c.meaning}")
+        else:
+            lines.append("interior optimum: no bound or limit is active")
+        fixed = [c for c in opt.active if c.equality]
+        if fixed:
+            lines.append("what the fixed gait costs (multiplier = objective change per unit):")
+            for c in fixed:
+                lines.append(f"  {c.name:22s} = {c.bound:+.4g}  multiplier {c.multiplier:+.4g}: {c.meaning}")
+    if opt.success:
+        where = f"within {opt.local.radius_deg:g} deg of the reference" if opt.local else "against the reference"
+        units = {UNITS[k] for k in opt.terms if k in opt.reference_terms and k != "T_c"} or {"J"}
+        unit = units.pop() if len(units) == 1 else "(objective units)"
+        lines += ["", f"{where}: the optimum saves {opt.saving:.4g} {unit} per step"
+                      + (f", {opt.power:.3g} W at {opt.cadence_spm:g} steps/min" if opt.power is not None else "")]
+    if opt.local:
+        lines.append("  marginal value at the reference (objective per deg, the other angles held): "
+                     + ", ".join(f"{k} {v:+.4g}" for k, v in opt.local.marginal.items()))
+    if opt.sensitivity:
+        s = opt.sensitivity
+        lines += ["", f"sensitivity of the optimum: objective {s['d_objective_d_speed']:+.4g} per m/s "
+                      f"of running speed, {s['d_objective_d_friction']:+.4g} per unit of friction"]
+        for name, unit in (("speed", "m/s"), ("friction", "unit of friction")):
+            if f"d_posture_d_{name}_deg" in s:
+                moves = ", ".join(f"{k} {v:+.3g}" for k, v in s[f"d_posture_d_{name}_deg"].items())
+                lines.append(f"  posture per {unit}: {moves} deg")
+    return lines
 
 
 def _objective_text(terms: dict) -> str:
@@ -175,15 +225,26 @@ def comparison_table(c: Comparison) -> str:
     ref, opt = rep["reference"], rep["optimum"]
     lines.append(f"  {'mean ' + c.strike + ' touchdown':22s} {'':5s} {'':9s} "
                  + " ".join(f"{ref['angles_deg'][k]:7.1f}" for k in JOINTS) + f" {'':7s} {ref['T_c']:6.2f}")
-    status = "" if opt["success"] else f"  (NOT CONVERGED: {opt['status']})"
-    lines.append(f"  {'optimum, same speed':22s} {'':5s} {c.strike:>9s} "
+    lines.append(f"  {'optimum, same gait':22s} {'':5s} {c.strike:>9s} "
                  + " ".join(f"{opt['touchdown']['angles_deg'][k]:7.1f}" for k in JOINTS)
-                 + f" {'':7s} {opt['T_c']:6.2f}{status}")
+                 + f" {'':7s} {opt['T_c']:6.2f}  {opt['verdict']}")
     lines.append(f"  {'optimum - measured':22s} {'':5s} {'':9s} "
                  + " ".join(f"{rep['difference_deg'][k]:+7.1f}" for k in JOINTS)
                  + f" {'':7s} {opt['T_c'] - ref['T_c']:+6.2f}")
-    if opt["active"]:
-        lines.append(f"  the optimum is held by: {', '.join(opt['active'])}")
+    g = opt["gait"]
+    lines += ["", f"  the optimum ({c.law}, friction {c.optimum.reference.friction:g}): "
+                  f"objective {_objective_text(opt['objective_terms'])}; the measured gait held: hip "
+                  f"{g['hip_from_strike_m'][0]:+.3f} m along, {g['hip_from_strike_m'][1]:.3f} m above "
+                  f"the strike point, hip velocity ({g['hip_velocity'][0]:+.2f}, {g['hip_velocity'][1]:+.2f}) "
+                  f"m/s, the measured segment rates" if opt["success"] else
+              f"  the optimum ({c.law}): {opt['verdict']}: {explain(opt['status'])}",
+              "  bounds (deg, --bounds JOINT=LO:HI): " + ", ".join(
+                  f"{k} {lo:g} to {hi:g}" for k, (lo, hi) in opt["bounds_deg"].items())]
+    if opt["success"]:
+        lines.append("  per step, measured -> optimum: " + ", ".join(
+            f"{k} {ref['terms'][k]:.3g} -> {v:.3g} J" for k, v in opt["terms"].items())
+            + f"; saving {opt['saving_J_per_step']:.3g} J per step, {opt['saving_W']:.3g} W at "
+              f"{c.steps.cadence_spm:.1f} steps/min")
     lines += ["", f"  every touchdown under each contact law (T_c mean, J; valid touchdowns; * {c.law}, "
                   "the law above):",
               f"  {'':22s} " + " ".join(f"{law + (' *' if law == c.law else ''):>20s}" for law in LAWS)]

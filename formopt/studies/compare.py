@@ -1,9 +1,11 @@
 """Measured touchdowns against the optimum: the runner's own posture, indicators and the gap.
 
 For each touchdown of a trial (formopt.mocap), the indicators of that landing on the paper's
-leg scaled to the runner (de Leva), and the least-T_c posture for the same running speed,
-vertical velocity, segment rates and ground; then per-joint differences and the spread
-across steps.
+leg scaled to the runner (de Leva); and the gait-anchored optimum of the mean touchdown of the
+dominant strike: the measured hip placement over the strike point, hip velocity, segment
+rates and cadence held, hip, knee and ankle free within BOUNDS_DEG (settable), the objective
+T_c + support weight * support (optim.objective); then per-joint differences, the saving in J
+per step and in W at the measured cadence, and the spread across steps.
 """
 
 from __future__ import annotations
@@ -18,12 +20,16 @@ from ..mechanics.body import Body, scaled_body
 from ..mechanics.contact import LAWS
 from ..mechanics.impact import Impact, ImpactResult
 from ..mechanics.model import STATE, build_model
-from ..optim.posture import Optimum, PostureProblem, Problem
+from ..optim.posture import Gait, PostureProblem, Problem
+from ..optim.solution import Optimum
+from ..optim.variables import RANGE_OF_MOTION_DEG
 
 JOINTS = ("trunk", "hip", "knee", "ankle")
-# The optimum searches hip, knee and ankle within these bounds (deg), the runner's trunk lean,
-# speed and segment rates held at their measured means.
-BOUNDS_DEG = {"hip": (0.0, 45.0), "knee": (0.0, 60.0), "ankle": (-30.0, 20.0)}
+VARIABLES = ("hip", "knee", "ankle")
+# The optimum searches hip, knee and ankle within these bounds (deg; default the joints'
+# ranges of motion), the runner's trunk lean, speed and segment rates held at their means.
+BOUNDS_DEG = {k: RANGE_OF_MOTION_DEG[k] for k in VARIABLES}
+SUPPORT = 0.0  # the support term's weight: T_c alone (README, "What the optimum weighs")
 
 
 @dataclass
@@ -37,7 +43,7 @@ class Comparison:
     optimum: Optimum
     body: Body
     law: str  # the contact law of `results` and of the optimum (contact.LAWS)
-
+    problem: Problem  # the optimum's: bounds (rad), objective, gait
 
 def impact_strike(td: mocap.Touchdown, kin: mocap.Kinematics) -> str:
     """The foot point that meets the ground first: heel or forefoot (midfoot: the lower)."""
@@ -50,9 +56,11 @@ def impact_strike(td: mocap.Touchdown, kin: mocap.Kinematics) -> str:
 
 def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
             sex: str = "male", friction: float = 0.8, starts: int = 4, seed: int = 0,
-            law: str = "no-slip") -> Comparison:
+            law: str = "no-slip", bounds_deg: dict | None = None,
+            support: float = SUPPORT) -> Comparison:
     """Every touchdown of `trial` through the impact under `law` (each result also carries
-    the other laws, ImpactResult.contact_laws), and the optimum under `law`."""
+    the other laws, ImpactResult.contact_laws), and the gait-anchored optimum under `law`
+    within `bounds_deg` ({joint: (lo, hi)}, deg; missing joints keep BOUNDS_DEG)."""
     cal = mocap.calibrate(static)
     kin = mocap.kinematics(trial, cal)
     steps = mocap.touchdowns(trial, kin, cal)
@@ -67,14 +75,14 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
     strike = "heel" if patterns.count("heel") > len(patterns) / 2 else "forefoot"
     chosen = [td for s, td in zip(strikes, steps.touchdowns) if s == strike] or steps.touchdowns
     reference = np.mean([td.state() for td in chosen], axis=0)
-    heights = np.array([td.hip_height for td in chosen])
-    lower, upper = zip(*(map(math.radians, BOUNDS_DEG[v]) for v in ("hip", "knee", "ankle")))
-    problem = Problem(("hip", "knee", "ankle"), lower, upper, {"T_c": 1.0},
-                      hip_height=(float(heights.min() - 0.02), float(heights.max() + 0.02)),
-                      starts=starts, seed=seed)
+    bounds = {**BOUNDS_DEG, **(bounds_deg or {})}
+    lower, upper = zip(*(map(math.radians, bounds[v]) for v in VARIABLES))
+    objective = {"T_c": 1.0, "support": support} if support else {"T_c": 1.0}
+    problem = Problem(VARIABLES, lower, upper, objective, starts=starts, seed=seed,
+                      gait=Gait(cadence_spm=steps.cadence_spm))
     optimum = PostureProblem(model, strike, reference, problem, 0.0, friction, law=law).solve()
     return Comparison(steps, cal.axes.describe(), results, strikes, reference, strike, optimum,
-                      body, law)
+                      body, law, problem)
 
 
 def report(c: Comparison) -> dict:
@@ -97,13 +105,28 @@ def report(c: Comparison) -> dict:
         "touchdown_method": c.steps.method, "axes": c.axes, "body": c.body.source,
         "left_out": c.steps.left_out, "notes": c.steps.notes, "touchdowns": touchdowns,
         "summary": summary(c),
-        "optimum": {"success": opt.success, "status": opt.status, "strike": c.strike,
+        "optimum": {"success": opt.success, "status": opt.status, "verdict": opt.verdict,
+                    "strike": c.strike, "law": c.law,
+                    "bounds_deg": {v: [math.degrees(lo), math.degrees(hi)] for v, lo, hi in
+                                   zip(c.problem.variables, c.problem.lower, c.problem.upper)},
+                    "objective_terms": c.problem.objective, "gait": gait(c),
                     "touchdown": {"angles_deg": deg(opt.state), "hip_velocity": list(opt.state[4:6])},
-                    "T_c": opt.impact.T_c, "active": [a.name for a in opt.active]},
-        "reference": {"angles_deg": deg(c.reference), "T_c": opt.reference.T_c},
+                    "T_c": opt.impact.T_c, "terms": opt.terms, "objective": opt.objective,
+                    "held_by": [a.name for a in opt.held_by],
+                    "active": [a.name for a in opt.active],
+                    "saving_J_per_step": opt.saving, "saving_W": opt.power},
+        "reference": {"angles_deg": deg(c.reference), "T_c": opt.reference.T_c,
+                      "terms": opt.reference_terms, "objective": opt.reference_objective},
         "difference_deg": {k: v for k, v in zip(JOINTS, np.subtract(
             [deg(opt.state)[k] for k in JOINTS], [deg(c.reference)[k] for k in JOINTS]))},
     }
+
+
+def gait(c: Comparison) -> dict:
+    """What the optimum holds from the measured gait: hip placement (m), velocity, cadence."""
+    held = {a.name: a.bound for a in c.optimum.active if a.equality}
+    return {"hip_from_strike_m": [held.get("hip_from_strike_x"), held.get("hip_from_strike_z")],
+            "hip_velocity": list(c.reference[4:6]), "cadence_spm": c.steps.cadence_spm}
 
 
 def summary(c: Comparison) -> dict:

@@ -3,6 +3,7 @@
 import copy
 import json
 import tomllib
+from pathlib import Path
 
 import casadi as ca
 import numpy as np
@@ -16,11 +17,12 @@ from formopt.io.scene import parse
 from helpers import PROBLEMS, assert_nlp_derivatives
 
 DEMO = PROBLEMS / "demo.toml"
+BOUNDED = Path(__file__).with_name("bounded.toml")  # a vertex optimum: multipliers on bounds
 
 
 @pytest.fixture(scope="module")
 def demo():
-    scene = load(DEMO)
+    scene = load(BOUNDED)
     problem = scene.posture_problem()
     return scene, problem, problem.solve()
 
@@ -80,7 +82,7 @@ def test_multipliers_predict_a_moved_bound(demo):
     delta = 1e-4
     moved = copy.copy(problem)
     moved.ubg = problem.ubg.copy()
-    k = [n for n, _, _ in problem.constraints].index("hip_height_max")
+    k = [r.name for r in problem.records].index("hip_height_max")
     moved.ubg[k] = hi + delta
     sol, stats, _ = moved.solve_from(problem.to_unit(opt.state))
     assert stats["return_status"] == "Solve_Succeeded"
@@ -104,7 +106,7 @@ def test_box_multiplier_predicts_a_moved_bound(demo):
 
 
 def test_infeasible_scene_reports_its_status_and_no_optimum():
-    data = tomllib.loads(DEMO.read_text())
+    data = tomllib.loads(BOUNDED.read_text())
     data["ground"]["friction"] = 0.01  # no posture keeps the foot from slipping
     data["optimize"]["starts"] = 3
     opt = solve(parse(data, "infeasible.toml"))
@@ -121,17 +123,18 @@ def test_cli_solve_json(tmp_path, capsys):
     code = main(["solve", str(DEMO), "--json", "--out", str(tmp_path), "--starts", "3"])
     data = json.loads(capsys.readouterr().out)
     assert code == 0 and data["success"] is True
-    for key in ("success", "status", "touchdown", "T_c", "impulse"):
+    for key in ("success", "status", "touchdown", "T_c", "impulse", "verdict", "held_by", "terms"):
         assert key in data
     assert set(data["touchdown"]) == {"strike", "hip_velocity", "angles_deg", "angular_velocity_dps"}
-    assert data["T_c"] == pytest.approx(data["objective"])
+    assert data["verdict"] == "interior optimum" and data["held_by"] == []
+    assert data["objective"] == pytest.approx(data["terms"]["T_c"] + 0.1 * data["terms"]["support"])
     assert (tmp_path / "posture.png").stat().st_size > 0
     assert json.loads((tmp_path / "result.json").read_text())["T_c"] == data["T_c"]
     assert len(data["starts"]) == 3 and data["seed"] == 0
 
 
 def test_cli_solve_not_converged_exits_1(tmp_path, capsys):
-    text = DEMO.read_text().replace("friction = 0.8", "friction = 0.01").replace("starts = 8", "starts = 2")
+    text = BOUNDED.read_text().replace("friction = 0.8", "friction = 0.01").replace("starts = 8", "starts = 2")
     path = tmp_path / "scene.toml"
     path.write_text(text)
     assert main(["solve", str(path), "--out", str(tmp_path)]) == 1
@@ -156,7 +159,7 @@ def test_solve_without_optimize_table_is_bad_input(capsys):
 ])
 def test_bad_optimize_tables(edit, key):
     from formopt import SceneError
-    data = tomllib.loads(DEMO.read_text())
+    data = tomllib.loads(BOUNDED.read_text())
     data["optimize"].update(edit)
     with pytest.raises(SceneError) as err:
         parse(data)
@@ -224,7 +227,7 @@ def test_landing_objective_needs_a_landing_that_happens():
 
 
 def test_angular_velocities_as_variables():
-    data = tomllib.loads(DEMO.read_text())
+    data = tomllib.loads(BOUNDED.read_text())
     data["optimize"].update({"variables": ["hip", "knee", "omega_shank"],
                              "bounds_dps": {"shank": [-400.0, 0.0]}, "starts": 3})
     scene = parse(data, "rates.toml")
@@ -236,7 +239,7 @@ def test_angular_velocities_as_variables():
 
 
 def test_iteration_limit_is_reported_not_claimed():
-    data = tomllib.loads(DEMO.read_text())
+    data = tomllib.loads(BOUNDED.read_text())
     data["optimize"].update({"max_iterations": 2, "starts": 2})
     opt = solve(parse(data, "limited.toml"))
     assert not opt.success and opt.status == "Maximum_Iterations_Exceeded"
@@ -244,6 +247,6 @@ def test_iteration_limit_is_reported_not_claimed():
 
 
 def test_every_status_has_a_plain_explanation():
-    from formopt.optim.posture import explain
+    from formopt.optim.solution import explain
     for status in ("Infeasible_Problem_Detected", "Restoration_Failed", "Maximum_Iterations_Exceeded"):
         assert "IPOPT's documentation" not in explain(status)

@@ -3,6 +3,7 @@ with the impact map, its derivatives with finite differences, the optimum with i
 
 import copy
 import tomllib
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -10,9 +11,9 @@ import pytest
 from formopt import SceneError, solve
 from formopt.io.scene import parse
 from formopt.mechanics import contact
-from helpers import PROBLEMS, assert_nlp_derivatives
+from helpers import assert_nlp_derivatives
 
-DEMO = tomllib.loads((PROBLEMS / "demo.toml").read_text())
+DEMO = tomllib.loads((Path(__file__).with_name("bounded.toml")).read_text())
 
 
 def scene(law, **optimize):
@@ -37,7 +38,7 @@ def test_fixed_mode_objective_is_the_impact_maps_where_the_mode_holds(coulomb):
     for u in rng.uniform(0, 1, (200, len(problem.index))):
         x = problem.to_state(u)
         g = np.asarray(problem.constraint_function(u, problem.p0), float).ravel()
-        region = [k for k, (name, _, _) in enumerate(problem.constraints) if name.startswith("coulomb_mode")]
+        region = [k for k, r in enumerate(problem.records) if r.name.startswith("coulomb_mode")]
         r = impact(x)
         if np.all(g[region] > 1e-9):  # inside the fixed mode: the same impact
             assert r.mode == contact.MODES[mode]

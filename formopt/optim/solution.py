@@ -1,0 +1,160 @@
+"""What a solved posture problem reports: the optimum, what holds it, how it moves.
+
+- The active set follows from the constraint records (constraints.Record) and IPOPT's
+  multipliers: for L = f + lam_g' g + lam_x' w, d(f*)/d(bound) = -lam (envelope theorem).
+  Equalities (the gait held, the landing's event) are what the problem fixes; the optimum is
+  *interior* when no inequality or variable bound is active, and *held* by the ones that are.
+- Parametric sensitivities d(w*)/dp and d(f*)/dp (p = speed, friction) come from CasADi's
+  sensitivity of the NLP solution (the KKT system at the optimum), not from re-solves.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..mechanics.impact import ImpactResult
+from .variables import RANGE_OF_MOTION_DEG
+
+CONVERGED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
+# IPOPT's return statuses in plain words (the ones a posture problem meets).
+STATUS_EXPLAINED = {
+    "Solve_Succeeded": "converged to the requested tolerance",
+    "Solved_To_Acceptable_Level": "converged to IPOPT's looser 'acceptable' tolerance",
+    "Infeasible_Problem_Detected": "no posture near where this start ended satisfies every "
+                                   "constraint (the gait's hip placement out of reach from there, "
+                                   "too little friction, bounds that exclude a landing, ...); "
+                                   "other starts may still find one",
+    "Maximum_Iterations_Exceeded": "stopped at the iteration limit before converging "
+                                   "(raise [optimize].max_iterations, or start elsewhere)",
+    "Restoration_Failed": "IPOPT lost feasibility and could not regain it from this start",
+    "Search_Direction_Becomes_Too_Small": "the steps became too small to make progress: a "
+                                          "flat or ill-scaled objective near this point",
+    "Error_In_Step_Computation": "the linear system of a step could not be solved (a singular "
+                                 "or badly conditioned problem near this point)",
+    "Invalid_Number_Detected": "a function returned NaN or inf at a trial point",
+    "Diverging_Iterates": "the iterates ran off to very large values",
+    "Maximum_CpuTime_Exceeded": "stopped at the time limit before converging",
+}
+ACTIVE = 1e-6  # relative distance to a bound under which a constraint counts as active
+DISTINCT = math.radians(0.5)  # optima closer than this in every variable count as one
+
+
+def explain(status: str) -> str:
+    return STATUS_EXPLAINED.get(status, "see IPOPT's documentation of this return status")
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """A constraint (or variable bound) at the optimum."""
+
+    name: str
+    value: float
+    bound: float
+    multiplier: float  # d(objective*)/d(bound): objective units per unit of the bound (deg for angles)
+    meaning: str
+    equality: bool = False  # fixed by the problem (the gait, the landing's event), not a limit
+
+
+@dataclass(frozen=True)
+class Start:
+    """One start of the multi-start: where it began and how IPOPT ended it."""
+
+    index: int  # 1-based, in the order run (1 is the reference posture)
+    initial: dict[str, float]  # deg or deg/s
+    status: str
+    converged: bool
+    objective: float
+    final: dict[str, float]
+    iterations: int
+
+
+@dataclass(frozen=True)
+class Local:
+    """The local mode's reading: the radius searched and the marginal values at the reference."""
+
+    radius_deg: float
+    marginal: dict[str, float]  # d(objective)/d(angle) at the reference, per deg, others held
+
+
+@dataclass(frozen=True)
+class Optimum:
+    """The result of a posture optimisation. `success` is False unless a start converged."""
+
+    success: bool
+    status: str
+    objective: float
+    state: np.ndarray  # STATE, SI: the optimum (or, when not successful, the best last iterate)
+    impact: ImpactResult  # checked indicators at `state`
+    reference: ImpactResult  # and at the scene's touchdown
+    active: tuple[Constraint, ...]
+    sensitivity: dict  # d(objective*)/d(speed, friction); d(posture*)/d(speed, friction) in deg
+    starts: tuple[Start, ...]
+    local_optima: int  # distinct converged optima (0.5 deg apart)
+    seed: int
+    solve_time: float  # s, median over the starts
+    build_time: float  # s
+    terms: dict = field(default_factory=dict)  # objective term -> value at the optimum (unweighted)
+    reference_objective: float = float("nan")  # the objective at the reference posture
+    reference_terms: dict = field(default_factory=dict)  # and its terms
+    cadence_spm: float | None = None  # the gait's, when given: J per step to W
+    local: Local | None = None
+    notes: tuple[str, ...] = field(default=())
+
+    @property
+    def saving(self) -> float:
+        """The objective at the reference minus at the optimum (J per step for energies)."""
+        return self.reference_objective - self.objective
+
+    @property
+    def power(self) -> float | None:
+        """The saving at the gait's cadence, W (J per step * steps per s)."""
+        return self.saving * self.cadence_spm / 60.0 if self.cadence_spm else None
+
+    @property
+    def held_by(self) -> tuple[Constraint, ...]:
+        """The active inequalities and bounds: what keeps the optimum from going further."""
+        return tuple(c for c in self.active if not c.equality)
+
+    @property
+    def verdict(self) -> str:
+        """One line for a table's headline: interior, held by named limits, or no optimum."""
+        if not self.success:
+            return f"NO OPTIMUM ({self.status})"
+        if not self.held_by:
+            return "interior optimum"
+        return "HELD BY " + ", ".join(c.name for c in self.held_by)
+
+
+def active_set(records, g, lam_g, lam_x, posture, u, scale) -> tuple[Constraint, ...]:
+    """The active constraints and variable bounds at u, with d(f*)/d(bound) in the reported
+    objective's units; `scale`: the NLP's objective per unit of the reported one."""
+    lam_g = -np.asarray(lam_g, float).ravel() / scale
+    lam_x = -np.asarray(lam_x, float).ravel() / scale
+    active = []
+    for r, value, lam in zip(records, np.asarray(g, float).ravel(), lam_g):
+        if r.equality or (abs(value - r.bound) < ACTIVE * max(1.0, abs(r.bound)) and abs(lam) > 1e-9):
+            active.append(Constraint(r.name, float(value), r.bound, float(lam), r.meaning, r.equality))
+    for k, var in enumerate(posture.variables):
+        at = "lower" if u[k] < ACTIVE else "upper" if u[k] > 1 - ACTIVE else None
+        if at and abs(lam_x[k]) > 1e-9:
+            value = math.degrees(posture.lower[k] if at == "lower" else posture.upper[k])
+            anatomical = var in RANGE_OF_MOTION_DEG and math.isclose(
+                value, RANGE_OF_MOTION_DEG[var][0 if at == "lower" else 1])
+            active.append(Constraint(f"{var}_{at}", value, value, float(lam_x[k] / posture.per_unit()[k]),
+                                     f"{var} held at its {at} bound"
+                                     + (" (the joint's range of motion, AAOS)" if anatomical else
+                                        " (the scene's bounds_deg)")
+                                     + ": the objective would keep falling past it"))
+    return tuple(active)
+
+
+def distinct(points, tol=DISTINCT) -> int:
+    """How many of the points (arrays, rad) differ by more than tol in some entry."""
+    found = []
+    for p in points:
+        if all(np.max(np.abs(p - q)) > tol for q in found):
+            found.append(p)
+    return len(found)

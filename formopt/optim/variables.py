@@ -1,0 +1,82 @@
+"""The posture NLP's parameterisation: decision vector, parameters and the touchdown state.
+
+Order of the decision vector w (opty's convention: documented, fixed):
+
+    w = [u_1 .. u_n, tau]     u_k in [0, 1]: variable k scaled between its bounds,
+                              x_k = lower_k + (upper_k - lower_k) u_k (rad or rad/s);
+                              tau (landing problems only): the second impact at tau * duration
+
+Parameters p = [hip_vx (m/s, the running speed), mu (friction coefficient)]: the NLP is built
+once and solved for any speed and friction (sweeps, sensitivities). Every other entry of the
+touchdown state (model.STATE) stays at the reference's value, except the ankle of a flat
+strike, which follows from the sole lying on the ground.
+"""
+
+from __future__ import annotations
+
+import math
+
+import casadi as ca
+import numpy as np
+
+from ..mechanics.model import STATE, Model
+
+# Active ranges of motion (deg): American Academy of Orthopaedic Surgeons (1965), Joint Motion:
+# Method of Measuring and Recording, as tabulated in Norkin C.C. & White D.J. (2016) Measurement
+# of Joint Motion, 5th ed.: hip extension 30 / flexion 120, knee flexion 135 (0 = straight),
+# ankle plantarflexion 50 / dorsiflexion 20; trunk: thoracolumbar extension 25 / flexion 80.
+RANGE_OF_MOTION_DEG = {"trunk": (-25.0, 80.0), "hip": (-30.0, 120.0), "knee": (0.0, 135.0),
+                       "ankle": (-50.0, 20.0)}
+
+
+class Posture:
+    """Variables (STATE names) with SI bounds around a reference touchdown state."""
+
+    def __init__(self, model: Model, strike: str, slope: float, reference, variables,
+                 lower, upper):
+        self.model, self.strike, self.slope = model, strike, slope
+        self.reference = np.asarray(reference, float)
+        self.variables = tuple(variables)
+        self.index = [STATE.index(v) for v in self.variables]
+        self.lower, self.upper = np.asarray(lower, float), np.asarray(upper, float)
+        u, p = ca.SX.sym("u", len(self.index)), ca.SX.sym("p", 2)
+        self.function = ca.Function("state", [u, p], [self.state(u, p)], ["u", "p"], ["x"])
+
+    @property
+    def size(self) -> int:
+        return len(self.index)
+
+    def parameters(self, speed: float | None = None, friction: float = 0.8) -> np.ndarray:
+        """p = [speed (m/s; the reference's hip_vx when None), friction]."""
+        return np.array([self.reference[STATE.index("hip_vx")] if speed is None else speed,
+                         friction])
+
+    def state(self, u, p):
+        """The touchdown state (SX, SI) of scaled variables u and parameters p."""
+        x = ca.SX(ca.DM(self.reference))
+        for k, i in enumerate(self.index):
+            x[i] = self.lower[k] + (self.upper[k] - self.lower[k]) * u[k]
+        x[STATE.index("hip_vx")] = p[0]
+        if self.strike == "flat":  # the sole on the ground: the ankle follows the other angles
+            heel, fore = (np.array(self.model.body["foot"].landmarks[k]) for k in ("heel", "forefoot"))
+            sole = math.atan2(fore[1] - heel[1], fore[0] - heel[0])
+            x[3] = self.slope - sole - x[1] + x[0] + x[2]
+        return x
+
+    def to_unit(self, x) -> np.ndarray:
+        """Scaled variables u of a touchdown state (clipped to the bounds)."""
+        x = np.asarray(x, float)
+        return np.clip((x[self.index] - self.lower) / (self.upper - self.lower), 0.0, 1.0)
+
+    def to_state(self, w, p) -> np.ndarray:
+        """The touchdown state (SI) of a decision vector (its first `size` entries) and p."""
+        u = np.asarray(w, float)[:self.size]
+        return np.asarray(self.function(u, p), float).ravel()
+
+    def degrees(self, x) -> dict[str, float]:
+        """The variables of state x in deg (angles) or deg/s (rates)."""
+        return {v: math.degrees(float(np.asarray(x)[i])) for v, i in zip(self.variables, self.index)}
+
+    def per_unit(self) -> np.ndarray:
+        """d(variable)/d(u) in deg per unit of u: converts gradients in u to per-degree values."""
+        return np.degrees(self.upper - self.lower)
