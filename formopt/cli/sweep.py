@@ -9,13 +9,14 @@ from collections import Counter
 from ..io.files import save_figure
 from ..io.scene import load
 from ..mechanics.errors import InputError
-from ..report.figures import sweep_figure
+from ..report.figures import optimum_map_figure, sweep_figure
 from ..studies import sweep
 from .common import add_format
 
 
 def add_parser(commands):
-    cmd = commands.add_parser("sweep", help="landings across a range of parameters (resumable)")
+    cmd = commands.add_parser("sweep", help="landings, or the optimum of a scene with an [optimize] "
+                                            "table, across a range of parameters (resumable)")
     add_format(cmd)
     cmd.add_argument("scene", help="scene file, e.g. problems/landing_spring.toml")
     cmd.add_argument("--param", action="append", required=True,
@@ -41,6 +42,8 @@ def run(args) -> int:
         raise InputError("--workers must be at least 1")
     rows = sweep.run(scene, params, out, progress=not args.no_progress, workers=args.workers,
                      scheduler=args.scheduler, note=lambda text: print(f"note: {text}", file=sys.stderr))
+    if scene.problem is not None:
+        return _optimum_summary(scene, rows, params, out, args.format)
     failed = [r for r in rows if r["error"]]
     good = [r for r in rows if sweep.valid(r)]
     print(f"{len(rows)} landings in {out}, in parameter order: {len(good)} valid, "
@@ -58,3 +61,25 @@ def run(args) -> int:
         figure = sweep_figure(rows, [name for name, _ in params])
         print(f"wrote {save_figure(figure, out.with_suffix(f'.{args.format}'))}")
     return 0
+
+
+def _optimum_summary(scene, rows, params, out, fmt) -> int:
+    """What an optimum map found: how many points converged, interior or held, and by what."""
+    good = [r for r in rows if r["success"] == "True"]
+    interior = [r for r in good if r["verdict"] == "interior optimum"]
+    warm = [r for r in good if r["warm"] == "True"]
+    print(f"{len(rows)} optima in {out}, in parameter order: {len(good)} converged "
+          f"({len(interior)} interior, {len(good) - len(interior)} held by a limit), "
+          f"{len(rows) - len(good)} without an optimum; {len(warm)} warm-started")
+    held = Counter(name for r in good if r["verdict"].startswith("HELD BY")
+                   for name in r["verdict"].removeprefix("HELD BY ").split(", "))
+    if held:
+        print("  held by: " + "; ".join(f"{name} at {n} points" for name, n in held.most_common(4)))
+    if good:
+        its = [int(r["iterations"]) for r in good]
+        print(f"  IPOPT iterations per point: median {sorted(its)[len(its) // 2]}, max {max(its)}")
+        T_c = [float(r["T_c"]) for r in good]
+        print(f"  T_c at the optima from {min(T_c):.4f} to {max(T_c):.4f} J")
+        figure = optimum_map_figure(rows, [name for name, _ in params], scene.problem.variables)
+        print(f"wrote {save_figure(figure, out.with_suffix(f'.{fmt}'))}")
+    return 0 if good else 1

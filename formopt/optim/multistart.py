@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from ..mechanics import contact
-from .solution import CONVERGED, Local, Optimum, Start, active_set, distinct, explain
+from .solution import CONVERGED, Local, Optimum, Start, distinct, explain
 
 DRAWS = 50  # random draws per wanted start of a landing problem
 
@@ -74,9 +74,7 @@ def solve(pp, progress=None) -> Optimum:
                      f" at first; the impact at the state shown ends in {impact.mode}")
     active, sensitivity = (), {}
     if converged:
-        g = pp.constraint_function(w, pp.p0)
-        active = active_set(pp.records, g, sol["lam_g"], sol["lam_x"], pp.posture, w,
-                            pp.scale / pp.weight)
+        active = pp.active(w, pp.p0, sol)
         sensitivity = pp.sensitivity(w, pp.p0, sol["lam_x"], sol["lam_g"])
     def terms(w):
         return dict(zip(pp.term_names, map(float, np.asarray(pp.terms_function(w, pp.p0)).ravel())))

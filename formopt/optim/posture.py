@@ -34,7 +34,7 @@ from ..mechanics.model import STRIKES, Model, ground_axes, positions
 from . import multistart
 from .constraints import posture_constraints, stack
 from .objective import STANCE_PEAK_BW, normalised, support
-from .solution import Optimum
+from .solution import Optimum, active_set
 from .variables import Posture
 
 ANGLES = ("trunk", "hip", "knee", "ankle")
@@ -167,6 +167,7 @@ class PostureProblem:
             self.options["ipopt.constr_viol_tol"] = GAIT_TOLERANCE
         self.solver = cached_nlpsol("touchdown", self.nlp, self.options, compiled)
         self._sensitivity = None  # built on first use (sensitivity())
+        self._solvers = {}  # solvers with other IPOPT options (solve_from(options=...))
         self.constraint_function = ca.Function("g", [w, p], [g])
         self.build_time = time.perf_counter() - t0
 
@@ -259,16 +260,29 @@ class PostureProblem:
             lbx[-1] = 1e-3
         return lbx, np.ones(size)
 
-    def solve_from(self, w0, p=None, lam_x0=None, lam_g0=None):
-        """One IPOPT run from w0 (warm-started with multipliers when given): (solution dict,
-        IPOPT's stats, seconds)."""
+    def solve_from(self, w0, p=None, lam_x0=None, lam_g0=None, options=None):
+        """One IPOPT run from w0 (with multipliers when given; `options`: extra IPOPT options,
+        e.g. warm-start ones, for a solver built once per set): (solution dict, IPOPT's stats,
+        seconds)."""
         p = self.p0 if p is None else p
+        solver = self.solver
+        if options:
+            key = repr(sorted(options.items()))
+            if key not in self._solvers:
+                self._solvers[key] = cached_nlpsol("touchdown", self.nlp, {**self.options, **options},
+                                                   self.compiled)
+            solver = self._solvers[key]
         lbx, ubx = self.bounds(len(w0))
         warm = {} if lam_x0 is None else {"lam_x0": lam_x0, "lam_g0": lam_g0}
         t = time.perf_counter()
-        sol = self.solver(x0=w0, p=p, lbx=lbx, ubx=ubx, lbg=self.lbg, ubg=self.ubg, **warm)
+        sol = solver(x0=w0, p=p, lbx=lbx, ubx=ubx, lbg=self.lbg, ubg=self.ubg, **warm)
         elapsed = time.perf_counter() - t
-        return sol, self.solver.stats(), elapsed
+        return sol, solver.stats(), elapsed
+
+    def active(self, w, p, sol) -> tuple:
+        """The active constraints and bounds of solution `sol` at w, p (solution.active_set)."""
+        return active_set(self.records, self.constraint_function(w, p), sol["lam_g"], sol["lam_x"],
+                          self.posture, w, self.scale / self.weight)
 
     def feasible(self, w, p=None, tol=1e-6) -> bool:
         """Every constraint within tol (equalities of the gait within 1e-9 m)."""

@@ -121,11 +121,13 @@ class Optimum:
     @property
     def verdict(self) -> str:
         """One line for a table's headline: interior, held by named limits, or no optimum."""
-        if not self.success:
-            return f"NO OPTIMUM ({self.status})"
-        if not self.held_by:
-            return "interior optimum"
-        return "HELD BY " + ", ".join(c.name for c in self.held_by)
+        return verdict_of(self.active) if self.success else f"NO OPTIMUM ({self.status})"
+
+
+def verdict_of(active) -> str:
+    """'interior optimum', or 'HELD BY' the active inequalities and bounds."""
+    held = [c.name for c in active if not c.equality]
+    return "HELD BY " + ", ".join(held) if held else "interior optimum"
 
 
 def active_set(records, g, lam_g, lam_x, posture, u, scale) -> tuple[Constraint, ...]:

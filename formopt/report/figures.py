@@ -222,7 +222,8 @@ def _axis_label(param: str) -> str:
     """'ankle_deg' -> 'ankle (deg)', 'hip_vx' -> 'hip_vx (m/s)'."""
     if param.endswith("_deg"):
         return f"{param[:-4]} (deg)"
-    return {"hip_vx": "hip_vx (m/s)", "hip_vz": "hip_vz (m/s)", "friction": "friction coefficient"}.get(param, param)
+    return {"hip_vx": "hip_vx (m/s)", "hip_vz": "hip_vz (m/s)", "speed_mps": "running speed (m/s)",
+            "friction": "friction coefficient"}.get(param, param)
 
 
 def comparison_figure(c) -> Figure:
@@ -294,5 +295,55 @@ def pareto_figure(rows) -> Figure:
         ax.set_ylabel("error (1e-16 stands for exact)")
         ax.set_title(work, fontsize=10)
         ax.legend(fontsize=7)
+    fig.tight_layout()
+    return fig
+
+
+def optimum_map_figure(rows: list[dict], params: list[str], variables) -> Figure:
+    """The optimum against the parameters: T_c and each optimal angle. One parameter: curves;
+    two: maps. Interior optima filled, optima held by a limit hollow, points without an
+    optimum as red crosses."""
+    def value(r, key):
+        return float(r[key]) if r.get(key) not in ("", None) and r["success"] == "True" else np.nan
+
+    keys = [("T_c", "T_c at the optimum (J)")] + [(f"{v}_deg", f"optimal {v} (deg)") for v in variables]
+    failed = [r for r in rows if r["success"] != "True"]
+    held = [r for r in rows if r["success"] == "True" and r["verdict"] != "interior optimum"]
+    fig, axes = _subplots(1, len(keys), figsize=(3.6 * len(keys), 3.6 if len(params) == 1 else 3.4))
+    axes = np.atleast_1d(axes)
+    if len(params) == 1:
+        (param,) = params
+        rows = sorted(rows, key=lambda r: float(r[param]))
+        x = np.array([float(r[param]) for r in rows])
+        interior = np.array([r["verdict"] == "interior optimum" for r in rows])
+        for ax, (key, label) in zip(axes, keys):
+            y = np.array([value(r, key) for r in rows])
+            ax.plot(x, y, "-", color="tab:blue", lw=1)
+            ax.plot(x[interior], y[interior], "o", ms=3, color="tab:blue", label="interior")
+            ax.plot(x[~interior], y[~interior], "o", ms=4, mfc="none", color="tab:orange",
+                    label="held by a limit")
+            ax.set_xlabel(_axis_label(param))
+            ax.set_ylabel(label)
+        axes[0].legend(fontsize=7)
+    else:
+        px, py = params[:2]
+        xs = sorted({float(r[px]) for r in rows})
+        ys = sorted({float(r[py]) for r in rows})
+        for ax, (key, label) in zip(axes, keys):
+            grid = np.full((len(ys), len(xs)), np.nan)
+            for r in rows:
+                grid[ys.index(float(r[py])), xs.index(float(r[px]))] = value(r, key)
+            mesh = ax.pcolormesh(xs, ys, np.ma.masked_invalid(grid), shading="nearest", cmap="viridis")
+            fig.colorbar(mesh, ax=ax, label=label)
+            if held:
+                ax.plot([float(r[px]) for r in held], [float(r[py]) for r in held], "o", mfc="none",
+                        mec="white", ms=3)
+            if failed:
+                ax.plot([float(r[px]) for r in failed], [float(r[py]) for r in failed], "x",
+                        color="red", ms=4)
+            ax.set_xlabel(_axis_label(px))
+            ax.set_ylabel(_axis_label(py))
+    fig.suptitle(f"{len(rows) - len(failed)} optima ({len(held)} held by a limit: hollow), "
+                 f"{len(failed)} without an optimum (red x)", fontsize=9)
     fig.tight_layout()
     return fig

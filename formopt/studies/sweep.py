@@ -1,4 +1,5 @@
-"""Parameter sweeps of the landing: each result written as it finishes, resumable, parallel.
+"""Parameter sweeps of the landing (or, for a scene with an [optimize] table, of its optimum:
+studies.optimum_map): each result written as it finishes, resumable, parallel.
 
 `--param ankle_deg=-20:20:41` sweeps the touchdown ankle angle from -20 to 20 deg in 41
 points; several --param make a grid. Parameters: trunk_deg, hip_deg, knee_deg, ankle_deg
@@ -31,10 +32,12 @@ from ..io.files import OutputError, write_csv
 from ..mechanics.landing import simulate_state
 from ..mechanics.model import STATE
 from ..mechanics.errors import InputError
+from . import optimum_map
 
-PARAMETERS = {"trunk_deg": "trunk", "hip_deg": "hip", "knee_deg": "knee", "ankle_deg": "ankle",
+PARAMETERS = {"speed_mps": "hip_vx", "trunk_deg": "trunk", "hip_deg": "hip", "knee_deg": "knee", "ankle_deg": "ankle",
               "hip_vx": "hip_vx", "hip_vz": "hip_vz", "friction": None, "slope_deg": None}
-UNITS = {"trunk_deg": "touchdown trunk lean, deg", "hip_deg": "hip flexion, deg",
+UNITS = {"speed_mps": "running speed (the hip's forward velocity), m/s",
+         "trunk_deg": "touchdown trunk lean, deg", "hip_deg": "hip flexion, deg",
          "knee_deg": "knee flexion, deg", "ankle_deg": "ankle dorsiflexion, deg",
          "hip_vx": "m/s forward", "hip_vz": "m/s up", "friction": "coefficient",
          "slope_deg": "ground slope, deg uphill"}
@@ -85,8 +88,13 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
     """
     path = Path(path)
     names = [n for n, _ in params]
-    header = names + COLUMNS
-    grid = [dict(zip(names, combo)) for combo in itertools.product(*[v for _, v in params])]
+    if scene.problem is not None:  # an optimum map: warm-started chains along a serpentine
+        optimum_map.check(scene, params)
+        header, work, size = names + optimum_map.columns(scene), optimum_map.rows, optimum_map.CHUNK
+        grid = optimum_map.serpentine(params)
+    else:
+        header, work, size = names + COLUMNS, landing_rows, CHUNK
+        grid = [dict(zip(names, combo)) for combo in itertools.product(*[v for _, v in params])]
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         fh = path.open("a+", newline="")
@@ -98,17 +106,20 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
             note(f"{path}: dropped a torn last row (an interrupted write); it is computed again")
         done = _done(path, header, names)
         todo = [g for g in grid if _key(g, names) not in done]
-        chunks = [todo[k:k + CHUNK] for k in range(0, len(todo), CHUNK)]
+        if workers > 1 or scheduler:  # every worker busy: chains no longer than a fair share
+            size = max(1, min(size, math.ceil(len(todo) / (4 * (workers if not scheduler else 8)))))
+        chunks = [todo[k:k + size] for k in range(0, len(todo), size)]
         writer = csv.writer(fh)
         if fh.tell() == 0:
             writer.writerow(header)
         bar = None
         if progress:
             from tqdm import tqdm
-            bar = tqdm(total=len(grid), initial=len(grid) - len(todo), unit="landing", desc="sweep")
+            unit = "optimum" if scene.problem is not None else "landing"
+            bar = tqdm(total=len(grid), initial=len(grid) - len(todo), unit=unit, desc="sweep")
         written = len(grid) - len(todo)
         try:
-            for chunk, rows in _results(scene, chunks, workers, scheduler):
+            for chunk, rows in _results(work, scene, chunks, workers, scheduler):
                 writer.writerows([values[n] for n in names] + row for values, row in zip(chunk, rows))
                 fh.flush()
                 written += len(chunk)
@@ -126,14 +137,15 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
 
 def _sort(path: Path, header, names, grid) -> None:
     """Rewrite the finished sweep in parameter order (rows arrive in completion order)."""
-    order = {_key(g, names): k for k, g in enumerate(grid)}
+    order = {_key(g, names): k for k, g in enumerate(sorted(grid, key=lambda g: _key(g, names)))}
     rows = read(path)
     rows.sort(key=lambda r: order.get(_key({n: float(r[n]) for n in names}, names), len(order)))
     write_csv(path, [header] + [[r[c] for c in header] for r in rows])
 
 
 def valid(row: dict) -> bool:
-    """A computed landing that holds its own assumptions (Landing.valid)."""
+    """A computed landing that holds its own assumptions (Landing.valid); for an optimum map,
+    a converged optimum whose impact is valid."""
     return not row["error"] and row["valid"] == "True"
 
 
@@ -165,13 +177,13 @@ def _repair(fh) -> bool:
     return True
 
 
-def _results(scene, chunks, workers, scheduler):
-    """(chunk, rows) as each chunk finishes, wherever it ran."""
+def _results(work, scene, chunks, workers, scheduler):
+    """(chunk, rows) as each chunk finishes, wherever it ran; work(scene, chunk) -> rows."""
     if scheduler:
         from dask.distributed import Client, as_completed
 
         with Client(scheduler) as client:
-            futures = {client.submit(landing_rows, scene, chunk, pure=False): chunk for chunk in chunks}
+            futures = {client.submit(work, scene, chunk, pure=False): chunk for chunk in chunks}
             for future in as_completed(futures):
                 yield futures[future], future.result()
     elif workers > 1 and len(chunks) > 1:
@@ -179,14 +191,14 @@ def _results(scene, chunks, workers, scheduler):
 
         pool = multiprocessing.Pool(workers, _worker_start, (os.getpid(),))
         try:
-            yield from pool.imap_unordered(_chunk_rows, [(scene, chunk) for chunk in chunks])
+            yield from pool.imap_unordered(_chunk_rows, [(work, scene, chunk) for chunk in chunks])
             pool.close()
         finally:  # Ctrl-C or an error: the workers end with the sweep
             pool.terminate()
             pool.join()
     else:
         for chunk in chunks:
-            yield chunk, landing_rows(scene, chunk)
+            yield chunk, work(scene, chunk)
 
 
 def _worker_start(parent: int):
@@ -202,8 +214,8 @@ def _worker_start(parent: int):
 
 
 def _chunk_rows(task):
-    scene, chunk = task
-    return chunk, landing_rows(scene, chunk)
+    work, scene, chunk = task
+    return chunk, work(scene, chunk)
 
 
 _MODELS: dict = {}  # per process: landing models by scene and slope, built once

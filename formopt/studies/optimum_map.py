@@ -1,0 +1,115 @@
+"""Optimum maps: the posture optimum of a scene's [optimize] table across a parameter grid.
+
+`formopt sweep SCENE --param speed_mps=2:6:41 --param friction=0.4:1.0:7` on a scene with an
+[optimize] table solves the posture problem at every grid point. The grid is walked as a
+serpentine (each point next to the one before) and cut into chunks along that path; in a
+chunk every point starts from the solved point before it (its posture and IPOPT's multipliers,
+with IPOPT's warm-start options), so a point costs a few iterations. The first point of a
+chunk, and any point whose warm start does not converge, runs the scene's multi-start.
+
+Speed and friction are parameters of the NLP: one problem serves the whole grid. Any other
+parameter (touchdown angles, hip_vz, slope) builds the problem for its value (once per value
+per worker). Rows are written as chunks finish, resumable and on a process pool or on Dask,
+exactly as landing sweeps (studies.sweep).
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+
+from ..mechanics.errors import InputError
+from ..optim.multistart import starts
+from ..optim.solution import CONVERGED, verdict_of
+
+NLP_PARAMETERS = {"speed_mps": 0, "hip_vx": 0, "friction": 1}  # index in the NLP's p
+CHUNK = 40  # points per warm-started chain
+COLUMNS = ["status", "success", "verdict", "objective", "T_c", "iterations", "warm", "valid", "error"]
+WARM = {"ipopt.warm_start_init_point": "yes", "ipopt.warm_start_bound_push": 1e-9,
+        "ipopt.warm_start_mult_bound_push": 1e-9, "ipopt.mu_init": 1e-6}
+
+
+def columns(scene) -> list[str]:
+    """The result columns of an optimum map of `scene`."""
+    return [f"{v}_deg" for v in scene.problem.variables] + COLUMNS
+
+
+def serpentine(params) -> list[dict]:
+    """The grid points in an order where each is a neighbour of the one before."""
+    names = [n for n, _ in params]
+    order = []  # a reflected walk: an axis runs backwards when the indices before it sum to odd
+    for combo in itertools.product(*[range(len(v)) for _, v in params]):
+        flipped, parity = [], 0
+        for k, i in enumerate(combo):
+            n = len(params[k][1])
+            flipped.append(n - 1 - i if parity % 2 else i)
+            parity += flipped[-1]
+        order.append(tuple(flipped))
+    return [{n: float(params[k][1][i]) for k, (n, i) in enumerate(zip(names, combo))} for combo in order]
+
+
+_PROBLEMS: dict = {}  # per process: posture problems by the values that change the NLP
+
+
+def rows(scene, chunk) -> list[list]:
+    """The CSV rows (without parameter columns) of a chain of neighbouring points."""
+    from .sweep import apply
+
+    out, previous = [], None
+    for values in chunk:
+        try:
+            other = {k: v for k, v in values.items() if k not in NLP_PARAMETERS}
+            key = repr((scene.path, sorted(other.items())))
+            if key not in _PROBLEMS:
+                _PROBLEMS.clear()  # one problem at a time: a grid moves through them in order
+                _PROBLEMS[key] = apply(scene, other).posture_problem()
+            pp = _PROBLEMS[key]
+            p = pp.p0.copy()
+            for name, k in NLP_PARAMETERS.items():
+                if name in values:
+                    p[k] = values[name]
+            row, previous = _solve(pp, p, previous if previous and previous[0] is pp else None)
+            out.append(row)
+        except (InputError, RuntimeError) as err:
+            out.append([""] * (len(columns(scene)) - 1) + [str(err).replace("\n", " ")])
+            previous = None
+    return out
+
+
+def _solve(pp, p, previous):
+    """One point: warm-started from `previous` (pp, w, lam_x, lam_g) when given, else (or
+    when that fails) the multi-start at these parameters. (row, what the next point starts from)."""
+    warm = previous is not None
+    if warm:
+        _, w0, lam_x, lam_g = previous
+        sol, stats, _ = pp.solve_from(w0, p, lam_x, lam_g, options=WARM)
+        w = np.asarray(sol["x"], float).ravel()
+        ok = stats["return_status"] in CONVERGED and pp.feasible(w, p) and pp.impact(pp.to_state(w, p)).valid
+    if not warm or not ok:
+        warm = False
+        best = None
+        for w0 in starts(pp):
+            sol, stats, _ = pp.solve_from(w0, p)
+            w = np.asarray(sol["x"], float).ravel()
+            good = (stats["return_status"] in CONVERGED and pp.feasible(w, p)
+                    and pp.impact(pp.to_state(w, p)).valid)
+            f = float(pp.objective_function(w, p))
+            if best is None or (good, -f) > (best[0], -best[1]):
+                best = (good, f, sol, stats, w)
+        ok, _, sol, stats, w = best
+    x = pp.to_state(w, p)
+    impact = pp.impact(x)
+    verdict = verdict_of(pp.active(w, p, sol)) if ok else f"NO OPTIMUM ({stats['return_status']})"
+    row = [*np.degrees(x[pp.index]), stats["return_status"], ok, verdict,
+           float(pp.objective_function(w, p)), impact.T_c, int(stats["iter_count"]), warm,
+           ok and impact.valid, ""]
+    return row, ((pp, w, sol["lam_x"], sol["lam_g"]) if ok else None)
+
+
+def check(scene, params) -> None:
+    """Refuse parameters an optimum map cannot take, naming them."""
+    for name, _ in params:
+        if name in scene.problem.variables or name.removesuffix("_deg") in scene.problem.variables:
+            raise InputError(f"--param {name}: {name.removesuffix('_deg')!r} is a decision variable of "
+                             "the scene's [optimize] table; sweep what the optimum depends on")

@@ -1,0 +1,65 @@
+"""Optimum maps (formopt sweep on a scene with [optimize]): warm-started chains agree with
+cold solves, rows resume, the pool and Dask give the same map, the CLI draws it."""
+
+import numpy as np
+import pytest
+
+from formopt import load, solve
+from formopt.cli import main
+from formopt.studies import optimum_map, sweep
+from helpers import PROBLEMS
+
+DEMO = PROBLEMS / "demo.toml"
+PARAMS = [("speed_mps", np.linspace(3.0, 4.0, 5)), ("friction", np.array([0.6, 0.8, 1.0]))]
+
+
+def angles(rows):
+    return np.array([[float(r[k]) for k in ("hip_deg", "knee_deg", "ankle_deg", "T_c")] for r in rows])
+
+
+@pytest.fixture(scope="module")
+def serial(tmp_path_factory):
+    return sweep.run(load(DEMO), PARAMS, tmp_path_factory.mktemp("map") / "map.csv", progress=False)
+
+
+def test_the_serpentine_visits_every_point_next_to_the_one_before():
+    params = [("a", np.arange(3.0)), ("b", np.arange(4.0)), ("c", np.arange(2.0))]
+    walk = optimum_map.serpentine(params)
+    assert len({tuple(p.values()) for p in walk}) == 24
+    for p, q in zip(walk, walk[1:]):
+        assert sum(abs(p[k] - q[k]) for k in p) == 1.0
+
+
+def test_warm_started_optima_are_the_cold_optima(serial):
+    scene = load(DEMO)
+    assert len(serial) == 15 and all(r["success"] == "True" for r in serial)
+    assert sum(r["warm"] == "True" for r in serial) >= 13
+    for r in serial[::4]:
+        cold = solve(sweep.apply(scene, {"speed_mps": float(r["speed_mps"]),
+                                         "friction": float(r["friction"])}))
+        assert cold.success
+        np.testing.assert_allclose([float(r[f"{v}_deg"]) for v in ("hip", "knee", "ankle")],
+                                   np.degrees(cold.state[[1, 2, 3]]), atol=1e-5)
+
+
+def test_a_second_run_resumes_and_the_pool_and_dask_agree(serial, tmp_path):
+    from dask.distributed import LocalCluster
+
+    scene = load(DEMO)
+    again = sweep.run(scene, PARAMS, tmp_path / "pool.csv", progress=False, workers=2)
+    np.testing.assert_allclose(angles(again), angles(serial), atol=1e-6)
+    assert sweep.run(scene, PARAMS, tmp_path / "pool.csv", progress=False) == again  # resumed
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        dask = sweep.run(scene, PARAMS, tmp_path / "dask.csv", progress=False,
+                         scheduler=cluster.scheduler_address)
+    np.testing.assert_allclose(angles(dask), angles(serial), atol=1e-6)
+
+
+def test_cli_draws_the_map_and_refuses_a_decision_variable(tmp_path, capsys):
+    out = tmp_path / "map.csv"
+    assert main(["sweep", str(DEMO), "--param", "friction=0.5:1.0:3", "--out", str(out),
+                 "--no-progress", "--workers", "1"]) == 0
+    text = capsys.readouterr().out
+    assert "3 optima" in text and "interior" in text and out.with_suffix(".png").exists()
+    assert main(["sweep", str(DEMO), "--param", "knee_deg=0:10:3", "--out", str(out)]) == 2
+    assert "decision variable" in capsys.readouterr().err
