@@ -26,6 +26,9 @@ def add_parser(commands):
                           "heel above the ground at touchdown")
     cmd.add_argument("--out", help="CSV file (default out/<scene>/sweep.csv); an existing one is resumed")
     cmd.add_argument("--no-progress", action="store_true", help="no progress bar")
+    cmd.add_argument("--landings", action="store_true",
+                     help="sweep the landing even when the scene has an [optimize] table "
+                          "(otherwise the optimum is solved at every point)")
     cmd.add_argument("--workers", type=int, default=os.cpu_count() or 1,
                      help="local processes (default: one per core)")
     cmd.add_argument("--scheduler", help="address of a Dask distributed scheduler, e.g. "
@@ -41,8 +44,9 @@ def run(args) -> int:
     if args.workers < 1:
         raise InputError("--workers must be at least 1")
     rows = sweep.run(scene, params, out, progress=not args.no_progress, workers=args.workers,
-                     scheduler=args.scheduler, note=lambda text: print(f"note: {text}", file=sys.stderr))
-    if scene.problem is not None:
+                     scheduler=args.scheduler, note=lambda text: print(f"note: {text}", file=sys.stderr),
+                     landings=args.landings)
+    if scene.problem is not None and not args.landings:
         return _optimum_summary(scene, rows, params, out, args.format)
     failed = [r for r in rows if r["error"]]
     good = [r for r in rows if sweep.valid(r)]

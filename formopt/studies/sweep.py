@@ -80,15 +80,18 @@ CHUNK = 8  # landings per task: enough to pay for a worker's model, small enough
 
 
 def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True,
-        workers: int = 1, scheduler: str | None = None, note=None) -> list[dict]:
-    """Sweep the landing of `scene` over the grid of `params`, appending rows to `path` (CSV).
+        workers: int = 1, scheduler: str | None = None, note=None,
+        landings: bool = False) -> list[dict]:
+    """Sweep the landing of `scene` (or, when it has an [optimize] table and not `landings`,
+    its optimum) over the grid of `params`, appending rows to `path` (CSV).
 
     workers > 1: a local process pool; scheduler: a Dask distributed scheduler's address;
     note(text): told of a repaired file. Ctrl-C raises KeyboardInterrupt("N rows written ...").
     """
     path = Path(path)
     names = [n for n, _ in params]
-    if scene.problem is not None:  # an optimum map: warm-started chains along a serpentine
+    optima = scene.problem is not None and not landings
+    if optima:  # an optimum map: warm-started chains along a serpentine
         optimum_map.check(scene, params)
         header, work, size = names + optimum_map.columns(scene), optimum_map.rows, optimum_map.CHUNK
         grid = optimum_map.serpentine(params)
@@ -115,7 +118,7 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
         bar = None
         if progress:
             from tqdm import tqdm
-            unit = "optimum" if scene.problem is not None else "landing"
+            unit = "optimum" if optima else "landing"
             bar = tqdm(total=len(grid), initial=len(grid) - len(todo), unit=unit, desc="sweep")
         written = len(grid) - len(todo)
         try:

@@ -48,7 +48,7 @@ def test_integrator_reaches_simulate_sweep_and_the_posture_problem(tmp_path):
         assert scene.posture_problem().landing.integrator == integrator
         simulated = formopt.simulate(scene).T_c_total
         rows = sweep.run(scene, [("friction", np.array([scene.friction]))],
-                         tmp_path / f"{integrator}.csv", progress=False)
+                         tmp_path / f"{integrator}.csv", progress=False, landings=True)
         assert float(rows[0]["T_c_total"]) == pytest.approx(simulated, rel=1e-12)
         totals[integrator] = simulated
     assert totals["rk4"] != totals["midpoint"]
