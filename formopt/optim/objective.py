@@ -29,7 +29,6 @@ import casadi as ca
 from ..mechanics.landing import RUNNING_JOINTS
 from ..mechanics.model import Model, landmarks
 
-IMPACT_TERMS = ("T_c", "dv_trunk_x", "dv_trunk_z", "dv_com_x", "dv_com_z")
 OBJECTIVES = ("T_c", "T_c_total", "dv_trunk_x", "dv_trunk_z", "dv_com_x", "dv_com_z", "support")
 UNITS = {"T_c": "J", "T_c_total": "J", "dv_trunk_x": "m/s", "dv_trunk_z": "m/s",
          "dv_com_x": "m/s", "dv_com_z": "m/s", "support": "J"}
@@ -44,26 +43,18 @@ def normalised(weights: dict[str, float]) -> tuple[dict[str, float], float]:
     return {k: w / total for k, w in weights.items()}, total
 
 
-def support(x, model: Model, strike_point: str, peak_bw: float = STANCE_PEAK_BW):
-    """The stance support term (J, SX/MX) of touchdown state x; see the module docstring."""
+def support_moments(x, model: Model, strike_point: str, peak_bw: float = STANCE_PEAK_BW) -> dict:
+    """{joint: M_j} (N m, signed; SX/MX, or DM for a numeric x) of the stance's peak force
+    F along the strike-point-to-hip line, M_j = F d_j (d_j: the joint's signed distance, m)."""
     world = landmarks(x, model.body, strike_point)
     hip = world["hip"][0]
     line = hip / ca.norm_2(hip)
     force = peak_bw * model.body.mass * GRAVITY
-    energy = 0
-    for joint in SUPPORT_JOINTS:
-        r = world[joint][0]
-        distance = r[0] * line[1] - r[1] * line[0]  # signed distance from the force line (m)
-        stiffness = RUNNING_JOINTS["stiffness"][joint] * model.body.mass * 180.0 / math.pi  # N m/rad
-        energy += (force * distance) ** 2 / (2.0 * stiffness)
-    return energy
+    return {j: force * (world[j][0][0] * line[1] - world[j][0][1] * line[0]) for j in SUPPORT_JOINTS}
 
 
-def support_moments(x, model: Model, strike_point: str, peak_bw: float = STANCE_PEAK_BW) -> dict:
-    """The knee and ankle moments (N m, magnitude) of the support term at state x (numeric)."""
-    world = landmarks(ca.DM(x), model.body, strike_point)
-    hip = world["hip"][0]
-    line = hip / ca.norm_2(hip)
-    force = peak_bw * model.body.mass * GRAVITY
-    return {j: abs(float(force * (world[j][0][0] * line[1] - world[j][0][1] * line[0])))
-            for j in SUPPORT_JOINTS}
+def support(x, model: Model, strike_point: str, peak_bw: float = STANCE_PEAK_BW):
+    """The stance support term (J) of touchdown state x: sum_j M_j^2 / (2 k_j)."""
+    moments = support_moments(x, model, strike_point, peak_bw)
+    return sum(m ** 2 / (2.0 * RUNNING_JOINTS["stiffness"][j] * model.body.mass * 180.0 / math.pi)
+               for j, m in moments.items())
