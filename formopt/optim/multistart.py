@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from ..mechanics import contact
-from .solution import CONVERGED, Local, Optimum, Start, distinct, explain
+from .solution import Local, Optimum, Start, distinct, explain
 
 DRAWS = 50  # random draws per wanted start of a landing problem
 
@@ -46,27 +46,22 @@ def solve(pp, progress=None) -> Optimum:
     results, runs = [], []
     for k, w0 in enumerate(starts(pp)):
         sol, stats, elapsed = pp.solve_from(w0)
-        w = np.asarray(sol["x"], float).ravel()
+        w, x, impact, converged = pp.accept(sol, stats)
         status = stats["return_status"]
-        x = pp.to_state(w)
-        converged = status in CONVERGED and pp.feasible(w) and pp.impact(x).valid
-        if converged and pp.landing:  # the event-driven simulation agrees
-            converged = pp.landing_agrees(w, x)
         objective = float(pp.objective_function(w, pp.p0))
         start = Start(k + 1, pp.posture.degrees(pp.to_state(w0)), status, converged, objective,
                       pp.posture.degrees(x), int(stats["iter_count"]))
         runs.append(start)
-        results.append((sol, w, x, start, elapsed))
+        results.append((sol, w, x, start, elapsed, impact))
         if progress:
             progress(k + 1, pp.problem.starts, start)
     converged = [r for r in results if r[3].converged]
-    sol, w, x, best, _ = min(converged or results, key=lambda r: r[3].objective)
+    sol, w, x, best, _, impact = min(converged or results, key=lambda r: r[3].objective)
     notes = []
     if not converged:
         statuses = sorted({r[3].status for r in results})
         notes.append(f"no start converged: {'; '.join(f'{s}: {explain(s)}' for s in statuses)}. "
                      "The state shown is the best last iterate, not an optimum")
-    impact = pp.impact(x)
     if pp.mode is not None:
         mode, direction = pp.mode
         notes.append(f"Coulomb mode fixed for every start from the reference touchdown: "

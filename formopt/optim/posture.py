@@ -28,13 +28,13 @@ import numpy as np
 from ..mechanics import contact
 from ..mechanics.compiled import cached_nlpsol
 from ..mechanics.errors import InputError
-from ..mechanics.impact import Impact, impact_function
+from ..mechanics.impact import Impact, ImpactResult, impact_function
 from ..mechanics.landing import Joints, LandingModel, landing_function, simulate_state
 from ..mechanics.model import STRIKES, Model, ground_axes, positions
 from . import multistart
 from .constraints import posture_constraints, stack
 from .objective import STANCE_PEAK_BW, normalised, support
-from .solution import Optimum, active_set
+from .solution import CONVERGED, Optimum, active_set
 from .variables import Posture
 
 ANGLES = ("trunk", "hip", "knee", "ankle")
@@ -112,7 +112,8 @@ class PostureProblem:
         if problem.gait and problem.gait.foot_velocity is not None and strike == "flat":
             raise InputError("[optimize.gait] foot_velocity_mps is the strike point's speed: a "
                              "heel or forefoot strike, not a flat one")
-        self.impact = Impact(model, strike, slope, friction, law=law)
+        self._impacts = {friction: Impact(model, strike, slope, friction, law=law)}  # by friction
+        self.impact = self._impacts[friction]
         self.mode = self._coulomb_mode() if law == "coulomb" else None
         self.duration = duration
         self.landing = (LandingModel(model, joints or Joints(), slope, integrator=integrator)
@@ -197,10 +198,11 @@ class PostureProblem:
                                           sum(law["impulse"][2 * k + 1] for k in range(points)))
         return {**out, **law}
 
-    def _simulate(self, x, dt: float):
+    def _simulate(self, x, dt: float, friction: float | None = None):
         """The event-driven landing from touchdown state x, or None if the state cannot land."""
         try:
-            return simulate_state(self.landing, self.strike, x, self.friction, dt, self.duration)
+            return simulate_state(self.landing, self.strike, x,
+                                  self.friction if friction is None else friction, dt, self.duration)
         except InputError:
             return None
 
@@ -215,11 +217,31 @@ class PostureProblem:
         L = self._simulate(x, 5e-4)
         return L.impacts[1].time if self._two_impacts(L) else None
 
-    def landing_agrees(self, w, x, rtol=1e-3) -> bool:
+    def landing_agrees(self, w, x, p, rtol=1e-3) -> bool:
         """The event-driven simulation from x gives the same two-impact landing and T_c_total."""
-        L = self._simulate(x, 2e-4)
-        nlp = float(self._T_c_total(w, self.p0))
+        L = self._simulate(x, 2e-4, float(p[1]))
+        nlp = float(self._T_c_total(w, p))
         return self._two_impacts(L) and abs(L.T_c_total - nlp) <= rtol * max(1.0, abs(nlp))
+
+    def checked(self, x, p=None) -> ImpactResult:
+        """The checked impact map at touchdown state x under the friction of p (default p0)."""
+        mu = self.friction if p is None else float(p[1])
+        if mu not in self._impacts:
+            self._impacts[mu] = Impact(self.model, self.strike, self.slope, mu, law=self.law)
+        return self._impacts[mu](x)
+
+    def accept(self, sol, stats, p=None) -> tuple[np.ndarray, np.ndarray, ImpactResult, bool]:
+        """(w, touchdown state, checked impact, whether it counts as an optimum) of an IPOPT
+        solution: converged by IPOPT's status, every constraint record within tolerance, a
+        valid checked impact and, for a landing, the event-driven simulation agreeing."""
+        p = self.p0 if p is None else p
+        w = np.asarray(sol["x"], float).ravel()
+        x = self.to_state(w, p)
+        impact = self.checked(x, p)
+        ok = stats["return_status"] in CONVERGED and self.feasible(w, p) and impact.valid
+        if ok and self.landing:
+            ok = self.landing_agrees(w, x, p)
+        return w, x, impact, ok
 
     def hip_from_strike(self, x) -> tuple[float, float]:
         """The hip's place over the strike point (m): along and normal to the ground."""

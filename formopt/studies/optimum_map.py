@@ -21,7 +21,7 @@ import numpy as np
 
 from ..mechanics.errors import InputError
 from ..optim.multistart import starts
-from ..optim.solution import CONVERGED, verdict_of
+from ..optim.solution import verdict_of
 
 NLP_PARAMETERS = {"speed_mps": 0, "hip_vx": 0, "friction": 1}  # index in the NLP's p
 CHUNK = 40  # points per warm-started chain
@@ -84,22 +84,15 @@ def _solve(pp, p, previous):
     if warm:
         _, w0, lam_x, lam_g = previous
         sol, stats, _ = pp.solve_from(w0, p, lam_x, lam_g, options=WARM)
-        w = np.asarray(sol["x"], float).ravel()
-        ok = stats["return_status"] in CONVERGED and pp.feasible(w, p) and pp.impact(pp.to_state(w, p)).valid
+        w, x, impact, ok = pp.accept(sol, stats, p)
     if not warm or not ok:
         warm = False
-        best = None
+        tried = []
         for w0 in starts(pp):
             sol, stats, _ = pp.solve_from(w0, p)
-            w = np.asarray(sol["x"], float).ravel()
-            good = (stats["return_status"] in CONVERGED and pp.feasible(w, p)
-                    and pp.impact(pp.to_state(w, p)).valid)
-            f = float(pp.objective_function(w, p))
-            if best is None or (good, -f) > (best[0], -best[1]):
-                best = (good, f, sol, stats, w)
-        ok, _, sol, stats, w = best
-    x = pp.to_state(w, p)
-    impact = pp.impact(x)
+            w, x, impact, ok = pp.accept(sol, stats, p)
+            tried.append((ok, -float(pp.objective_function(w, p)), sol, stats, w, x, impact))
+        ok, _, sol, stats, w, x, impact = max(tried, key=lambda t: t[:2])
     verdict = verdict_of(pp.active(w, p, sol)) if ok else f"NO OPTIMUM ({stats['return_status']})"
     row = [*np.degrees(x[pp.index]), stats["return_status"], ok, verdict,
            float(pp.objective_function(w, p)), impact.T_c, int(stats["iter_count"]), warm,

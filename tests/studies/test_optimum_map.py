@@ -38,6 +38,7 @@ def test_warm_started_optima_are_the_cold_optima(serial):
         cold = solve(sweep.apply(scene, {"speed_mps": float(r["speed_mps"]),
                                          "friction": float(r["friction"])}))
         assert cold.success
+        assert float(r["T_c"]) == pytest.approx(cold.impact.T_c, rel=1e-6)  # at the point's friction
         np.testing.assert_allclose([float(r[f"{v}_deg"]) for v in ("hip", "knee", "ankle")],
                                    np.degrees(cold.state[[1, 2, 3]]), atol=1e-5)
 
