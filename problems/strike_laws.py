@@ -38,9 +38,8 @@ def measured_leg():
     """Mean touchdown state of RBDS001's right foot, T35 (model.STATE, SI)."""
     static = mocap.read(DATA / "RBDS001static.c3d")
     trial = mocap.read(DATA / "RBDS001runT35.c3d")
-    cal = mocap.calibrate(static)
-    steps = mocap.touchdowns(trial, mocap.kinematics(trial, cal), cal)
-    right = [td.state() for td in steps.touchdowns if td.side == "R"]
+    steps = mocap.measure(trial, static, HEIGHT).steps
+    right = [td.state() for td in steps.valid if td.side == "R"]
     return np.mean(right, axis=0), len(right)
 
 

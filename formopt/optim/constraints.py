@@ -71,7 +71,7 @@ def posture_constraints(posture, problem, law, u, x, out, p, reference_hip,
 
     posture: variables.Posture; problem: posture.Problem; law: contact.LAWS; u, x: the scaled
     variables and the touchdown state (SX/MX); out: the impact's indicators under the law;
-    p: the NLP's parameters [speed, mu]; reference_hip: (x, z) of
+    p: the NLP's parameters [speed, mu, reference state]; reference_hip: (x, z) of
     the reference's hip over the strike point (m), used when the gait's placement is not
     given; landing: landing_function's outputs when the problem needs the landing.
     """
@@ -110,14 +110,22 @@ def posture_constraints(posture, problem, law, u, x, out, p, reference_hip,
     hip = landmarks(x, posture.model.body, points[0])["hip"][0]
     gait = problem.gait
     if gait is not None:
-        along, normal = gait.hip_from_strike if gait.hip_from_strike is not None else reference_hip
+        held = hip
+        if gait.hip_from_strike is not None:
+            along, normal = gait.hip_from_strike
+        else:  # the reference's placement: the reference in p (one optimum per measured step),
+            #    written as an offset from the problem's own so that the bounds read in metres
+            along, normal = reference_hip
+            x_ref = posture.reference_of(p)
+            held = hip - landmarks(x_ref, posture.model.body, points[0])["hip"][0] \
+                + along * t_axis + normal * n_axis
         records += [
             Record("hip_from_strike_x", along, along, "m",
                    "the gait's hip placement along the ground: the multiplier is the objective's "
-                   "change per m of the hip further ahead of the strike point", ca.dot(hip, t_axis)),
+                   "change per m of the hip further ahead of the strike point", ca.dot(held, t_axis)),
             Record("hip_from_strike_z", normal, normal, "m",
                    "the gait's hip height over the strike point: the multiplier is the "
-                   "objective's change per m of hip height", ca.dot(hip, n_axis))]
+                   "objective's change per m of hip height", ca.dot(held, n_axis))]
         if gait.foot_velocity is not None:
             records.append(Record("foot_velocity", gait.foot_velocity, gait.foot_velocity, "m/s",
                                   "the gait's foot speed along the ground before the strike",
@@ -125,7 +133,8 @@ def posture_constraints(posture, problem, law, u, x, out, p, reference_hip,
     if problem.radius is not None:
         angles = [k for k, v in enumerate(posture.variables) if not v.startswith("omega_")]
         spread = sum(((posture.lower[k] + (posture.upper[k] - posture.lower[k]) * u[k]
-                       - posture.reference[posture.index[k]]) / problem.radius) ** 2 for k in angles)
+                       - posture.reference_of(p)[posture.index[k]]) / problem.radius) ** 2
+                     for k in angles)
         records.append(Record("radius", -inf, 1.0, "",
                               "the best posture lies on the edge of the search radius: the "
                               "reference is not a local optimum", spread))

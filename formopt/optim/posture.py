@@ -35,7 +35,7 @@ from . import multistart
 from .constraints import posture_constraints, stack
 from .objective import STANCE_PEAK_BW, normalised, support
 from .solution import CONVERGED, Optimum, active_set
-from .variables import Posture
+from .variables import PARAMETERS, Posture
 
 ANGLES = ("trunk", "hip", "knee", "ankle")
 RATES = ("omega_trunk", "omega_thigh", "omega_shank", "omega_foot")
@@ -125,7 +125,7 @@ class PostureProblem:
         self.graph, self.compiled, self.hessian = graph, compiled, hessian
         sym = ca.MX if self.landing or graph == "MX" else ca.SX
         u = sym.sym("u", self.posture.size)
-        p = sym.sym("p", 2)  # running speed (hip_vx, m/s), friction coefficient
+        p = sym.sym("p", PARAMETERS)  # running speed (hip_vx, m/s), friction, reference state
         tau = sym.sym("tau", 1 if self.landing else 0)  # second impact at tau * duration
         w = ca.vertcat(u, tau)
         x = self.posture.function(u, p)
@@ -329,7 +329,7 @@ class PostureProblem:
                 H, ca.jacobian(dLdw, pp), ca.jacobian(g, x), ca.jacobian(g, pp), ca.gradient(L, pp), g])
         lam_g = np.asarray(lam_g, float).ravel()
         H, Hwp, J, Jp, dLdp, g = (np.asarray(a, float) for a in self._sensitivity(w, p, lam_g))
-        g = g.ravel()
+        Hwp, Jp, dLdp, g = Hwp[:, :2], Jp[:, :2], dLdp.ravel()[:2], g.ravel()  # speed, friction
         active = [k for k, r in enumerate(self.records) if r.equality or (
             abs(g[k] - r.bound) < 1e-6 * max(1.0, abs(r.bound)) and abs(lam_g[k]) > 1e-9 * self.scale)]
         lam_x = np.asarray(lam_x, float).ravel()

@@ -6,10 +6,11 @@ Order of the decision vector w (opty's convention: documented, fixed):
                               x_k = lower_k + (upper_k - lower_k) u_k (rad or rad/s);
                               tau (landing problems only): the second impact at tau * duration
 
-Parameters p = [hip_vx (m/s, the running speed), mu (friction coefficient)]: the NLP is built
-once and solved for any speed and friction (sweeps, sensitivities). Every other entry of the
-touchdown state (model.STATE) stays at the reference's value, except the ankle of a flat
-strike, which follows from the sole lying on the ground.
+Parameters p = [hip_vx (m/s, the running speed), mu (friction coefficient), the reference
+touchdown state (model.STATE, SI)]: the NLP is built once and solved for any speed, friction
+and reference (sweeps, sensitivities, one optimum per measured step). Every other entry of the
+touchdown state stays at the reference's value, except the ankle of a flat strike, which
+follows from the sole lying on the ground.
 """
 
 from __future__ import annotations
@@ -29,6 +30,9 @@ RANGE_OF_MOTION_DEG = {"trunk": (-25.0, 80.0), "hip": (-30.0, 120.0), "knee": (0
                        "ankle": (-50.0, 20.0)}
 
 
+PARAMETERS = 2 + len(STATE)  # speed, friction, reference state
+
+
 class Posture:
     """Variables (STATE names) with SI bounds around a reference touchdown state."""
 
@@ -39,21 +43,29 @@ class Posture:
         self.variables = tuple(variables)
         self.index = [STATE.index(v) for v in self.variables]
         self.lower, self.upper = np.asarray(lower, float), np.asarray(upper, float)
-        u, p = ca.SX.sym("u", len(self.index)), ca.SX.sym("p", 2)
+        u, p = ca.SX.sym("u", len(self.index)), ca.SX.sym("p", PARAMETERS)
         self.function = ca.Function("state", [u, p], [self.state(u, p)], ["u", "p"], ["x"])
 
     @property
     def size(self) -> int:
         return len(self.index)
 
-    def parameters(self, speed: float | None = None, friction: float = 0.8) -> np.ndarray:
-        """p = [speed (m/s; the reference's hip_vx when None), friction]."""
-        return np.array([self.reference[STATE.index("hip_vx")] if speed is None else speed,
-                         friction])
+    def parameters(self, speed: float | None = None, friction: float = 0.8,
+                   reference=None) -> np.ndarray:
+        """p = [speed (m/s; the reference's hip_vx when None), friction, reference state
+        (default the problem's)]."""
+        reference = self.reference if reference is None else np.asarray(reference, float)
+        return np.array([reference[STATE.index("hip_vx")] if speed is None else speed,
+                         friction, *reference])
+
+    @staticmethod
+    def reference_of(p):
+        """The reference touchdown state within parameters p (SX/MX or numbers)."""
+        return p[2:2 + len(STATE)]
 
     def state(self, u, p):
         """The touchdown state (SX, SI) of scaled variables u and parameters p."""
-        x = ca.SX(ca.DM(self.reference))
+        x = ca.SX(self.reference_of(p))
         for k, i in enumerate(self.index):
             x[i] = self.lower[k] + (self.upper[k] - self.lower[k]) * u[k]
         x[STATE.index("hip_vx")] = p[0]

@@ -252,7 +252,7 @@ def comparison_figure(c) -> Figure:
     ax.set_title("how far the optimum is, joint by joint", fontsize=10)
     ax = axes[2]
     for k, s in enumerate(("R", "L")):
-        values = [r.T_c for td, r in zip(c.steps.touchdowns, c.results) if td.side == s]
+        values = [r.T_c for td, r in zip(c.steps.touchdowns, c.results) if td.side == s and td.valid_data]
         if values:
             ax.scatter(np.full(len(values), k) + np.random.default_rng(0).uniform(-0.15, 0.15, len(values)),
                        values, s=10, alpha=0.6, label="right" if s == "R" else "left")

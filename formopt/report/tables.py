@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from pathlib import Path
 
 from ..io.scene import Scene, touchdown_table
 from ..mechanics.contact import LAWS
@@ -208,20 +209,24 @@ def _objective_text(terms: dict) -> str:
 
 def comparison_table(c: Comparison) -> str:
     rep = report(c)
-    lines = [f"touchdowns: {len(c.steps.touchdowns)} ({c.steps.method}); cadence {c.steps.cadence_spm:.1f} "
-             f"steps/min; treadmill belt {c.steps.belt_speed:.2f} m/s",
-             f"lab axes found: {c.axes}", f"model: the paper's leg, {c.body.source}", ""]
+    st = c.steps
+    lines = [f"{rep['source']}: {len(st.touchdowns)} touchdowns ({st.method}), {len(st.valid)} with "
+             f"sound markers; cadence {st.cadence_spm:.1f} steps/min; speed {st.speed:.2f} m/s "
+             f"(belt {st.belt_speed:.2f})",
+             f"lab axes found: {rep['axes']}", f"model: the paper's leg, {c.body.source}",
+             "settings: " + ", ".join(f"{k} {v}" for k, v in c.settings.items() if k != "bounds_deg"), ""]
     lines.append(f"  {'':22s} {'steps':>5s} {'strike':>9s} {'trunk':>7s} {'hip':>7s} {'knee':>7s} "
-                 f"{'ankle':>7s} {'foot':>7s} {'T_c (J)':>12s}")
+                 f"{'ankle':>7s} {'FSA':>7s} {'T_c (J)':>12s}")
     for side, s in rep["summary"].items():
         a, sd = s["angles_deg_mean"], s["angles_deg_sd"]
         lines.append(f"  {'measured, ' + ('right' if side == 'R' else 'left'):22s} {s['steps']:5d} "
                      f"{s['strike']:>9s} " + " ".join(f"{a[k]:7.1f}" for k in JOINTS)
-                     + f" {s['foot_angle_deg_mean']:7.1f} {s['T_c_mean']:6.2f} ± {s['T_c_sd']:.2f}"
+                     + f" {s['foot_strike_angle_deg_mean']:7.1f} {s['T_c_mean']:6.2f} ± {s['T_c_sd']:.2f}"
                      + f"  valid {s['laws'][c.law]['valid']}/{s['steps']}"
-                     + (" (NOT ONE VALID)" if not s['laws'][c.law]['valid'] else ""))
+                     + (" (NOT ONE VALID)" if not s['laws'][c.law]['valid'] else "")
+                     + (f"; {s['left_out']} left out (markers)" if s["left_out"] else ""))
         lines.append(f"  {'   sd':22s} {'':5s} {'':9s} " + " ".join(f"{sd[k]:7.1f}" for k in JOINTS)
-                     + f" {s['foot_angle_deg_sd']:7.1f}")
+                     + f" {s['foot_strike_angle_deg_sd']:7.1f}")
     ref, opt = rep["reference"], rep["optimum"]
     lines.append(f"  {'mean ' + c.strike + ' touchdown':22s} {'':5s} {'':9s} "
                  + " ".join(f"{ref['angles_deg'][k]:7.1f}" for k in JOINTS) + f" {'':7s} {ref['T_c']:6.2f}")
@@ -231,6 +236,14 @@ def comparison_table(c: Comparison) -> str:
     lines.append(f"  {'optimum - measured':22s} {'':5s} {'':9s} "
                  + " ".join(f"{rep['difference_deg'][k]:+7.1f}" for k in JOINTS)
                  + f" {'':7s} {opt['T_c'] - ref['T_c']:+6.2f}")
+    ps = rep["per_step"]
+    if ps.get("converged"):
+        m, sd = ps["angles_deg_mean"], ps["angles_deg_sd"]
+        lines.append(f"  {'optimum per step':22s} {ps['converged']:5d} {'':9s} {'':7s} "
+                     + " ".join(f"{m[k]:7.1f}" for k in ("hip", "knee", "ankle"))
+                     + f"  saving {ps['saving_J_mean']:.2f} ± {ps['saving_J_sd']:.2f} J"
+                     + (f"; {ps['steps'] - ps['converged']} not converged" if ps['converged'] < ps['steps'] else ""))
+        lines.append(f"  {'   sd':22s} {'':5s} {'':9s} {'':7s} " + " ".join(f"{sd[k]:7.1f}" for k in ("hip", "knee", "ankle")))
     g = opt["gait"]
     lines += ["", f"  the optimum ({c.law}, friction {c.optimum.reference.friction:g}): "
                   f"objective {_objective_text(opt['objective_terms'])}; the measured gait held: hip "
@@ -244,7 +257,7 @@ def comparison_table(c: Comparison) -> str:
         lines.append("  per step, measured -> optimum: " + ", ".join(
             f"{k} {ref['terms'][k]:.3g} -> {v:.3g} J" for k, v in opt["terms"].items())
             + f"; saving {opt['saving_J_per_step']:.3g} J per step, {opt['saving_W']:.3g} W at "
-              f"{c.steps.cadence_spm:.1f} steps/min")
+              f"{st.cadence_spm:.1f} steps/min")
     lines += ["", f"  every touchdown under each contact law (T_c mean, J; valid touchdowns; * {c.law}, "
                   "the law above):",
               f"  {'':22s} " + " ".join(f"{law + (' *' if law == c.law else ''):>20s}" for law in LAWS)]
@@ -252,9 +265,27 @@ def comparison_table(c: Comparison) -> str:
         lines.append(f"  {'measured, ' + ('right' if side == 'R' else 'left'):22s} " + " ".join(
             f"{s['laws'][law]['T_c_mean']:8.2f} {s['laws'][law]['valid']:4d}/{s['steps']:<4d}  "
             for law in LAWS))
-    lines += [f"  left out: {x}" for x in c.steps.left_out]
-    lines += [f"note: {n}" for n in c.steps.notes]
+    lines += [f"  left out: {x}" for x in st.left_out]
+    lines += [f"note: {n}" for n in st.notes]
     return "\n".join(lines)
+
+
+def trials_table(rows) -> str:
+    """The table across trials (compare with several trials): one line per trial and side."""
+    head = rows[0]
+    pick = ["trial", "side", "steps", "strike", "foot_strike_angle_deg", "hip_deg", "knee_deg",
+            "ankle_deg", "cadence_spm", "speed_mps", "T_c_J", "optimum_verdict", "saving_J_per_step"]
+    idx = [head.index(k) for k in pick]
+    width = {k: max(len(k), 10) for k in pick}
+    width["trial"] = max(len(Path(r[head.index("trial")]).name) for r in rows[1:])
+    out = ["  ".join(f"{k:>{width[k]}s}" for k in pick)]
+    for row in rows[1:]:
+        cells = []
+        for k, i in zip(pick, idx):
+            v = Path(row[i]).name if k == "trial" else row[i]
+            cells.append(f"{v:{width[k]}.2f}" if isinstance(v, float) else f"{str(v):>{width[k]}s}")
+        out.append("  ".join(cells))
+    return "\n".join(out)
 
 
 def bench_table(rows, batch: float) -> str:

@@ -1,30 +1,28 @@
-"""Motion capture on the real RBDS data (subject 001) and on damaged copies of it."""
+"""Motion capture on the real trials: RBDS subject 001 (two speeds, C3D and text) and the
+Running Injury Clinic runner (clusters only, no units, no force plate)."""
 
 import copy
+import importlib.util
 import json
 import math
-import shutil
 
 import numpy as np
 import pytest
 
-from formopt.io import mocap
 from formopt.cli import main
-from helpers import DATA
+from formopt.io import markerset, mocap
+from helpers import DATA, PROBLEMS
 
-DATA = DATA / "rbds"
-RUN35, STATIC = DATA / "RBDS001runT35.c3d", DATA / "RBDS001static.c3d"
-RUN25, FORCES25 = DATA / "RBDS001runT25markers.txt", DATA / "RBDS001runT25forces.txt"
+RBDS, RIC = DATA / "rbds", DATA / "ric"
+RUN35, STATIC = RBDS / "RBDS001runT35.c3d", RBDS / "RBDS001static.c3d"
+RUN25, FORCES25 = RBDS / "RBDS001runT25markers.txt", RBDS / "RBDS001runT25forces.txt"
+RIC_RUN, RIC_STATIC = RIC / "20160226T120637_run.c3d", RIC / "20160226T120637_static.c3d"
+HEIGHT = 1.81
 
 
 @pytest.fixture(scope="module")
 def static():
     return mocap.read(STATIC)
-
-
-@pytest.fixture(scope="module")
-def cal(static):
-    return mocap.calibrate(static)
 
 
 @pytest.fixture(scope="module")
@@ -38,68 +36,52 @@ def run25():
 
 
 @pytest.fixture(scope="module")
-def steps(run35, run25, cal):
-    out = {}
-    for speed, trial in ((3.5, run35), (2.5, run25)):
-        kin = mocap.kinematics(trial, cal)
-        out[speed] = (kin, mocap.touchdowns(trial, kin, cal))
-    return out
+def measured(run35, run25, static):
+    return {3.5: mocap.measure(run35, static, HEIGHT), 2.5: mocap.measure(run25, static, HEIGHT)}
 
 
-def test_files_read_with_their_units_and_rates(run35, run25, static):
+@pytest.fixture(scope="module")
+def ric():
+    return mocap.measure(mocap.read(RIC_RUN), mocap.read(RIC_STATIC), 1.77)
+
+
+def test_files_read_with_their_units_and_rates(run35, run25):
     assert run35.rate == 150.0 and run35.force_rate == 300.0
     assert run25.rate == pytest.approx(150.0) and run25.force_rate == pytest.approx(300.0)
-    # markers in metres: a pelvis marker about a metre above the floor, not a thousand
-    assert 0.5 < np.nanmedian(run35.markers["R.ASIS"][:, 1]) < 1.5
+    assert 0.5 < np.nanmedian(run35.markers["R.ASIS"][:, 1]) < 1.5  # metres, not millimetres
     assert np.max(np.abs(run35.force)) > 1000.0  # N, from ezc3d's force-plate calibration
 
 
-def test_lab_axes_are_found_and_agree_with_gravity(cal, run35, run25):
-    """The floor plane of the standing trial gives 'up'; the ground reaction force, averaged
-    over the runs (body weight), points the same way: an independent check."""
-    for trial in (run35, run25):
-        mean_force = trial.force.mean(axis=0)
-        assert mean_force @ cal.axes.up / np.linalg.norm(mean_force) > 0.99
-        assert 400 < mean_force @ cal.axes.up < 800  # about 62 kg * 9.81 N
-    assert abs(cal.axes.forward @ cal.axes.up) < 1e-12
-    assert "forward +X" in cal.axes.describe() and "up +Y" in cal.axes.describe()
+def test_marker_maps_are_recognised(run35, static):
+    assert markerset.recognise(run35.markers).name == "rbds"
+    assert markerset.recognise(mocap.read(RIC_RUN).markers).name == "ric"
+    assert markerset.recognise(mocap.read(RIC_STATIC).markers).name == "ric"
+    for name in markerset.shipped():
+        assert markerset.load(name).name == name
 
 
-def test_belt_speed_is_the_trial_speed(steps):
-    assert steps[3.5][1].belt_speed == pytest.approx(3.5, abs=0.15)
-    assert steps[2.5][1].belt_speed == pytest.approx(2.5, abs=0.15)
+def test_lab_vertical_is_the_mean_force_and_the_mt_swap_is_undone(measured):
+    """RBDS T35: up from the mean force (the lab's Y, not the standing feet's plane 4.8 deg
+    off); R.MT1 and R.MT5 swapped in the run relative to the standing trial, swapped back."""
+    for m in measured.values():
+        axes = m.calibration.axes
+        assert axes.up[1] > 0.9999 and axes.forward[0] > 0.9999 and not axes.mirrored
+        assert any("R.MT1 and R.MT5 are swapped" in n for n in m.steps.notes)
 
 
-@pytest.mark.parametrize("speed", [2.5, 3.5])
-def test_touchdowns_come_at_the_treadmill_cadence(steps, run35, run25, cal, speed):
-    """Cadence from the touchdown events equals the vertical force's dominant frequency."""
-    trial = run35 if speed == 3.5 else run25
-    _, st = steps[speed]
-    vertical = trial.force @ cal.axes.up
-    spectrum = np.abs(np.fft.rfft(vertical - vertical.mean()))
-    freqs = np.fft.rfftfreq(len(vertical), 1 / trial.force_rate)
-    band = (freqs > 1.5) & (freqs < 4.0)
-    step_hz = freqs[band][np.argmax(spectrum[band])]
-    assert st.cadence_spm == pytest.approx(60 * step_hz, rel=0.02)
-    sides = [td.side for td in st.touchdowns]
-    assert all(a != b for a, b in zip(sides, sides[1:])), "touchdowns alternate right, left"
+def test_belt_speed_and_cadence(measured):
+    for speed, m in measured.items():
+        assert m.steps.belt_speed == pytest.approx(speed, abs=0.1)
+        assert m.steps.speed == pytest.approx(speed, abs=0.12)
+        sides = [td.side for td in m.steps.touchdowns]
+        assert all(a != b for a, b in zip(sides, sides[1:])), "touchdowns alternate right, left"
+    assert measured[3.5].steps.cadence_spm == pytest.approx(171.4, abs=0.2)
+    assert measured[2.5].steps.cadence_spm == pytest.approx(156.5, abs=0.2)
 
 
 @pytest.mark.parametrize("speed", [2.5, 3.5])
-def test_subject_001_is_not_a_rearfoot_striker(steps, speed):
-    """RBDSinfo labels subject 001 a forefoot striker at 2.5 and 3.5 m/s. By the foot strike
-    angle (Altman & Davis 2012) the right foot strikes forefoot every step; the left lands
-    flatter (midfoot); no step is a rearfoot strike."""
-    _, st = steps[speed]
-    right = [td.strike for td in st.touchdowns if td.side == "R"]
-    assert right.count("forefoot") == len(right)
-    assert all(td.strike != "heel" for td in st.touchdowns)
-
-
-@pytest.mark.parametrize("speed", [2.5, 3.5])
-def test_angles_lie_in_physiological_ranges(steps, speed):
-    _, st = steps[speed]
-    for td in st.touchdowns:
+def test_angles_lie_in_physiological_ranges(measured, speed):
+    for td in measured[speed].steps.touchdowns:
         a = {k: math.degrees(v) for k, v in td.angles.items()}
         assert -10 < a["trunk"] < 30 and 0 < a["hip"] < 45
         assert 0 < a["knee"] < 40 and -35 < a["ankle"] < 20
@@ -108,101 +90,92 @@ def test_angles_lie_in_physiological_ranges(steps, speed):
         assert td.hip_velocity[0] == pytest.approx(speed, abs=0.4) and -1.2 < td.hip_velocity[1] < 0
 
 
-def test_kinematic_touchdowns_agree_with_the_force_plate(run25, cal, steps):
+def test_subject_001_lands_midfoot_not_on_the_heel(measured):
+    """With the lab vertical and the MT swap undone the right foot strike angle at 3.5 m/s is
+    about +1 deg: midfoot (Altman & Davis), where the swapped labels made it -9.8 (forefoot)."""
+    right = [td for td in measured[3.5].steps.valid if td.side == "R"]
+    fsa = np.degrees([td.foot_strike_angle for td in right])
+    assert -1.6 < fsa.mean() < 3 and all(td.strike != "heel" for td in measured[3.5].steps.touchdowns)
+
+
+def test_a_second_method_agrees(measured):
+    """Segment angles as standing angle + the cluster's sagittal pitch, the lab's Y as up and
+    touchdowns from the foot's speed (problems/rbds_angles.py): within 2 deg of formopt's."""
+    spec = importlib.util.spec_from_file_location("rbds_angles", PROBLEMS / "rbds_angles.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    m = measured[3.5]
+    right = [td for td in m.steps.valid if td.side == "R"]
+    ours = np.degrees([[td.angles[k] for k in ("hip", "knee", "ankle")] for td in right]).mean(axis=0)
+    assert np.all(np.abs(module.second_method(m) - ours) < 2.0)
+
+
+def test_kinematic_touchdowns_agree_with_the_force_plate(run25, static, measured):
+    """The foot's speed over the ground (half the running speed) gives the force plate's
+    touchdowns to a frame or two: also with a cluster-only map (no heel or toe markers)."""
     trial = copy.copy(run25)
     trial.force, trial.force_rate = None, None
-    kin = mocap.kinematics(trial, cal)
-    kinematic = mocap.touchdowns(trial, kin, cal)
+    kinematic = mocap.measure(trial, static, HEIGHT).steps
     assert kinematic.method == "kinematics"
-    force_times = np.array([td.time for td in steps[2.5][1].touchdowns])
-    for td in kinematic.touchdowns:
-        assert np.min(np.abs(force_times - td.time)) < 0.03  # within 30 ms of the force's
-    assert kinematic.cadence_spm == pytest.approx(steps[2.5][1].cadence_spm, rel=0.02)
+    force_times = np.array([td.time for td in measured[2.5].steps.touchdowns])
+    gaps = [td.time - force_times[np.argmin(np.abs(force_times - td.time))] for td in kinematic.touchdowns]
+    assert abs(np.median(gaps)) < 0.005 and np.percentile(np.abs(gaps), 90) < 0.015
+    assert kinematic.cadence_spm == pytest.approx(measured[2.5].steps.cadence_spm, rel=0.02)
 
 
-def test_c3d_and_text_paths_agree(run35, cal, steps, tmp_path):
-    """The 3.5 m/s C3D trial written in the RBDS text layout reads back to the same data and
-    the same touchdowns."""
+def test_ric_runner(ric):
+    """Clusters only, POINT:UNITS empty, a one-frame static, no force plate: millimetres
+    inferred, Y up and -Z forward found, about 3.4 m/s (the repository says 3.43), 164
+    steps/min, rearfoot strikes with the knee near 10 deg."""
+    s = ric.steps
+    assert s.method == "kinematics" and any("no units in the file: millimetres" in n for n in s.notes)
+    axes = ric.calibration.axes
+    assert axes.up[1] > 0.999 and axes.forward[2] < -0.999
+    assert s.speed == pytest.approx(3.43, abs=0.15) and s.cadence_spm == pytest.approx(164, abs=2)
+    assert len(s.valid) > 60 and all(td.strike == "heel" for td in s.valid)
+    knee = np.degrees([td.angles["knee"] for td in s.valid])
+    assert 3 < knee.mean() < 20 and 10 < np.degrees(np.mean([td.foot_strike_angle for td in s.valid])) < 25
+
+
+def test_c3d_and_text_paths_agree(run35, static, measured, tmp_path):
     mocap.write_text(run35, tmp_path / "m.txt", tmp_path / "f.txt")
     text = mocap.read(tmp_path / "m.txt", tmp_path / "f.txt")
     assert text.rate == pytest.approx(run35.rate) and text.force_rate == pytest.approx(run35.force_rate)
-    for name, xyz in run35.markers.items():
-        assert np.allclose(text.markers[name], xyz, atol=1e-9)
-    kin = mocap.kinematics(text, cal)
-    again = mocap.touchdowns(text, kin, cal)
-    assert [td.time for td in again.touchdowns] == pytest.approx([td.time for td in steps[3.5][1].touchdowns])
+    again = mocap.measure(text, static, HEIGHT).steps
+    assert [td.time for td in again.touchdowns] == pytest.approx([td.time for td in measured[3.5].steps.touchdowns])
 
 
-def test_missing_markers_are_named(run35, cal):
-    trial = copy.copy(run35)
-    trial.markers = {k: v for k, v in run35.markers.items() if k not in ("R.MT5", "L.ASIS")}
-    with pytest.raises(mocap.MocapError, match="missing: L.ASIS, R.MT5"):
-        mocap.kinematics(trial, cal)
-
-
-def test_short_gaps_are_filled_and_long_ones_leave_their_steps_out(cal, steps):
-    markers = {k: v.copy() for k, v in mocap.read(RUN35).markers.items()}
-    frame = steps[3.5][1].touchdowns[10].frame
-    markers["R.Heel.Top"][100:103] = np.nan  # 3 frames: interpolated
-    side = steps[3.5][1].touchdowns[10].side
-    markers[f"{side}.MT1"][frame - 20:frame + 20] = np.nan  # 40 frames around a touchdown
-    trial = mocap.fill_gaps(mocap.Trial(markers, 150.0, mocap.read(RUN35).force, 300.0, "damaged"))
-    assert np.all(np.isfinite(trial.markers["R.Heel.Top"]))
-    assert "R.Heel.Top" not in trial.gaps and f"{side}.MT1" in trial.gaps
-    kin = mocap.kinematics(trial, cal)
-    st = mocap.touchdowns(trial, kin, cal)
-    assert any(f"{side}.MT1" in why for why in st.left_out)
-    assert len(st.touchdowns) == len(steps[3.5][1].touchdowns) - len(st.left_out)
-
-
-def test_empty_force_plate_falls_back_to_kinematics(tmp_path, run25):
-    markers = tmp_path / "m.txt"
-    shutil.copy(RUN25, markers)
-    forces = tmp_path / "f.txt"
-    forces.write_text("Time\tFx\tFy\tFz\n" + "".join(f"{k}\t0\t0\t0\n" for k in range(1, 9001)))
-    trial = mocap.read(markers, forces)
-    assert trial.force is None and any("force plate is empty" in n for n in trial.notes)
-
-
-@pytest.mark.parametrize("damage,needle", [
-    ("truncate", "truncated: the file declares 4500 frames"),
-    ("empty", "not a readable C3D"),
-])
-def test_damaged_c3d_files_are_refused(tmp_path, damage, needle):
-    path = tmp_path / "run.c3d"
-    data = RUN35.read_bytes()
-    path.write_bytes(data[:len(data) // 3] if damage == "truncate" else b"")
-    with pytest.raises(mocap.MocapError, match=needle):
-        mocap.read(path)
-
-
-def test_cli_compare_json_and_bad_input(tmp_path, capsys):
+def test_cli_compare_json_exports_and_bad_input(tmp_path, capsys):
     code = main(["compare", "--trial", str(RUN35), "--static", str(STATIC), "--mass", "62",
                  "--height", "1.81", "--json", "--out", str(tmp_path)])
     data = json.loads(capsys.readouterr().out)
     assert code == 0
-    for key in ("cadence_spm", "touchdowns", "optimum"):
-        assert key in data
     td = data["touchdowns"][0]
-    assert {"time", "side", "strike", "angles_deg", "foot_angle_deg", "hip_velocity", "T_c"} <= set(td)
-    assert set(td["angles_deg"]) == {"trunk", "hip", "knee", "ankle"}
-    assert {"touchdown", "T_c"} <= set(data["optimum"]) and data["optimum"]["success"]
-    assert (tmp_path / "comparison.png").stat().st_size > 0
+    assert {"segment_angles_deg", "foot_strike_angle_deg", "angles_deg", "rates_dps",
+            "hip_velocity_mps", "method", "strike_point", "valid_data", "contact_laws"} <= set(td)
+    assert set(td["segment_angles_deg"]) == {"trunk", "thigh", "shank", "foot"}
+    assert set(data["settings"]) >= {"cutoff_hz", "force_threshold_n", "contact", "friction",
+                                     "bounds_deg", "body", "markers"}
+    assert data["optimum"]["success"] and data["per_step"]["converged"] >= 80
     assert len((tmp_path / "touchdowns.csv").read_text().splitlines()) == len(data["touchdowns"]) + 1
+    trc = (tmp_path / "markers.trc").read_text().splitlines()
+    assert trc[0].startswith("PathFileType\t4") and trc[2].split("\t")[2] == "4500"
+    mot = (tmp_path / "angles.mot").read_text().splitlines()
+    assert "endheader" in mot and mot[mot.index("endheader") + 1].startswith("time\tpelvis_tilt")
     assert main(["compare", "--trial", str(tmp_path / "none.c3d"), "--static", str(STATIC),
                  "--mass", "62", "--height", "1.81"]) == 2
     assert "no such file" in capsys.readouterr().err
 
 
-def test_cli_bad_motion_capture_exits_2_with_one_line(tmp_path, run35, capsys):
-    trial = copy.copy(run35)
-    trial.markers = {k: v for k, v in run35.markers.items() if k != "L.Shank.Top.Medial"}
-    mocap.write_text(trial, tmp_path / "m.txt", tmp_path / "f.txt")
-    args = ["--static", str(STATIC), "--mass", "62", "--height", "1.81", "--out", str(tmp_path)]
-    assert main(["compare", "--trial", str(tmp_path / "m.txt"), "--forces", str(tmp_path / "f.txt"), *args]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "L.Shank.Top.Medial" in err[0]
-    data = RUN35.read_bytes()
-    (tmp_path / "cut.c3d").write_bytes(data[: len(data) // 2])
-    assert main(["compare", "--trial", str(tmp_path / "cut.c3d"), *args]) == 2
-    assert "truncated" in capsys.readouterr().err
+def test_scene_file_gives_one_table_across_trials(tmp_path, capsys):
+    scene = tmp_path / "runners.toml"
+    scene.write_text(f'[compare]\nmass = 62\nheight = 1.81\nstatic = "{STATIC}"\nper_step = false\n'
+                     f'bounds = {{ knee = [0, 90] }}\n[[trial]]\ntrial = "{RUN35}"\n'
+                     f'[[trial]]\ntrial = "{RUN25}"\nforces = "{FORCES25}"\n')
+    assert main(["compare", "--scene", str(scene), "--out", str(tmp_path / "out"), "--starts", "1"]) == 0
+    rows = (tmp_path / "out" / "trials.csv").read_text().splitlines()
+    assert len(rows) == 1 + 4 and "RBDS001runT25markers.txt" in rows[-1]
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[compare]\nmas = 62\n')
+    assert main(["compare", "--scene", str(bad)]) == 2
+    assert "unknown key 'mas'" in capsys.readouterr().err

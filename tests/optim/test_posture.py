@@ -66,7 +66,7 @@ def test_speed_sensitivity_matches_a_resolve(demo):
     u0 = problem.to_unit(opt.state)
     values = []
     for v in (problem.p0[0] + dv, problem.p0[0] - dv):
-        sol, stats, _ = problem.solve_from(u0, np.array([v, problem.friction]))
+        sol, stats, _ = problem.solve_from(u0, problem.posture.parameters(speed=v, friction=problem.friction))
         assert stats["return_status"] == "Solve_Succeeded"
         values.append(float(sol["f"]) / problem.scale)
     fd = (values[0] - values[1]) / (2 * dv)

@@ -1,0 +1,58 @@
+"""Files other tools read: OpenSim marker (.trc) and motion (.mot) files of a measured run.
+
+OpenSim's ground frame: X forward, Y up, Z right. The markers are written after formopt's axes
+and filter (mm, with the lab origin kept); the motion file holds formopt's sagittal angles per
+frame in deg, named as in OpenSim's gait models (Rajagopal et al. 2016): pelvis_tilt (the
+pelvis's tilt relative to standing; anterior tilt negative, OpenSim's sign), hip_flexion,
+knee_angle (flexion positive) and ankle_angle (dorsiflexion positive), _r and _l.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .files import atomic
+from .mocap import SIDES, Calibration, Kinematics
+
+def write_trc(path, kin: Kinematics, cal: Calibration, names=None):
+    """The filtered markers (and carried joint centres, as R.hip ...) in OpenSim's frame."""
+    names = list(names or kin.markers)
+    ax = cal.axes
+    R = np.array([ax.forward, ax.up, -ax.left])  # rows: OpenSim X, Y, Z in the file's frame
+    frames = len(kin.t)
+    with atomic(path) as fh:
+        fh.write(f"PathFileType\t4\t(X/Y/Z)\t{path}\n")
+        fh.write("DataRate\tCameraRate\tNumFrames\tNumMarkers\tUnits\tOrigDataRate\t"
+                 "OrigDataStartFrame\tOrigNumFrames\n")
+        fh.write(f"{kin.rate:g}\t{kin.rate:g}\t{frames}\t{len(names)}\tmm\t{kin.rate:g}\t1\t{frames}\n")
+        fh.write("Frame#\tTime\t" + "\t".join(f"{n}\t\t" for n in names).rstrip("\t") + "\n")
+        fh.write("\t\t" + "\t".join(f"X{k}\tY{k}\tZ{k}" for k in range(1, len(names) + 1)) + "\n")
+        data = np.concatenate([kin.markers[n] @ R.T * 1e3 for n in names], axis=1)
+        for f in range(frames):
+            fh.write(f"{f + 1}\t{kin.t[f]:.6f}\t" + "\t".join(f"{v:.4f}" for v in data[f]) + "\n")
+    return Path(path)
+
+MOT_COLUMNS = ("pelvis_tilt", *[f"{j}_{s.lower()}" for s in SIDES
+                                for j in ("hip_flexion", "knee_angle", "ankle_angle")])
+
+def motion(kin: Kinematics) -> np.ndarray:
+    """(frames, 7) sagittal angles in deg, MOT_COLUMNS."""
+    trunk = kin.angles["trunk"]
+    cols = [-trunk]
+    for s in SIDES:
+        thigh, shank, foot = (kin.angles[f"{s}.{k}"] for k in ("thigh", "shank", "foot"))
+        cols += [thigh + trunk, thigh - shank, foot - shank]
+    return np.degrees(np.column_stack(cols))
+
+def write_mot(path, kin: Kinematics):
+    angles = motion(kin)
+    with atomic(path) as fh:
+        fh.write(f"{path}\nversion=1\nnRows={len(kin.t)}\nnColumns={len(MOT_COLUMNS) + 1}\n"
+                 "inDegrees=yes\nendheader\n")
+        fh.write("time\t" + "\t".join(MOT_COLUMNS) + "\n")
+        for t, row in zip(kin.t, angles):
+            fh.write(f"{t:.6f}\t" + "\t".join(f"{v:.5f}" for v in row) + "\n")
+    return Path(path)
+
