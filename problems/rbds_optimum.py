@@ -41,7 +41,7 @@ def main():
             if measured is None:
                 measured = rep["reference"]["angles_deg"]
                 print(f"{'measured':13s} {'':>4s} {measured['hip']:6.1f} {measured['knee']:6.1f} "
-                      f"{measured['ankle']:6.1f}   (mean right forefoot touchdown, cadence "
+                      f"{measured['ankle']:6.1f}   (mean forefoot-impact touchdown, both sides, cadence "
                       f"{c.steps.cadence_spm:.1f} steps/min)")
             knee_mu = (opt.sensitivity.get("d_posture_d_friction_deg", {}).get("knee", float("nan"))
                        * 0.1)
