@@ -320,7 +320,7 @@ def _mean(trial: Trial) -> dict[str, np.ndarray]:
 
 # -- checks before any geometry -----------------------------------------------------------
 
-def resolve_units(static: Trial, trial: Trial, height: float) -> None:
+def resolve_units(static: Trial, trial: Trial, height: float, ms) -> None:
     """Check the declared units against the stature (or infer them), then the run's against
     the standing trial's cluster sizes; both trials are cleaned once their units are known."""
     span = _span(static)
@@ -340,7 +340,7 @@ def resolve_units(static: Trial, trial: Trial, height: float) -> None:
                             f"{_unit_name(scale)}, from the standing body's size "
                             f"({span * scale:.2f} m for a {height:g} m runner)")
         clean(static)
-    ratio = _cluster_size(trial) / _cluster_size(static)
+    ratio = _cluster_size(trial, ms) / _cluster_size(static, ms)
     if trial.units:
         if not 0.8 < ratio < 1.25:
             raise MocapError(f"{trial.source}: its clusters are {ratio:.3g} times the standing "
@@ -371,16 +371,17 @@ def _span(static: Trial) -> float:
     return float(np.max(np.linalg.norm(points[:, None] - points[None], axis=-1)))
 
 
-def _cluster_size(trial: Trial) -> float:
-    """The median distance between markers whose names share a prefix (clusters), in the
-    trial's median frame."""
-    names = sorted(trial.markers)
-    mid = {n: np.nanmedian(trial.markers[n], axis=0) for n in names}
-    d = [np.linalg.norm(mid[a] - mid[b]) for a, b in itertools.combinations(names, 2)
-         if a.rsplit("_", 1)[0] == b.rsplit("_", 1)[0] or a.split(".")[:2] == b.split(".")[:2]]
+def _cluster_size(trial: Trial, ms) -> float:
+    """The median distance between the markers of each cluster of the map, in the trial's
+    median frame (m, or the file's unit)."""
+    clusters = [ms.pelvis] + [[n for n in ms.cluster(side, seg) if not n.startswith("@")]
+                              for side in SIDES for seg in msets.SEGMENTS]
+    mid = {n: np.nanmedian(trial.markers[n], axis=0) for c in clusters for n in c if n in trial.markers}
+    d = [np.linalg.norm(mid[a] - mid[b]) for c in clusters for a, b in itertools.combinations(c, 2)
+         if a in mid and b in mid]
     d = [x for x in d if np.isfinite(x) and x > 0]
     if not d:
-        raise MocapError(f"{trial.source}: no marker cluster to measure")
+        raise MocapError(f"{trial.source}: no marker cluster of the {ms.name} map to measure")
     return float(np.median(d))
 
 
@@ -934,7 +935,7 @@ def measure(trial: Trial, static: Trial, height: float, options: Options = Optio
     ms = msets.load(options.markers) if options.markers else msets.recognise(trial.markers)
     if trial.frames < 10:
         raise MocapError(f"{trial.source}: {trial.frames} frames: too short for a run")
-    resolve_units(static, trial, height)
+    resolve_units(static, trial, height, ms)
     check_static(static, ms)
     require(trial, ms.running(), f"the running trial ({ms.name} markers)")
     check_labels(static, trial, ms)

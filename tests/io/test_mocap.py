@@ -179,3 +179,34 @@ def test_scene_file_gives_one_table_across_trials(tmp_path, capsys):
     bad.write_text('[compare]\nmas = 62\n')
     assert main(["compare", "--scene", str(bad)]) == 2
     assert "unknown key 'mas'" in capsys.readouterr().err
+
+
+def test_plugin_gait_map_on_a_relabelled_run(measured, static):
+    """RBDS001 T35 relabelled as Plug-in Gait (one wand marker per segment; KNE and ANK at the
+    knee and ankle centres, TOE at MT1): recognised, and the hip and knee of formopt's own map
+    again; the ankle differs by the foot line (heel to MT1, not to the MT midpoint)."""
+    m = measured[3.5]
+    names = {"ASI": "ASIS", "PSI": "PSIS", "THI": "Thigh.Top.Lateral", "TIB": "Shank.Top.Lateral",
+             "HEE": "Heel.Bottom", "TOE": "MT1"}
+
+    def relabel(markers, knee, ankle):
+        out = {}
+        for s in "RL":
+            out.update({s + k: markers[f"{s}.{v}"] for k, v in names.items()})
+            out[s + "KNE"], out[s + "ANK"] = knee(s), ankle(s)
+        return out
+    sm = static.markers
+    pig_static = mocap.Trial(relabel(sm, lambda s: (sm[f"{s}.Knee"] + sm[f"{s}.Knee.Medial"]) / 2,
+                                     lambda s: (sm[f"{s}.Ankle"] + sm[f"{s}.Ankle.Medial"]) / 2),
+                             static.rate, source="pig_static")
+    km = m.kinematics.markers
+    pig_run = mocap.Trial(relabel(m.trial.markers, lambda s: km[f"{s}.knee"], lambda s: km[f"{s}.ankle"]),
+                          m.trial.rate, m.trial.force, m.trial.force_rate, source="pig_run")
+    pig = mocap.measure(pig_run, pig_static, HEIGHT)
+    assert pig.calibration.markerset.name == "plugin_gait" and len(pig.steps.valid) == len(m.steps.valid)
+
+    def mean(mm):
+        return np.degrees([[td.angles[k] for k in ("hip", "knee", "ankle")]
+                           for td in mm.steps.valid if td.side == "R"]).mean(axis=0)
+    assert np.abs(mean(pig) - mean(m))[:2] == pytest.approx([0, 0], abs=0.5)
+    assert abs(mean(pig)[2] - mean(m)[2]) < 4.0
