@@ -13,7 +13,7 @@ import sys
 import tomllib
 from pathlib import Path
 
-from ..io import mocap
+from ..io import markerset, mocap
 from ..io.export import write_mot, write_trc
 from ..io.files import output_folder, save_figure, write_csv
 from ..mechanics.contact import LAWS
@@ -32,7 +32,7 @@ SETTINGS = {
     "mass": (None, "runner's mass (kg)"),
     "height": (None, "runner's stature (m)"),
     "sex": ("male", "male or female (de Leva's segment parameters)"),
-    "markers": (None, "marker map: " + ", ".join(["rbds", "plugin_gait", "ric"]) +
+    "markers": (None, "marker map: " + ", ".join(markerset.shipped()) +
                 " or a TOML file (default: recognised from the labels)"),
     "cutoff": (mocap.Options.cutoff_hz, "low-pass cutoff of the markers (Hz)"),
     "force_threshold": (mocap.Options.force_threshold_n, "vertical force at touchdown (N)"),
