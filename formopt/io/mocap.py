@@ -429,8 +429,7 @@ def check_labels(static: Trial, trial: Trial, ms) -> None:
     # frame); mirror-image clusters fit either side's shape, so their place decides
     R, t = kabsch(np.array([ref[n] for n in ms.pelvis]), stack(ms.pelvis))
     centre = np.mean([ref[n] for n in ms.pelvis], axis=0)
-    left = _unit(np.mean([ref[ms.label("L", n)] - ref[ms.label("R", n)]
-                          for seg in msets.SEGMENTS for n in ms.leg[seg] if not n.startswith("@")], axis=0))
+    left = _unit(_left_of_labels(ref, ms))
     for seg in msets.SEGMENTS:
         names = clusters[seg]
         lateral = {s: np.median((np.einsum("fji,fj->fi", R, stack(names[s]).mean(axis=1) - t) - centre) @ left)
@@ -452,6 +451,12 @@ def check_labels(static: Trial, trial: Trial, ms) -> None:
                 _relabel(trial, {b: a for a, b in moved.items()})
                 trial.notes.append(f"{' and '.join(sorted(moved))} are swapped in the run "
                                    f"relative to the standing trial: swapped back")
+
+
+def _left_of_labels(ref: dict, ms) -> np.ndarray:
+    """The mean standing offset from each R leg marker to its L namesake (points left)."""
+    return np.mean([ref[ms.label("L", n)] - ref[ms.label("R", n)]
+                    for seg in msets.SEGMENTS for n in ms.leg[seg] if not n.startswith("@")], axis=0)
 
 
 def _relabel(trial: Trial, mapping: dict):
@@ -525,8 +530,7 @@ def find_axes(static: Trial, trial: Trial, ms) -> tuple[Axes, list[str]]:
     travel = np.nanmedian(np.gradient(pelvis, 1.0 / trial.rate, axis=0), axis=0) - stance
     travel -= (travel @ up) * up
     forward = _unit(travel)
-    left_labels = np.mean([ref[ms.label("L", n)] - ref[ms.label("R", n)]
-                           for seg in msets.SEGMENTS for n in ms.leg[seg] if not n.startswith("@")], axis=0)
+    left_labels = _left_of_labels(ref, ms)
     left = np.cross(up, forward)
     mirrored = bool(left_labels @ left < 0)
     if mirrored:
@@ -630,10 +634,10 @@ def calibrate(static: Trial, trial: Trial, ms, height: float) -> Calibration:
             heel, fore = _foot_geometry(ref, ms, s, centre["ankle"], axes, height)
         centre["heel"], centre["forefoot"] = heel, fore
 
-        def on(segment_names):
+        def on(segment_names):  # "@knee" is the carried point "R.knee", standing at centre["knee"]
             cluster = tuple(f"{s}.{n[1:]}" if n.startswith("@") else n for n in segment_names)
-            return cluster, np.array([centre[n.split(".", 1)[1]] if n.startswith(f"{s}.") and
-                                      n.split(".", 1)[1] in centre else ref[n] for n in cluster])
+            return cluster, np.array([centre[n[1:]] if n.startswith("@") else ref[n]
+                                      for n in segment_names])
         points[f"{s}.hip"] = (*on(ms.pelvis), centre["hip"])
         points[f"{s}.knee"] = (*on(ms.cluster(s, "thigh")), centre["knee"])
         points[f"{s}.ankle"] = (*on(ms.cluster(s, "shank")), centre["ankle"])
@@ -933,8 +937,6 @@ def measure(trial: Trial, static: Trial, height: float, options: Options = Optio
     trials are copied: the Measurement holds the processed ones (units, labels, cleaning)."""
     trial, static = copy.deepcopy(trial), copy.deepcopy(static)
     ms = msets.load(options.markers) if options.markers else msets.recognise(trial.markers)
-    if trial.frames < 10:
-        raise MocapError(f"{trial.source}: {trial.frames} frames: too short for a run")
     resolve_units(static, trial, height, ms)
     check_static(static, ms)
     require(trial, ms.running(), f"the running trial ({ms.name} markers)")
