@@ -30,6 +30,7 @@ from pathlib import Path
 from ..mechanics.errors import InputError
 
 SHIPPED = Path(__file__).parent / "markersets"
+SIDES = ("R", "L")  # the sides a map names (its `sides` prefixes), right first
 SEGMENTS = ("thigh", "shank", "foot")
 JOINT_OF = {"thigh": "@hip", "shank": "@knee", "foot": "@ankle"}  # what each segment may borrow
 # Without heel and toe markers (Winter 2009, Biomechanics and Motor Control of Human Movement,
@@ -76,12 +77,6 @@ class MarkerSet:
                 names += [n for n in self.landmarks(s, key) if n not in names]
         return names
 
-    def side_of(self, label: str) -> str | None:
-        for s, prefix in self.sides.items():
-            if label.startswith(prefix):
-                return s
-        return None
-
 
 def load(name_or_file) -> MarkerSet:
     """A shipped map by name (rbds, plugin_gait, ric) or a TOML file."""
@@ -115,7 +110,7 @@ def _parse(data: dict, path: Path) -> MarkerSet:
     if unknown:
         raise InputError(f"{path}: unknown key {sorted(unknown)[0]!r} (keys: {', '.join(sorted(known))})")
     sides = need(data, "sides", "", dict)
-    if set(sides) != {"R", "L"}:
+    if set(sides) != set(SIDES):
         raise InputError(f"{path}: sides must give the R and L label prefixes")
     pelvis = need(data, "pelvis", "", dict)
     leg = need(data, "leg", "", dict)
