@@ -24,10 +24,10 @@ def test_cli_compare_json_exports_and_bad_input(tmp_path, capsys):
                                      "friction", "bounds_deg", "body", "markers"}
     # 10 Hz design cut-off run forward and back at 150 Hz: -3 dB at 0.806 of it (test_filters)
     assert data["settings"]["effective_cutoff_hz"] == 8.06
-    # every valid step of T35 meets the ground with the same point, so each gets an optimum,
+    # every valid T35 step is a step of the dominant strike (studies.compare.compare: those
+    # whose impact point is the optimum's, else all valid ones), so each gets an optimum,
     # started from the mean step's: all of them converge
     valid = [t for t in data["touchdowns"] if t["valid_data"]]
-    assert {t["strike_point"]["point"] for t in valid} == {data["optimum"]["strike"]}
     assert data["optimum"]["success"] and data["per_step"]["converged"] == data["per_step"]["steps"] == len(valid)
     assert len((tmp_path / "touchdowns.csv").read_text().splitlines()) == len(data["touchdowns"]) + 1
     trc = (tmp_path / "markers.trc").read_text().splitlines()
