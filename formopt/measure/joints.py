@@ -100,16 +100,10 @@ def calibrate(static: Trial, trial: Trial, ms: msets.MarkerSet, height: float) -
     points, foot_offset, lengths = {}, {}, {}
     for s in SIDES:
         centre = joint_centres(ref, ms, s, axes, height)
-
-        def on(segment_names):  # "@knee" is the carried point "R.knee", standing at centre["knee"]
-            cluster = tuple(f"{s}.{n[1:]}" if n.startswith("@") else n for n in segment_names)
-            return cluster, np.array([centre[n[1:]] if n.startswith("@") else ref[n]
-                                      for n in segment_names])
-        points[f"{s}.hip"] = (*on(ms.pelvis), centre["hip"])
-        points[f"{s}.knee"] = (*on(ms.cluster(s, "thigh")), centre["knee"])
-        points[f"{s}.ankle"] = (*on(ms.cluster(s, "shank")), centre["ankle"])
-        points[f"{s}.heel"] = (*on(ms.cluster(s, "foot")), centre["heel"])
-        points[f"{s}.forefoot"] = (*on(ms.cluster(s, "foot")), centre["forefoot"])
+        for point, names in (("hip", ms.pelvis), ("knee", ms.cluster(s, "thigh")),
+                             ("ankle", ms.cluster(s, "shank")), ("heel", ms.cluster(s, "foot")),
+                             ("forefoot", ms.cluster(s, "foot"))):
+            points[f"{s}.{point}"] = (*_cluster(names, s, centre, ref), centre[point])
         line = axes.sagittal(centre["forefoot"] - centre["heel"])
         foot_offset[s] = math.atan2(line[1], line[0])
         lengths[f"{s}.thigh"] = float(np.linalg.norm(centre["hip"] - centre["knee"]))
@@ -117,6 +111,13 @@ def calibrate(static: Trial, trial: Trial, ms: msets.MarkerSet, height: float) -
         lengths[f"{s}.foot"] = float(np.linalg.norm(centre["forefoot"] - centre["heel"]))
     _check_lengths(static, lengths, height)
     return Calibration(ms, axes, points, foot_offset, lengths, notes)
+
+
+def _cluster(names, side: str, centre: dict, ref: dict) -> tuple[tuple[str, ...], np.ndarray]:
+    """A cluster's members and their standing positions (k, 3): markers, or "@knee" for the
+    point "R.knee" carried by the segment above, standing at centre["knee"]."""
+    cluster = tuple(f"{side}.{n[1:]}" if n.startswith("@") else n for n in names)
+    return cluster, np.array([centre[n[1:]] if n.startswith("@") else ref[n] for n in names])
 
 
 def _check_lengths(static: Trial, lengths: dict, height: float) -> None:

@@ -137,7 +137,7 @@ def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration,
     steps = []
     window = max(1, round(STEP_WINDOW * kin.rate))
     for t, side in times:
-        frame = int(math.floor(t * kin.rate)) - 1
+        frame = math.floor(t * kin.rate) - 1
         if 2 <= frame < len(kin.t) - 2:
             problems = _problems(trial, kin, cal, side, frame, window)
             steps.append(_touchdown(kin, side, frame, t, belt, foot_low[side][frame], problems))

@@ -131,7 +131,7 @@ def test_frozen_markers_leave_their_steps_out(short, static, sound):
     markers["R.Shank.Top.Lateral"][td.frame - 15:td.frame + 15] = markers["R.Shank.Top.Lateral"][td.frame - 15]
     m = measure(damaged(short, markers=markers), static, HEIGHT)
     assert any("frozen" in n for n in m.steps.notes)
-    hit = [t for t in m.steps.touchdowns if t.time == td.time][0]
+    hit = next(t for t in m.steps.touchdowns if t.time == td.time)
     assert not hit.valid_data and "R.Shank.Top.Lateral" in hit.problems[0]
     assert len(m.steps.valid) == len(sound.steps.valid) - 1
 

@@ -51,6 +51,7 @@ def test_a_mirrored_cluster_gets_the_best_rotation_not_a_reflection():
     R, t = kabsch(reference, current)
     R_s, t_s, rms = scipy_fit(reference, current)
     assert np.linalg.det(R) == pytest.approx(1.0) and R == pytest.approx(R_s, abs=1e-9)
+    assert t == pytest.approx(t_s, abs=1e-9)
     assert fit_residual(reference, current[None], R[None], t[None])[0] == pytest.approx(rms, abs=1e-8)
 
 

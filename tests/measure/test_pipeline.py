@@ -2,6 +2,7 @@
 the Running Injury Clinic runner (clusters only, no units, no force plate)."""
 
 import importlib.util
+import itertools
 import math
 
 import numpy as np
@@ -34,7 +35,7 @@ def test_belt_speed_and_cadence(measured):
         assert m.steps.belt_speed == pytest.approx(speed, abs=0.1)
         assert m.steps.speed == pytest.approx(speed, abs=0.12)
         sides = [td.side for td in m.steps.touchdowns]
-        assert all(a != b for a, b in zip(sides, sides[1:])), "touchdowns alternate right, left"
+        assert all(a != b for a, b in itertools.pairwise(sides)), "touchdowns alternate right, left"
     assert measured[3.5].steps.cadence_spm == pytest.approx(171.4, abs=0.2)
     assert measured[2.5].steps.cadence_spm == pytest.approx(156.5, abs=0.2)
 
