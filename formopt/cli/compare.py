@@ -14,9 +14,9 @@ import tomllib
 from pathlib import Path
 
 from ..io import markerset, mocap
-from ..measure import Options
 from ..io.export import write_mot, write_trc
 from ..io.files import output_folder, save_figure, write_csv
+from ..measure import Options
 from ..mechanics.contact import LAWS
 from ..mechanics.errors import InputError
 from ..optim.variables import RANGE_OF_MOTION_DEG

@@ -110,7 +110,7 @@ def _parse(data: dict, path: Path) -> MarkerSet:
     if unknown:
         raise InputError(f"{path}: unknown key {sorted(unknown)[0]!r} (keys: {', '.join(sorted(known))})")
     sides = need(data, "sides", "", dict)
-    if set(sides) != set(SIDES):
+    if set(sides) != {"R", "L"}:
         raise InputError(f"{path}: sides must give the R and L label prefixes")
     pelvis = need(data, "pelvis", "", dict)
     leg = need(data, "leg", "", dict)
