@@ -40,13 +40,14 @@ def main():
           f"{statistics.median(walls):.2f} s over {args.repeats} runs (target <= 3 s)")
 
     from formopt.io import mocap
+    from formopt.measure import measure
     from formopt.mechanics.model import build_model
     from formopt.optim.posture import PostureProblem, Problem
     from formopt.studies.compare import compare
 
     t = time.perf_counter()
     trial, static = mocap.read(DATA / "RBDS001runT35.c3d"), mocap.read(DATA / "RBDS001static.c3d")
-    mocap.measure(trial, static, 1.81)
+    measure(trial, static, 1.81)
     measured = time.perf_counter() - t
     t = time.perf_counter()
     c = compare(trial, static, 62.0, 1.81, per_step=False)

@@ -24,25 +24,31 @@ from pathlib import Path
 import numpy as np
 
 from formopt.io import mocap
+from formopt.measure import Measurement, measure
+from formopt.measure.axes import Axes
+from formopt.measure.clean import clean
+from formopt.measure.filters import lowpass
+from formopt.measure.kinematics import kabsch, kinematics, pitch as cluster_pitch
+from formopt.measure.touchdowns import touchdowns
 
 DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "rbds"
 HEIGHT = 1.81
 KINEMATIC = False
 
 
-def second_method(m: mocap.Measurement, up=np.array([0.0, 1.0, 0.0])):
+def second_method(m: Measurement, up=np.array([0.0, 1.0, 0.0])):
     """Right-side (hip, knee, ankle) at the foot-speed touchdowns: standing angle + cluster pitch."""
     cal, trial = m.calibration, m.trial
     forward = cal.axes.forward - (cal.axes.forward @ up) * up
     forward /= np.linalg.norm(forward)
-    axes = mocap.Axes(forward, np.cross(up, forward), up)
+    axes = Axes(forward, np.cross(up, forward), up)
     ms = cal.markerset
-    ref = {n: np.nanmean(v, axis=0) for n, v in mocap.read(DATA / "RBDS001static.c3d").markers.items()}
+    ref = {n: np.nanmean(v, axis=0) for n, v in clean(mocap.read(DATA / "RBDS001static.c3d")).markers.items()}
 
     def pitch(names):
-        filtered = np.stack([mocap.lowpass(trial.markers[n], trial.rate, 10.0) for n in names], axis=1)
-        R, _ = mocap.kabsch(np.array([ref[n] for n in names]), filtered)
-        return mocap.pitch(R, axes)
+        filtered = np.stack([lowpass(trial.markers[n], trial.rate, 10.0) for n in names], axis=1)
+        R, _ = kabsch(np.array([ref[n] for n in names]), filtered)
+        return cluster_pitch(R, axes)
 
     def standing(a, b):  # the a->b line's angle from the downward vertical (rad)
         v = axes.sagittal(b - a)
@@ -55,8 +61,8 @@ def second_method(m: mocap.Measurement, up=np.array([0.0, 1.0, 0.0])):
     shank = standing(knee, ankle) - pitch(ms.cluster("R", "shank"))
     foot = -pitch(ms.cluster("R", "foot"))
     no_plate = mocap.Trial(dict(trial.markers), trial.rate, source=trial.source)
-    kin = mocap.kinematics(no_plate, cal)
-    frames = [td.frame for td in (mocap.touchdowns(no_plate, kin, cal) if KINEMATIC else m.steps).touchdowns if td.side == "R"]
+    kin = kinematics(no_plate, cal)
+    frames = [td.frame for td in (touchdowns(no_plate, kin, cal) if KINEMATIC else m.steps).touchdowns if td.side == "R"]
     joints = np.degrees(np.column_stack([thigh + trunk, thigh - shank, foot - shank])[frames])
     return joints.mean(axis=0)
 
@@ -66,7 +72,7 @@ def main():
     static = mocap.read(DATA / "RBDS001static.c3d")
     print(f"{'':10s} {'method':34s} {'hip':>7s} {'knee':>7s} {'ankle':>7s}")
     for speed, files in (("35", ("RBDS001runT35.c3d",)), ("25", ("RBDS001runT25markers.txt", "RBDS001runT25forces.txt"))):
-        m = mocap.measure(mocap.read(*(DATA / f for f in files)), static, HEIGHT)
+        m = measure(mocap.read(*(DATA / f for f in files)), static, HEIGHT)
         right = [td for td in m.steps.valid if td.side == "R"]
         ours = np.degrees([[td.angles[k] for k in ("hip", "knee", "ankle")] for td in right]).mean(axis=0)
         second = second_method(m)

@@ -22,6 +22,7 @@ import numpy as np
 
 from formopt import Impact
 from formopt.io import mocap
+from formopt.measure import measure
 from formopt.io.files import save_figure, write_csv
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.contact import LAWS
@@ -38,7 +39,7 @@ def measured_leg():
     """Mean touchdown state of RBDS001's right foot, T35 (model.STATE, SI)."""
     static = mocap.read(DATA / "RBDS001static.c3d")
     trial = mocap.read(DATA / "RBDS001runT35.c3d")
-    steps = mocap.measure(trial, static, HEIGHT).steps
+    steps = measure(trial, static, HEIGHT).steps
     right = [td.state() for td in steps.valid if td.side == "R"]
     return np.mean(right, axis=0), len(right)
 

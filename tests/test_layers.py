@@ -7,7 +7,7 @@ from helpers import ROOT
 
 # api (formopt.load, impact, simulate, solve, ...) composes the layers below it for users;
 # the command line uses it and the reports.
-LAYERS = ("mechanics", "optim", "io", "studies", "api", "report", "cli")
+LAYERS = ("mechanics", "optim", "io", "measure", "studies", "api", "report", "cli")
 METADATA = ("formopt.__version__",)  # package metadata, not code
 PACKAGE = ROOT / "formopt"
 

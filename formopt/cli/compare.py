@@ -16,6 +16,7 @@ from pathlib import Path
 from ..io import markerset, mocap
 from ..io.export import write_mot, write_trc
 from ..io.files import output_folder, save_figure, write_csv
+from ..measure import Options
 from ..mechanics.contact import LAWS
 from ..mechanics.errors import InputError
 from ..optim.variables import RANGE_OF_MOTION_DEG
@@ -34,9 +35,9 @@ SETTINGS = {
     "sex": ("male", "male or female (de Leva's segment parameters)"),
     "markers": (None, "marker map: " + ", ".join(markerset.shipped()) +
                 " or a TOML file (default: recognised from the labels)"),
-    "cutoff": (mocap.Options.cutoff_hz, "low-pass cutoff of the markers (Hz)"),
-    "force_threshold": (mocap.Options.force_threshold_n, "vertical force at touchdown (N)"),
-    "foot_speed_fraction": (mocap.Options.foot_speed_fraction,
+    "cutoff": (Options.cutoff_hz, "low-pass cutoff of the markers (Hz)"),
+    "force_threshold": (Options.force_threshold_n, "vertical force at touchdown (N)"),
+    "foot_speed_fraction": (Options.foot_speed_fraction,
                             "without a force plate: touchdown when the foot's speed over the "
                             "ground falls below this fraction of the running speed"),
     "friction": (0.8, "the ground's friction"),
@@ -48,7 +49,6 @@ SETTINGS = {
     "seed": (0, "seed of the random starts"),
     "per_step": (True, "an optimum for every step as well (--no-per-step: the mean step's only)"),
 }
-PER_TRIAL = ("trial", "static", "forces", "mass", "height", "sex", "markers")
 
 
 def add_parser(commands):
@@ -185,7 +185,7 @@ def run_one(s: dict, args, out: Path):
     """One trial: compare, then its figure, CSV, OpenSim files and JSON (each written whole)."""
     trial = mocap.read(s["trial"], s["forces"])
     static = mocap.read(s["static"])
-    options = mocap.Options(s["markers"], s["cutoff"], s["force_threshold"], s["foot_speed_fraction"])
+    options = Options(s["markers"], s["cutoff"], s["force_threshold"], s["foot_speed_fraction"])
     result = compare(trial, static, s["mass"], s["height"], s["sex"], s["friction"],
                      starts=s["starts"], seed=s["seed"], law=s["contact"], bounds_deg=s["bounds"],
                      support=s["support"], options=options, per_step=s["per_step"])

@@ -14,9 +14,12 @@ from pathlib import Path
 import numpy as np
 
 from .files import atomic
-from .mocap import SIDES, Calibration, Kinematics
+from .markerset import SIDES
 
-def write_trc(path, kin: Kinematics, cal: Calibration, names=None):
+# kin and cal below are a measured run's measure.kinematics.Kinematics and
+# measure.joints.Calibration (not imported: io sits below measure in the layers)
+
+def write_trc(path, kin, cal, names=None):
     """The filtered markers (and carried joint centres, as R.hip ...) in OpenSim's frame."""
     names = list(names or kin.markers)
     ax = cal.axes
@@ -37,7 +40,7 @@ def write_trc(path, kin: Kinematics, cal: Calibration, names=None):
 MOT_COLUMNS = ("pelvis_tilt", *[f"{j}_{s.lower()}" for s in SIDES
                                 for j in ("hip_flexion", "knee_angle", "ankle_angle")])
 
-def motion(kin: Kinematics) -> np.ndarray:
+def motion(kin) -> np.ndarray:
     """(frames, 7) sagittal angles in deg, MOT_COLUMNS."""
     trunk = kin.angles["trunk"]
     cols = [-trunk]
@@ -46,7 +49,7 @@ def motion(kin: Kinematics) -> np.ndarray:
         cols += [thigh + trunk, thigh - shank, foot - shank]
     return np.degrees(np.column_stack(cols))
 
-def write_mot(path, kin: Kinematics):
+def write_mot(path, kin):
     angles = motion(kin)
     with atomic(path) as fh:
         fh.write(f"{path}\nversion=1\nnRows={len(kin.t)}\nnColumns={len(MOT_COLUMNS) + 1}\n"

@@ -30,6 +30,7 @@ from pathlib import Path
 from ..mechanics.errors import InputError
 
 SHIPPED = Path(__file__).parent / "markersets"
+SIDES = ("R", "L")  # the sides a map names (its `sides` prefixes), right first
 SEGMENTS = ("thigh", "shank", "foot")
 JOINT_OF = {"thigh": "@hip", "shank": "@knee", "foot": "@ankle"}  # what each segment may borrow
 # Without heel and toe markers (Winter 2009, Biomechanics and Motor Control of Human Movement,
@@ -75,12 +76,6 @@ class MarkerSet:
             for key in ("hip", "knee", "ankle", "heel", "forefoot"):
                 names += [n for n in self.landmarks(s, key) if n not in names]
         return names
-
-    def side_of(self, label: str) -> str | None:
-        for s, prefix in self.sides.items():
-            if label.startswith(prefix):
-                return s
-        return None
 
 
 def load(name_or_file) -> MarkerSet:

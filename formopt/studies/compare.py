@@ -1,6 +1,6 @@
 """Measured touchdowns against the optimum: the runner's own posture, indicators and the gap.
 
-For each touchdown of a trial (io.mocap.measure), the indicators of that landing on the
+For each touchdown of a trial (measure.measure), the indicators of that landing on the
 paper's leg scaled to the runner (de Leva); the gait-anchored optimum of the mean touchdown of
 the dominant strike (the measured hip placement over the strike point, hip velocity, segment
 rates and cadence held; hip, knee and ankle free within `bounds_deg`, default the ranges of
@@ -17,6 +17,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..io import mocap
+from ..io.markerset import SIDES
+from ..measure import Measurement, Options, Steps, Touchdown, measure
+from ..measure.filters import effective_cutoff
 from ..mechanics.body import Body, scaled_body
 from ..mechanics.contact import LAWS
 from ..mechanics.impact import Impact, ImpactResult
@@ -51,7 +54,7 @@ class StepOptimum:
 
 @dataclass
 class Comparison:
-    measurement: mocap.Measurement
+    measurement: Measurement
     results: list[ImpactResult]  # one per touchdown, on the scaled model
     strikes: list[str]  # the impact's strike point per touchdown (heel or forefoot)
     reference: np.ndarray  # mean measured touchdown state of the dominant pattern (valid steps)
@@ -65,11 +68,11 @@ class Comparison:
     hip_from_strike: tuple[float, float] = (0.0, 0.0)  # m, the mean touchdown's placement
 
     @property
-    def steps(self) -> mocap.Steps:
+    def steps(self) -> Steps:
         return self.measurement.steps
 
 
-def impact_strike(td: mocap.Touchdown) -> str:
+def impact_strike(td: Touchdown) -> str:
     """The foot point that meets the ground first: heel or forefoot (midfoot: the lower)."""
     if td.strike in ("heel", "forefoot"):
         return td.strike
@@ -80,12 +83,12 @@ def impact_strike(td: mocap.Touchdown) -> str:
 def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
             sex: str = "male", friction: float = 0.8, starts: int = 4, seed: int = 0,
             law: str = "no-slip", bounds_deg: dict | None = None, support: float = SUPPORT,
-            options: mocap.Options = mocap.Options(), per_step: bool = True) -> Comparison:
+            options: Options = Options(), per_step: bool = True) -> Comparison:
     """Every touchdown of `trial` through the impact under `law` (each result also carries
     the other laws, ImpactResult.contact_laws), the gait-anchored optimum under `law` within
     `bounds_deg` ({joint: (lo, hi)}, deg; missing joints keep BOUNDS_DEG), and with
     `per_step` the optimum of each valid step of the dominant strike."""
-    m = mocap.measure(trial, static, height, options)
+    m = measure(trial, static, height, options)
     steps = m.steps
     if not steps.valid:
         raise mocap.MocapError(f"{trial.source}: no touchdown with sound markers "
@@ -108,6 +111,7 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
     pp = PostureProblem(model, strike, reference, problem, 0.0, friction, law=law)
     optimum = pp.solve()
     settings = {"markers": m.calibration.markerset.name, "cutoff_hz": options.cutoff_hz,
+                "effective_cutoff_hz": round(effective_cutoff(m.trial.rate, options.cutoff_hz), 2),
                 "force_threshold_n": options.force_threshold_n,
                 "foot_speed_fraction": options.foot_speed_fraction, "contact": law,
                 "friction": friction, "bounds_deg": {k: list(v) for k, v in bounds.items()},
@@ -218,7 +222,7 @@ def summary(c: Comparison) -> dict:
     joint and segment angles, foot strike angle and T_c; per contact law the mean T_c and how
     many touchdowns are valid under it."""
     out = {}
-    for side in mocap.SIDES:
+    for side in SIDES:
         rows = [(td, r) for td, r in zip(c.steps.touchdowns, c.results) if td.side == side and td.valid_data]
         if not rows:
             continue

@@ -1,0 +1,57 @@
+"""The whole measurement of a run against its standing trial: cleaning, units, marker map,
+labels, axes, joint centres, kinematics and touchdowns, every check on the way."""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass
+
+from ..io import markerset as msets
+from ..io.mocap import Trial
+from .clean import clean
+from .filters import CUTOFF_HZ
+from .joints import Calibration, calibrate
+from .kinematics import Kinematics, kinematics
+from .labels import check_labels, check_static
+from .touchdowns import FOOT_SPEED_FRACTION, FORCE_THRESHOLD_N, Steps, touchdowns
+from .units import resolve_units
+
+
+@dataclass(frozen=True)
+class Options:
+    """What compare lets a user set about the measurement."""
+
+    markers: str | None = None  # marker map: shipped name or TOML file; None: recognised
+    cutoff_hz: float = CUTOFF_HZ  # design cut-off of the markers' low-pass (filters.py)
+    force_threshold_n: float = FORCE_THRESHOLD_N  # vertical force at touchdown
+    foot_speed_fraction: float = FOOT_SPEED_FRACTION  # without a plate: touchdown when the
+    #                     foot's speed over the ground falls below this fraction of the running speed
+
+
+@dataclass
+class Measurement:
+    trial: Trial  # the run as processed: units, labels, cleaning
+    calibration: Calibration
+    kinematics: Kinematics
+    steps: Steps
+
+
+def measure(trial: Trial, static: Trial, height: float, options: Options = Options()) -> Measurement:
+    """Units, marker map, labels, axes, joint centres, kinematics and touchdowns of a run
+    (`height`: the runner's stature, m), every check on the way; refuses with one line naming
+    the file. The trials are taken as read (io.mocap.read) and copied: the Measurement holds
+    the processed ones (cleaned, in m, labels as the standing trial's)."""
+    trial, static = copy.deepcopy(trial), copy.deepcopy(static)
+    for t in (static, trial):  # a trial without units is cleaned once they are known
+        if t.units:
+            clean(t)
+    ms = msets.load(options.markers) if options.markers else msets.recognise(trial.markers)
+    resolve_units(static, trial, height, ms)
+    check_static(static, ms)
+    trial.require(ms.running(), f"the running trial ({ms.name} markers)")
+    check_labels(static, trial, ms)
+    cal = calibrate(static, trial, ms, height)
+    kin = kinematics(trial, cal, options.cutoff_hz)
+    steps = touchdowns(trial, kin, cal, options.force_threshold_n, options.foot_speed_fraction)
+    steps.notes[:0] = [f"marker map: {ms.name} ({ms.title})"] + static.notes
+    return Measurement(trial, cal, kin, steps)

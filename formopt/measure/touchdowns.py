@@ -1,0 +1,240 @@
+"""Touchdowns: when each foot meets the ground, its strike pattern and touchdown state.
+
+From the vertical force where there is a force plate (FORCE_THRESHOLD_N, rising): a single
+treadmill plate sees both feet, the side is the foot that is lower then. Otherwise from the
+foot's speed over the ground (belt added), falling below FOOT_SPEED_FRACTION of the running
+speed. The cadence they give is checked against the feet's own rhythm: a force file that does
+not span the marker file is refused. Strike pattern from the foot strike angle (foot angle at
+touchdown relative to standing; Altman & Davis 2012, Gait Posture 35:298-300): rearfoot
+> 8 deg, forefoot < -1.6 deg, midfoot between. A touchdown whose markers around it (+-30 ms)
+were missing, spiked, frozen, or whose clusters were not rigid (residual > 12 mm) is listed
+with valid_data False and left out of the means.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..io.markerset import SIDES
+from ..io.mocap import MocapError, Trial
+from .filters import lowpass
+from .joints import Calibration
+from .kinematics import Kinematics
+
+FORCE_THRESHOLD_N = 50.0  # vertical force at touchdown
+FOOT_SPEED_FRACTION = 0.5  # without a plate: the foot's speed over the ground below this
+#                            fraction of the running speed
+RIGID = 0.012  # m: a cluster's rms residual beyond this is not a rigid body at that frame
+STEP_WINDOW = 0.03  # s each side of a touchdown whose markers must be sound
+SPEED_RANGE = (0.5, 12.0)  # m/s: running
+CADENCE_TOLERANCE = 0.1  # relative: touchdowns against the feet's rhythm
+REARFOOT_DEG, FOREFOOT_DEG = 8.0, -1.6  # Altman & Davis (2012) foot strike angle thresholds
+FORCE_CUTOFF_HZ = 50.0  # low-pass of the force before the threshold (at most 0.4 of its rate)
+SEPARATION = {"force plate": 0.15, "kinematics": 0.25}  # s: a touchdown within this of the
+#                                                        last one is the same contact
+
+
+@dataclass(frozen=True)
+class Touchdown:
+    time: float  # s
+    side: str  # "R" or "L"
+    frame: int  # marker frame just before the contact
+    strike: str  # "heel", "midfoot", "forefoot"
+    foot_strike_angle: float  # rad, foot angle relative to standing, toe up positive
+    segments: dict[str, float]  # rad: trunk (tilt), thigh, shank (from the downward vertical,
+    #                             end ahead positive), foot (relative to standing)
+    angles: dict[str, float]  # rad: trunk, hip, knee, ankle (formopt's joint angles)
+    rates: dict[str, float]  # rad/s: thigh, shank, foot (absolute)
+    hip_velocity: tuple[float, float]  # m/s, ground frame (belt added)
+    hip_height: float  # m above the lower foot point
+    hip_from_point: dict[str, tuple[float, float]]  # m: the hip from the heel and the forefoot (forward, up)
+    valid_data: bool = True
+    problems: tuple[str, ...] = ()  # why valid_data is False
+
+    def state(self) -> np.ndarray:
+        """formopt's touchdown state vector (model.STATE)."""
+        a, w = self.angles, self.rates
+        return np.array([a["trunk"], a["hip"], a["knee"], a["ankle"], *self.hip_velocity, 0.0,
+                         w["thigh"], w["shank"], w["foot"]])
+
+
+@dataclass
+class Steps:
+    touchdowns: list[Touchdown]
+    cadence_spm: float
+    belt_speed: float  # m/s: the stance foot's backward speed (0 overground)
+    speed: float  # m/s: the runner's speed over the ground
+    method: str  # "force plate" or "kinematics"
+    notes: list[str] = field(default_factory=list)  # from the reader and the checks
+
+    @property
+    def valid(self) -> list[Touchdown]:
+        return [td for td in self.touchdowns if td.valid_data]
+
+    @property
+    def left_out(self) -> list[str]:
+        """The steps not used, and why."""
+        return [f"{td.time:.3f} s ({td.side}): {'; '.join(td.problems)}"
+                for td in self.touchdowns if not td.valid_data]
+
+
+def strike_pattern(foot_strike_angle: float) -> str:
+    """Rearfoot ("heel"), "midfoot" or "forefoot" from the foot strike angle (rad)."""
+    deg = math.degrees(foot_strike_angle)
+    return "heel" if deg > REARFOOT_DEG else "forefoot" if deg < FOREFOOT_DEG else "midfoot"
+
+
+def force_plate_touchdowns(force, force_rate: float, up, threshold: float = FORCE_THRESHOLD_N,
+                           source: str = "") -> np.ndarray:
+    """Times (s) where the low-passed force (samples, 3; N) along `up` rises through
+    `threshold` N, one per contact."""
+    vertical = lowpass(force, force_rate, min(FORCE_CUTOFF_HZ, 0.4 * force_rate), source) @ up
+    on = np.flatnonzero((vertical[1:] >= threshold) & (vertical[:-1] < threshold)) + 1
+    return _separated(on / force_rate, SEPARATION["force plate"])
+
+
+def foot_speed_touchdowns(velocity, rate: float, belt: float, speed: float,
+                          fraction: float = FOOT_SPEED_FRACTION) -> np.ndarray:
+    """Times (s) where the foot's speed over the ground (its lab velocity (frames, 2), forward
+    and up, m/s, plus the belt's `belt` m/s) falls below `fraction` of the running `speed`."""
+    slow = np.linalg.norm(velocity + [belt, 0.0], axis=1) < fraction * speed
+    on = np.flatnonzero(slow[1:] & ~slow[:-1]) + 1
+    return _separated(on / rate, SEPARATION["kinematics"])
+
+
+def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration,
+               force_threshold_n: float = FORCE_THRESHOLD_N,
+               foot_speed_fraction: float = FOOT_SPEED_FRACTION) -> Steps:
+    """Touchdowns of both feet, their side, strike pattern, touchdown state and validity;
+    the cadence and speed checked (module docstring)."""
+    foot_low = {s: np.minimum(kin.points[f"{s}.heel"][:, 1], kin.points[f"{s}.forefoot"][:, 1])
+                for s in SIDES}
+    motion = {s: _foot_motion(kin, cal, s) for s in SIDES}
+    belt = _belt_speed(trial, motion)
+    pelvis = np.mean([kin.points[f"{s}.hip"][:, 0] for s in SIDES], axis=0)
+    speed = belt + float(np.median(np.gradient(pelvis, 1.0 / kin.rate)))
+    if not SPEED_RANGE[0] <= speed <= SPEED_RANGE[1]:
+        raise MocapError(f"{trial.source}: a running speed of {speed:.3g} m/s is outside "
+                         f"{SPEED_RANGE[0]:g}-{SPEED_RANGE[1]:g} m/s: wrong units or rate")
+    if trial.force is not None:
+        method = "force plate"
+        times = [(t, min(SIDES, key=lambda s: foot_low[s][int(t * kin.rate)]))
+                 for t in force_plate_touchdowns(trial.force, trial.force_rate, cal.axes.up,
+                                                 force_threshold_n, trial.source)
+                 if int(t * kin.rate) < len(kin.t)]
+    else:
+        method = "kinematics"
+        times = sorted((t, s) for s in SIDES for t in foot_speed_touchdowns(
+            motion[s][0], kin.rate, belt, speed, foot_speed_fraction))
+    if len(times) < 2:
+        raise MocapError(f"{trial.source}: fewer than two touchdowns found ({method})")
+    cadence = 60.0 / float(np.median(np.diff([t for t, _ in times])))
+    notes = list(trial.notes) + list(cal.notes)
+    _check_cadence(trial, kin, foot_low, cadence, notes)
+    steps = []
+    window = max(1, round(STEP_WINDOW * kin.rate))
+    for t, side in times:
+        frame = math.floor(t * kin.rate) - 1
+        if 2 <= frame < len(kin.t) - 2:
+            problems = _problems(trial, kin, cal, side, frame, window)
+            steps.append(_touchdown(kin, side, frame, t, belt, foot_low[side][frame], problems))
+    bad = sum(not td.valid_data for td in steps)
+    if bad:
+        notes.append(f"{bad} of {len(steps)} touchdowns have unsound markers around them: "
+                     f"listed, left out of the means")
+    return Steps(steps, cadence, belt, speed, method, notes)
+
+
+def _foot_motion(kin: Kinematics, cal: Calibration, side: str):
+    """The foot cluster's centre: sagittal velocity (frames, 2; m/s, lab) and height (m);
+    the foot's angular velocity (rad/s)."""
+    cluster = cal.points[f"{side}.heel"][0]
+    centre = cal.axes.sagittal(np.mean([kin.markers[n] for n in cluster], axis=0))
+    dt = 1.0 / kin.rate
+    return np.gradient(centre, dt, axis=0), centre[:, 1], np.gradient(kin.angles[f"{side}.foot"], dt)
+
+
+def _belt_speed(trial: Trial, motion: dict) -> float:
+    """The ground's backward speed (m/s; 0 overground): the foot cluster's while it rests flat
+    (in the lowest third of its heights, turning under 0.5 rad/s, moving up or down under
+    0.1 m/s)."""
+    speeds = []
+    for v, height, omega in motion.values():
+        rest = (height < np.percentile(height, 35)) & (np.abs(omega) < 0.5) & (np.abs(v[:, 1]) < 0.1)
+        if rest.sum() >= 5:
+            speeds.append(-float(np.median(v[rest, 0])))
+    if not speeds:
+        raise MocapError(f"{trial.source}: no stance found: the feet never rest on the ground "
+                         f"(is the rate, {trial.rate:g} Hz, right?)")
+    return float(np.mean(speeds))
+
+
+def _problems(trial: Trial, kin: Kinematics, cal: Calibration, side: str, frame: int,
+              window: int) -> tuple[str, ...]:
+    """What is wrong with the markers of this leg and the pelvis around a touchdown."""
+    lo, hi = max(frame - window, 0), frame + window + 1
+    clusters = {c for name, (c, _, _) in cal.points.items() if name.startswith(side + ".")}
+    names = sorted({n for c in clusters for n in c if n in trial.markers})
+    out = []
+    unsound = [n for n in names if n in trial.suspect and trial.suspect[n][lo:hi].any()]
+    if unsound:
+        out.append(f"missing or spiked samples in {', '.join(unsound)}")
+    for c in sorted(clusters):
+        worst = float(np.max(kin.residual[c][lo:hi]))
+        if worst > RIGID:
+            out.append(f"the cluster {', '.join(c)} is not rigid ({worst * 1e3:.0f} mm)")
+    return tuple(out)
+
+
+def _check_cadence(trial: Trial, kin: Kinematics, foot_low: dict, cadence: float, notes: list) -> None:
+    """The touchdowns' cadence against each foot's rhythm (twice its stride frequency): they
+    disagree when the force and marker files do not match."""
+    def peak(signal, rate, lo, hi):
+        spectrum = np.abs(np.fft.rfft(signal - signal.mean()))
+        freqs = np.fft.rfftfreq(len(signal), 1.0 / rate)
+        band = (freqs > lo) & (freqs < hi)
+        return float(freqs[band][np.argmax(spectrum[band])]) if band.any() else float("nan")
+
+    feet = 120.0 * np.mean([peak(foot_low[s], kin.rate, 0.5, 2.5) for s in SIDES])
+    if not abs(cadence / feet - 1) < CADENCE_TOLERANCE:
+        raise MocapError(f"{trial.source}: the touchdowns give a cadence of {cadence:.0f} steps/min "
+                         f"but the feet move at {feet:.0f}: the force and marker data do not "
+                         f"cover the same time (lengths or rates)")
+    notes.append(f"cadence {cadence:.1f} steps/min; the feet's rhythm {feet:.1f}")
+
+
+def _separated(times, gap: float) -> np.ndarray:
+    """`times` (sorted, s) without those within `gap` s after the last one kept."""
+    out = []
+    for t in times:
+        if not out or t - out[-1] > gap:
+            out.append(float(t))
+    return np.array(out)
+
+
+def _touchdown(kin: Kinematics, side: str, frame: int, time: float, belt: float, low: float,
+               problems: tuple[str, ...]) -> Touchdown:
+    """The touchdown state at `frame`: segment and joint angles, central-difference rates and
+    hip velocity (belt added), the hip's height over the lower foot point `low`."""
+    dt = 1.0 / kin.rate
+
+    def rate(key):
+        return float((kin.angles[key][frame + 1] - kin.angles[key][frame - 1]) / (2 * dt))
+
+    a = {k: float(kin.angles[f"{side}.{k}"][frame]) for k in ("thigh", "shank", "foot")}
+    trunk = float(kin.angles["trunk"][frame])
+    hip_p = kin.points[f"{side}.hip"]
+    v = (hip_p[frame + 1] - hip_p[frame - 1]) / (2 * dt)
+    return Touchdown(time=time, side=side, frame=frame, strike=strike_pattern(a["foot"]),
+                     foot_strike_angle=a["foot"], segments={"trunk": trunk, **a},
+                     angles={"trunk": trunk, "hip": a["thigh"] + trunk, "knee": a["thigh"] - a["shank"],
+                             "ankle": a["foot"] - a["shank"]},
+                     rates={k: rate(f"{side}.{k}") for k in ("thigh", "shank", "foot")},
+                     hip_velocity=(float(v[0] + belt), float(v[1])),
+                     hip_height=float(hip_p[frame][1] - low),
+                     hip_from_point={p: tuple(map(float, hip_p[frame] - kin.points[f"{side}.{p}"][frame]))
+                                     for p in ("heel", "forefoot")},
+                     valid_data=not problems, problems=problems)

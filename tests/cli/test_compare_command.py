@@ -1,0 +1,53 @@
+"""formopt compare on RBDS001 T35: its JSON, CSV and OpenSim exports, a scene across trials,
+and bad input refused with exit 2."""
+
+import json
+
+from formopt.cli import main
+from helpers import DATA
+
+RBDS = DATA / "rbds"
+RUN35, STATIC = RBDS / "RBDS001runT35.c3d", RBDS / "RBDS001static.c3d"
+RUN25, FORCES25 = RBDS / "RBDS001runT25markers.txt", RBDS / "RBDS001runT25forces.txt"
+
+
+def test_cli_compare_json_exports_and_bad_input(tmp_path, capsys):
+    code = main(["compare", "--trial", str(RUN35), "--static", str(STATIC), "--mass", "62",
+                 "--height", "1.81", "--json", "--out", str(tmp_path)])
+    data = json.loads(capsys.readouterr().out)
+    assert code == 0
+    td = data["touchdowns"][0]
+    assert {"segment_angles_deg", "foot_strike_angle_deg", "angles_deg", "rates_dps",
+            "hip_velocity_mps", "method", "strike_point", "valid_data", "contact_laws"} <= set(td)
+    assert set(td["segment_angles_deg"]) == {"trunk", "thigh", "shank", "foot"}
+    assert set(data["settings"]) >= {"cutoff_hz", "effective_cutoff_hz", "force_threshold_n", "contact",
+                                     "friction", "bounds_deg", "body", "markers"}
+    # 10 Hz design cut-off run forward and back at 150 Hz: -3 dB at 0.806 of it (test_filters)
+    assert data["settings"]["effective_cutoff_hz"] == 8.06
+    # every valid T35 step is a step of the dominant strike (studies.compare.compare: those
+    # whose impact point is the optimum's, else all valid ones), so each gets an optimum,
+    # started from the mean step's: all of them converge
+    valid = [t for t in data["touchdowns"] if t["valid_data"]]
+    assert data["optimum"]["success"] and data["per_step"]["converged"] == data["per_step"]["steps"] == len(valid)
+    assert len((tmp_path / "touchdowns.csv").read_text().splitlines()) == len(data["touchdowns"]) + 1
+    trc = (tmp_path / "markers.trc").read_text().splitlines()
+    assert trc[0].startswith("PathFileType\t4") and trc[2].split("\t")[2] == "4500"
+    mot = (tmp_path / "angles.mot").read_text().splitlines()
+    assert "endheader" in mot and mot[mot.index("endheader") + 1].startswith("time\tpelvis_tilt")
+    assert main(["compare", "--trial", str(tmp_path / "none.c3d"), "--static", str(STATIC),
+                 "--mass", "62", "--height", "1.81"]) == 2
+    assert "no such file" in capsys.readouterr().err
+
+
+def test_scene_file_gives_one_table_across_trials(tmp_path, capsys):
+    scene = tmp_path / "runners.toml"
+    scene.write_text(f'[compare]\nmass = 62\nheight = 1.81\nstatic = "{STATIC}"\nper_step = false\n'
+                     f'bounds = {{ knee = [0, 90] }}\n[[trial]]\ntrial = "{RUN35}"\n'
+                     f'[[trial]]\ntrial = "{RUN25}"\nforces = "{FORCES25}"\n')
+    assert main(["compare", "--scene", str(scene), "--out", str(tmp_path / "out"), "--starts", "1"]) == 0
+    rows = (tmp_path / "out" / "trials.csv").read_text().splitlines()
+    assert len(rows) == 1 + 4 and "RBDS001runT25markers.txt" in rows[-1]
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[compare]\nmas = 62\n')
+    assert main(["compare", "--scene", str(bad)]) == 2
+    assert "unknown key 'mas'" in capsys.readouterr().err

@@ -1,0 +1,68 @@
+"""Touchdown rules: the force threshold on a synthetic force with known contacts, the foot-speed
+rule against the force plate on RBDS001 T25 (which has forces), the strike pattern's
+thresholds (Altman & Davis 2012)."""
+
+import copy
+import math
+
+import numpy as np
+import pytest
+
+from formopt.measure import measure
+from formopt.measure.touchdowns import (FOREFOOT_DEG, REARFOOT_DEG, force_plate_touchdowns,
+                                        foot_speed_touchdowns, strike_pattern)
+from trials import HEIGHT
+
+UP = np.array([0.0, 1.0, 0.0])
+
+
+def test_strike_patterns_from_the_foot_strike_angle():
+    assert strike_pattern(math.radians(REARFOOT_DEG + 0.1)) == "heel"
+    assert strike_pattern(math.radians(REARFOOT_DEG - 0.1)) == "midfoot"
+    assert strike_pattern(math.radians(FOREFOOT_DEG + 0.1)) == "midfoot"
+    assert strike_pattern(math.radians(FOREFOOT_DEG - 0.1)) == "forefoot"
+
+
+def test_force_threshold_on_contacts_of_known_onset():
+    """Half-sine stances of 1500 N, 0.25 s long, every 0.35 s, with 20 N noise: each onset
+    found within 2 ms of where the noise-free force crosses 50 N, once per contact."""
+    rate, onsets = 1000.0, np.arange(0.2, 5.0, 0.35)
+    t = np.arange(int(5.5 * rate)) / rate
+    fz = np.zeros_like(t)
+    for t0 in onsets:
+        inside = (t >= t0) & (t < t0 + 0.25)
+        fz[inside] = 1500 * np.sin(np.pi * (t[inside] - t0) / 0.25)
+    fz += np.random.default_rng(1).normal(scale=20.0, size=len(t))
+    force = np.column_stack([0.05 * fz, fz, np.zeros_like(t)])  # Y up, a little fore-aft force
+    crossing = onsets + 0.25 / np.pi * math.asin(50.0 / 1500.0)
+    found = force_plate_touchdowns(force, rate, UP, 50.0)
+    assert len(found) == len(onsets) and found == pytest.approx(crossing, abs=0.002)
+
+
+def test_foot_speed_rule_on_a_foot_of_known_stance():
+    """A foot that moves back with a 3 m/s belt in stance (0.2 s) and swings forward between:
+    its speed over the ground falls below half the running speed at each stance's start."""
+    rate, speed, stances = 150.0, 3.0, np.arange(0.3, 4.0, 0.7)
+    t = np.arange(int(4.5 * rate)) / rate
+    v = np.zeros((len(t), 2))
+    v[:, 0] = 2 * speed  # swing: ahead of the hip, over the ground 3 m/s + belt
+    for t0 in stances:
+        v[(t >= t0) & (t < t0 + 0.2), 0] = -speed  # stance: carried back by the belt
+    found = foot_speed_touchdowns(v, rate, belt=speed, speed=speed, fraction=0.5)
+    assert found == pytest.approx(np.ceil(stances * rate - 1e-9) / rate, abs=1 / rate)
+
+
+def test_foot_speed_touchdowns_agree_with_the_force_plate(run25, static, measured):
+    """RBDS001 T25 without its force file: the foot's speed over the ground (half the running
+    speed) gives the force plate's touchdowns to a frame or two (6.7 ms a frame)."""
+    trial = copy.copy(run25)
+    trial.force, trial.force_rate = None, None
+    kinematic = measure(trial, static, HEIGHT).steps
+    assert kinematic.method == "kinematics"
+    force_times = np.array([td.time for td in measured[2.5].steps.touchdowns])
+    gaps = [td.time - force_times[np.argmin(np.abs(force_times - td.time))] for td in kinematic.touchdowns]
+    assert abs(np.median(gaps)) < 0.005 and np.percentile(np.abs(gaps), 90) < 0.015
+    assert kinematic.cadence_spm == pytest.approx(measured[2.5].steps.cadence_spm, rel=0.02)
+    assert [td.side for td in kinematic.touchdowns[:10]] == \
+        [measured[2.5].steps.touchdowns[np.argmin(np.abs(force_times - td.time))].side
+         for td in kinematic.touchdowns[:10]]
