@@ -102,6 +102,16 @@ def impact_function(model: Model, strike: str, outputs=None, graph: str = "SX",
                        list(INPUTS), list(indicators), {"default_in": [0.0, math.nan, math.nan]})
 
 
+def on_ground(function: ca.Function, friction: float, slope: float) -> ca.Function:
+    """`function` (impact_function's) as a Function of the touchdown state x alone on a fixed
+    ground (friction, slope rad): for mapped and compiled batches that take x only."""
+    check_ground(friction, slope)
+    x = ca.SX.sym("x", function.size1_in(0)) if function.is_a("SXFunction") else \
+        ca.MX.sym("x", function.size1_in(0))
+    return ca.Function(function.name(), [x], function.call([x, friction, slope]), ["x"],
+                       function.name_out())
+
+
 def _indicators(model: Model, strike: str, law: str, x, friction, slope) -> dict:
     """Every output of impact_function as expressions of (x, friction, slope). Longer than
     60 lines: the three laws share the contact rows, W and the indicators built from them."""

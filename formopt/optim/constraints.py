@@ -24,6 +24,7 @@ import casadi as ca
 import numpy as np
 
 from ..mechanics.model import STRIKES, ground_axes, landmarks
+from .variables import FRICTION, SLOPE
 
 # The second point must strike at least this fast (m/s, normal): a grazing touch (zero normal
 # velocity, which absorbs nothing) dips below the ground by less than the integration error,
@@ -71,12 +72,12 @@ def posture_constraints(posture, problem, law, u, x, out, p, reference_hip,
 
     posture: variables.Posture; problem: posture.Problem; law: contact.LAWS; u, x: the scaled
     variables and the touchdown state (SX/MX); out: the impact's indicators under the law;
-    p: the NLP's parameters [speed, mu, reference state]; reference_hip: (x, z) of
+    p: the NLP's parameters (variables.PARAMETERS); reference_hip: (x, z) of
     the reference's hip over the strike point (m), used when the gait's placement is not
     given; landing: landing_function's outputs when the problem needs the landing.
     """
     inf = np.inf
-    mu = p[1]
+    mu = p[FRICTION]
     records = []
     total_t, total_n = out["impulse_total"][0], out["impulse_total"][1]
     if law == "no-slip":
@@ -106,7 +107,7 @@ def posture_constraints(posture, problem, law, u, x, out, p, reference_hip,
         records.append(Record(f"clearance_{other}", 0.0, inf, "m",
                               "the other foot point touches the ground: past here the strike "
                               "pattern changes", out["clearance"]))
-    t_axis, n_axis = (ca.DM(a) for a in ground_axes(posture.slope))
+    t_axis, n_axis = ground_axes(p[SLOPE])
     hip = landmarks(x, posture.model.body, points[0])["hip"][0]
     gait = problem.gait
     if gait is not None:

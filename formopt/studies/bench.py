@@ -20,7 +20,7 @@ import casadi as ca
 import numpy as np
 
 from ..mechanics.compiled import external
-from ..mechanics.impact import Impact, impact_function
+from ..mechanics.impact import Impact, impact_function, on_ground
 from ..mechanics.landing import LandingModel, simulate_state
 from ..mechanics.model import STATE, build_model
 from ..optim.posture import PostureProblem
@@ -101,13 +101,13 @@ def run(quick: bool = False, progress=None) -> tuple[list[Row], float]:
     for graph in ("SX", "MX"):
         for compiled in (False, True):
             say(f"impact: leg, {graph}, {'compiled' if compiled else 'interpreted'}")
-            impact = Impact(leg, scene.strike, compiled=compiled, graph=graph)
+            impact = Impact(leg, scene.strike, scene.slope, scene.friction, compiled=compiled, graph=graph)
             values = np.array([float(np.ravel(impact.evaluate(x)["T_c"])[0]) for x in states])
             rows.append(Row("leg", f"{graph} {'compiled' if compiled else 'interpreted'}", "impact",
                             _median_time(impact.evaluate, states),
                             float(np.max(np.abs(values - reference) / reference)),
                             note=f"{impact.function.n_instructions()} instructions"))
-    batch_states_per_s = _batch(leg, scene.strike, states)
+    batch_states_per_s = _batch(leg, scene.strike, states, scene.friction, scene.slope)
 
     # landings: step and integrator for the leg, then the ladder
     landing_states = states[: 5 if quick else 20]
@@ -169,10 +169,11 @@ def run(quick: bool = False, progress=None) -> tuple[list[Row], float]:
     return rows, batch_states_per_s
 
 
-def _batch(model, strike, states, n=10000):
-    """Compiled, mapped indicators of the paper's leg: states per second on one core."""
-    f = impact_function(model, strike, outputs=["T", "T_c", "T_a", "impulse", "mu_signed",
-                                                 "dv_trunk", "dv_com"])
+def _batch(model, strike, states, friction, slope, n=10000):
+    """Compiled, mapped indicators of the paper's leg on the scene's ground (friction, slope
+    rad): states per second on one core."""
+    f = on_ground(impact_function(model, strike, outputs=["T", "T_c", "T_a", "impulse", "mu_signed",
+                                                          "dv_trunk", "dv_com"]), friction, slope)
     batch = external(f.map(n, "serial"))
     X = ca.DM(np.resize(states, (n, len(STATE))).T)
     batch(X)

@@ -7,23 +7,27 @@ chunk every point starts from the solved point before it (its posture and IPOPT'
 with IPOPT's warm-start options), so a point costs a few iterations. The first point of a
 chunk, and any point whose warm start does not converge, runs the scene's multi-start.
 
-Speed and friction are parameters of the NLP: one problem serves the whole grid. Any other
-parameter (touchdown angles, hip_vz, slope) builds the problem for its value (once per value
-per worker). Rows are written as chunks finish, resumable and on a process pool or on Dask,
+Speed, friction and slope are parameters of the NLP: one problem serves the whole grid (a
+landing problem's slope is built into its landing model and a Coulomb problem's into its
+fixed mode, so there the problem is built for each slope). Any other parameter (touchdown angles, hip_vz) builds the problem for its
+value (once per value per worker). Rows are written as chunks finish, resumable and on a process pool or on Dask,
 exactly as landing sweeps (studies.sweep).
 """
 
 from __future__ import annotations
 
 import itertools
+import math
 
 import numpy as np
 
 from ..mechanics.errors import InputError
-from ..optim.multistart import starts
+from ..optim import multistart
 from ..optim.solution import verdict_of
 
-NLP_PARAMETERS = {"speed_mps": 0, "hip_vx": 0, "friction": 1}  # index in the NLP's p
+# sweep parameter -> PostureProblem.parameters keyword, and its value's conversion to SI
+NLP_PARAMETERS = {"speed_mps": ("speed", float), "hip_vx": ("speed", float),
+                  "friction": ("friction", float), "slope_deg": ("slope", math.radians)}
 CHUNK = 40  # points per warm-started chain
 COLUMNS = ["status", "success", "verdict", "objective", "T_c", "iterations", "warm", "valid", "error"]
 WARM = {"ipopt.warm_start_init_point": "yes", "ipopt.warm_start_bound_push": 1e-9,
@@ -59,22 +63,27 @@ def rows(scene, chunk) -> list[list]:
     out, previous = [], None
     for values in chunk:
         try:
-            other = {k: v for k, v in values.items() if k not in NLP_PARAMETERS}
+            built = NLP_PARAMETERS if not _slope_built_in(scene) else {
+                k: v for k, v in NLP_PARAMETERS.items() if k != "slope_deg"}
+            other = {k: v for k, v in values.items() if k not in built}
             key = repr((scene.path, sorted(other.items())))
             if key not in _PROBLEMS:
                 _PROBLEMS.clear()  # one problem at a time: a grid moves through them in order
                 _PROBLEMS[key] = apply(scene, other).posture_problem()
             pp = _PROBLEMS[key]
-            p = pp.p0.copy()
-            for name, k in NLP_PARAMETERS.items():
-                if name in values:
-                    p[k] = values[name]
+            p = pp.parameters(**{built[k][0]: built[k][1](v) for k, v in values.items() if k in built})
             row, previous = _solve(pp, p, previous if previous and previous[0] is pp else None)
             out.append(row)
         except (InputError, RuntimeError) as err:
             out.append([""] * (len(columns(scene)) - 1) + [str(err).replace("\n", " ")])
             previous = None
     return out
+
+
+def _slope_built_in(scene) -> bool:
+    """Whether the scene's problem is built for its slope: a landing (its landing model) or
+    Coulomb (its mode, fixed from the reference touchdown on the problem's ground)."""
+    return scene.problem.landing or scene.contact == "coulomb"
 
 
 def _solve(pp, p, previous):
@@ -87,12 +96,8 @@ def _solve(pp, p, previous):
         w, x, impact, ok = pp.accept(sol, stats, p)
     if not warm or not ok:
         warm = False
-        tried = []
-        for w0 in starts(pp):
-            sol, stats, _ = pp.solve_from(w0, p)
-            w, x, impact, ok = pp.accept(sol, stats, p)
-            tried.append((ok, -float(pp.objective_function(w, p)), sol, stats, w, x, impact))
-        ok, _, sol, stats, w, x, impact = max(tried, key=lambda t: t[:2])
+        run = multistart.best(multistart.runs(pp, p))
+        sol, stats, w, x, impact, ok = run.sol, run.stats, run.w, run.x, run.impact, run.start.converged
     verdict = verdict_of(pp.active(w, p, sol)) if ok else f"NO OPTIMUM ({stats['return_status']})"
     row = [*np.degrees(x[pp.index]), stats["return_status"], ok, verdict,
            float(pp.objective_function(w, p)), impact.T_c, int(stats["iter_count"]), warm,
