@@ -25,7 +25,7 @@ def numeric_projection(model, q, points, slope):
 @pytest.mark.parametrize("slope", [0.0, np.radians(-10.0), np.radians(12.0)])
 def test_energy_split_and_projection(body, kind, strike, slope):
     model = build_model(body, kind)
-    impact = Impact(model, strike, slope)
+    impact = Impact(model, strike, slope, 0.8)
     points = STRIKES[strike]
     for x in random_states(25, strike=strike, slope=slope):
         r = impact(x)
@@ -43,7 +43,7 @@ def test_energy_split_and_projection(body, kind, strike, slope):
 
 def test_energy_is_never_created(leg):
     for strike in ("heel", "forefoot"):
-        impact = Impact(leg, strike)
+        impact = Impact(leg, strike, 0.0, 0.8)
         results = [impact(x) for x in random_states(200, strike=strike)]
         assert all(r.T_a <= r.T * (1 + 1e-12) for r in results)
 
@@ -53,7 +53,7 @@ def test_independent_of_the_natural_coordinates(body, leg, strike):
     """The same body in other natural coordinates gives the same indicators."""
     other = split_leg(body)
     assert other.n == 12 and leg.n == 10
-    a, b = Impact(leg, strike), Impact(other, strike)
+    a, b = Impact(leg, strike, 0.0, 0.8), Impact(other, strike, 0.0, 0.8)
     for x in random_states(20, strike=strike):
         ra, rb = a(x), b(x)
         assert abs(ra.T_c - rb.T_c) <= 1e-10 * ra.T
@@ -82,7 +82,7 @@ def test_mass_matrix_reproduces_the_bar_formula(body, leg):
 def test_kinetic_energy_matches_segment_sums(body, leg):
     """T from the constant mass matrix equals the sum of 1/2 m v^2 + 1/2 J w^2 per segment."""
     x = random_states(1)[0]
-    r = Impact(leg, "forefoot")(x)
+    r = Impact(leg, "forefoot", 0.0, 0.8)(x)
     qd = r.qd_minus
     w = {"thigh": x[7], "shank": x[8], "foot": x[9]}
     at_hip = body["trunk"].mass + body["swing_leg"].mass
@@ -96,7 +96,7 @@ def test_kinetic_energy_matches_segment_sums(body, leg):
 def test_mu_c_two_ways(leg):
     for strike in STRIKES:
         for x in random_states(20, strike=strike):
-            r = Impact(leg, strike)(x)
+            r = Impact(leg, strike, 0.0, 0.8)(x)
             assert (r.mu_c is None) == (r.mu_c_momentum is None) == (r.impulse_total[1] <= 0)
             if r.mu_c is not None:
                 assert abs(r.mu_c - r.mu_c_momentum) <= 1e-8 * max(1.0, r.mu_c)
