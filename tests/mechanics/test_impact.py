@@ -100,3 +100,42 @@ def test_mu_c_two_ways(leg):
             assert (r.mu_c is None) == (r.mu_c_momentum is None) == (r.impulse_total[1] <= 0)
             if r.mu_c is not None:
                 assert abs(r.mu_c - r.mu_c_momentum) <= 1e-8 * max(1.0, r.mu_c)
+
+
+@pytest.mark.parametrize("strike", ["heel", "forefoot", "flat"])
+@pytest.mark.parametrize("law", ["no-slip", "coulomb", "frictionless"])
+def test_one_graph_serves_every_ground(leg, strike, law):
+    """Friction and slope are inputs of the impact Function: one Impact moved to another
+    ground (`at`) gives what an Impact built there gives, and the result says which ground."""
+    slope, mu = np.radians(8.0), 0.45
+    built_here = Impact(leg, strike, slope, mu, law=law)
+    moved = Impact(leg, strike, 0.0, 0.8, law=law).at(mu, slope)
+    assert moved.function is not built_here.function  # another graph, the same map
+    for x in random_states(10, strike=strike, slope=slope):
+        a, b = built_here(x), moved(x)
+        assert (b.friction, b.slope) == (mu, slope)
+        assert b.to_dict()["friction"] == mu and b.to_dict()["slope"] == slope
+        assert a.T_c == b.T_c and a.valid == b.valid and a.checks == b.checks
+        assert a.contact_laws == b.contact_laws
+
+
+@pytest.mark.parametrize("friction, slope", [(-1.0, 0.0), (0.0, 0.0), (np.nan, 0.0), (np.inf, 0.0),
+                                             (0.8, np.radians(70.0)), (0.8, np.nan)])
+def test_a_ground_the_impact_cannot_take_is_refused(leg, friction, slope):
+    from formopt.mechanics.errors import InputError
+    with pytest.raises(InputError, match="friction|slope"):
+        Impact(leg, "forefoot", slope, friction)
+    with pytest.raises(InputError, match="friction|slope"):
+        Impact(leg, "forefoot", 0.0, 0.8).at(friction, slope)
+
+
+def test_checks_name_what_each_warning_is(leg):
+    """valid follows the check codes: every check but the flat foot's split fails."""
+    from formopt.mechanics.impact import INFORMATION, Check
+    for strike in ("heel", "forefoot", "flat"):
+        for x in random_states(30, strike=strike):
+            r = Impact(leg, strike, 0.0, 0.8)(x)
+            assert len(r.checks) == len(r.warnings)
+            assert r.valid == all(c in INFORMATION for c in r.checks)
+            assert (Check.FLAT_SPLIT in r.checks) == (strike == "flat")
+            assert r.to_dict()["checks"] == [c.value for c in r.checks]
