@@ -288,14 +288,19 @@ def trials_table(rows) -> str:
     return "\n".join(out)
 
 
-def bench_table(rows, batch: float) -> str:
-    lines = [f"{'level':15s} {'option':28s} {'work':13s} {'time':>11s} {'error':>10s} "
+def bench_table(result) -> str:
+    """The bench's rows (studies.bench.Bench), the ground they were measured on, the batch."""
+    rows = result.rows
+    lines = [f"ground: friction {result.friction:g}, slope {math.degrees(result.slope):+.1f} deg "
+             "(the bench scene's, data/full_body.toml)", "",
+             f"{'level':15s} {'option':28s} {'work':13s} {'time':>11s} {'error':>10s} "
              f"{'mu_c err':>9s} {'dv err':>9s}  note"]
     for r in rows:
         unit = f"{r.time_s * 1e6:9.1f} us" if r.time_s < 1e-2 else f"{r.time_s * 1e3:9.2f} ms"
         lines.append(f"{r.level:15s} {r.option:28s} {r.work:13s} {unit:>11s} {r.error:10.2e} "
                      f"{r.error_mu_c:9.2e} {r.error_dv:9.2e}  {r.note}")
-    lines.append(f"\ncompiled mapped batch, paper's leg: {batch:,.0f} states/s (one core)")
+    lines.append(f"\ncompiled mapped batch, paper's leg: {result.batch_states_per_s:,.0f} states/s "
+                 "(one core)")
     return "\n".join(lines)
 
 

@@ -42,6 +42,24 @@ class Row:
     note: str = ""
 
 
+@dataclass(frozen=True)
+class Bench:
+    """What `formopt bench` measured, and on which ground (the bench scene's)."""
+
+    rows: list[Row]
+    batch_states_per_s: float  # compiled, mapped indicators of the paper's leg, one core
+    friction: float  # the ground's friction coefficient of every impact, landing and optimum
+    slope: float  # rad, the ground's slope
+
+    def to_dict(self) -> dict:
+        """JSON-ready (non-finite numbers as null; the slope in degrees)."""
+        def clean(v):
+            return None if isinstance(v, float) and not math.isfinite(v) else v
+        return {"rows": [{k: clean(v) for k, v in asdict(r).items()} for r in self.rows],
+                "batch_states_per_s": self.batch_states_per_s, "friction": self.friction,
+                "slope_deg": math.degrees(self.slope)}
+
+
 def read_states(path=None) -> np.ndarray:
     """The bench states (data/bench_states.csv) as model.STATE vectors (SI)."""
     with Path(path or DATA / "bench_states.csv").open() as fh:
@@ -63,8 +81,9 @@ def _median_time(f, args, repeats=1):
     return statistics.median(times)
 
 
-def run(quick: bool = False, progress=None) -> tuple[list[Row], float]:
-    """All rows, and the compiled batch throughput of the paper's leg (states/s)."""
+def run(quick: bool = False, progress=None) -> Bench:
+    """All rows, the compiled batch throughput of the paper's leg (states/s), the ground.
+    Longer than 60 lines: one section per kind of work, in the order of the table."""
     say = progress or (lambda text: None)
     scene = load(DATA / "full_body.toml")
     states = read_states()[: 20 if quick else 200]
@@ -166,7 +185,7 @@ def run(quick: bool = False, progress=None) -> tuple[list[Row], float]:
                         _median_time(pp.solve_from, [pp.to_unit(scene.state)], 3 if quick else 10),
                         float(np.max(np.abs(posture - optima["leg"]))),
                         note=f"{stats['return_status']}; posture error against the leg's exact optimum, deg"))
-    return rows, batch_states_per_s
+    return Bench(rows, batch_states_per_s, scene.friction, scene.slope)
 
 
 def _batch(model, strike, states, friction, slope, n=10000):
@@ -178,10 +197,3 @@ def _batch(model, strike, states, friction, slope, n=10000):
     X = ca.DM(np.resize(states, (n, len(STATE))).T)
     batch(X)
     return n / _median_time(lambda _: batch(X), range(7))
-
-
-def to_json(rows: list[Row], batch: float) -> dict:
-    def clean(v):
-        return None if isinstance(v, float) and not math.isfinite(v) else v
-    return {"rows": [{k: clean(v) for k, v in asdict(r).items()} for r in rows],
-            "batch_states_per_s": batch}
