@@ -9,9 +9,10 @@ chunk, and any point whose warm start does not converge, runs the scene's multi-
 
 Speed, friction and slope are parameters of the NLP: one problem serves the whole grid (a
 landing problem's slope is built into its landing model and a Coulomb problem's into its
-fixed mode, so there the problem is built for each slope). Any other parameter (touchdown angles, hip_vz) builds the problem for its
-value (once per value per worker). Rows are written as chunks finish, resumable and on a process pool or on Dask,
-exactly as landing sweeps (studies.sweep).
+fixed mode, so there the problem is built for each slope). Any other parameter (touchdown
+angles, hip_vz) builds the problem for its value (once per value per worker). Each row says
+the friction and slope it was solved on. Rows are written as chunks finish, resumable and on
+a process pool or on Dask, exactly as landing sweeps (studies.sweep).
 """
 
 from __future__ import annotations

@@ -112,7 +112,7 @@ def test_coulomb_matches_integrated_darboux_keller_equations(mu):
 @pytest.mark.parametrize("strike", ["heel", "forefoot"])
 def test_coulomb_gradients_match_finite_differences_in_each_mode(leg, strike):
     f = on_ground(impact_function(leg, strike, outputs=["T_c", "impulse", "slip", "mode"],
-                        law="coulomb"), 0.6, 0.0)
+                                  law="coulomb"), 0.6, 0.0)
     x = ca.SX.sym("x", f.size1_in(0))
     out = f(x=x)
     values = ca.vertcat(out["T_c"], out["impulse"], out["slip"])
@@ -135,7 +135,7 @@ def test_coulomb_gradients_match_finite_differences_in_each_mode(leg, strike):
 
 def test_absorbed_energy_is_tied_to_impulse_and_velocities(leg):
     f = on_ground(impact_function(leg, "forefoot", law="coulomb",
-                        outputs=["T_c", "T", "T_a", "impulse", "qd_minus", "qd_plus"]), 0.8, 0.0)
+                                  outputs=["T_c", "T", "T_a", "impulse", "qd_minus", "qd_plus"]), 0.8, 0.0)
     for x in random_states(20, seed=9):
         o = {k: np.asarray(v, float).ravel() for k, v in f(x=x).items()}
         assert o["T"] - o["T_a"] == pytest.approx(o["T_c"], rel=1e-9, abs=1e-12)
@@ -243,7 +243,7 @@ def test_compliant_contact_converges_to_the_coulomb_impulse(leg, strike, mu):
 @pytest.mark.parametrize("mu", (0.3, 0.8, 2.0))
 def test_velocity_level_law_equals_darboux_keller_outside_a_reversed_slide(leg, strike, mu):
     f = on_ground(impact_function(leg, strike, law="coulomb",
-                        outputs=["W_c", "v_contact", "impulse", "mode", "approach"]), mu, 0.0)
+                                  outputs=["W_c", "v_contact", "impulse", "mode", "approach"]), mu, 0.0)
     W, v = ca.SX.sym("W", 2, 2), ca.SX.sym("v", 2)
     velocity_level = ca.Function("velocity_level", [W, v], list(contact.velocity_level(W, v, mu)))
     compared = 0
