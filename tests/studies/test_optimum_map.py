@@ -80,6 +80,10 @@ def test_a_slope_axis_reuses_one_problem(tmp_path, monkeypatch):
     rows = sweep.run(scene, [("slope_deg", np.array([-4.0, 0.0, 4.0]))], tmp_path / "slope.csv",
                      progress=False)
     assert built == [scene.slope]
+    header = (tmp_path / "slope.csv").read_text().splitlines()[0].split(",")
+    assert header[:4] == ["slope_deg", "hip_deg", "knee_deg", "ankle_deg"]
+    assert header[4:] == [c for c in optimum_map.COLUMNS if c != "slope_deg"]  # the swept one once
+    assert all(float(r["friction"]) == scene.friction for r in rows)  # each row says its ground
     for r in rows:
         cold = solve(sweep.apply(scene, {"slope_deg": float(r["slope_deg"])}))
         assert r["success"] == "True" and cold.success
