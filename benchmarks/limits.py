@@ -17,6 +17,7 @@ import casadi as ca
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests" / "mechanics"))  # test_extremes
 from helpers import touchdown  # noqa: E402
 from test_extremes import body_with  # noqa: E402
 
