@@ -17,6 +17,7 @@ import casadi as ca
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests" / "mechanics"))  # test_extremes
 from helpers import touchdown  # noqa: E402
 from test_extremes import body_with  # noqa: E402
 
@@ -29,7 +30,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 def row(label, body_kw=None, strike="forefoot", slope=0.0, **state):
     model = build_model(body_with(**(body_kw or {})))
-    r = Impact(model, strike, math.radians(slope))(touchdown(**state))
+    r = Impact(model, strike, math.radians(slope), 0.8)(touchdown(**state))  # the shipped friction
     err = abs(r.T_c + r.T_a - r.T) / r.T if r.T > 0 else 0.0
     mu = f"{r.mu_c:.3g}" if r.mu_c is not None else "undefined"
     print(f"{label:44s} {r.condition:12.3g} {err:14.2e} {r.T_c:12.4g}  {mu}")

@@ -136,8 +136,8 @@ def figure5(out: Path) -> list[str]:
         for foot in feet:
             r = impact(touchdown(strike, foot, "no-slip"))
             for law, v in r.contact_laws.items():
-                (p_t, p_n), = v["impulse"].values()
-                rows.setdefault((strike, law), []).append((foot, v["T_c"], p_t, p_n, v["valid"]))
+                (p_t, p_n), = v.impulse.values()
+                rows.setdefault((strike, law), []).append((foot, v.T_c, p_t, p_n, v.valid))
     styles = {"no-slip": "-", "coulomb": "--", "frictionless": ":"}
     for (strike, law), values in rows.items():
         foot, T_c, p_t, p_n, ok = (np.array(c) for c in zip(*values))

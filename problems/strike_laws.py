@@ -79,15 +79,15 @@ def main():
     body = scaled_body(MASS, HEIGHT)
     model = build_model(body, "leg")
     reference, n = measured_leg()
-    impacts = {s: Impact(model, s, friction=FRICTION) for s in ("heel", "forefoot")}
+    impacts = {s: Impact(model, s, 0.0, FRICTION) for s in ("heel", "forefoot")}
     rows = []
     for strike, angle, x in touchdowns(reference, body):
         r = impacts[strike](x)
         for law, v in r.contact_laws.items():
-            t, p_n = (sum(p[k] for p in v["impulse"].values()) for k in (0, 1))
+            t, p_n = (sum(p[k] for p in v.impulse.values()) for k in (0, 1))
             rows.append({"strike": strike, "foot_angle_deg": angle, "ankle_deg": math.degrees(x[3]),
-                         "law": law, "T_c_J": v["T_c"], "impulse_ratio": abs(t) / p_n if p_n > 0 else math.nan,
-                         "slip_mps": v["slip_velocity"], "mode": v["mode"] or "", "valid": v["valid"]})
+                         "law": law, "T_c_J": v.T_c, "impulse_ratio": abs(t) / p_n if p_n > 0 else math.nan,
+                         "slip_mps": v.slip_velocity, "mode": v.mode or "", "valid": v.valid})
     print(f"RBDS001, right touchdowns of T35 (n = {n}): trunk {math.degrees(reference[0]):.1f}, hip "
           f"{math.degrees(reference[1]):.1f}, knee {math.degrees(reference[2]):.1f} deg; hip velocity "
           f"({reference[4]:.2f}, {reference[5]:.2f}) m/s; only the ankle changes; friction {FRICTION}")

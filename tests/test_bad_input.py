@@ -179,7 +179,7 @@ def test_numeric_api_refuses_absurd_states():
     from formopt.mechanics.body import paper_body
     from formopt.mechanics.errors import InputError
     from formopt.mechanics.model import build_model
-    impact = Impact(build_model(paper_body(), "leg"), "forefoot")
+    impact = Impact(build_model(paper_body(), "leg"), "forefoot", 0.0, 0.8)
     good = [0.0, 0.4, 0.3, -0.2, 3.5, -0.6, 0.0, 0.0, 0.0, 0.0]
     for k, bad in ((4, 1e200), (0, float("nan")), (9, -float("inf")), (2, 40.0)):
         x = list(good)

@@ -23,11 +23,11 @@ def add_parser(commands):
 
 
 def run(args) -> int:
-    rows, batch = bench.run(args.quick, progress=lambda text: print(f"  {text}", file=sys.stderr))
+    result = bench.run(args.quick, progress=lambda text: print(f"  {text}", file=sys.stderr))
     out = Path(args.out)
-    table = [dataclasses.asdict(r) for r in rows]
+    table = [dataclasses.asdict(r) for r in result.rows]
     files = [write_csv(out / "bench.csv", [list(table[0])] + [list(r.values()) for r in table]),
-             save_figure(pareto_figure(rows), out / f"pareto.{args.format}")]
-    report = {**bench.to_json(rows, batch), "files": [str(f) for f in files]}
-    emit(args, report, out / "bench.json", bench_table(rows, batch), files)
+             save_figure(pareto_figure(result.rows), out / f"pareto.{args.format}")]
+    report = {**result.to_dict(), "files": [str(f) for f in files]}
+    emit(args, report, out / "bench.json", bench_table(result), files)
     return 0

@@ -23,7 +23,7 @@ from ..mechanics.landing import (INTEGRATORS, JOINT_LIMITS, JOINT_MODELS, RUNNIN
 from ..mechanics.errors import InputError, one_line
 from ..mechanics.model import MODELS, RATE_LIMIT, SPEED_LIMIT, STATE, STRIKES, Model, Swing, build_model
 from ..optim.objective import OBJECTIVES, STANCE_PEAK_BW
-from ..optim.posture import Gait, PostureProblem, Problem
+from ..optim.posture import Gait, Inadmissible, PostureProblem, Problem, admissible
 from ..optim.variables import RANGE_OF_MOTION_DEG
 
 # The segments each model needs; a segment a model does not use may be given and is ignored.
@@ -104,7 +104,8 @@ class Scene:
     def impact(self) -> Impact:
         """The impact map of the scene's touchdown (graph and compilation from [numerics])."""
         return Impact(self.model(), self.strike, self.slope, self.friction,
-                      self.numerics.compiled is True, self.numerics.graph, self.contact)
+                      compiled=self.numerics.compiled is True, graph=self.numerics.graph,
+                      law=self.contact)
 
     def landing(self) -> LandingModel:
         """The landing equations (joints, ground, integrator and compilation from the scene)."""
@@ -122,10 +123,6 @@ class Scene:
                               self.friction, joints=self.joints, duration=self.integration.duration,
                               graph=n.graph, compiled=n.compiled is True, hessian=n.hessian,
                               integrator=n.integrator, law=self.contact)
-
-    def with_state(self, state) -> "Scene":
-        """The same scene with another touchdown state (model.STATE, SI)."""
-        return replace(self, state=np.asarray(state, float))
 
     @property
     def touchdown(self) -> dict:
@@ -341,9 +338,6 @@ def _optimize(data, model, strike, law) -> tuple[Problem, tuple[str, ...]]:
     if "trunk" in variables and model != "leg-trunk":
         raise SceneError("optimize.variables", "'trunk' needs scene.model = \"leg-trunk\": the "
                                                "paper's leg has a point-mass trunk whose angle does not matter")
-    if strike == "flat" and "ankle" in variables:
-        raise SceneError("optimize.variables", "'ankle' follows from a flat strike (the sole on "
-                                               "the ground); leave it out")
     notes = []
     bounds_deg = _table(data, "bounds_deg", set(ANGLES), set(), "optimize") if "bounds_deg" in data else {}
     bounds_dps = _table(data, "bounds_dps", set(RATES), set(), "optimize") if "bounds_dps" in data else {}
@@ -397,10 +391,6 @@ def _optimize(data, model, strike, law) -> tuple[Problem, tuple[str, ...]]:
     max_iterations = _integer(data, "max_iterations", "optimize", default=200, low=1, high=100000)
     max_slip = None
     if "max_slip_mps" in data:
-        if law == "no-slip":
-            raise SceneError("optimize.max_slip_mps", "bounds the slip that ground.contact = "
-                                                      "\"coulomb\" or \"frictionless\" allows; "
-                                                      "under \"no-slip\" the foot never slips")
         max_slip = _number(data, "max_slip_mps", "optimize", low=0.0, high=100.0)
     gait = _gait(data["gait"], model) if "gait" in data else None
     radius = None
@@ -417,16 +407,10 @@ def _optimize(data, model, strike, law) -> tuple[Problem, tuple[str, ...]]:
     problem = Problem(tuple(variables), tuple(lower), tuple(upper), objective, overstride, hip_height,
                       starts, seed, tolerance, contact_friction, max_iterations, max_slip, gait,
                       radius, peak)
-    if problem.landing and strike == "flat":
-        raise SceneError("optimize.objective", "the landing (T_c_total, contact_friction) starts with "
-                                               "a heel or forefoot strike, not a flat one")
-    if problem.landing and law != "no-slip":
-        raise SceneError("ground.contact", f"the landing objective (T_c_total, contact_friction) "
-                                           f"holds the strike point: no-slip only, not {law!r}")
-    if law == "coulomb" and strike == "flat":
-        raise SceneError("ground.contact", "optimising a flat strike under \"coulomb\" is not "
-                                           "available (see the README): use \"no-slip\" or "
-                                           "\"frictionless\"")
+    try:
+        admissible(law, strike, problem)
+    except Inadmissible as err:
+        raise SceneError(err.key, err.reason) from None
     return problem, tuple(notes)
 
 

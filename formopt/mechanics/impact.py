@@ -23,7 +23,10 @@ external force). They agree to rounding; both are reported as a check.
 
 from __future__ import annotations
 
+import copy
+import math
 from dataclasses import asdict, dataclass, field
+from enum import Enum
 
 import casadi as ca
 import numpy as np
@@ -38,12 +41,13 @@ GRAPHS = ("SX", "MX")
 # Relative tolerance of the validity checks: an optimum on a constraint (mu_c = friction,
 # normal impulse = 0) is valid, not a rounding error away from invalid.
 RTOL = 1e-6
+INPUTS = ("x", "friction", "slope")  # impact_function's inputs
 
 
 def projection(model: Model, q, qd, contact_jacobian):
-    """The projection impact map at (q, q'-) for the given contact rows (SX in, SX out)."""
+    """The projection impact map at (q, q'-) for the given contact rows (SX/MX in and out)."""
     Phi_b = model.constraint_jacobian(q)
-    Phi = ca.vertcat(Phi_b, ca.DM(contact_jacobian))
+    Phi = ca.vertcat(Phi_b, contact_jacobian)
     M_inv = ca.DM(model.M_inv)
     G = Phi @ M_inv @ Phi.T
     b = Phi @ qd
@@ -53,9 +57,12 @@ def projection(model: Model, q, qd, contact_jacobian):
             "n_body": Phi_b.shape[0]}
 
 
-def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
-                    graph: str = "SX", law: str = "no-slip", friction: float = 0.8) -> ca.Function:
-    """CasADi Function of the touchdown state x (model.STATE, SI) -> every impact indicator.
+def impact_function(model: Model, strike: str, outputs=None, graph: str = "SX",
+                    law: str = "no-slip") -> ca.Function:
+    """CasADi Function (x, friction, slope) -> every impact indicator: x the touchdown state
+    (model.STATE, SI), friction the ground's Coulomb coefficient, slope the ground's angle
+    (rad, positive uphill). One graph serves every ground; an input left out is NaN (every
+    caller says which ground it uses).
 
     Outputs under the contact law `law` (contact.LAWS; Coulomb with `friction`): T, T_c, T_a
     (J); qd_minus, qd_plus (natural coordinates, m/s); impulse ([t, n] per strike point, N s);
@@ -79,13 +86,37 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
     (contact.velocity_level), which equals Darboux-Keller for one point outside a reversed
     slide; its mode is stick or slide.
     """
-    points = STRIKES[strike]
-    t, n = ground_axes(slope)
     if graph not in GRAPHS:
         raise InputError(f"graph {graph!r}: expected one of {', '.join(GRAPHS)}")
     if law not in contact.LAWS:
         raise InputError(f"contact law {law!r}: expected one of {', '.join(contact.LAWS)}")
-    x = getattr(ca, graph).sym("x", len(STATE))
+    sym = getattr(ca, graph)
+    x, friction, slope = sym.sym("x", len(STATE)), sym.sym("friction"), sym.sym("slope")
+    indicators = _indicators(model, strike, law, x, friction, slope)
+    if outputs is not None:
+        unknown = set(outputs) - set(indicators)
+        if unknown:
+            raise InputError(f"unknown impact outputs {sorted(unknown)}: expected {list(indicators)}")
+        indicators = {k: indicators[k] for k in outputs}
+    return ca.Function(f"impact_{strike}", [x, friction, slope], list(indicators.values()),
+                       list(INPUTS), list(indicators), {"default_in": [0.0, math.nan, math.nan]})
+
+
+def on_ground(function: ca.Function, friction: float, slope: float) -> ca.Function:
+    """`function` (impact_function's) as a Function of the touchdown state x alone on a fixed
+    ground (friction, slope rad): for mapped and compiled batches that take x only."""
+    check_ground(friction, slope)
+    x = ca.SX.sym("x", function.size1_in(0)) if function.is_a("SXFunction") else \
+        ca.MX.sym("x", function.size1_in(0))
+    return ca.Function(function.name(), [x], function.call([x, friction, slope]), ["x"],
+                       function.name_out())
+
+
+def _indicators(model: Model, strike: str, law: str, x, friction, slope) -> dict:
+    """Every output of impact_function as expressions of (x, friction, slope). Longer than
+    60 lines: the three laws share the contact rows, W and the indicators built from them."""
+    points = STRIKES[strike]
+    t, n = ground_axes(slope)
     q, qd = model.state(x, points[0])
     rows = model.contact_rows(points, slope, tangential=points[:1] if model.tangential else ())
     imp = projection(model, q, qd, rows)
@@ -95,7 +126,7 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
     no_slip_impulse = _split(lam) if strike == "flat" else lam
     # the contact laws, in impulse space of the strike points' rows (contact.py)
     W = contact.admissible_inverse_inertia(ca.DM(model.M_inv), model.constraint_jacobian(q))
-    normal_rows = ca.DM(model.contact_rows(points, slope, tangential=()))
+    normal_rows = model.contact_rows(points, slope, tangential=())
     laws = {"no-slip": (no_slip_impulse, imp["qd_plus"], imp["T_c"],
                         _slip(model, points, imp["qd_plus"], t), ca.DM(-1))}
     W_n, v_n = normal_rows @ W @ normal_rows.T, normal_rows @ qd
@@ -110,7 +141,7 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
     space = {"W_c": ca.DM.nan(2, 2), "v_contact": ca.DM.nan(2, 1),
              "dv_trunk_per_impulse": ca.DM.nan(2, 2), "dv_com_per_impulse": ca.DM.nan(2, 2)}
     if strike != "flat" and model.tangential:
-        C = ca.DM(model.contact_rows(points, slope))
+        C = model.contact_rows(points, slope)
         W_c, v0 = C @ W @ C.T, C @ qd
         space = {"W_c": W_c, "v_contact": v0, "dv_trunk_per_impulse": trunk_matrix @ W @ C.T,
                  "dv_com_per_impulse": momentum_matrix @ W @ C.T / model.mass}
@@ -121,7 +152,7 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
         laws["coulomb"] = laws["frictionless"]
         mu_posture = ca.DM(0)
     else:  # two contacts of one rigid foot: the velocity-level law
-        C = ca.DM(model.contact_rows(points, slope, tangential=points[:1]))
+        C = model.contact_rows(points, slope, tangential=points[:1])
         W_c, v0 = C @ W @ C.T, C @ qd
         p, mode, slip = contact.velocity_level(W_c, v0, friction)
         laws["coulomb"] = (_split(p), qd + W @ C.T @ p, contact.absorbed(W_c, v0, p), slip, mode)
@@ -165,12 +196,7 @@ def impact_function(model: Model, strike: str, slope: float = 0.0, outputs=None,
         for item in ("T_c", "impulse", "slip", "dv_trunk", "dv_com"):
             indicators[f"{item}_{key}"] = values[item]
     indicators["mode_coulomb"] = per_law["coulomb"]["mode"]
-    if outputs is not None:
-        unknown = set(outputs) - set(indicators)
-        if unknown:
-            raise InputError(f"unknown impact outputs {sorted(unknown)}: expected {list(indicators)}")
-        indicators = {k: indicators[k] for k in outputs}
-    return ca.Function(f"impact_{strike}", [x], list(indicators.values()), ["x"], list(indicators))
+    return indicators
 
 
 def _split(impulse):
@@ -183,7 +209,7 @@ def _split(impulse):
 
 def _slip(model: Model, points, qd_plus, t):
     """Tangential velocity (m/s) of the first strike point after the impact."""
-    return ca.dot(qd_plus[model.cols(points[0])], ca.DM(t))
+    return ca.dot(qd_plus[model.cols(points[0])], t)
 
 
 def _momentum_impulse(momentum, t, n):
@@ -191,7 +217,51 @@ def _momentum_impulse(momentum, t, n):
     effective mass, guided vertically): the whole linear-momentum change, since the guide
     stands for the rest of the runner, not for the ground. On a slope it is not normal to the
     ground: a vertical impulse needs |t| / n = tan(slope)."""
-    return ca.vertcat(ca.dot(momentum, ca.DM(t)), ca.dot(momentum, ca.DM(n)))
+    return ca.vertcat(ca.dot(momentum, t), ca.dot(momentum, n))
+
+
+class Check(str, Enum):
+    """What a checked impact found (ImpactResult.checks, one per warning)."""
+
+    BELOW_GROUND = "below_ground"  # the other foot point is below the ground
+    NO_APPROACH = "no_approach"  # a strike point does not approach the ground
+    PULL = "pull"  # the ground would have to pull a strike point
+    NO_PUSH = "no_push"  # the total normal impulse does not push: mu_c undefined
+    SLIP = "slip"  # no-slip needs more than the ground's friction
+    FLAT_SPLIT = "flat_split"  # a flat foot's tangential split is not determined (information)
+
+
+INFORMATION = frozenset({Check.FLAT_SPLIT})  # checks that do not make an impact invalid
+MAX_SLOPE = math.radians(60.0)  # rad: the steepest ground a scene takes (ground.slope_deg)
+
+
+def check_ground(friction: float, slope: float) -> None:
+    """Refuse a ground the impact cannot take: friction in (0, inf), |slope| <= 60 deg."""
+    if not (math.isfinite(friction) and friction > 0):
+        raise InputError(f"friction = {friction!r}: must be a finite number > 0")
+    if not abs(slope) <= MAX_SLOPE:
+        raise InputError(f"slope = {slope!r} rad: must lie in [-60, 60] deg")
+
+
+@dataclass(frozen=True)
+class LawResult:
+    """One contact law's indicators at an impact (SI; impulses the ground's on the foot)."""
+
+    T_c: float  # J
+    impulse: dict[str, tuple[float, float]]  # contact -> (tangential, normal), N s
+    mode: str | None  # Coulomb's mode (contact.MODES); None for the other laws
+    slip_velocity: float  # m/s, the strike point's tangential velocity after the impact
+    dv_trunk: tuple[float, float] | None  # m/s; None without a trunk
+    dv_com: tuple[float, float]  # m/s
+    valid: bool  # the shared checks hold, the ground pushes, (no-slip) the friction suffices
+
+    def to_dict(self) -> dict:
+        """JSON-ready dictionary (lists instead of tuples)."""
+        out = asdict(self)
+        out["impulse"] = {k: list(v) for k, v in self.impulse.items()}
+        for key in ("dv_trunk", "dv_com"):
+            out[key] = None if out[key] is None else list(out[key])
+        return out
 
 
 @dataclass(frozen=True)
@@ -212,19 +282,20 @@ class ImpactResult:
     qd_minus: np.ndarray  # natural-coordinate velocities before, m/s
     qd_plus: np.ndarray  # and after
     condition: float  # condition number of Phi_q M^-1 Phi_q^T
-    friction: float  # the ground's friction coefficient used for `valid`
+    friction: float  # the ground's friction coefficient of this impact
+    slope: float  # rad, the ground's slope of this impact (positive uphill)
     valid: bool  # every assumption of the impact model holds
     warnings: tuple[str, ...]
-    law: str = "no-slip"  # the contact law of the fields above (contact.LAWS)
-    slip_velocity: float = 0.0  # m/s, tangential velocity of the strike point after the impact
-    mode: str | None = None  # Coulomb's mode (slide, stick, reversed slide); None otherwise
-    mu_c_posture: float | None = None  # eq. 7, |W_tn / W_tt|; None for a flat strike
-    contact_laws: dict = field(default_factory=dict)  # law -> its T_c, impulse, mode, slip,
-    # dv_trunk, dv_com, valid (JSON-ready)
+    checks: tuple[Check, ...]  # what each warning is (Check), in the same order
+    law: str  # the contact law of the fields above (contact.LAWS)
+    slip_velocity: float  # m/s, tangential velocity of the strike point after the impact
+    mode: str | None  # Coulomb's mode (slide, stick, reversed slide); None otherwise
+    mu_c_posture: float | None  # eq. 7, |W_tn / W_tt|; None for a flat strike
+    contact_laws: dict[str, LawResult] = field(default_factory=dict)  # every law's indicators
 
     def to_dict(self) -> dict:
         """JSON-ready dictionary (lists instead of arrays)."""
-        out = asdict(self)
+        out = {k: getattr(self, k) for k in self.__dataclass_fields__}
         for key in ("qd_minus", "qd_plus"):
             out[key] = [float(v) for v in out[key]]
         out["impulse"] = {k: list(v) for k, v in self.impulse.items()}
@@ -232,33 +303,47 @@ class ImpactResult:
         for key in ("impulse_total", "dv_com", "dv_trunk"):
             out[key] = None if out[key] is None else list(out[key])
         out["warnings"] = list(self.warnings)
+        out["checks"] = [c.value for c in self.checks]
+        out["contact_laws"] = {k: v.to_dict() for k, v in self.contact_laws.items()}
         return out
 
 
 class Impact:
-    """The impact map of one model, strike and ground, numeric and symbolic.
+    """The impact map of one model, strike and contact law, numeric and symbolic, on a ground.
 
-    `Impact(model, "heel").function` is the CasADi Function (differentiable);
-    `Impact(...)(x)` evaluates it and checks every assumption, returning an ImpactResult.
+    `Impact(model, "heel", slope, friction).function` is the CasADi Function of (x, friction,
+    slope) (differentiable; one graph for every ground); `Impact(...)(x)` evaluates it on the
+    Impact's ground and checks every assumption, returning an ImpactResult;
+    `impact.at(friction, slope)` is the same map (the same graph) on another ground.
     """
 
-    def __init__(self, model: Model, strike: str, slope: float = 0.0, friction: float = 0.8,
+    def __init__(self, model: Model, strike: str, slope: float, friction: float,
                  compiled: bool = False, graph: str = "SX", law: str = "no-slip"):
         if strike not in STRIKES:
             raise InputError(f"unknown strike {strike!r}: expected one of {', '.join(STRIKES)}")
+        check_ground(friction, slope)
         self.model, self.strike, self.slope, self.friction = model, strike, slope, friction
         self.compiled, self.graph, self.law = compiled, graph, law
-        self.function = impact_function(model, strike, slope, graph=graph, law=law,
-                                        friction=friction)
+        self.function = impact_function(model, strike, graph=graph, law=law)
         self._compiled = Compiled(self.function) if compiled else None
 
+    def at(self, friction: float, slope: float) -> "Impact":
+        """The same impact map (its graph and compiled code shared) on another ground."""
+        check_ground(friction, slope)
+        other = copy.copy(self)
+        other.friction, other.slope = friction, slope
+        return other
+
     def evaluate(self, x) -> dict[str, np.ndarray]:
-        """Every output of `function` at x, unchecked (the fast path; compiled if asked)."""
+        """Every output of `function` at x on the Impact's ground, unchecked (the fast path;
+        compiled if asked)."""
         if self._compiled is not None:
-            return self._compiled(x)
-        return {k: v.full() for k, v in zip(self.function.name_out(), self.function.call([x]))}
+            return self._compiled(x, self.friction, self.slope)
+        return {k: v.full() for k, v in zip(self.function.name_out(),
+                                            self.function.call([x, self.friction, self.slope]))}
 
     def __call__(self, x) -> ImpactResult:
+        """The checked impact at touchdown state x (model.STATE, SI)."""
         x = check_state(x)
         raw = self.evaluate(x)
         condition = float(np.linalg.cond(raw.pop("G")))
@@ -268,73 +353,81 @@ class Impact:
         if not condition < CONDITION_LIMIT:
             raise InputError(f"{self.strike} strike: the constraint Jacobian is singular at this "
                              f"posture (condition number {condition:.1e} of Phi_q M^-1 Phi_q^T)")
-        warnings = []
         if self.strike == "flat" and abs(out["clearance"]) > 1e-6:
             raise InputError(f"flat strike needs the sole on the ground: the forefoot is "
                              f"{out['clearance'] * 1e3:.1f} mm above it (adjust the ankle angle)")
-        if self.strike != "flat" and out["clearance"] < 0:
-            other = "heel" if points == ("forefoot",) else "forefoot"
-            warnings.append(f"the {other} is {-out['clearance'] * 1e3:.1f} mm below the ground")
-        for p, v in zip(points, np.atleast_1d(out["approach"])):
-            if v >= 0:
-                warnings.append(f"the {p} does not approach the ground (normal velocity {v:.3f} m/s)")
-        ahead = list(warnings)  # the checks every law shares
-        impulse = out["impulse"].reshape(-1, 2)
-        warnings += self._pull_warnings(points, impulse)
+        shared = self._shared_checks(out, points)
+        found = shared + self._pull_warnings(points, out["impulse"].reshape(-1, 2))
         total_t, total_n = out["impulse_total"]
         pushes = total_n > RTOL * max(abs(total_t), 1e-300)
         mu_c = abs(out["mu_signed"]) if pushes else None
-        mu_c_momentum = abs(out["mu_momentum_signed"]) if pushes else None
         if not pushes:
-            warnings.append("mu_c is undefined: the ground does not push (total normal impulse "
-                            f"{total_n:.3g} N s)")
+            found.append((Check.NO_PUSH, "mu_c is undefined: the ground does not push (total "
+                                         f"normal impulse {total_n:.3g} N s)"))
         elif self.law == "no-slip" and mu_c > self.friction * (1 + RTOL):
-            warnings.append(f"the foot slips: mu_c {mu_c:.3f} exceeds the friction {self.friction:g}")
+            found.append((Check.SLIP, f"the foot slips: mu_c {mu_c:.3f} exceeds the friction "
+                                      f"{self.friction:g}"))
         if self.strike == "flat" and self.law != "frictionless":
-            warnings.append("flat foot: the tangential split between heel and forefoot is not "
-                            "determined (shown in proportion to the normal impulses; the total is exact)")
-        determined = {p: (self.strike != "flat" or self.law == "frictionless", True) for p in points}
-        laws = {law: self._law_summary(out, law, points, ahead) for law in contact.LAWS}
-        mode = int(round(out["mode"]))
+            found.append((Check.FLAT_SPLIT, "flat foot: the tangential split between heel and "
+                                            "forefoot is not determined (shown in proportion to "
+                                            "the normal impulses; the total is exact)"))
+        laws = {law: self._law_result(out, law, points, not shared) for law in contact.LAWS}
+        chosen = laws[self.law]
         return ImpactResult(
-            strike=self.strike,
-            T=out["T"], T_c=out["T_c"], T_a=out["T_a"],
-            impulse={p: (float(t), float(n)) for p, (t, n) in zip(points, impulse)},
-            impulse_determined=determined,
-            impulse_total=tuple(float(v) for v in out["impulse_total"]),
-            mu_c=mu_c, mu_c_momentum=mu_c_momentum,
+            strike=self.strike, T=out["T"], T_c=out["T_c"], T_a=out["T_a"],
+            impulse=chosen.impulse,
+            impulse_determined={p: (self.strike != "flat" or self.law == "frictionless", True)
+                                for p in points},
+            impulse_total=(float(total_t), float(total_n)),
+            mu_c=mu_c, mu_c_momentum=abs(out["mu_momentum_signed"]) if pushes else None,
             dv_trunk=tuple(float(v) for v in out["dv_trunk"]) if self.model.trunk else None,
             dv_com=tuple(float(v) for v in out["dv_com"]),
             qd_minus=out["qd_minus"], qd_plus=out["qd_plus"],
-            condition=condition, friction=self.friction,
-            valid=not any(w for w in warnings if not w.startswith("flat foot")),
-            warnings=tuple(warnings), law=self.law, slip_velocity=out["slip"],
-            mode=contact.MODES.get(mode), contact_laws=laws,
-            mu_c_posture=abs(out["mu_posture"]) if self.strike != "flat" else None)
+            condition=condition, friction=self.friction, slope=self.slope,
+            valid=not any(c not in INFORMATION for c, _ in found),
+            warnings=tuple(w for _, w in found), checks=tuple(c for c, _ in found),
+            law=self.law, slip_velocity=out["slip"], mode=contact.MODES.get(int(round(out["mode"]))),
+            mu_c_posture=abs(out["mu_posture"]) if self.strike != "flat" else None,
+            contact_laws=laws)
 
-    def _pull_warnings(self, points, impulse) -> list[str]:
-        """Warnings for every strike point the ground would have to pull."""
+    def _shared_checks(self, out, points) -> list[tuple[Check, str]]:
+        """The checks every law shares: the other point above the ground, each strike point
+        approaching it."""
+        found = []
+        if self.strike != "flat" and out["clearance"] < 0:
+            other = "heel" if points == ("forefoot",) else "forefoot"
+            found.append((Check.BELOW_GROUND,
+                          f"the {other} is {-out['clearance'] * 1e3:.1f} mm below the ground"))
+        for p, v in zip(points, np.atleast_1d(out["approach"])):
+            if v >= 0:
+                found.append((Check.NO_APPROACH,
+                              f"the {p} does not approach the ground (normal velocity {v:.3f} m/s)"))
+        return found
+
+    def _pull_warnings(self, points, impulse) -> list[tuple[Check, str]]:
+        """A check for every strike point the ground would have to pull."""
         scale = max(float(np.max(np.abs(impulse))), 1e-300)
-        return [f"the ground pulls the {p} (normal impulse {normal:.4f} N s)"
+        return [(Check.PULL, f"the ground pulls the {p} (normal impulse {normal:.4f} N s)")
                 for p, (_, normal) in zip(points, impulse) if normal < -RTOL * scale]
 
-    def _law_summary(self, out, law, points, shared) -> dict | None:
-        """One law's indicators, JSON-ready; `valid`: the shared checks hold, the ground
-        pushes, and (no-slip) the friction suffices."""
+    def _law_result(self, out, law, points, shared_hold: bool) -> LawResult:
+        """One law's indicators; valid: the shared checks hold, the ground pushes, and
+        (no-slip) the friction suffices."""
         key = law.replace("-", "_")
         impulse = np.asarray(out[f"impulse_{key}"], float).reshape(-1, 2)
-        valid = not shared and not self._pull_warnings(points, impulse)
+        valid = shared_hold and not self._pull_warnings(points, impulse)
         t, n = impulse.sum(axis=0)
         if law == "no-slip":
             valid = valid and n > 0 and abs(t) <= self.friction * n * (1 + RTOL)
         mode = contact.MODES.get(int(round(out["mode_coulomb"]))) if law == "coulomb" else None
-        return {"T_c": float(out[f"T_c_{key}"]),
-                "impulse": {p: [float(a), float(b)] for p, (a, b) in zip(points, impulse)},
-                "mode": mode if self.model.tangential else None,
-                "slip_velocity": float(out[f"slip_{key}"]),
-                "dv_trunk": [float(v) for v in np.ravel(out[f"dv_trunk_{key}"])] if self.model.trunk else None,
-                "dv_com": [float(v) for v in np.ravel(out[f"dv_com_{key}"])],
-                "valid": bool(valid)}
+        return LawResult(
+            T_c=float(out[f"T_c_{key}"]),
+            impulse={p: (float(a), float(b)) for p, (a, b) in zip(points, impulse)},
+            mode=mode if self.model.tangential else None,
+            slip_velocity=float(out[f"slip_{key}"]),
+            dv_trunk=tuple(float(v) for v in np.ravel(out[f"dv_trunk_{key}"])) if self.model.trunk else None,
+            dv_com=tuple(float(v) for v in np.ravel(out[f"dv_com_{key}"])),
+            valid=bool(valid))
 
 
 def angular_momentum_impact(model: Model, q, qd, point: str) -> np.ndarray:

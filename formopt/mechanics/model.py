@@ -102,8 +102,12 @@ def check_state(x) -> np.ndarray:
     return x
 
 
-def ground_axes(slope: float):
-    """Tangent (forward, along the ground) and normal (up, out of the ground) unit vectors."""
+def ground_axes(slope):
+    """Tangent (forward, along the ground) and normal (up, out of the ground) unit vectors of
+    a ground of `slope` rad: numpy arrays for a number, CasADi columns for a symbol."""
+    if isinstance(slope, (ca.SX, ca.MX)):
+        c, s = ca.cos(slope), ca.sin(slope)
+        return ca.vertcat(c, s), ca.vertcat(-s, c)
     return np.array([np.cos(slope), np.sin(slope)]), np.array([-np.sin(slope), np.cos(slope)])
 
 
@@ -307,19 +311,20 @@ class Model:
         """Phi_b,q(q): the Jacobian of the body constraints, for a symbolic or numeric q."""
         return self._jacobian(q)
 
-    def contact_rows(self, points, slope: float, tangential=None) -> np.ndarray:
-        """Constant Jacobian rows [t; n] of each contact point held on a ground of `slope` rad.
+    def contact_rows(self, points, slope, tangential=None):
+        """Constant Jacobian rows [t; n] of each contact point held on a ground of `slope` rad
+        (a number: a numpy array; a CasADi symbol: the rows as expressions of it).
 
         `tangential` lists the points whose tangential row is kept (default: all).
         """
         t, n = ground_axes(slope)
         keep = points if tangential is None else tangential
-        rows = []
-        for p in points:
-            if p in keep:
-                rows.append(self.scatter(t[None, :], [p]))
-            rows.append(self.scatter(n[None, :], [p]))
-        return np.vstack(rows)
+        if not isinstance(slope, (ca.SX, ca.MX)):
+            return np.vstack([self.scatter(axis[None, :], [p]) for p in points
+                              for axis in ((t, n) if p in keep else (n,))])
+        def row(axis, p):  # axis_x e_x + axis_z e_z at the columns of p
+            return sum(axis[k] * ca.DM(self.scatter(np.eye(2)[k:k + 1], [p])) for k in range(2))
+        return ca.vertcat(*[row(axis, p) for p in points for axis in ((t, n) if p in keep else (n,))])
 
     # -- state -----------------------------------------------------------------------
     def state(self, x, strike_point: str):

@@ -1,4 +1,5 @@
-"""The multi-start: IPOPT from the reference posture and from seeded random postures.
+"""The multi-start: IPOPT from the reference posture and from seeded random postures, at
+any parameters p (one home: PostureProblem.solve and the optimum maps both run it).
 
 Only a start that IPOPT reports as converged, that satisfies every constraint record (the
 gait's equalities to 1e-9 m), whose impact passes the checked impact map and, for a landing,
@@ -9,10 +10,12 @@ converges the best last iterate is returned with success False and the statuses 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..mechanics import contact
+from ..mechanics.impact import ImpactResult
 from .solution import Local, Optimum, Start, distinct, explain
 
 DRAWS = 50  # random draws per wanted start of a landing problem
@@ -41,46 +44,73 @@ def starts(pp) -> list[np.ndarray]:
     return found
 
 
-def solve(pp, progress=None) -> Optimum:
-    """Run every start of posture problem `pp`; `progress(k, n, start)` after each."""
-    results, runs = [], []
+@dataclass(frozen=True)
+class Run:
+    """One start's IPOPT run at parameters p, accepted or not (PostureProblem.accept)."""
+
+    sol: dict  # IPOPT's solution (x, f, g, lam_x, lam_g)
+    stats: dict  # IPOPT's statistics
+    w: np.ndarray  # the decision vector it ended at
+    x: np.ndarray  # its touchdown state (STATE, SI)
+    impact: ImpactResult  # checked at x
+    start: Start  # where it began, how it ended, its objective
+    elapsed: float  # s
+
+
+def runs(pp, p, progress=None) -> list[Run]:
+    """Every start of posture problem `pp` (starts(pp)) at parameters p; `progress(k, n,
+    start)` after each."""
+    out = []
     for k, w0 in enumerate(starts(pp)):
-        sol, stats, elapsed = pp.solve_from(w0)
-        w, x, impact, converged = pp.accept(sol, stats)
-        status = stats["return_status"]
-        objective = float(pp.objective_function(w, pp.p0))
-        start = Start(k + 1, pp.posture.degrees(pp.to_state(w0)), status, converged, objective,
-                      pp.posture.degrees(x), int(stats["iter_count"]))
-        runs.append(start)
-        results.append((sol, w, x, start, elapsed, impact))
+        sol, stats, elapsed = pp.solve_from(w0, p)
+        w, x, impact, converged = pp.accept(sol, stats, p)
+        start = Start(k + 1, pp.posture.degrees(pp.to_state(w0, p)), stats["return_status"],
+                      converged, float(pp.objective_function(w, p)), pp.posture.degrees(x),
+                      int(stats["iter_count"]))
+        out.append(Run(sol, stats, w, x, impact, start, elapsed))
         if progress:
             progress(k + 1, pp.problem.starts, start)
-    converged = [r for r in results if r[3].converged]
-    sol, w, x, best, _, impact = min(converged or results, key=lambda r: r[3].objective)
+    return out
+
+
+def best(found: list[Run]) -> Run:
+    """The accepted run with the least objective; when none is accepted, the least of all."""
+    return min([r for r in found if r.start.converged] or found, key=lambda r: r.start.objective)
+
+
+def solve(pp, progress=None) -> Optimum:
+    """The multi-start of posture problem `pp` at its own parameters, as an Optimum;
+    `progress(k, n, start)` after each start."""
+    p = pp.p0
+    found = runs(pp, p, progress)
+    chosen = best(found)
+    converged = [r for r in found if r.start.converged]
     notes = []
     if not converged:
-        statuses = sorted({r[3].status for r in results})
+        statuses = sorted({r.start.status for r in found})
         notes.append(f"no start converged: {'; '.join(f'{s}: {explain(s)}' for s in statuses)}. "
                      "The state shown is the best last iterate, not an optimum")
     if pp.mode is not None:
         mode, direction = pp.mode
         notes.append(f"Coulomb mode fixed for every start from the reference touchdown: "
                      f"{contact.MODES[mode]}, sliding {'forward' if direction > 0 else 'backward'}"
-                     f" at first; the impact at the state shown ends in {impact.mode}")
+                     f" at first; the impact at the state shown ends in {chosen.impact.mode}")
     active, sensitivity = (), {}
     if converged:
-        active = pp.active(w, pp.p0, sol)
-        sensitivity = pp.sensitivity(w, pp.p0, sol["lam_x"], sol["lam_g"])
+        active = pp.active(chosen.w, p, chosen.sol)
+        sensitivity = pp.sensitivity(chosen.w, p, chosen.sol["lam_x"], chosen.sol["lam_g"])
+
     def terms(w):
-        return dict(zip(pp.term_names, map(float, np.asarray(pp.terms_function(w, pp.p0)).ravel())))
+        return dict(zip(pp.term_names, map(float, np.asarray(pp.terms_function(w, p)).ravel())))
     first = pp.start(pp.reference)
-    return Optimum(success=bool(converged), status=best.status, objective=best.objective,
-                   state=x, impact=impact, reference=pp.impact(pp.reference), active=active,
-                   sensitivity=sensitivity, starts=tuple(runs),
-                   local_optima=distinct([r[2][pp.index] for r in converged]),
-                   seed=pp.problem.seed, solve_time=float(np.median([r[4] for r in results])),
-                   build_time=pp.build_time, terms=terms(w),
-                   reference_objective=float(pp.objective_function(first, pp.p0)),
+    return Optimum(success=bool(converged), status=chosen.start.status,
+                   objective=chosen.start.objective, state=chosen.x, impact=chosen.impact,
+                   reference=pp.checked(pp.reference, p), active=active,
+                   sensitivity=sensitivity, starts=tuple(r.start for r in found),
+                   local_optima=distinct([r.x[pp.index] for r in converged]),
+                   seed=pp.problem.seed, solve_time=float(np.median([r.elapsed for r in found])),
+                   build_time=pp.build_time, terms=terms(chosen.w),
+                   reference_objective=float(pp.objective_function(first, p)),
                    reference_terms=terms(first),
                    cadence_spm=pp.problem.gait.cadence_spm if pp.problem.gait else None,
                    local=(Local(math.degrees(pp.problem.radius), pp.marginal(pp.reference))

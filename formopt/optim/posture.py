@@ -28,17 +28,15 @@ import numpy as np
 from ..mechanics import contact
 from ..mechanics.compiled import cached_nlpsol
 from ..mechanics.errors import InputError
-from ..mechanics.impact import Impact, ImpactResult, impact_function
+from ..mechanics.impact import Impact, ImpactResult, check_ground, impact_function
 from ..mechanics.landing import Joints, LandingModel, landing_function, simulate_state
 from ..mechanics.model import STRIKES, Model, ground_axes, positions
 from . import multistart
 from .constraints import posture_constraints, stack
 from .objective import STANCE_PEAK_BW, normalised, support
-from .solution import CONVERGED, Optimum, active_set
-from .variables import PARAMETERS, Posture
+from .solution import CONVERGED, Optimum, active_set, is_active
+from .variables import FRICTION, PARAMETERS, SLOPE, Posture
 
-ANGLES = ("trunk", "hip", "knee", "ankle")
-RATES = ("omega_trunk", "omega_thigh", "omega_shank", "omega_foot")
 LANDING_STEPS = 40  # RK4 steps over the contact phase between the two impacts
 GAIT_TOLERANCE = 1e-10  # m: IPOPT's constr_viol_tol when the gait's equalities are held
 
@@ -78,6 +76,45 @@ class Problem:
         return "T_c_total" in self.objective or self.contact_friction
 
 
+class Inadmissible(InputError):
+    """A contact law, strike and problem that do not go together; `key` names the scene key
+    that says so, `reason` why."""
+
+    def __init__(self, key: str, reason: str):
+        self.key, self.reason = key, reason
+        super().__init__(f"{key}: {reason}")
+
+
+def admissible(law: str, strike: str, problem: Problem) -> None:
+    """The one rule for what a contact law (contact.LAWS), a strike (model.STRIKES) and a
+    problem admit; raises Inadmissible (an InputError) naming the scene key."""
+    if law not in contact.LAWS:
+        raise Inadmissible("ground.contact", f"{law!r}: expected one of {', '.join(contact.LAWS)}")
+    if strike not in STRIKES:
+        raise Inadmissible("touchdown.strike", f"{strike!r}: expected one of {', '.join(STRIKES)}")
+    flat = strike == "flat"
+    if flat and "ankle" in problem.variables:
+        raise Inadmissible("optimize.variables", "'ankle' follows from a flat strike (the sole "
+                                                 "on the ground); leave it out")
+    if problem.landing and flat:
+        raise Inadmissible("optimize.objective", "the landing (T_c_total, contact_friction) "
+                                                 "starts with a heel or forefoot strike, not a flat one")
+    if problem.landing and law != "no-slip":
+        raise Inadmissible("ground.contact", "the landing objective (T_c_total, contact_friction) "
+                                             f"holds the strike point: no-slip only, not {law!r}")
+    if law == "coulomb" and flat:
+        raise Inadmissible("ground.contact", "a flat strike's Coulomb impact (two contacts, the "
+                                             "velocity-level law) switches mode inside the NLP: "
+                                             "optimise it as \"no-slip\" or \"frictionless\"")
+    if problem.max_slip is not None and law == "no-slip":
+        raise Inadmissible("optimize.max_slip_mps", "bounds the slip that ground.contact = "
+                                                    "\"coulomb\" or \"frictionless\" allows; "
+                                                    "under \"no-slip\" the foot never slips")
+    if problem.gait and problem.gait.foot_velocity is not None and flat:
+        raise Inadmissible("optimize.gait.foot_velocity_mps", "is the strike point's speed: a "
+                                                              "heel or forefoot strike, not a flat one")
+
+
 class PostureProblem:
     """The NLP of one model, strike, ground and problem; solve() runs the multi-start.
 
@@ -88,32 +125,24 @@ class PostureProblem:
     """
 
     def __init__(self, model: Model, strike: str, reference, problem: Problem,
-                 slope: float = 0.0, friction: float = 0.8, joints: Joints | None = None,
+                 slope: float, friction: float, joints: Joints | None = None,
                  duration: float = 0.2, graph: str = "SX", compiled: bool = False,
                  hessian: str = "auto", integrator: str = "rk4", law: str = "no-slip"):
         """`reference`: the touchdown state (STATE, SI) whose other values stay fixed;
+        `slope` (rad), `friction`: the problem's ground (p0; parameters of the NLP);
         `duration` (s): the longest landing; `graph`, `compiled`, `hessian` ("auto": exact
         for impacts, limited-memory through a landing), `integrator`: scene [numerics];
-        `law`: the contact law at the impact (contact.LAWS)."""
+        `law`: the contact law at the impact (contact.LAWS). Longer than 60 lines: it
+        assembles the NLP from its parts in order."""
         t0 = time.perf_counter()
+        admissible(law, strike, problem)
         self.model, self.strike, self.problem = model, strike, problem
         self.slope, self.friction = slope, friction
         self.reference = np.asarray(reference, float)
-        self.posture = Posture(model, strike, slope, reference, problem.variables,
-                               problem.lower, problem.upper)
+        self.posture = Posture(model, strike, reference, problem.variables, problem.lower,
+                               problem.upper, friction, slope)
         self.law = law
-        if law != "no-slip" and problem.landing:
-            raise InputError(f"a landing objective (T_c_total, contact_friction) holds the strike "
-                             f"point: it takes the no-slip law, not {law!r}")
-        if law == "coulomb" and strike == "flat":
-            raise InputError("a flat strike's Coulomb impact (two contacts, the velocity-level "
-                             "law) switches mode inside the NLP: optimise it as no-slip or "
-                             "frictionless")
-        if problem.gait and problem.gait.foot_velocity is not None and strike == "flat":
-            raise InputError("[optimize.gait] foot_velocity_mps is the strike point's speed: a "
-                             "heel or forefoot strike, not a flat one")
-        self._impacts = {friction: Impact(model, strike, slope, friction, law=law)}  # by friction
-        self.impact = self._impacts[friction]
+        self.impact = Impact(model, strike, slope, friction, law=law)  # checks every optimum
         self.mode = self._coulomb_mode() if law == "coulomb" else None
         self.duration = duration
         self.landing = (LandingModel(model, joints or Joints(), slope, integrator=integrator)
@@ -125,11 +154,12 @@ class PostureProblem:
         self.graph, self.compiled, self.hessian = graph, compiled, hessian
         sym = ca.MX if self.landing or graph == "MX" else ca.SX
         u = sym.sym("u", self.posture.size)
-        p = sym.sym("p", PARAMETERS)  # running speed (hip_vx, m/s), friction, reference state
+        p = sym.sym("p", PARAMETERS)  # speed (hip_vx, m/s), friction, slope, reference state
         tau = sym.sym("tau", 1 if self.landing else 0)  # second impact at tau * duration
         w = ca.vertcat(u, tau)
         x = self.posture.function(u, p)
-        out = self._law(impact_function(model, strike, slope, graph=graph)(x=x), p[1])
+        impact = self.impact.function if graph == "SX" else impact_function(model, strike, graph=graph)
+        out = self._law(impact(x=x, friction=p[FRICTION], slope=p[SLOPE]), p[FRICTION])
         terms = {"T_c": out["T_c"], "dv_trunk_x": out["dv_trunk"][0],
                  "dv_trunk_z": out["dv_trunk"][1], "dv_com_x": out["dv_com"][0],
                  "dv_com_z": out["dv_com"][1]}
@@ -137,9 +167,6 @@ class PostureProblem:
             terms["support"] = support(x, model, STRIKES[strike][0], problem.stance_peak_bw)
         landing = None
         if self.landing:
-            if strike not in ("heel", "forefoot"):
-                raise InputError("a landing objective needs a heel or forefoot strike (the other "
-                                 "point comes down second)")
             self._t_ref = self.second_impact(self.reference)
             if self._t_ref is None:
                 raise InputError("the reference touchdown's landing never brings the other foot point "
@@ -174,9 +201,8 @@ class PostureProblem:
 
     def _coulomb_mode(self) -> tuple[int, int]:
         """(mode, sliding direction s) of the reference touchdown's Coulomb impact."""
-        f = impact_function(self.model, self.strike, self.slope, ["mode_coulomb", "v_contact"],
-                            law="coulomb", friction=self.friction)
-        mode, v0 = f(self.reference)
+        out = self.impact.evaluate(self.reference)
+        mode, v0 = np.ravel(out["mode_coulomb"])[0], np.ravel(out["v_contact"])
         return int(round(float(mode))), 1 if float(v0[0]) >= 0 else -1
 
     def _law(self, out, mu) -> dict:
@@ -219,16 +245,25 @@ class PostureProblem:
 
     def landing_agrees(self, w, x, p, rtol=1e-3) -> bool:
         """The event-driven simulation from x gives the same two-impact landing and T_c_total."""
-        L = self._simulate(x, 2e-4, float(p[1]))
+        L = self._simulate(x, 2e-4, float(p[FRICTION]))
         nlp = float(self._T_c_total(w, p))
         return self._two_impacts(L) and abs(L.T_c_total - nlp) <= rtol * max(1.0, abs(nlp))
 
     def checked(self, x, p=None) -> ImpactResult:
-        """The checked impact map at touchdown state x under the friction of p (default p0)."""
-        mu = self.friction if p is None else float(p[1])
-        if mu not in self._impacts:
-            self._impacts[mu] = Impact(self.model, self.strike, self.slope, mu, law=self.law)
-        return self._impacts[mu](x)
+        """The checked impact map at touchdown state x on the ground of p (default p0)."""
+        p = self.p0 if p is None else p
+        return self.impact.at(float(p[FRICTION]), float(p[SLOPE]))(x)
+
+    def parameters(self, speed: float | None = None, friction: float | None = None,
+                   slope: float | None = None, reference=None) -> np.ndarray:
+        """The NLP's parameters (variables.Posture.parameters), checked: a ground the impact
+        takes, and a landing problem's slope the one its landing model was built for."""
+        p = self.posture.parameters(speed, friction, slope, reference)
+        check_ground(float(p[FRICTION]), float(p[SLOPE]))
+        if self.landing and p[SLOPE] != self.slope:
+            raise InputError(f"slope = {p[SLOPE]!r} rad: the landing of this problem was built "
+                             f"for {self.slope!r} rad (build the problem for the other slope)")
+        return p
 
     def accept(self, sol, stats, p=None) -> tuple[np.ndarray, np.ndarray, ImpactResult, bool]:
         """(w, touchdown state, checked impact, whether it counts as an optimum) of an IPOPT
@@ -261,8 +296,8 @@ class PostureProblem:
 
     @property
     def p0(self) -> np.ndarray:
-        """The scene's parameters: [speed (m/s), friction]."""
-        return self.posture.parameters(friction=self.friction)
+        """The problem's own parameters: [speed (m/s), friction, slope (rad), reference]."""
+        return self.posture.parameters()
 
     @property
     def index(self) -> list[int]:
@@ -304,7 +339,7 @@ class PostureProblem:
     def active(self, w, p, sol) -> tuple:
         """The active constraints and bounds of solution `sol` at w, p (solution.active_set)."""
         return active_set(self.records, self.constraint_function(w, p), sol["lam_g"], sol["lam_x"],
-                          self.posture, w, self.scale / self.weight)
+                          self.posture, w, self.scale, self.weight)
 
     def feasible(self, w, p=None, tol=1e-6) -> bool:
         """Every constraint within tol (equalities of the gait within 1e-9 m)."""
@@ -330,12 +365,12 @@ class PostureProblem:
         lam_g = np.asarray(lam_g, float).ravel()
         H, Hwp, J, Jp, dLdp, g = (np.asarray(a, float) for a in self._sensitivity(w, p, lam_g))
         Hwp, Jp, dLdp, g = Hwp[:, :2], Jp[:, :2], dLdp.ravel()[:2], g.ravel()  # speed, friction
-        active = [k for k, r in enumerate(self.records) if r.equality or (
-            abs(g[k] - r.bound) < 1e-6 * max(1.0, abs(r.bound)) and abs(lam_g[k]) > 1e-9 * self.scale)]
+        active = [k for k, r in enumerate(self.records) if r.equality or is_active(
+            g[k] - r.bound, r.bound, lam_g[k], self.scale)]
         lam_x = np.asarray(lam_x, float).ravel()
         lbx, ubx = self.bounds(len(w))
-        free = [k for k in range(len(w)) if not (min(w[k] - lbx[k], ubx[k] - w[k]) < 1e-6
-                                                   and abs(lam_x[k]) > 1e-9 * self.scale)]
+        free = [k for k in range(len(w)) if not is_active(
+            min(w[k] - lbx[k], ubx[k] - w[k]), 1.0, lam_x[k], self.scale)]
         n, m = len(free), len(active)
         K = np.zeros((n + m, n + m))
         K[:n, :n] = H[np.ix_(free, free)]

@@ -2,6 +2,9 @@
 
 - The active set follows from the constraint records (constraints.Record) and IPOPT's
   multipliers: for L = f + lam_g' g + lam_x' w, d(f*)/d(bound) = -lam (envelope theorem).
+  One rule (is_active) decides it, on the NLP as IPOPT sees it: the multiplier of the
+  normalised objective (weights / sum |weights|), so the verdict does not depend on the
+  weights' scale; the multiplier reported is then converted to the objective's units.
   Equalities (the gait held, the landing's event) are what the problem fixes; the optimum is
   *interior* when no inequality or variable bound is active, and *held* by the ones that are.
 - Parametric sensitivities d(w*)/dp and d(f*)/dp (p = speed, friction) come from CasADi's
@@ -39,6 +42,9 @@ STATUS_EXPLAINED = {
     "Maximum_CpuTime_Exceeded": "stopped at the time limit before converging",
 }
 ACTIVE = 1e-6  # relative distance to a bound under which a constraint counts as active
+# |multiplier| of the normalised objective (sum of |weights| 1) above which a constraint at
+# its bound holds the optimum; below it the bound is touched, not pushed against
+MULTIPLIER = 1e-9
 DISTINCT = math.radians(0.5)  # optima closer than this in every variable count as one
 
 
@@ -130,22 +136,33 @@ def verdict_of(active) -> str:
     return "HELD BY " + ", ".join(held) if held else "interior optimum"
 
 
-def active_set(records, g, lam_g, lam_x, posture, u, scale) -> tuple[Constraint, ...]:
-    """The active constraints and variable bounds at u, with d(f*)/d(bound) in the reported
-    objective's units; `scale`: the NLP's objective per unit of the reported one."""
-    lam_g = -np.asarray(lam_g, float).ravel() / scale
-    lam_x = -np.asarray(lam_x, float).ravel() / scale
+def is_active(distance: float, bound: float, lam: float, scale: float) -> bool:
+    """The one active-set rule: within ACTIVE (relative to max(1, |bound|)) of the bound, and
+    the multiplier of the normalised objective, lam / scale (lam: IPOPT's, of the NLP's
+    objective scale * normalised objective), above MULTIPLIER."""
+    return abs(distance) < ACTIVE * max(1.0, abs(bound)) and abs(lam) / scale > MULTIPLIER
+
+
+def active_set(records, g, lam_g, lam_x, posture, u, scale, weight) -> tuple[Constraint, ...]:
+    """The active constraints and variable bounds at u (is_active on IPOPT's multipliers
+    lam_g, lam_x), with d(f*)/d(bound) in the reported objective's units; `scale`: the NLP's
+    objective per unit of the normalised one, `weight`: the reported objective per unit of
+    the normalised one (sum |weights|)."""
+    lam_g, lam_x = np.asarray(lam_g, float).ravel(), np.asarray(lam_x, float).ravel()
+    reported = -weight / scale  # d(reported f*)/d(bound) per unit of IPOPT's multiplier
     active = []
     for r, value, lam in zip(records, np.asarray(g, float).ravel(), lam_g):
-        if r.equality or (abs(value - r.bound) < ACTIVE * max(1.0, abs(r.bound)) and abs(lam) > 1e-9):
-            active.append(Constraint(r.name, float(value), r.bound, float(lam), r.meaning, r.equality))
+        if r.equality or is_active(value - r.bound, r.bound, lam, scale):
+            active.append(Constraint(r.name, float(value), r.bound, float(lam * reported), r.meaning,
+                                     r.equality))
     for k, var in enumerate(posture.variables):
         at = "lower" if u[k] < ACTIVE else "upper" if u[k] > 1 - ACTIVE else None
-        if at and abs(lam_x[k]) > 1e-9:
+        if at and is_active(0.0, 1.0, lam_x[k], scale):
             value = math.degrees(posture.lower[k] if at == "lower" else posture.upper[k])
             anatomical = var in RANGE_OF_MOTION_DEG and math.isclose(
                 value, RANGE_OF_MOTION_DEG[var][0 if at == "lower" else 1])
-            active.append(Constraint(f"{var}_{at}", value, value, float(lam_x[k] / posture.per_unit()[k]),
+            active.append(Constraint(f"{var}_{at}", value, value,
+                                     float(lam_x[k] * reported / posture.per_unit()[k]),
                                      f"{var} held at its {at} bound"
                                      + (" (the joint's range of motion, AAOS)" if anatomical else
                                         " (the scene's bounds_deg)")

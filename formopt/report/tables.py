@@ -45,7 +45,7 @@ def impact_table(scene: Scene, r: ImpactResult) -> str:
     """The indicators of one strike as a terminal table."""
     lines = [f"{scene.name}  ({scene.path})",
              f"model {scene.kind}; body {scene.body.source}",
-             f"{r.strike} strike on {math.degrees(scene.slope):+.1f} deg ground, friction {r.friction:g}",
+             f"{r.strike} strike on {math.degrees(r.slope):+.1f} deg ground, friction {r.friction:g}",
              ""]
     lines += [f"contact law: {r.law}" + (f" ({r.mode} at the end, slip {r.slip_velocity:+.3f} m/s)"
                                          if r.mode else ""),
@@ -66,17 +66,17 @@ def contact_law_lines(r: ImpactResult) -> list[str]:
         cells = [fmt.format(value(v)) for v in laws.values()]
         return f"  {name:30s} " + " ".join(f"{c:>14s}" for c in cells)
 
-    total = lambda v, k: sum(p[k] for p in v["impulse"].values())  # noqa: E731
-    lines += [row("absorbed T_c (J)", lambda v: v["T_c"], "{:.4f}"),
+    total = lambda v, k: sum(p[k] for p in v.impulse.values())  # noqa: E731
+    lines += [row("absorbed T_c (J)", lambda v: v.T_c, "{:.4f}"),
               row("impulse t (N s)", lambda v: total(v, 0), "{:+.4f}"),
               row("impulse n (N s)", lambda v: total(v, 1), "{:+.4f}"),
               row("|t| / n", lambda v: abs(total(v, 0)) / total(v, 1) if total(v, 1) > 0 else float("nan"), "{:.3f}"),
-              row("slip after (m/s)", lambda v: v["slip_velocity"], "{:+.3f}"),
-              row("mode", lambda v: v["mode"] or "-", "{}")]
+              row("slip after (m/s)", lambda v: v.slip_velocity, "{:+.3f}"),
+              row("mode", lambda v: v.mode or "-", "{}")]
     if r.dv_trunk is not None:
-        lines.append(row("trunk dv x, z (m/s)", lambda v: v["dv_trunk"],
+        lines.append(row("trunk dv x, z (m/s)", lambda v: v.dv_trunk,
                          "{0[0]:+.3f} {0[1]:+.3f}"))
-    lines.append(row("valid", lambda v: "yes" if v["valid"] else "no", "{}"))
+    lines.append(row("valid", lambda v: "yes" if v.valid else "no", "{}"))
     if r.mu_c_posture is not None:
         lines.append(f"  posture-only critical friction (eq. 7) |W_tn / W_tt| = {r.mu_c_posture:.3f}")
     return lines
@@ -288,14 +288,19 @@ def trials_table(rows) -> str:
     return "\n".join(out)
 
 
-def bench_table(rows, batch: float) -> str:
-    lines = [f"{'level':15s} {'option':28s} {'work':13s} {'time':>11s} {'error':>10s} "
+def bench_table(result) -> str:
+    """The bench's rows (studies.bench.Bench), the ground they were measured on, the batch."""
+    rows = result.rows
+    lines = [f"ground: friction {result.friction:g}, slope {math.degrees(result.slope):+.1f} deg "
+             "(the bench scene's, data/full_body.toml)", "",
+             f"{'level':15s} {'option':28s} {'work':13s} {'time':>11s} {'error':>10s} "
              f"{'mu_c err':>9s} {'dv err':>9s}  note"]
     for r in rows:
         unit = f"{r.time_s * 1e6:9.1f} us" if r.time_s < 1e-2 else f"{r.time_s * 1e3:9.2f} ms"
         lines.append(f"{r.level:15s} {r.option:28s} {r.work:13s} {unit:>11s} {r.error:10.2e} "
                      f"{r.error_mu_c:9.2e} {r.error_dv:9.2e}  {r.note}")
-    lines.append(f"\ncompiled mapped batch, paper's leg: {batch:,.0f} states/s (one core)")
+    lines.append(f"\ncompiled mapped batch, paper's leg: {result.batch_states_per_s:,.0f} states/s "
+                 "(one core)")
     return "\n".join(lines)
 
 

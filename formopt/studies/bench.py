@@ -20,7 +20,7 @@ import casadi as ca
 import numpy as np
 
 from ..mechanics.compiled import external
-from ..mechanics.impact import Impact, impact_function
+from ..mechanics.impact import Impact, impact_function, on_ground
 from ..mechanics.landing import LandingModel, simulate_state
 from ..mechanics.model import STATE, build_model
 from ..optim.posture import PostureProblem
@@ -40,6 +40,24 @@ class Row:
     error_mu_c: float = float("nan")  # largest absolute error of mu_c
     error_dv: float = float("nan")  # largest absolute error of dv_trunk (m/s)
     note: str = ""
+
+
+@dataclass(frozen=True)
+class Bench:
+    """What `formopt bench` measured, and on which ground (the bench scene's)."""
+
+    rows: list[Row]
+    batch_states_per_s: float  # compiled, mapped indicators of the paper's leg, one core
+    friction: float  # the ground's friction coefficient of every impact, landing and optimum
+    slope: float  # rad, the ground's slope
+
+    def to_dict(self) -> dict:
+        """JSON-ready (non-finite numbers as null; the slope in degrees)."""
+        def clean(v):
+            return None if isinstance(v, float) and not math.isfinite(v) else v
+        return {"rows": [{k: clean(v) for k, v in asdict(r).items()} for r in self.rows],
+                "batch_states_per_s": self.batch_states_per_s, "friction": self.friction,
+                "slope_deg": math.degrees(self.slope)}
 
 
 def read_states(path=None) -> np.ndarray:
@@ -63,8 +81,9 @@ def _median_time(f, args, repeats=1):
     return statistics.median(times)
 
 
-def run(quick: bool = False, progress=None) -> tuple[list[Row], float]:
-    """All rows, and the compiled batch throughput of the paper's leg (states/s)."""
+def run(quick: bool = False, progress=None) -> Bench:
+    """All rows, the compiled batch throughput of the paper's leg (states/s), the ground.
+    Longer than 60 lines: one section per kind of work, in the order of the table."""
     say = progress or (lambda text: None)
     scene = load(DATA / "full_body.toml")
     states = read_states()[: 20 if quick else 200]
@@ -101,13 +120,13 @@ def run(quick: bool = False, progress=None) -> tuple[list[Row], float]:
     for graph in ("SX", "MX"):
         for compiled in (False, True):
             say(f"impact: leg, {graph}, {'compiled' if compiled else 'interpreted'}")
-            impact = Impact(leg, scene.strike, compiled=compiled, graph=graph)
+            impact = Impact(leg, scene.strike, scene.slope, scene.friction, compiled=compiled, graph=graph)
             values = np.array([float(np.ravel(impact.evaluate(x)["T_c"])[0]) for x in states])
             rows.append(Row("leg", f"{graph} {'compiled' if compiled else 'interpreted'}", "impact",
                             _median_time(impact.evaluate, states),
                             float(np.max(np.abs(values - reference) / reference)),
                             note=f"{impact.function.n_instructions()} instructions"))
-    batch_states_per_s = _batch(leg, scene.strike, states)
+    batch_states_per_s = _batch(leg, scene.strike, states, scene.friction, scene.slope)
 
     # landings: step and integrator for the leg, then the ladder
     landing_states = states[: 5 if quick else 20]
@@ -166,21 +185,15 @@ def run(quick: bool = False, progress=None) -> tuple[list[Row], float]:
                         _median_time(pp.solve_from, [pp.to_unit(scene.state)], 3 if quick else 10),
                         float(np.max(np.abs(posture - optima["leg"]))),
                         note=f"{stats['return_status']}; posture error against the leg's exact optimum, deg"))
-    return rows, batch_states_per_s
+    return Bench(rows, batch_states_per_s, scene.friction, scene.slope)
 
 
-def _batch(model, strike, states, n=10000):
-    """Compiled, mapped indicators of the paper's leg: states per second on one core."""
-    f = impact_function(model, strike, outputs=["T", "T_c", "T_a", "impulse", "mu_signed",
-                                                 "dv_trunk", "dv_com"])
+def _batch(model, strike, states, friction, slope, n=10000):
+    """Compiled, mapped indicators of the paper's leg on the scene's ground (friction, slope
+    rad): states per second on one core."""
+    f = on_ground(impact_function(model, strike, outputs=["T", "T_c", "T_a", "impulse", "mu_signed",
+                                                          "dv_trunk", "dv_com"]), friction, slope)
     batch = external(f.map(n, "serial"))
     X = ca.DM(np.resize(states, (n, len(STATE))).T)
     batch(X)
     return n / _median_time(lambda _: batch(X), range(7))
-
-
-def to_json(rows: list[Row], batch: float) -> dict:
-    def clean(v):
-        return None if isinstance(v, float) and not math.isfinite(v) else v
-    return {"rows": [{k: clean(v) for k, v in asdict(r).items()} for r in rows],
-            "batch_states_per_s": batch}

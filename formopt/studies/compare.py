@@ -153,7 +153,7 @@ def touchdown_row(c: Comparison, k: int) -> dict:
            "strike_point": {"point": s, "hip_from_point_m": list(td.hip_from_point[s])},
            "valid_data": td.valid_data, "data_problems": list(td.problems),
            "T_c": r.T_c, "mu_c": r.mu_c, "valid": r.valid,
-           "contact_laws": {law: {key: v[key] for key in ("T_c", "valid", "mode", "slip_velocity")}
+           "contact_laws": {law: {key: getattr(v, key) for key in ("T_c", "valid", "mode", "slip_velocity")}
                             for law, v in r.contact_laws.items()}}
     if k in c.per_step:
         o = c.per_step[k]
@@ -245,7 +245,7 @@ def summary(c: Comparison) -> dict:
                      "segment_angles_deg_sd": dict(zip(SEGMENTS, segments[1])),
                      "foot_strike_angle_deg_mean": float(fsa[0]), "foot_strike_angle_deg_sd": float(fsa[1]),
                      "T_c_mean": float(T_c[0]), "T_c_sd": float(T_c[1]),
-                     "laws": {law: {"T_c_mean": float(np.mean([r.contact_laws[law]["T_c"] for _, r in rows])),
-                                    "valid": sum(r.contact_laws[law]["valid"] for _, r in rows)}
+                     "laws": {law: {"T_c_mean": float(np.mean([r.contact_laws[law].T_c for _, r in rows])),
+                                    "valid": sum(r.contact_laws[law].valid for _, r in rows)}
                               for law in LAWS}}
     return out

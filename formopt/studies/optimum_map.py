@@ -7,25 +7,58 @@ chunk every point starts from the solved point before it (its posture and IPOPT'
 with IPOPT's warm-start options), so a point costs a few iterations. The first point of a
 chunk, and any point whose warm start does not converge, runs the scene's multi-start.
 
-Speed and friction are parameters of the NLP: one problem serves the whole grid. Any other
-parameter (touchdown angles, hip_vz, slope) builds the problem for its value (once per value
-per worker). Rows are written as chunks finish, resumable and on a process pool or on Dask,
-exactly as landing sweeps (studies.sweep).
+Speed, friction and slope are parameters of the NLP: one problem serves the whole grid (a
+landing problem's slope is built into its landing model and a Coulomb problem's into its
+fixed mode, so there the problem is built for each slope). Any other parameter (touchdown
+angles, hip_vz) builds the problem for its value (once per value per worker). Each row says
+the friction and slope it was solved on. Rows are written as chunks finish, resumable and on
+a process pool or on Dask, exactly as landing sweeps (studies.sweep).
 """
 
 from __future__ import annotations
 
 import itertools
+import math
+from dataclasses import asdict, dataclass, field, fields
 
 import numpy as np
 
 from ..mechanics.errors import InputError
-from ..optim.multistart import starts
+from ..optim import multistart
 from ..optim.solution import verdict_of
 
-NLP_PARAMETERS = {"speed_mps": 0, "hip_vx": 0, "friction": 1}  # index in the NLP's p
+# sweep parameter -> PostureProblem.parameters keyword, and its value's conversion to SI
+NLP_PARAMETERS = {"speed_mps": ("speed", float), "hip_vx": ("speed", float),
+                  "friction": ("friction", float), "slope_deg": ("slope", math.radians)}
 CHUNK = 40  # points per warm-started chain
-COLUMNS = ["status", "success", "verdict", "objective", "T_c", "iterations", "warm", "valid", "error"]
+
+
+@dataclass(frozen=True)
+class OptimumRow:
+    """One point of an optimum map; None: not computed (`error` says why). Its CSV columns:
+    the decision variables in deg (deg/s), then the fields in order (COLUMNS)."""
+
+    friction: float  # the ground's, of this point
+    slope_deg: float
+    posture_deg: dict[str, float] = field(default_factory=dict)  # variable -> deg (deg/s)
+    status: str | None = None  # IPOPT's return status
+    success: bool | None = None  # an accepted optimum (PostureProblem.accept)
+    verdict: str | None = None  # interior, HELD BY ..., or NO OPTIMUM
+    objective: float | None = None
+    T_c: float | None = None  # J, the checked impact's at the optimum
+    iterations: int | None = None
+    warm: bool | None = None  # warm-started from the point before
+    valid: bool | None = None  # success and a valid checked impact
+    error: str = ""
+
+    def to_dict(self, variables) -> dict:
+        """{column: CSV value} ("" where None), the posture under `variables`' columns."""
+        out = {f"{v}_deg": self.posture_deg.get(v, "") for v in variables}
+        out.update({k: "" if v is None else v for k, v in asdict(self).items() if k != "posture_deg"})
+        return out
+
+
+COLUMNS = [f.name for f in fields(OptimumRow) if f.name != "posture_deg"]
 WARM = {"ipopt.warm_start_init_point": "yes", "ipopt.warm_start_bound_push": 1e-9,
         "ipopt.warm_start_mult_bound_push": 1e-9, "ipopt.mu_init": 1e-6}
 
@@ -52,29 +85,38 @@ def serpentine(params) -> list[dict]:
 _PROBLEMS: dict = {}  # per process: posture problems by the values that change the NLP
 
 
-def rows(scene, chunk) -> list[list]:
-    """The CSV rows (without parameter columns) of a chain of neighbouring points."""
+def rows(scene, chunk) -> list[dict]:
+    """The rows ({column: CSV value}, OptimumRow) of a chain of neighbouring points."""
     from .sweep import apply
 
     out, previous = [], None
     for values in chunk:
         try:
-            other = {k: v for k, v in values.items() if k not in NLP_PARAMETERS}
+            built = NLP_PARAMETERS if not _slope_built_in(scene) else {
+                k: v for k, v in NLP_PARAMETERS.items() if k != "slope_deg"}
+            other = {k: v for k, v in values.items() if k not in built}
             key = repr((scene.path, sorted(other.items())))
             if key not in _PROBLEMS:
                 _PROBLEMS.clear()  # one problem at a time: a grid moves through them in order
                 _PROBLEMS[key] = apply(scene, other).posture_problem()
             pp = _PROBLEMS[key]
-            p = pp.p0.copy()
-            for name, k in NLP_PARAMETERS.items():
-                if name in values:
-                    p[k] = values[name]
+            p = pp.parameters(**{built[k][0]: built[k][1](v) for k, v in values.items() if k in built})
             row, previous = _solve(pp, p, previous if previous and previous[0] is pp else None)
-            out.append(row)
         except (InputError, RuntimeError) as err:
-            out.append([""] * (len(columns(scene)) - 1) + [str(err).replace("\n", " ")])
-            previous = None
+            row, previous = OptimumRow(*_ground(scene, values), error=str(err).replace("\n", " ")), None
+        out.append(row.to_dict(scene.problem.variables))
     return out
+
+
+def _ground(scene, values) -> tuple[float, float]:
+    """(friction, slope deg) of a grid point: swept, or the scene's."""
+    return values.get("friction", scene.friction), values.get("slope_deg", math.degrees(scene.slope))
+
+
+def _slope_built_in(scene) -> bool:
+    """Whether the scene's problem is built for its slope: a landing (its landing model) or
+    Coulomb (its mode, fixed from the reference touchdown on the problem's ground)."""
+    return scene.problem.landing or scene.contact == "coulomb"
 
 
 def _solve(pp, p, previous):
@@ -87,16 +129,13 @@ def _solve(pp, p, previous):
         w, x, impact, ok = pp.accept(sol, stats, p)
     if not warm or not ok:
         warm = False
-        tried = []
-        for w0 in starts(pp):
-            sol, stats, _ = pp.solve_from(w0, p)
-            w, x, impact, ok = pp.accept(sol, stats, p)
-            tried.append((ok, -float(pp.objective_function(w, p)), sol, stats, w, x, impact))
-        ok, _, sol, stats, w, x, impact = max(tried, key=lambda t: t[:2])
+        run = multistart.best(multistart.runs(pp, p))
+        sol, stats, w, x, impact, ok = run.sol, run.stats, run.w, run.x, run.impact, run.start.converged
     verdict = verdict_of(pp.active(w, p, sol)) if ok else f"NO OPTIMUM ({stats['return_status']})"
-    row = [*np.degrees(x[pp.index]), stats["return_status"], ok, verdict,
-           float(pp.objective_function(w, p)), impact.T_c, int(stats["iter_count"]), warm,
-           ok and impact.valid, ""]
+    row = OptimumRow(impact.friction, math.degrees(impact.slope),
+                     dict(zip(pp.problem.variables, map(float, np.degrees(x[pp.index])))),
+                     stats["return_status"], ok, verdict, float(pp.objective_function(w, p)),
+                     impact.T_c, int(stats["iter_count"]), warm, ok and impact.valid)
     return row, ((pp, w, sol["lam_x"], sol["lam_g"]) if ok else None)
 
 

@@ -23,7 +23,7 @@ import os
 import signal
 import threading
 import time
-from dataclasses import replace
+from dataclasses import asdict, dataclass, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -41,9 +41,38 @@ UNITS = {"speed_mps": "running speed (the hip's forward velocity), m/s",
          "knee_deg": "knee flexion, deg", "ankle_deg": "ankle dorsiflexion, deg",
          "hip_vx": "m/s forward", "hip_vz": "m/s up", "friction": "coefficient",
          "slope_deg": "ground slope, deg uphill"}
-COLUMNS = ["T_c_first", "T_c_second", "T_c_total", "t_second_ms", "ankle_at_second_deg",
-           "f_n_max_N", "dv_trunk_x", "dv_trunk_z", "mu_c_max", "no_slip_held", "releases",
-           "energy_error", "ended", "valid", "error"]
+
+
+@dataclass(frozen=True)
+class LandingRow:
+    """One landing of a sweep (SI unless the name says otherwise); None: not applicable (no
+    second impact, no trunk) or not computed (`error` says why). Its CSV columns are its
+    fields in order (COLUMNS), a swept ground parameter given once."""
+
+    friction: float  # the ground's, of this landing
+    slope_deg: float
+    T_c_first: float | None = None  # J
+    T_c_second: float | None = None  # J
+    T_c_total: float | None = None  # J
+    t_second_ms: float | None = None
+    ankle_at_second_deg: float | None = None
+    f_n_max_N: float | None = None
+    dv_trunk_x: float | None = None  # m/s, summed over the impacts
+    dv_trunk_z: float | None = None
+    mu_c_max: float | None = None
+    no_slip_held: bool | None = None
+    releases: int | None = None
+    energy_error: float | None = None
+    ended: str | None = None
+    valid: bool | None = None
+    error: str = ""
+
+    def to_dict(self) -> dict:
+        """{column: CSV value} ("" where None)."""
+        return {k: "" if v is None else v for k, v in asdict(self).items()}
+
+
+COLUMNS = [f.name for f in fields(LandingRow)]
 
 
 def parse_param(text: str) -> tuple[str, np.ndarray]:
@@ -93,11 +122,12 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
     optima = scene.problem is not None and not landings
     if optima:  # an optimum map: warm-started chains along a serpentine
         optimum_map.check(scene, params)
-        header, work, size = names + optimum_map.columns(scene), optimum_map.rows, optimum_map.CHUNK
+        columns, work, size = optimum_map.columns(scene), optimum_map.rows, optimum_map.CHUNK
         grid = optimum_map.serpentine(params)
     else:
-        header, work, size = names + COLUMNS, landing_rows, CHUNK
+        columns, work, size = COLUMNS, landing_rows, CHUNK
         grid = [dict(zip(names, combo)) for combo in itertools.product(*[v for _, v in params])]
+    header = names + [c for c in columns if c not in names]  # a swept ground column once
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         fh = path.open("a+", newline="")
@@ -123,7 +153,7 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
         written = len(grid) - len(todo)
         try:
             for chunk, rows in _results(work, scene, chunks, workers, scheduler):
-                writer.writerows([values[n] for n in names] + row for values, row in zip(chunk, rows))
+                writer.writerows([{**row, **values}[c] for c in header] for values, row in zip(chunk, rows))
                 fh.flush()
                 written += len(chunk)
                 if bar:
@@ -224,8 +254,8 @@ def _chunk_rows(task):
 _MODELS: dict = {}  # per process: landing models by scene and slope, built once
 
 
-def landing_rows(scene, chunk) -> list[list]:
-    """The CSV rows (without parameter columns) of a chunk of parameter values."""
+def landing_rows(scene, chunk) -> list[dict]:
+    """The rows ({column: CSV value}, LandingRow) of a chunk of parameter values."""
     return [_landing_row(scene, values, _MODELS) for values in chunk]
 
 
@@ -234,7 +264,9 @@ def read(path) -> list[dict]:
         return list(csv.DictReader(fh))
 
 
-def _landing_row(scene, values, models) -> list:
+def _landing_row(scene, values, models) -> dict:
+    ground = {"friction": values.get("friction", scene.friction),
+              "slope_deg": values.get("slope_deg", math.degrees(scene.slope))}
     try:
         s = apply(scene, values)
         key = repr((s.kind, s.body, s.swing, s.joints, s.slope, s.numerics))  # what the model holds
@@ -244,19 +276,22 @@ def _landing_row(scene, values, models) -> list:
         L = simulate_state(lm, s.strike, s.state, s.friction, s.integration.dt,
                            s.integration.duration)
         second = L.impacts[1] if len(L.impacts) > 1 else None
-        ankle = ""
+        ankle = None
         if second:
             k = int(np.searchsorted(L.t, second.time))
             q_e = L.q[min(k, len(L.t) - 1)]
             ankle = math.degrees(lm.model.segment_angle(q_e, "foot") - lm.model.segment_angle(q_e, "shank"))
         normal = L.force[:, 1]
-        f_max = float(np.nanmax(normal)) if np.any(np.isfinite(normal)) else ""
-        dv = np.sum([e.dv_trunk for e in L.impacts if e.dv_trunk], axis=0) if lm.model.trunk else ("", "")
-        return [L.impacts[0].T_c, second.T_c if second else "", L.T_c_total,
-                second.time * 1e3 if second else "", ankle, f_max, dv[0], dv[1], L.mu_c_max,
-                L.no_slip_held, len(L.releases), L.energy_error, L.ended, L.valid, ""]
+        f_max = float(np.nanmax(normal)) if np.any(np.isfinite(normal)) else None
+        dv = np.sum([e.dv_trunk for e in L.impacts if e.dv_trunk], axis=0) if lm.model.trunk else (None, None)
+        row = LandingRow(**ground, T_c_first=L.impacts[0].T_c, T_c_second=second.T_c if second else None,
+                         T_c_total=L.T_c_total, t_second_ms=second.time * 1e3 if second else None,
+                         ankle_at_second_deg=ankle, f_n_max_N=f_max, dv_trunk_x=dv[0], dv_trunk_z=dv[1],
+                         mu_c_max=L.mu_c_max, no_slip_held=L.no_slip_held, releases=len(L.releases),
+                         energy_error=L.energy_error, ended=L.ended, valid=L.valid)
     except (InputError, RuntimeError) as err:  # a point the model cannot take: say so, go on
-        return [""] * (len(COLUMNS) - 1) + [str(err).replace("\n", " ")]
+        row = LandingRow(**ground, error=str(err).replace("\n", " "))
+    return row.to_dict()
 
 
 def _key(values: dict, names) -> tuple:

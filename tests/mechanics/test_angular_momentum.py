@@ -15,7 +15,7 @@ from helpers import random_states, split_leg
 @pytest.mark.parametrize("strike", ["heel", "forefoot"])
 def test_projection_equals_angular_momentum(body, kind, strike):
     model = split_leg(body) if kind == "split-leg" else build_model(body, kind)
-    impact = Impact(model, strike)
+    impact = Impact(model, strike, 0.0, 0.8)
     for x in random_states(30, seed=7, strike=strike):
         r = impact(x)
         q, qd = model.state(ca.DM(x), strike)

@@ -6,14 +6,14 @@ import numpy as np
 import pytest
 
 from formopt.mechanics import contact
-from formopt.mechanics.impact import impact_function
+from formopt.mechanics.impact import impact_function, on_ground
 from helpers import random_states
 
 MUS = (0.2, 0.5, 0.8, 1.5, 4.0)
 
 
 def outputs(leg, strike, mu, states):
-    f = impact_function(leg, strike, friction=mu)
+    f = on_ground(impact_function(leg, strike), mu, 0.0)
     keys = ("T_c_no_slip", "T_c_coulomb", "T_c_frictionless", "impulse_coulomb",
             "mode_coulomb", "approach", "impulse_no_slip")
     out = {k: [] for k in keys}
@@ -111,8 +111,8 @@ def test_coulomb_matches_integrated_darboux_keller_equations(mu):
 
 @pytest.mark.parametrize("strike", ["heel", "forefoot"])
 def test_coulomb_gradients_match_finite_differences_in_each_mode(leg, strike):
-    f = impact_function(leg, strike, friction=0.6, outputs=["T_c", "impulse", "slip", "mode"],
-                        law="coulomb")
+    f = on_ground(impact_function(leg, strike, outputs=["T_c", "impulse", "slip", "mode"],
+                                  law="coulomb"), 0.6, 0.0)
     x = ca.SX.sym("x", f.size1_in(0))
     out = f(x=x)
     values = ca.vertcat(out["T_c"], out["impulse"], out["slip"])
@@ -134,8 +134,8 @@ def test_coulomb_gradients_match_finite_differences_in_each_mode(leg, strike):
 
 
 def test_absorbed_energy_is_tied_to_impulse_and_velocities(leg):
-    f = impact_function(leg, "forefoot", friction=0.8, law="coulomb",
-                        outputs=["T_c", "T", "T_a", "impulse", "qd_minus", "qd_plus"])
+    f = on_ground(impact_function(leg, "forefoot", law="coulomb",
+                                  outputs=["T_c", "T", "T_a", "impulse", "qd_minus", "qd_plus"]), 0.8, 0.0)
     for x in random_states(20, seed=9):
         o = {k: np.asarray(v, float).ravel() for k, v in f(x=x).items()}
         assert o["T"] - o["T_a"] == pytest.approx(o["T_c"], rel=1e-9, abs=1e-12)
@@ -144,7 +144,7 @@ def test_absorbed_energy_is_tied_to_impulse_and_velocities(leg):
 def test_eq7_is_the_friction_of_a_touchdown_with_no_tangential_velocity(leg):
     """mu_posture = W_tn / W_tt: the no-slip impulse ratio when the contact point's
     tangential velocity at touchdown is zero."""
-    f = impact_function(leg, "forefoot", outputs=["mu_posture"])
+    f = on_ground(impact_function(leg, "forefoot", outputs=["mu_posture"]), 0.8, 0.0)
     W_c, v0 = ca.SX.sym("W", 2, 2), ca.SX.sym("v", 2)
     ns = ca.Function("ns", [W_c, v0], [contact.no_slip(W_c, v0)])
     W = np.array([[0.8, 0.5], [0.5, 0.9]])
@@ -159,7 +159,7 @@ def test_effective_mass_on_a_slope_needs_tan_slope(body):
     from formopt.mechanics.impact import Impact
     from formopt.mechanics.model import build_model
 
-    r = Impact(build_model(body, "effective-mass"), "forefoot", np.radians(10.0))(
+    r = Impact(build_model(body, "effective-mass"), "forefoot", np.radians(10.0), 0.8)(
         random_states(1, seed=2)[0])
     assert r.mu_c == pytest.approx(np.tan(np.radians(10.0)), rel=1e-9)
     assert r.mu_c_momentum == pytest.approx(r.mu_c, rel=1e-9)
@@ -229,7 +229,7 @@ def test_compliant_contact_converges_to_the_coulomb_impulse(leg, strike, mu):
     closed form, about as stiffness^-1/2 (the configuration moves for sqrt(m/k)); within
     2 % at 1e7 N/m. Both modes occur among these states (slide, and stick for the forefoot
     at mu 0.8)."""
-    f = impact_function(leg, strike, friction=mu, law="coulomb", outputs=["impulse", "approach"])
+    f = on_ground(impact_function(leg, strike, law="coulomb", outputs=["impulse", "approach"]), mu, 0.0)
     for x in random_states(2, seed=11, strike=strike):
         p, approach = (np.asarray(a, float).ravel() for a in f(x))
         assert approach[0] < 0
@@ -242,8 +242,8 @@ def test_compliant_contact_converges_to_the_coulomb_impulse(leg, strike, mu):
 @pytest.mark.parametrize("strike", ["heel", "forefoot"])
 @pytest.mark.parametrize("mu", (0.3, 0.8, 2.0))
 def test_velocity_level_law_equals_darboux_keller_outside_a_reversed_slide(leg, strike, mu):
-    f = impact_function(leg, strike, friction=mu, law="coulomb",
-                        outputs=["W_c", "v_contact", "impulse", "mode", "approach"])
+    f = on_ground(impact_function(leg, strike, law="coulomb",
+                                  outputs=["W_c", "v_contact", "impulse", "mode", "approach"]), mu, 0.0)
     W, v = ca.SX.sym("W", 2, 2), ca.SX.sym("v", 2)
     velocity_level = ca.Function("velocity_level", [W, v], list(contact.velocity_level(W, v, mu)))
     compared = 0
@@ -260,7 +260,7 @@ def test_velocity_level_law_equals_darboux_keller_outside_a_reversed_slide(leg, 
 
 def test_flat_strike_under_coulomb_keeps_the_invariants(leg):
     """Two contacts, the velocity-level law: inside the cone, pushing, no more than no-slip."""
-    f = impact_function(leg, "flat", friction=0.5, law="coulomb")
+    f = on_ground(impact_function(leg, "flat", law="coulomb"), 0.5, 0.0)
     for x in random_states(100, strike="flat"):
         o = f(x=x)
         if np.any(np.asarray(o["approach"]) >= 0):

@@ -62,7 +62,7 @@ rates = st.tuples(*[st.floats(-1500, 1500)] * 3)
 def test_any_touchdown_gives_finite_indicators_or_a_clear_error(leg, angles, v, w, strike, slope):
     x = touchdown(*angles, v=v, w=(0.0, *w))
     try:
-        result = Impact(leg, strike, math.radians(slope))(x)
+        result = Impact(leg, strike, math.radians(slope), 0.8)(x)
     except ValueError as err:
         assert "singular" in str(err)
         return
@@ -75,7 +75,7 @@ def test_any_touchdown_gives_finite_indicators_or_a_clear_error(leg, angles, v, 
 def test_any_body_gives_finite_indicators_or_a_clear_error(trunk_ratio, foot_ratio, thigh, shank, strike):
     model = build_model(body_with(trunk_ratio, foot_ratio, thigh, shank))
     try:
-        result = Impact(model, strike)(touchdown())
+        result = Impact(model, strike, 0.0, 0.8)(touchdown())
     except ValueError as err:
         assert "singular" in str(err)
         return
@@ -87,7 +87,7 @@ def test_any_body_gives_finite_indicators_or_a_clear_error(trunk_ratio, foot_rat
 
 def test_fully_extended_knee_is_regular(leg):
     """Natural coordinates have no singularity at a straight knee: exact as anywhere else."""
-    r = Impact(leg, "forefoot")(touchdown(knee=0.0, ankle=-20.0))
+    r = Impact(leg, "forefoot", 0.0, 0.8)(touchdown(knee=0.0, ankle=-20.0))
     check(r)
     assert r.condition < 1e3
 
@@ -95,14 +95,14 @@ def test_fully_extended_knee_is_regular(leg):
 def test_foot_perpendicular_to_the_ground(leg):
     """Foot angle -90 deg (toe straight down): a forefoot strike is still a regular impact."""
     shank = 22.0 - 0.0 - 18.0
-    r = Impact(leg, "forefoot")(touchdown(ankle=-90.0 - shank))
+    r = Impact(leg, "forefoot", 0.0, 0.8)(touchdown(ankle=-90.0 - shank))
     check(r)
 
 
 @pytest.mark.parametrize("speed", [0.0, 1e-9, 1e-3, 15.0])
 def test_touchdown_speeds_from_zero_to_15(leg, speed):
     x = touchdown(v=(speed, -0.2 * speed), w=(0.0, 0.0, 0.0, 0.0))
-    r = Impact(leg, "forefoot")(x)
+    r = Impact(leg, "forefoot", 0.0, 0.8)(x)
     check(r)
     assert r.T_c <= r.T
     if speed == 0.0:  # no motion: nothing absorbed, no impulse, mu_c undefined (said so)
@@ -115,27 +115,27 @@ def test_impact_scales_with_the_square_of_speed(leg):
     x = touchdown()
     small = x.copy()
     small[4:] *= 1e-6
-    a, b = Impact(leg, "forefoot")(x), Impact(leg, "forefoot")(small)
+    a, b = Impact(leg, "forefoot", 0.0, 0.8)(x), Impact(leg, "forefoot", 0.0, 0.8)(small)
     assert b.T_c == pytest.approx(a.T_c * 1e-12, rel=1e-8)
 
 
 @pytest.mark.parametrize("ratio", [1e-4, 1e4])
 def test_mass_ratios(ratio):
-    for r in (Impact(build_model(body_with(ratio_trunk=ratio)), "forefoot")(touchdown()),
-              Impact(build_model(body_with(ratio_foot=ratio)), "forefoot")(touchdown())):
+    for r in (Impact(build_model(body_with(ratio_trunk=ratio)), "forefoot", 0.0, 0.8)(touchdown()),
+              Impact(build_model(body_with(ratio_foot=ratio)), "forefoot", 0.0, 0.8)(touchdown())):
         check(r)
 
 
 def test_a_heavy_trunk_tends_to_a_fixed_hip(leg):
     """As the trunk's mass grows the hip stops moving in the impact: dv_trunk -> 0."""
-    heavy = Impact(build_model(body_with(ratio_trunk=1e4)), "forefoot")(touchdown())
-    normal = Impact(leg, "forefoot")(touchdown())
+    heavy = Impact(build_model(body_with(ratio_trunk=1e4)), "forefoot", 0.0, 0.8)(touchdown())
+    normal = Impact(leg, "forefoot", 0.0, 0.8)(touchdown())
     assert np.hypot(*heavy.dv_trunk) < 1e-3 * np.hypot(*normal.dv_trunk)
 
 
 @pytest.mark.parametrize("length", [0.01, 3.0])
 def test_very_short_and_very_long_segments(length):
-    r = Impact(build_model(body_with(thigh_length=length, shank_length=length)), "forefoot")(
+    r = Impact(build_model(body_with(thigh_length=length, shank_length=length)), "forefoot", 0.0, 0.8)(
         touchdown(ankle=-40.0))
     check(r)
 
@@ -143,20 +143,20 @@ def test_very_short_and_very_long_segments(length):
 @pytest.mark.parametrize("friction,valid", [(1e-9, False), (1e9, True)])
 def test_friction_near_zero_and_very_large(leg, friction, valid):
     x = touchdown(v=(3.5, -0.7), w=(0.0, -100.0, -400.0, -300.0), hip=30.0, knee=20.0, ankle=-15.0)
-    r = Impact(leg, "forefoot", friction=friction)(x)
+    r = Impact(leg, "forefoot", 0.0, friction=friction)(x)
     check(r)
     assert r.valid is valid
 
 
 @pytest.mark.parametrize("slope", [-30.0, 30.0])
 def test_steep_slopes(leg, slope):
-    r = Impact(leg, "heel", math.radians(slope))(touchdown(ankle=10.0))
+    r = Impact(leg, "heel", math.radians(slope), 0.8)(touchdown(ankle=10.0))
     check(r)
 
 
 def test_strike_point_that_cannot_reach_the_ground(leg):
     """A heel strike with the forefoot below the ground: the impact is computed, flagged invalid."""
-    r = Impact(leg, "heel")(touchdown(ankle=-30.0))
+    r = Impact(leg, "heel", 0.0, 0.8)(touchdown(ankle=-30.0))
     assert not r.valid and any("below the ground" in w for w in r.warnings)
 
 
@@ -165,7 +165,7 @@ def test_a_segment_without_inertia_is_a_point_mass_on_its_line():
     ankle carry the thigh's and the foot's mass, so M stays positive definite: exact."""
     segments = dict(body_with().segments)
     segments["shank"] = bar("shank", 3.2, 0.43, 0.19, 0.0)
-    check(Impact(build_model(Body(segments, "point-mass shank")), "forefoot")(touchdown()))
+    check(Impact(build_model(Body(segments, "point-mass shank")), "forefoot", 0.0, 0.8)(touchdown()))
 
 
 def test_a_massless_foot_is_refused():
@@ -180,4 +180,4 @@ def test_nonfinite_state_is_refused(leg):
     x = touchdown()
     x[2] = np.nan
     with pytest.raises(ValueError, match="touchdown knee = nan rad is outside"):
-        Impact(leg, "forefoot")(x)
+        Impact(leg, "forefoot", 0.0, 0.8)(x)

@@ -22,7 +22,7 @@ def full_system(model, x, slope):
 @pytest.mark.parametrize("slope_deg", [0.0, 8.0])
 def test_flat_matches_a_rank_revealing_solve(leg, slope_deg):
     slope = np.radians(slope_deg)
-    impact = Impact(leg, "flat", slope)
+    impact = Impact(leg, "flat", slope, 0.8)
     nb = 5
     for x in random_states(30, seed=3, strike="flat", slope=slope):
         r = impact(x)
@@ -51,7 +51,7 @@ def test_flat_matches_a_rank_revealing_solve(leg, slope_deg):
 
 def test_flat_split_needs_the_least_friction(leg):
     """The reported split gives both points the same ratio t/n: the total's mu_c."""
-    r = Impact(leg, "flat")(random_states(1, strike="flat")[0])
+    r = Impact(leg, "flat", 0.0, 0.8)(random_states(1, strike="flat")[0])
     ratios = [t / n for t, n in r.impulse.values()]
     assert np.allclose(ratios, ratios[0]) and np.isclose(abs(ratios[0]), r.mu_c)
 
@@ -60,4 +60,4 @@ def test_flat_needs_a_flat_sole(leg):
     x = random_states(1, strike="flat")[0]
     x[3] += np.radians(2.0)
     with pytest.raises(ValueError, match="sole on the ground"):
-        Impact(leg, "flat")(x)
+        Impact(leg, "flat", 0.0, 0.8)(x)

@@ -25,7 +25,7 @@ def numeric_projection(model, q, points, slope):
 @pytest.mark.parametrize("slope", [0.0, np.radians(-10.0), np.radians(12.0)])
 def test_energy_split_and_projection(body, kind, strike, slope):
     model = build_model(body, kind)
-    impact = Impact(model, strike, slope)
+    impact = Impact(model, strike, slope, 0.8)
     points = STRIKES[strike]
     for x in random_states(25, strike=strike, slope=slope):
         r = impact(x)
@@ -43,7 +43,7 @@ def test_energy_split_and_projection(body, kind, strike, slope):
 
 def test_energy_is_never_created(leg):
     for strike in ("heel", "forefoot"):
-        impact = Impact(leg, strike)
+        impact = Impact(leg, strike, 0.0, 0.8)
         results = [impact(x) for x in random_states(200, strike=strike)]
         assert all(r.T_a <= r.T * (1 + 1e-12) for r in results)
 
@@ -53,7 +53,7 @@ def test_independent_of_the_natural_coordinates(body, leg, strike):
     """The same body in other natural coordinates gives the same indicators."""
     other = split_leg(body)
     assert other.n == 12 and leg.n == 10
-    a, b = Impact(leg, strike), Impact(other, strike)
+    a, b = Impact(leg, strike, 0.0, 0.8), Impact(other, strike, 0.0, 0.8)
     for x in random_states(20, strike=strike):
         ra, rb = a(x), b(x)
         assert abs(ra.T_c - rb.T_c) <= 1e-10 * ra.T
@@ -82,7 +82,7 @@ def test_mass_matrix_reproduces_the_bar_formula(body, leg):
 def test_kinetic_energy_matches_segment_sums(body, leg):
     """T from the constant mass matrix equals the sum of 1/2 m v^2 + 1/2 J w^2 per segment."""
     x = random_states(1)[0]
-    r = Impact(leg, "forefoot")(x)
+    r = Impact(leg, "forefoot", 0.0, 0.8)(x)
     qd = r.qd_minus
     w = {"thigh": x[7], "shank": x[8], "foot": x[9]}
     at_hip = body["trunk"].mass + body["swing_leg"].mass
@@ -96,7 +96,46 @@ def test_kinetic_energy_matches_segment_sums(body, leg):
 def test_mu_c_two_ways(leg):
     for strike in STRIKES:
         for x in random_states(20, strike=strike):
-            r = Impact(leg, strike)(x)
+            r = Impact(leg, strike, 0.0, 0.8)(x)
             assert (r.mu_c is None) == (r.mu_c_momentum is None) == (r.impulse_total[1] <= 0)
             if r.mu_c is not None:
                 assert abs(r.mu_c - r.mu_c_momentum) <= 1e-8 * max(1.0, r.mu_c)
+
+
+@pytest.mark.parametrize("strike", ["heel", "forefoot", "flat"])
+@pytest.mark.parametrize("law", ["no-slip", "coulomb", "frictionless"])
+def test_one_graph_serves_every_ground(leg, strike, law):
+    """Friction and slope are inputs of the impact Function: one Impact moved to another
+    ground (`at`) gives what an Impact built there gives, and the result says which ground."""
+    slope, mu = np.radians(8.0), 0.45
+    built_here = Impact(leg, strike, slope, mu, law=law)
+    moved = Impact(leg, strike, 0.0, 0.8, law=law).at(mu, slope)
+    assert moved.function is not built_here.function  # another graph, the same map
+    for x in random_states(10, strike=strike, slope=slope):
+        a, b = built_here(x), moved(x)
+        assert (b.friction, b.slope) == (mu, slope)
+        assert b.to_dict()["friction"] == mu and b.to_dict()["slope"] == slope
+        assert a.T_c == b.T_c and a.valid == b.valid and a.checks == b.checks
+        assert a.contact_laws == b.contact_laws
+
+
+@pytest.mark.parametrize("friction, slope", [(-1.0, 0.0), (0.0, 0.0), (np.nan, 0.0), (np.inf, 0.0),
+                                             (0.8, np.radians(70.0)), (0.8, np.nan)])
+def test_a_ground_the_impact_cannot_take_is_refused(leg, friction, slope):
+    from formopt.mechanics.errors import InputError
+    with pytest.raises(InputError, match="friction|slope"):
+        Impact(leg, "forefoot", slope, friction)
+    with pytest.raises(InputError, match="friction|slope"):
+        Impact(leg, "forefoot", 0.0, 0.8).at(friction, slope)
+
+
+def test_checks_name_what_each_warning_is(leg):
+    """valid follows the check codes: every check but the flat foot's split fails."""
+    from formopt.mechanics.impact import INFORMATION, Check
+    for strike in ("heel", "forefoot", "flat"):
+        for x in random_states(30, strike=strike):
+            r = Impact(leg, strike, 0.0, 0.8)(x)
+            assert len(r.checks) == len(r.warnings)
+            assert r.valid == all(c in INFORMATION for c in r.checks)
+            assert (Check.FLAT_SPLIT in r.checks) == (strike == "flat")
+            assert r.to_dict()["checks"] == [c.value for c in r.checks]

@@ -25,7 +25,7 @@ def test_effective_mass_is_one_vertical_degree_of_freedom(body, strike):
     assert model.n == 2 and len(model.guides) == 1
     m = body["shank"].mass + body["foot"].mass
     for x in random_states(20, strike=strike):
-        r = Impact(model, strike)(x)
+        r = Impact(model, strike, 0.0, 0.8)(x)
         _, qd = build_model(body, "leg").state_numeric(x, strike)
         v_z = qd[build_model(body, "leg").cols(strike)][1]
         assert r.T_c == pytest.approx(0.5 * m * v_z**2, rel=1e-12)  # it stops completely
@@ -36,7 +36,7 @@ def test_effective_mass_is_one_vertical_degree_of_freedom(body, strike):
 def test_full_body_invariants_and_angular_momentum(body, strike):
     model = build_model(body, "full-body", strike, SWING)
     assert model.n == 20 and len(model.bodies) == 7
-    impact_map = Impact(model, strike)
+    impact_map = Impact(model, strike, 0.0, 0.8)
     for x in random_states(15, seed=9, strike=strike):
         r = impact_map(x)
         assert abs(r.T_c + r.T_a - r.T) <= 1e-10 * r.T and r.T_c >= 0
@@ -50,8 +50,8 @@ def test_full_body_kinetic_energy_adds_the_swing_leg(body):
     """The swing chain carries the swing leg's mass: T exceeds the rigid-trunk model's by the
     swing leg's own kinetic energy (its point mass at the hip moved with the hip)."""
     x = touchdown()
-    full = Impact(build_model(body, "full-body", "forefoot", SWING), "forefoot")(x)
-    trunk = Impact(build_model(body, "leg-trunk"), "forefoot")(x)
+    full = Impact(build_model(body, "full-body", "forefoot", SWING), "forefoot", 0.0, 0.8)(x)
+    trunk = Impact(build_model(body, "leg-trunk"), "forefoot", 0.0, 0.8)(x)
     assert full.T > trunk.T  # the swing thigh's 400 deg/s adds energy
     assert full.T_c == pytest.approx(trunk.T_c, rel=0.02)  # free hinges: the foot's impact barely reaches it
 
@@ -87,7 +87,7 @@ def test_effective_mass_is_impact_only():
 def test_the_ladder_on_one_touchdown(body):
     """Every level gives a finite, valid-to-compute T_c for the same touchdown."""
     x = touchdown(trunk=5.0, hip=25.0, knee=15.0, ankle=-12.0, v=(3.5, -0.7), w=(0.0, 40.0, -220.0, -140.0))
-    values = {kind: Impact(build_model(body, kind, "forefoot", SWING), "forefoot")(x).T_c
+    values = {kind: Impact(build_model(body, kind, "forefoot", SWING), "forefoot", 0.0, 0.8)(x).T_c
               for kind in ("effective-mass", "shank-foot", "leg", "leg-trunk", "full-body")}
     assert all(v > 0 and np.isfinite(v) for v in values.values())
     assert values["leg"] == pytest.approx(values["full-body"], rel=0.01)

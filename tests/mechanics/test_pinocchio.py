@@ -18,7 +18,7 @@ def test_projection_equals_pinocchio(body, leg, strike, slope_deg):
     slope = np.radians(slope_deg)
     pmodel = pinocchio_leg(body)
     data = pmodel.createData()
-    impact = Impact(leg, strike, slope)
+    impact = Impact(leg, strike, slope, 0.8)
     t = np.array([np.cos(slope), np.sin(slope)])
     n = np.array([-np.sin(slope), np.cos(slope)])
     for x in random_states(25, seed=11, strike=strike, slope=slope):

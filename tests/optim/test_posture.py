@@ -250,3 +250,58 @@ def test_every_status_has_a_plain_explanation():
     from formopt.optim.solution import explain
     for status in ("Infeasible_Problem_Detected", "Restoration_Failed", "Maximum_Iterations_Exceeded"):
         assert "IPOPT's documentation" not in explain(status)
+
+
+def test_the_verdict_does_not_depend_on_the_scale_of_the_weights(demo):
+    """The active set is decided on the normalised NLP: bounded.toml's vertex at weights
+    1e-12, 1 and 1e6 is held by the same constraints, with multipliers in proportion."""
+    scene, problem, opt = demo
+    for weight in (1e-12, 1.0, 1e6):
+        data = tomllib.loads(BOUNDED.read_text())
+        data["optimize"]["objective"] = {"T_c": weight}
+        scaled = parse(data, "bounded.toml").posture_problem().solve()
+        assert scaled.verdict == opt.verdict == (
+            "HELD BY approach_forefoot, hip_height_max, ankle_lower")
+        np.testing.assert_allclose([c.multiplier / weight for c in scaled.held_by],
+                                   [c.multiplier for c in opt.held_by], rtol=1e-6)
+
+
+@pytest.mark.parametrize("edit, law, strike, key", [
+    ({"objective": "T_c_total"}, "coulomb", "forefoot", "ground.contact"),
+    ({}, "coulomb", "flat", "ground.contact"),
+    ({"max_slip_mps": 1.0}, "no-slip", "forefoot", "optimize.max_slip_mps"),
+    ({"gait": {"foot_velocity_mps": 1.0}}, "no-slip", "flat", "optimize.gait.foot_velocity_mps"),
+    ({"variables": ["hip", "knee", "ankle"]}, "no-slip", "flat", "optimize.variables"),
+])
+def test_one_admissibility_rule_for_scenes_and_the_api(edit, law, strike, key):
+    """A scene and a PostureProblem built in Python refuse the same law, strike and problem
+    with the same words (optim.posture.admissible)."""
+    from formopt import SceneError
+    from formopt.mechanics.errors import InputError
+    from formopt.optim.posture import PostureProblem
+    data = tomllib.loads(BOUNDED.read_text())
+    data["optimize"].update({"variables": ["hip", "knee"], **edit})
+    data["optimize"].pop("hip_height_m")
+    data["ground"]["contact"], data["touchdown"]["strike"] = law, strike
+    with pytest.raises(SceneError) as from_scene:
+        parse(data)
+    assert from_scene.value.key == key
+    valid = dict(data, ground={**data["ground"], "contact": "no-slip"},
+                 touchdown={**data["touchdown"], "strike": "forefoot"},
+                 optimize={**data["optimize"], "variables": ["hip", "knee"]})
+    valid["optimize"].pop("max_slip_mps", None)
+    scene = parse(valid)
+    problem = scene.problem
+    if "objective" in edit:
+        problem = replace(problem, objective={"T_c_total": 1.0})
+    if "max_slip_mps" in edit:
+        problem = replace(problem, max_slip=1.0)
+    if "gait" in edit:
+        from formopt.optim.posture import Gait
+        problem = replace(problem, gait=Gait(foot_velocity=1.0))
+    if edit.get("variables"):
+        problem = replace(problem, variables=("hip", "knee", "ankle"),
+                          lower=problem.lower + (-0.5,), upper=problem.upper + (0.3,))
+    with pytest.raises(InputError) as from_api:
+        PostureProblem(scene.model(), strike, scene.state, problem, 0.0, 0.8, law=law)
+    assert str(from_api.value) == str(from_scene.value)

@@ -61,7 +61,7 @@ def test_coulomb_optimum_is_valid_in_its_mode_and_within_the_slip_bound(coulomb)
     assert abs(opt.impact.slip_velocity) <= 2.0 * (1 + 1e-6)
     assert opt.objective == pytest.approx(opt.impact.T_c, rel=1e-8)
     assert any("Coulomb mode fixed" in n for n in opt.notes)
-    assert opt.impact.T_c <= opt.impact.contact_laws["no-slip"]["T_c"]
+    assert opt.impact.T_c <= opt.impact.contact_laws["no-slip"].T_c
 
 
 def test_frictionless_optimum_never_uses_friction():

@@ -64,3 +64,28 @@ def test_cli_draws_the_map_and_refuses_a_decision_variable(tmp_path, capsys):
     assert "3 optima" in text and "interior" in text and out.with_suffix(".png").exists()
     assert main(["sweep", str(DEMO), "--param", "knee_deg=0:10:3", "--out", str(out)]) == 2
     assert "decision variable" in capsys.readouterr().err
+
+
+def test_a_slope_axis_reuses_one_problem(tmp_path, monkeypatch):
+    """Slope is a parameter of a no-slip impact NLP: a map across it builds the problem once,
+    and each row is the cold optimum of the scene built on that slope."""
+    from pathlib import Path
+
+    from formopt.io.scene import Scene
+    built = []
+    original = Scene.posture_problem
+    monkeypatch.setattr(Scene, "posture_problem", lambda s, **k: built.append(s.slope) or original(s, **k))
+    monkeypatch.setattr(optimum_map, "_PROBLEMS", {})
+    scene = load(Path(__file__).parents[1] / "optim" / "bounded.toml")
+    rows = sweep.run(scene, [("slope_deg", np.array([-4.0, 0.0, 4.0]))], tmp_path / "slope.csv",
+                     progress=False)
+    assert built == [scene.slope]
+    header = (tmp_path / "slope.csv").read_text().splitlines()[0].split(",")
+    assert header[:4] == ["slope_deg", "hip_deg", "knee_deg", "ankle_deg"]
+    assert header[4:] == [c for c in optimum_map.COLUMNS if c != "slope_deg"]  # the swept one once
+    assert all(float(r["friction"]) == scene.friction for r in rows)  # each row says its ground
+    for r in rows:
+        cold = solve(sweep.apply(scene, {"slope_deg": float(r["slope_deg"])}))
+        assert r["success"] == "True" and cold.success
+        assert float(r["T_c"]) == pytest.approx(cold.impact.T_c, rel=1e-6)
+        assert r["verdict"] == cold.verdict
