@@ -72,7 +72,7 @@ def keys(data: dict, where: str, allowed, required=()) -> None:
             close = difflib.get_close_matches(str(key), sorted(allowed), n=1)
             hint = f" (did you mean {close[0]!r}?)" if close else \
                 f" (expected one of: {', '.join(sorted(allowed))})"
-            raise ValidationError(_full(where, key), "unknown key" + hint)
+            raise ValidationError(_full(where, key), f"unknown key {short(key)}{hint}")
     for key in required if isinstance(required, tuple) else sorted(required):
         if key not in data:
             raise ValidationError(_full(where, key), "missing")
