@@ -29,5 +29,5 @@ def run(args) -> int:
     files = [write_csv(out / "bench.csv", [list(table[0])] + [list(r.values()) for r in table]),
              save_figure(pareto_figure(rows), out / f"pareto.{args.format}")]
     report = {**bench.to_json(rows, batch), "files": [str(f) for f in files]}
-    emit(args, report, out / "bench.json", bench_table(rows, batch), files)
+    emit(args, report, bench_table(rows, batch), out / "bench.json", files)
     return 0

@@ -7,8 +7,6 @@ that differs per runner) give one comparison each and one table across them (tri
 
 from __future__ import annotations
 
-import argparse
-import json
 import sys
 from pathlib import Path
 
@@ -22,7 +20,7 @@ from ..mechanics.contact import LAWS
 from ..mechanics.errors import InputError
 from ..report.figures import comparison_figure
 from ..report.tables import comparison_table, trials_table
-from ..studies.compare import BOUNDS_DEG, JOINTS, SUPPORT, compare, report
+from ..studies.compare import BOUNDS_DEG, JOINTS, SUPPORT, compare
 from .common import add_format, emit, out_folder
 
 # every setting: its default and what it is (the option's help)
@@ -181,16 +179,17 @@ TRIAL_COLUMNS = ["trial", "markers", "method", "touchdowns", "valid_data", "cade
                  *[f"optimum_{k}_deg" for k in ("hip", "knee", "ankle")], "saving_J_per_step"]
 
 
-def run_one(s: dict, args, out: Path):
-    """One trial: compare, then its figure, CSV, OpenSim files and JSON (each written whole)."""
+def run_one(s: dict, args, out: Path, show: bool = True):
+    """One trial: compare, then its figure, CSV, OpenSim files and JSON (each written whole;
+    the report built once, Comparison.to_dict); `show` False prints nothing."""
     trial = mocap.read(s["trial"], s["forces"])
     static = mocap.read(s["static"])
     options = mocap.Options(s["markers"], s["cutoff"], s["force_threshold"], s["foot_speed_fraction"])
     result = compare(trial, static, s["mass"], s["height"], s["sex"], s["friction"],
                      starts=s["starts"], seed=s["seed"], law=s["contact"], bounds_deg=s["bounds"],
                      support=s["support"], options=options, per_step=s["per_step"])
-    rep = report(result)
-    rep["figure"] = str(save_figure(comparison_figure(result), out / f"comparison.{args.format}"))
+    rep = result.to_dict()
+    rep["figure"] = str(save_figure(comparison_figure(result, rep), out / f"comparison.{args.format}"))
     rows = [TOUCHDOWN_COLUMNS]
     for t in rep["touchdowns"]:
         a, g, o = t["angles_deg"], t["segment_angles_deg"], t.get("optimum", {})
@@ -204,7 +203,7 @@ def run_one(s: dict, args, out: Path):
     files = [rep["figure"], write_csv(out / "touchdowns.csv", rows),
              write_trc(out / "markers.trc", m.kinematics, m.calibration),
              write_mot(out / "angles.mot", m.kinematics)]
-    emit(args, rep, out / "comparison.json", comparison_table(result), files)
+    emit(args, rep, comparison_table(result, rep), out / "comparison.json", files, show)
     return rep, result
 
 
@@ -227,19 +226,18 @@ def run(args) -> int:
     many = len(trials) > 1
     root = out_folder(args, args.scene or trials[0]["trial"])
     table, code = [TRIAL_COLUMNS], 0
-    quiet = argparse.Namespace(**{**vars(args), "json": False})
     for k, s in enumerate(trials, 1):
         if many:
             print(f"[{k}/{len(trials)}] {s['trial']}", file=sys.stderr, flush=True)
-            rep, result = run_one(s, quiet, output_folder(root / Path(s["trial"]).stem))
+            rep, result = run_one(s, args, output_folder(root / Path(s["trial"]).stem),
+                                  show=not args.json)  # --json: only the JSON below on stdout
         else:
             rep, result = run_one(s, args, root)
         code = max(code, 0 if result.optimum.success else 1)
         table += trial_rows(rep)
         if many:
             write_csv(root / "trials.csv", table)  # after every trial: an interruption loses nothing
-    if many and args.json:
-        print(json.dumps({"trials": [dict(zip(table[0], row)) for row in table[1:]]}, indent=2))
-    elif many:
-        print("\n" + trials_table(table) + f"\n\nwrote {root / 'trials.csv'}")
+    if many:
+        emit(args, {"trials": [dict(zip(table[0], row)) for row in table[1:]]},
+             "\n" + trials_table(table), files=[root / "trials.csv"])
     return code

@@ -25,10 +25,13 @@ class Range:
         return (self.low < value if self.low_open else self.low <= value) and value <= self.high
 
     def text(self) -> str:
-        """The range in words, as errors print it: "> 0", ">= 1", "between -60 and 60 deg"."""
+        """The range in words, as errors print it: "> 0", ">= 1", "> 0 and <= 10",
+        "between -60 and 60 deg"."""
         unit = f" {self.unit}" if self.unit else ""
         if self.high == math.inf:
             return f"{'>' if self.low_open else '>='} {self.low:g}{unit}"
+        if self.low_open:
+            return f"> {self.low:g} and <= {self.high:g}{unit}"
         return f"between {self.low:g} and {self.high:g}{unit}"
 
     def scaled(self, factor: float, unit: str) -> "Range":
