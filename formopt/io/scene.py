@@ -1,7 +1,8 @@
 """Scene files (TOML): what is studied, validated at the boundary.
 
-Every error is a SceneError naming the key (`touchdown.angles_deg.knee`) and what is wrong
-with it; nothing invalid reaches the mechanics. Degrees at this edge, SI inside.
+Every error is a SceneError (io.validate.ValidationError) naming the file, the key
+(`touchdown.angles_deg.knee`), the value and the allowed range (mechanics.limits); nothing
+invalid reaches the mechanics. Degrees at this edge, SI inside.
 """
 
 from __future__ import annotations
