@@ -18,6 +18,7 @@ from hypothesis import strategies as st
 
 from formopt.cli import main
 from formopt.io import markerset
+from formopt.mechanics.errors import InputError
 from formopt.studies import sweep
 from helpers import DATA, PROBLEMS
 
@@ -323,3 +324,35 @@ def test_a_cluster_of_one_marker_named_three_times_is_refused(tmp_path, capsys):
     assert main(args) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "one_marker.toml: leg.thigh: names 'Thigh.Top.Lateral' more than once" in err[0]
+
+
+COMPARE_SCENE = {"compare": {"mass": 62, "height": 1.81, "static": "no_static.c3d", "friction": 0.8,
+                             "contact": "coulomb", "bounds": {"knee": [0.0, 60.0]}, "starts": 2,
+                             "per_step": False, "markers": "rbds"},
+                 "trial": [{"trial": "no_trial.c3d", "sex": "female"}]}
+
+
+@FAST
+@given(path=st.sampled_from([*paths(COMPARE_SCENE), ("trial", 0, "trial"), ("trial", 0, "sex")]),
+       action=st.sampled_from(["delete", "misspell", "unicode key", "replace", "replace"]),
+       replacement=REPLACEMENTS)
+def test_mutated_compare_scenes_exit_2_with_one_line(tmp_path, capsys, path, action, replacement):
+    """Every mutant is refused in one line: by the vocabulary, or (when it is still valid) by
+    its missing trial files, so no mutant reaches the measurement."""
+    scene = write(tmp_path, mutant(COMPARE_SCENE, path, action, replacement), "compare.toml")
+    assert check(["compare", "--scene", str(scene), "--out", str(tmp_path / "o")], capsys,
+                 json_out=False) == 2
+
+
+MAP = tomllib.loads((markerset.SHIPPED / "rbds.toml").read_text())
+
+
+@FAST
+@given(path=st.sampled_from(list(paths(MAP))),
+       action=st.sampled_from(["delete", "misspell", "unicode key", "replace", "replace"]),
+       replacement=REPLACEMENTS)
+def test_mutated_marker_maps_load_or_are_refused_in_one_line(tmp_path, path, action, replacement):
+    try:
+        markerset.load(write(tmp_path, mutant(MAP, path, action, replacement), "map.toml"))
+    except InputError as err:
+        assert "\n" not in str(err) and "map.toml" in str(err)
