@@ -48,7 +48,7 @@ def read_toml(path, what: str) -> dict:
                                       f"{MAX_TOML_BYTES // 1000} kB", path)
         text = path.read_text(encoding="utf-8")
     except OSError as err:
-        raise ValidationError("", f"cannot read {path}: {err.strerror}") from None
+        raise ValidationError("", f"cannot read: {err.strerror}", path) from None
     except UnicodeDecodeError as err:
         raise ValidationError("", f"not UTF-8 text (byte {err.start}): {what} is a TOML file",
                               path) from None
