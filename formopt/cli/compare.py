@@ -107,7 +107,7 @@ def check(table: dict, where: str, folder: Path | None = None) -> dict:
             out[key] = val.integer(table, key, where, None, *WHOLE[key])
         elif key in FILES:
             name = val.string(table, key, where)
-            relative = folder and (key != "markers" or name.endswith(".toml"))
+            relative = folder is not None and (key != "markers" or name.endswith(".toml"))
             out[key] = str(folder / name) if relative else name
         elif key == "per_step":
             out[key] = val.flag(table, key, where, True)

@@ -114,9 +114,10 @@ def _parse(data: dict, path: Path) -> MarkerSet:
     asis = psis = None
     if hip == "harrington":
         asis, psis = (val.labels(pelvis, k, "pelvis", at_least=2, distinct=True) for k in ("asis", "psis"))
-        if len(asis) != 2 or len(psis) != 2:
-            raise val.ValidationError("pelvis.asis", "pelvis.asis and pelvis.psis name the right "
-                                                     "then the left marker: two labels each")
+        for key, pair in (("asis", asis), ("psis", psis)):
+            if len(pair) != 2:
+                raise val.ValidationError(f"pelvis.{key}", "names the right then the left marker: "
+                                                           f"two labels, not {len(pair)}")
     elif "hip" not in leg:
         raise val.ValidationError("leg.hip", "missing: a \"landmark\" hip names its landmarks")
     parsed = {key: val.labels(leg, key, "leg", at_least=3 if key in SEGMENTS else 1,
