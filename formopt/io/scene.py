@@ -294,9 +294,63 @@ RATE_VARIABLES = tuple("omega_" + r for r in RATES)
 
 
 def _optimize(data, model, strike, law) -> Problem:
+    """[optimize]: the posture problem (variables and bounds, objective, multi-start, limits,
+    gait, local mode), with what the model, strike and contact law admit."""
     if not isinstance(data, dict):
         raise SceneError("optimize", "must be a table")
     val.keys(data, "optimize", OPTIMIZE_KEYS, ("variables", "objective"))
+    variables, lower, upper = _variables(data, model, strike)
+    objective = _objective(data["objective"])
+    starts = val.integer(data, "starts", "optimize", default=8, low=1, high=1000)
+    seed = val.integer(data, "seed", "optimize", default=0, low=0, high=2**32 - 1)
+    tolerance = val.number(data, "tolerance", "optimize", default=1e-8, low=1e-14, high=1e-2)
+    overstride = (val.number(data, "max_overstride_m", "optimize", low=-2.0, high=2.0)
+                  if "max_overstride_m" in data else None)
+    hip_height = None
+    if "hip_height_m" in data:
+        hip_height = val.pair(data, "hip_height_m", "optimize", limit=3.0)
+        if hip_height[0] >= hip_height[1]:
+            raise SceneError("optimize.hip_height_m", "the lower height must be below the upper")
+    contact_friction = val.flag(data, "contact_friction", "optimize", False)
+    max_iterations = val.integer(data, "max_iterations", "optimize", default=200, low=1, high=100000)
+    max_slip = None
+    if "max_slip_mps" in data:
+        if law == "no-slip":
+            raise SceneError("optimize.max_slip_mps", "bounds the slip that ground.contact = "
+                                                      "\"coulomb\" or \"frictionless\" allows; "
+                                                      "under \"no-slip\" the foot never slips")
+        max_slip = val.number(data, "max_slip_mps", "optimize", low=0.0, high=100.0)
+    gait = _gait(data["gait"], model) if "gait" in data else None
+    radius = None
+    if "around" in data or "radius_deg" in data:
+        if data.get("around", "reference") != "reference":
+            raise SceneError("optimize.around", f"must be \"reference\" (the scene's touchdown), "
+                                                f"not {val.short(data['around'])}")
+        radius = math.radians(val.number(data, "radius_deg", "optimize", default=5.0, low=0.0,
+                                         high=90.0, low_open=True))
+    if "support" in objective and model not in HIP_MODELS:
+        raise SceneError("optimize.objective.support", f"the stance's support needs a knee and a "
+                                                       f"hip: scene.model {', '.join(HIP_MODELS)}")
+    peak = val.number(data, "stance_peak_bw", "optimize", default=STANCE_PEAK_BW, low=0.5, high=10.0)
+    problem = Problem(variables, lower, upper, objective, overstride, hip_height,
+                      starts, seed, tolerance, contact_friction, max_iterations, max_slip, gait,
+                      radius, peak)
+    if problem.landing and strike == "flat":
+        raise SceneError("optimize.objective", "the landing (T_c_total, contact_friction) starts with "
+                                               "a heel or forefoot strike, not a flat one")
+    if problem.landing and law != "no-slip":
+        raise SceneError("ground.contact", f"the landing objective (T_c_total, contact_friction) "
+                                           f"holds the strike point: no-slip only, not {law!r}")
+    if law == "coulomb" and strike == "flat":
+        raise SceneError("ground.contact", "optimising a flat strike under \"coulomb\" is not "
+                                           "available (see the README): use \"no-slip\" or "
+                                           "\"frictionless\"")
+    return problem
+
+
+def _variables(data, model, strike) -> tuple[tuple, tuple, tuple]:
+    """optimize.variables and their bounds: (names, lower, upper), SI. Angles default to the
+    joint's range of motion and may not leave it; rates need their bounds_dps."""
     variables = data["variables"]
     allowed = ANGLES + RATE_VARIABLES
     if not isinstance(variables, list) or not variables:
@@ -327,7 +381,11 @@ def _optimize(data, model, strike, law) -> Problem:
                 raise SceneError(f"optimize.bounds_dps.{rate}", f"lower bound {lo:g} must be below the upper {hi:g}")
         lower.append(math.radians(lo))
         upper.append(math.radians(hi))
-    objective = data["objective"]
+    return tuple(variables), tuple(lower), tuple(upper)
+
+
+def _objective(objective) -> dict:
+    """optimize.objective: a name (weight 1) or a table of weights, at least one non-zero."""
     if isinstance(objective, str):
         objective = {val.choice(objective, "optimize.objective", OBJECTIVES): 1.0}
     elif isinstance(objective, dict):
@@ -337,54 +395,8 @@ def _optimize(data, model, strike, law) -> Problem:
             raise SceneError("optimize.objective", "needs at least one non-zero weight")
     else:
         raise SceneError("optimize.objective", f"must be one of {', '.join(OBJECTIVES)} or a table "
-                                               "of weights, e.g. {{ T_c = 1.0, dv_trunk_x = 20.0 }}")
-    starts = val.integer(data, "starts", "optimize", default=8, low=1, high=1000)
-    seed = val.integer(data, "seed", "optimize", default=0, low=0, high=2**32 - 1)
-    tolerance = val.number(data, "tolerance", "optimize", default=1e-8, low=1e-14, high=1e-2)
-    overstride = (val.number(data, "max_overstride_m", "optimize", low=-2.0, high=2.0)
-                  if "max_overstride_m" in data else None)
-    hip_height = None
-    if "hip_height_m" in data:
-        hip_height = val.pair(data, "hip_height_m", "optimize", limit=3.0)
-        if hip_height[0] >= hip_height[1]:
-            raise SceneError("optimize.hip_height_m", "the lower height must be below the upper")
-    contact_friction = data.get("contact_friction", False)
-    if not isinstance(contact_friction, bool):
-        raise SceneError("optimize.contact_friction", f"must be true or false, not {val.short(contact_friction)}")
-    max_iterations = val.integer(data, "max_iterations", "optimize", default=200, low=1, high=100000)
-    max_slip = None
-    if "max_slip_mps" in data:
-        if law == "no-slip":
-            raise SceneError("optimize.max_slip_mps", "bounds the slip that ground.contact = "
-                                                      "\"coulomb\" or \"frictionless\" allows; "
-                                                      "under \"no-slip\" the foot never slips")
-        max_slip = val.number(data, "max_slip_mps", "optimize", low=0.0, high=100.0)
-    gait = _gait(data["gait"], model) if "gait" in data else None
-    radius = None
-    if "around" in data or "radius_deg" in data:
-        if data.get("around", "reference") != "reference":
-            raise SceneError("optimize.around", f"must be \"reference\" (the scene's touchdown), "
-                                                f"not {val.short(data['around'])}")
-        radius = math.radians(val.number(data, "radius_deg", "optimize", default=5.0, low=0.0,
-                                      high=90.0, low_open=True))
-    if "support" in objective and model not in HIP_MODELS:
-        raise SceneError("optimize.objective.support", f"the stance's support needs a knee and a "
-                                                       f"hip: scene.model {', '.join(HIP_MODELS)}")
-    peak = val.number(data, "stance_peak_bw", "optimize", default=STANCE_PEAK_BW, low=0.5, high=10.0)
-    problem = Problem(tuple(variables), tuple(lower), tuple(upper), objective, overstride, hip_height,
-                      starts, seed, tolerance, contact_friction, max_iterations, max_slip, gait,
-                      radius, peak)
-    if problem.landing and strike == "flat":
-        raise SceneError("optimize.objective", "the landing (T_c_total, contact_friction) starts with "
-                                               "a heel or forefoot strike, not a flat one")
-    if problem.landing and law != "no-slip":
-        raise SceneError("ground.contact", f"the landing objective (T_c_total, contact_friction) "
-                                           f"holds the strike point: no-slip only, not {law!r}")
-    if law == "coulomb" and strike == "flat":
-        raise SceneError("ground.contact", "optimising a flat strike under \"coulomb\" is not "
-                                           "available (see the README): use \"no-slip\" or "
-                                           "\"frictionless\"")
-    return problem
+                                               "of weights, e.g. { T_c = 1.0, dv_trunk_x = 20.0 }")
+    return objective
 
 
 def _gait(data, model) -> Gait:
