@@ -69,9 +69,11 @@ JOINT_MOMENT_NM = Range(-5000.0, 5000.0, "N m")
 
 # -- the ground ------------------------------------------------------------------------
 # Friction: Coulomb's coefficient between shoe and ground, > 0 (0 is no ground to push on) and
-# at most 10, beyond any shoe: rubber soles on dry concrete or a treadmill belt 0.6-1.2,
-# track spikes about 1.5 (Frederick 1993; Chang et al. 2001, Ergonomics 44:1217).
-FRICTION = Range(0.0, 10.0, "", low_open=True)
+# at most 100. Real shoes stay below 2 (rubber soles on dry concrete or a treadmill belt
+# 0.6-1.2, track spikes about 1.5: Chang et al. 2001, Ergonomics 44:1217); the range is left
+# open to 100 for limit cases (Coulomb with ample friction against no-slip, sticking past
+# W_nn / |W_tn|, about 6 for a heel strike: design.md section 1). Beyond 100, a typing error.
+FRICTION = Range(0.0, 100.0, "", low_open=True)
 # Slope: +-60 deg, beyond what can be run (the steepest vertical-kilometre courses average
 # about 30 deg, and the steepest paved streets about 20 deg).
 SLOPE_DEG = Range(-60.0, 60.0, "deg")

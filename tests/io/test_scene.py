@@ -191,6 +191,6 @@ def test_bounds_beyond_the_range_of_motion_are_refused_as_compare_refuses_them(b
 
 
 def test_load_names_the_file(tmp_path):
-    text = REFERENCE.read_text().replace("friction = 0.8", "friction = 80.0")
-    with pytest.raises(SceneError, match=r"scene.toml: ground.friction: must be > 0 and <= 10, not 80"):
+    text = REFERENCE.read_text().replace("friction = 0.8", "friction = 800.0")
+    with pytest.raises(SceneError, match=r"scene.toml: ground.friction: must be > 0 and <= 100, not 800"):
         load(write(tmp_path, text))
