@@ -41,10 +41,10 @@ class Range:
 
 # -- the touchdown state (model.STATE) ----------------------------------------------------
 ANGLE_LIMIT = math.pi  # rad: joint and trunk angles within half a turn either way
-# The hip at most 30 m/s: 2.4 times the fastest human sprint (12.4 m/s, Bolt 2009, Berlin).
+# The hip at most 30 m/s: 2.4 times the fastest human sprint (about 12.4 m/s, the peak speed
+# of the 100 m world record, Berlin 2009).
 SPEED_LIMIT = 30.0  # m/s
-# Segment rates at most 5000 deg/s: sprinting limbs reach about 2000 deg/s (the shank in
-# late swing, Mann & Sprague 1980; Kivi et al. 2002, Med Sci Sports Exerc 34:662).
+# Segment rates at most 5000 deg/s: sprinting limbs reach about 2000 deg/s.
 RATE_LIMIT = math.radians(5000.0)  # rad/s
 RATE_DPS = Range(-RATE_LIMIT, RATE_LIMIT).scaled(math.degrees(1.0), "deg/s")  # at the edge
 ANGLE_DEG = Range(-ANGLE_LIMIT, ANGLE_LIMIT).scaled(math.degrees(1.0), "deg")  # at the edge
@@ -60,29 +60,29 @@ RANGE_OF_MOTION_DEG = {"trunk": (-25.0, 80.0), "hip": (-30.0, 120.0), "knee": (0
 # three times the knee of sprinters (17-24 N m/deg, Kuitunen, Komi & Kyrolainen 2002, Med Sci
 # Sports Exerc 34:166); damping 0.02 N m s/(kg deg), the critical damping of the paper's shank
 # and foot about the knee at that stiffness (beyond it the joint is locked over a landing: use
-# model "locked"); preload 5 N m/kg, above any stance joint moment in running (peak knee
-# extensor moment about 3 N m/kg, Schache et al. 2011, Med Sci Sports Exerc 43:1260).
+# model "locked"); preload 5 N m/kg, above the stance joint moments of running (a few N m/kg
+# at the knee and ankle, e.g. Schache et al. 2011, Med Sci Sports Exerc 43:1260).
 JOINT_LIMITS = {"stiffness": 1.0, "damping": 0.02, "preload": 5.0}
-# A prescribed joint moment at most 5000 N m, about ten times the largest joint moment measured
-# in sprinting (hip, about 500 N m for a 90 kg sprinter, Schache et al. 2011).
+# A prescribed joint moment at most 5000 N m: ten times 5 N m/kg (JOINT_LIMITS' preload) for a
+# 100 kg runner.
 JOINT_MOMENT_NM = Range(-5000.0, 5000.0, "N m")
 
 # -- the ground ------------------------------------------------------------------------
 # Friction: Coulomb's coefficient between shoe and ground, > 0 (0 is no ground to push on) and
-# at most 100. Real shoes stay below 2 (rubber soles on dry concrete or a treadmill belt
-# 0.6-1.2, track spikes about 1.5: Chang et al. 2001, Ergonomics 44:1217); the range is left
-# open to 100 for limit cases (Coulomb with ample friction against no-slip, sticking past
-# W_nn / |W_tn|, about 6 for a heel strike: design.md section 1). Beyond 100, a typing error.
+# at most 100. Shoe soles on dry ground stay below about 2 (the shipped scenes use 0.8); the
+# range is left open to 100 for limit cases (Coulomb with ample friction against no-slip,
+# sliding past W_nn / |W_tn|, about 6 for a heel strike: design.md section 1). Beyond 100, a
+# typing error.
 FRICTION = Range(0.0, 100.0, "", low_open=True)
 # Slope: +-60 deg, beyond what can be run (the steepest vertical-kilometre courses average
 # about 30 deg, and the steepest paved streets about 20 deg).
 SLOPE_DEG = Range(-60.0, 60.0, "deg")
 
 # -- the runner ------------------------------------------------------------------------
-# Body mass and stature: the extremes of adult humans (recorded 6.5 kg - 635 kg and 0.55 m -
-# 2.72 m) cut to those a running model can represent (de Leva 1996's scaling holds for adults).
+# Body mass and stature: wider than adult runners (de Leva 1996's segment parameters are
+# adults'); the recorded extremes of adult stature are 0.55 m and 2.72 m.
 BODY_MASS_KG = Range(1.0, 500.0, "kg")
 BODY_HEIGHT_M = Range(0.5, 2.5, "m")
-# Cadence 60-300 steps/min: slow jogging is about 140, elite sprinters reach about 290
-# (Weyand et al. 2000, J Appl Physiol 89:1991).
+# Cadence 60-300 steps/min: slow jogging is about 140 (RBDS001: 156.5 at 2.5 m/s), elite
+# sprinters reach about 5 steps/s.
 CADENCE_SPM = Range(60.0, 300.0, "steps/min")
