@@ -17,8 +17,10 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from formopt.cli import main
+from formopt.io import markerset
+from formopt.mechanics.errors import InputError
 from formopt.studies import sweep
-from helpers import PROBLEMS
+from helpers import DATA, PROBLEMS
 
 SCENES = {p.name: tomllib.loads(p.read_text()) for p in sorted(PROBLEMS.glob("*.toml"))}
 FAST = settings(max_examples=150, deadline=None, derandomize=True,
@@ -261,3 +263,96 @@ def test_killed_sweep_takes_its_pool_workers_with_it(tmp_path):
 def test_a_newline_in_a_file_name_stays_on_one_line(tmp_path, capsys):
     assert check(["impact", str(tmp_path / "no\nsuch.toml")], capsys, json_out=False) == 2
     assert check(["simulate", SPRING, "--out", str(tmp_path / "a\nb" / "c")], capsys, json_out=False) in (0, 2)
+
+
+# -- compare scenes and marker maps: the same vocabulary as scenes (issue 25) -------------------
+
+RUN35, STATIC = DATA / "rbds" / "RBDS001runT35.c3d", DATA / "rbds" / "RBDS001static.c3d"
+COMPARE = f'[compare]\nmass = 62\nheight = 1.81\nstatic = "{STATIC}"\n'
+ONE_TRIAL = f'[[trial]]\ntrial = "{RUN35}"\n'
+
+
+@pytest.mark.parametrize("text,needle", [
+    (COMPARE + "[[trial]]\ntrial = 42\n", "trial[1].trial: must be a non-empty string, not 42"),
+    (COMPARE.replace(f'"{STATIC}"', "{ a = 1 }") + ONE_TRIAL, "compare.static: must be a non-empty"),
+    ("[[compare]]\nmass = 62\n", "compare: must be a table, not list"),
+    (COMPARE + 'bounds = "knee"\n' + ONE_TRIAL, "compare.bounds: must be a table of JOINT = [lo, hi]"),
+    (COMPARE + "bounds = [0]\n" + ONE_TRIAL, "compare.bounds: must be a table"),
+    (COMPARE + 'bounds = ["a", "b"]\n' + ONE_TRIAL, "compare.bounds: must be a table"),
+    (COMPARE + "bounds = 5\n" + ONE_TRIAL, "compare.bounds: must be a table"),
+    (COMPARE + "bounds = { knee = [0, 200] }\n" + ONE_TRIAL, "knee's range of motion"),
+    (COMPARE + "bounds = { kne = [0, 20] }\n" + ONE_TRIAL, "did you mean 'knee'"),
+    (COMPARE + "markers = 42\n" + ONE_TRIAL, "compare.markers: must be a non-empty string"),
+    (COMPARE + "friction = 0\n" + ONE_TRIAL, "compare.friction: must be > 0"),
+    (COMPARE + "starts = 2.5\n" + ONE_TRIAL, "compare.starts: must be a whole number"),
+    (COMPARE + "per_step = 1\n" + ONE_TRIAL, "compare.per_step: must be true or false"),
+    (COMPARE + 'contact = "coulomn"\n' + ONE_TRIAL, "did you mean 'coulomb'"),
+    (COMPARE + f'[trial]\ntrial = "{RUN35}"\n', "trial: must be [[trial]] entries"),
+    ("[compare]\nmas = 62\n", "compare.mas: unknown key 'mas' (did you mean 'mass'?)"),
+    ("[comparee]\n", "did you mean 'compare'"),
+    ("a = " + "[" * 2000 + "]" * 2000 + "\n", "nested too deeply"),
+])
+def test_bad_compare_scenes_exit_2_with_one_line(tmp_path, capsys, text, needle):
+    path = write_text(tmp_path / "compare.toml", text)
+    assert main(["compare", "--scene", str(path), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("formopt: error: ")
+    assert needle in err[0] and str(path) in err[0]
+
+
+def write_text(path, text, encoding="utf-8"):
+    path.write_text(text, encoding=encoding)
+    return path
+
+
+@pytest.mark.parametrize("content", [(COMPARE + ONE_TRIAL).encode("utf-16"), bytes(range(256)) * 8])
+def test_compare_scenes_that_are_not_utf8_text_exit_2(tmp_path, capsys, content):
+    path = tmp_path / "compare.toml"
+    path.write_bytes(content)
+    assert check(["compare", "--scene", str(path)], capsys, json_out=False) == 2
+
+
+def test_a_cluster_of_one_marker_named_three_times_is_refused(tmp_path, capsys):
+    """Three copies of one thigh marker span no plane: refused with the map's file and key
+    (before, hip 14.8 and knee -11.5 deg with every step "valid")."""
+    text = (markerset.SHIPPED / "rbds.toml").read_text().replace(
+        '"Thigh.Bottom.Lateral", "Thigh.Top.Medial", "Thigh.Bottom.Medial"',
+        '"Thigh.Top.Lateral", "Thigh.Top.Lateral"')
+    path = write_text(tmp_path / "one_marker.toml", text)
+    args = ["compare", "--trial", str(RUN35), "--static", str(STATIC), "--mass", "62",
+            "--height", "1.81", "--markers", str(path), "--out", str(tmp_path / "o")]
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "one_marker.toml: leg.thigh: names 'Thigh.Top.Lateral' more than once" in err[0]
+
+
+COMPARE_SCENE = {"compare": {"mass": 62, "height": 1.81, "static": "no_static.c3d", "friction": 0.8,
+                             "contact": "coulomb", "bounds": {"knee": [0.0, 60.0]}, "starts": 2,
+                             "per_step": False, "markers": "rbds"},
+                 "trial": [{"trial": "no_trial.c3d", "sex": "female"}]}
+
+
+@FAST
+@given(path=st.sampled_from([*paths(COMPARE_SCENE), ("trial", 0, "trial"), ("trial", 0, "sex")]),
+       action=st.sampled_from(["delete", "misspell", "unicode key", "replace", "replace"]),
+       replacement=REPLACEMENTS)
+def test_mutated_compare_scenes_exit_2_with_one_line(tmp_path, capsys, path, action, replacement):
+    """Every mutant is refused in one line: by the vocabulary, or (when it is still valid) by
+    its missing trial files, so no mutant reaches the measurement."""
+    scene = write(tmp_path, mutant(COMPARE_SCENE, path, action, replacement), "compare.toml")
+    assert check(["compare", "--scene", str(scene), "--out", str(tmp_path / "o")], capsys,
+                 json_out=False) == 2
+
+
+MAP = tomllib.loads((markerset.SHIPPED / "rbds.toml").read_text())
+
+
+@FAST
+@given(path=st.sampled_from(list(paths(MAP))),
+       action=st.sampled_from(["delete", "misspell", "unicode key", "replace", "replace"]),
+       replacement=REPLACEMENTS)
+def test_mutated_marker_maps_load_or_are_refused_in_one_line(tmp_path, path, action, replacement):
+    try:
+        markerset.load(write(tmp_path, mutant(MAP, path, action, replacement), "map.toml"))
+    except InputError as err:
+        assert "\n" not in str(err) and "map.toml" in str(err)

@@ -29,5 +29,5 @@ def run(args) -> int:
     files = [write_csv(out / "bench.csv", [list(table[0])] + [list(r.values()) for r in table]),
              save_figure(pareto_figure(result.rows), out / f"pareto.{args.format}")]
     report = {**result.to_dict(), "files": [str(f) for f in files]}
-    emit(args, report, out / "bench.json", bench_table(result), files)
+    emit(args, report, bench_table(result), out / "bench.json", files)
     return 0

@@ -24,11 +24,23 @@ def add_format(cmd) -> None:
                      help="figure format: png (default), svg or pdf (vector, for publication)")
 
 
-def emit(args, report: dict, json_path, table: str, files) -> None:
-    """Write the JSON report, then print it (--json) or the table and the files written."""
-    write_json(json_path, report)
+def scene_context(scene) -> dict:
+    """What a scene's report says about the run: the scene, model, body, its touchdown (the
+    scene file's schema, degrees) and the loader's notes."""
+    return {"scene": scene.name, "model": scene.kind, "body": scene.body.source,
+            "touchdown": scene.touchdown, "notes": list(scene.notes)}
+
+
+def emit(args, report: dict, table: str, json_path=None, files=(), show: bool = True) -> None:
+    """The one way a report leaves a command: written whole to `json_path` (when given), then
+    printed as JSON (--json: nothing else on stdout) or as the table and the files written;
+    `show` False writes only (one trial of several)."""
+    files = [*files, *([write_json(json_path, report)] if json_path else [])]
+    if not show:
+        return
     if args.json:
         print(json.dumps(report, indent=2))
     else:
         print(table)
-        print(f"\nwrote {', '.join(str(f) for f in [*files, json_path])}")
+        if files:
+            print(f"\nwrote {', '.join(str(f) for f in files)}")

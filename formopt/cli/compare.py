@@ -7,22 +7,21 @@ that differs per runner) give one comparison each and one table across them (tri
 
 from __future__ import annotations
 
-import argparse
-import json
 import sys
-import tomllib
 from pathlib import Path
 
 from ..io import markerset, mocap
+from ..io import validate as val
 from ..io.export import write_mot, write_trc
 from ..io.files import output_folder, save_figure, write_csv
 from ..measure import Options
+from ..mechanics import limits
+from ..mechanics.body import DE_LEVA
 from ..mechanics.contact import LAWS
 from ..mechanics.errors import InputError
-from ..optim.variables import RANGE_OF_MOTION_DEG
 from ..report.figures import comparison_figure
 from ..report.tables import comparison_table, trials_table
-from ..studies.compare import BOUNDS_DEG, JOINTS, SUPPORT, compare, report
+from ..studies.compare import BOUNDS_DEG, JOINTS, SUPPORT, compare
 from .common import add_format, emit, out_folder
 
 # every setting: its default and what it is (the option's help)
@@ -73,52 +72,74 @@ def add_parser(commands):
 
 
 def parse_bounds(items) -> dict:
-    """{joint: (lo, hi)} from JOINT=LO:HI strings, or an InputError naming the bad one."""
+    """{joint: [lo, hi]} from --bounds JOINT=LO:HI strings (checked with the scene's bounds)."""
     bounds = {}
     for item in items:
         joint, _, values = item.partition("=")
         try:
-            lo, hi = map(float, values.split(":"))
+            bounds[joint] = list(map(float, values.split(":")))
         except ValueError:
             raise InputError(f"--bounds {item!r}: write JOINT=LO:HI in deg, e.g. knee=0:60") from None
-        bounds[joint] = (lo, hi)
     return bounds
 
 
-def check_bounds(bounds: dict) -> dict:
-    for joint, (lo, hi) in bounds.items():
-        if joint not in BOUNDS_DEG:
-            raise InputError(f"bounds {joint!r}: the joint is one of {', '.join(BOUNDS_DEG)}")
-        rom = RANGE_OF_MOTION_DEG[joint]
-        if not rom[0] <= lo < hi <= rom[1]:
-            raise InputError(f"bounds {joint}={lo:g}:{hi:g}: need {rom[0]:g} <= LO < HI <= "
-                             f"{rom[1]:g} (the {joint}'s range of motion)")
-    return {k: (float(lo), float(hi)) for k, (lo, hi) in bounds.items()}
+# A setting's range where it is not a physical limit (mechanics.limits): the markers' low-pass
+# cut-off (running kinematics are filtered at 6-20 Hz; the sampling theorem caps it at half
+# the rate, checked by mocap), the force plate's touchdown threshold, the touchdown's fraction
+# of the running speed, the support term's weight.
+RANGES = {"mass": limits.BODY_MASS_KG, "height": limits.BODY_HEIGHT_M,
+          "friction": limits.FRICTION, "cutoff": limits.Range(0.5, 1000.0, "Hz"),
+          "force_threshold": limits.Range(1.0, 5000.0, "N"),
+          "foot_speed_fraction": limits.Range(0.05, 0.95), "support": limits.Range(0.0, 1e6)}
+WHOLE = {"starts": (1, 1000), "seed": (0, 2**31)}
+FILES = ("trial", "static", "forces", "markers")
+
+
+def check(table: dict, where: str, folder: Path | None = None) -> dict:
+    """The settings of one table ([compare], a [[trial]] entry or the options) checked with
+    io.validate and converted (numbers to float, bounds to {joint: (lo, hi)} deg, files
+    relative to `folder`); keys not in `table` stay out."""
+    val.keys(table, where, set(SETTINGS))
+    out = {}
+    for key in table:
+        if key in RANGES:
+            out[key] = val.number(table, key, where, limit=RANGES[key])
+        elif key in WHOLE:
+            out[key] = val.integer(table, key, where, None, *WHOLE[key])
+        elif key in FILES:
+            name = val.string(table, key, where)
+            relative = folder is not None and (key != "markers" or name.endswith(".toml"))
+            out[key] = str(folder / name) if relative else name
+        elif key == "per_step":
+            out[key] = val.flag(table, key, where, True)
+        elif key == "bounds":
+            full = f"{where}.bounds" if where else "bounds"
+            if not isinstance(table[key], dict):
+                raise val.ValidationError(full, f"must be a table of JOINT = [lo, hi] in deg ("
+                                                f"{', '.join(BOUNDS_DEG)}), not {val.short(table[key])}")
+            b = val.table(table, key, set(BOUNDS_DEG), (), where)
+            out[key] = {j: val.joint_bounds(v, f"{full}.{j}", j) for j, v in b.items()}
+        else:
+            out[key] = val.choice(table[key], f"{where}.{key}" if where else key,
+                                  LAWS if key == "contact" else tuple(DE_LEVA))
+    return out
 
 
 def read_scene(path) -> tuple[dict, list[dict]]:
-    """([compare] settings, [[trial]] entries) of a scene file; paths relative to it."""
+    """([compare] settings, [[trial]] entries) of a scene file, checked; paths relative to it."""
     path = Path(path)
+    data = val.read_toml(path, "a compare scene")
     try:
-        data = tomllib.loads(path.read_text())
-    except (OSError, tomllib.TOMLDecodeError) as err:
-        raise InputError(f"{path}: not a readable scene ({err})") from None
-    unknown = set(data) - {"compare", "trial"}
-    if unknown:
-        raise InputError(f"{path}: unknown table {sorted(unknown)[0]!r} (a compare scene has "
-                         f"[compare] and [[trial]])")
-    shared, trials = data.get("compare", {}), data.get("trial", [])
-    for where, table in [("[compare]", shared)] + [(f"[[trial]] {k + 1}", t) for k, t in enumerate(trials)]:
-        bad = set(table) - set(SETTINGS)
-        if bad:
-            raise InputError(f"{path}: {where}: unknown key {sorted(bad)[0]!r} "
-                             f"(keys: {', '.join(SETTINGS)})")
-        for key in ("trial", "static", "forces", "markers"):
-            if isinstance(table.get(key), str) and (key != "markers" or table[key].endswith(".toml")):
-                table[key] = str(path.parent / table[key])
-        if isinstance(table.get("bounds"), dict):
-            table["bounds"] = {k: tuple(v) for k, v in table["bounds"].items()}
-    return shared, trials
+        val.keys(data, "", {"compare", "trial"})
+        shared = check(val.table(data, "compare", set(SETTINGS)) if "compare" in data else {},
+                       "compare", path.parent)
+        trials = data.get("trial", [])
+        if not isinstance(trials, list) or not all(isinstance(t, dict) for t in trials):
+            raise val.ValidationError("trial", "must be [[trial]] entries (an array of tables), "
+                                               f"not {val.short(trials)}")
+        return shared, [check(t, f"trial[{k + 1}]", path.parent) for k, t in enumerate(trials)]
+    except val.ValidationError as err:
+        raise err.in_file(path) from None
 
 
 def settings(args) -> list[dict]:
@@ -128,44 +149,22 @@ def settings(args) -> list[dict]:
     if "bounds" in given:
         given["bounds"] = parse_bounds(given["bounds"])
     cli_trials = given.pop("trial", None)
+    try:
+        given = check(given, "")
+    except val.ValidationError as err:
+        raise InputError(f"--{err.key.replace('_', '-')}: {err.reason}") from None
     if cli_trials:
-        trials = [{"trial": t} for t in cli_trials]
+        trials = [check({"trial": t}, "") for t in cli_trials]
     base = {k: d for k, (d, _) in SETTINGS.items()}
     out = []
     for entry in trials or [{}]:
         s = {**base, **shared, **entry, **given}
-        if isinstance(s["trial"], list):
-            raise InputError("trial: one file per [[trial]] entry")
         missing = [k for k in ("trial", "static", "mass", "height") if s.get(k) is None]
         if missing:
             raise InputError(f"compare needs {', '.join('--' + k for k in missing)} (or the keys "
                              f"in a --scene file)")
-        out.append(_checked(s))
+        out.append(s)
     return out
-
-
-def _checked(s: dict) -> dict:
-    def number(key, lo, hi, unit=""):
-        try:
-            value = float(s[key])
-        except (TypeError, ValueError):
-            raise InputError(f"{key} must be a number, not {s[key]!r}") from None
-        if not lo <= value <= hi:
-            raise InputError(f"{key} = {value:g}{unit} is outside {lo:g} to {hi:g}{unit}")
-        return value
-    s["mass"], s["height"] = number("mass", 1, 500, " kg"), number("height", 0.5, 2.5, " m")
-    s["friction"] = number("friction", 1e-6, 1e6)
-    s["support"] = number("support", 0, 1e6)
-    s["cutoff"] = number("cutoff", 0.5, 1000, " Hz")
-    s["force_threshold"] = number("force_threshold", 1, 5000, " N")
-    s["foot_speed_fraction"] = number("foot_speed_fraction", 0.05, 0.95)
-    s["starts"], s["seed"] = int(number("starts", 1, 1000)), int(number("seed", 0, 2 ** 31))
-    if s["sex"] not in ("male", "female"):
-        raise InputError(f"sex must be male or female, not {s['sex']!r}")
-    if s["contact"] not in LAWS:
-        raise InputError(f"contact {s['contact']!r}: one of {', '.join(LAWS)}")
-    s["bounds"] = check_bounds(s["bounds"])
-    return s
 
 
 TOUCHDOWN_COLUMNS = ["time_s", "side", "valid_data", "strike", "foot_strike_angle_deg",
@@ -181,16 +180,17 @@ TRIAL_COLUMNS = ["trial", "markers", "method", "touchdowns", "valid_data", "cade
                  *[f"optimum_{k}_deg" for k in ("hip", "knee", "ankle")], "saving_J_per_step"]
 
 
-def run_one(s: dict, args, out: Path):
-    """One trial: compare, then its figure, CSV, OpenSim files and JSON (each written whole)."""
+def run_one(s: dict, args, out: Path, show: bool = True):
+    """One trial: compare, then its figure, CSV, OpenSim files and JSON (each written whole;
+    the report built once, Comparison.to_dict); `show` False prints nothing."""
     trial = mocap.read(s["trial"], s["forces"])
     static = mocap.read(s["static"])
     options = Options(s["markers"], s["cutoff"], s["force_threshold"], s["foot_speed_fraction"])
     result = compare(trial, static, s["mass"], s["height"], s["sex"], s["friction"],
                      starts=s["starts"], seed=s["seed"], law=s["contact"], bounds_deg=s["bounds"],
                      support=s["support"], options=options, per_step=s["per_step"])
-    rep = report(result)
-    rep["figure"] = str(save_figure(comparison_figure(result), out / f"comparison.{args.format}"))
+    rep = result.to_dict()
+    rep["figure"] = str(save_figure(comparison_figure(result, rep), out / f"comparison.{args.format}"))
     rows = [TOUCHDOWN_COLUMNS]
     for t in rep["touchdowns"]:
         a, g, o = t["angles_deg"], t["segment_angles_deg"], t.get("optimum", {})
@@ -204,7 +204,7 @@ def run_one(s: dict, args, out: Path):
     files = [rep["figure"], write_csv(out / "touchdowns.csv", rows),
              write_trc(out / "markers.trc", m.kinematics, m.calibration),
              write_mot(out / "angles.mot", m.kinematics)]
-    emit(args, rep, out / "comparison.json", comparison_table(result), files)
+    emit(args, rep, comparison_table(result, rep), out / "comparison.json", files, show)
     return rep, result
 
 
@@ -227,19 +227,18 @@ def run(args) -> int:
     many = len(trials) > 1
     root = out_folder(args, args.scene or trials[0]["trial"])
     table, code = [TRIAL_COLUMNS], 0
-    quiet = argparse.Namespace(**{**vars(args), "json": False})
     for k, s in enumerate(trials, 1):
         if many:
             print(f"[{k}/{len(trials)}] {s['trial']}", file=sys.stderr, flush=True)
-            rep, result = run_one(s, quiet, output_folder(root / Path(s["trial"]).stem))
+            rep, result = run_one(s, args, output_folder(root / Path(s["trial"]).stem),
+                                  show=not args.json)  # --json: only the JSON below on stdout
         else:
             rep, result = run_one(s, args, root)
         code = max(code, 0 if result.optimum.success else 1)
         table += trial_rows(rep)
         if many:
             write_csv(root / "trials.csv", table)  # after every trial: an interruption loses nothing
-    if many and args.json:
-        print(json.dumps({"trials": [dict(zip(table[0], row)) for row in table[1:]]}, indent=2))
-    elif many:
-        print("\n" + trials_table(table) + f"\n\nwrote {root / 'trials.csv'}")
+    if many:
+        emit(args, {"trials": [dict(zip(table[0], row)) for row in table[1:]]},
+             "\n" + trials_table(table), files=[root / "trials.csv"])
     return code

@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-import json
-
 from .. import api
 from ..io.scene import load
 from ..report.tables import impact_table
+from .common import emit, scene_context
 
 
 def add_parser(commands):
@@ -18,10 +17,5 @@ def add_parser(commands):
 def run(args) -> int:
     scene = load(args.scene)
     result = api.impact(scene)
-    if args.json:
-        print(json.dumps({"scene": scene.name, "model": scene.kind, "body": scene.body.source,
-                          "touchdown": scene.touchdown, "notes": list(scene.notes),
-                          **result.to_dict()}, indent=2))
-    else:
-        print(impact_table(scene, result))
+    emit(args, {**scene_context(scene), **result.to_dict()}, impact_table(scene, result))
     return 0

@@ -10,7 +10,7 @@ from ..io.scene import load
 from ..mechanics.landing import history_rows
 from ..report.figures import landing_figures
 from ..report.tables import landing_table
-from .common import add_format, emit, out_folder
+from .common import add_format, emit, out_folder, scene_context
 
 
 def add_parser(commands):
@@ -29,7 +29,7 @@ def run(args) -> int:
     files = [save_figure(fig, out / f"{name}.{args.format}")
              for name, fig in landing_figures(landing, model, scene.slope, scene.strike).items()]
     files.append(write_csv(out / "landing.csv", history_rows(landing, model)))
-    report = {"scene": scene.name, "model": scene.kind, "joints": dataclasses.asdict(scene.joints),
-              "touchdown": scene.touchdown, **landing.to_dict(), "files": [str(f) for f in files]}
-    emit(args, report, out / "landing.json", landing_table(scene, landing), files)
+    report = {**scene_context(scene), "joints": dataclasses.asdict(scene.joints),
+              **landing.to_dict(), "files": [str(f) for f in files]}
+    emit(args, report, landing_table(scene, landing), out / "landing.json", files)
     return 0

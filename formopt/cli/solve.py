@@ -7,11 +7,11 @@ import sys
 
 from .. import api
 from ..io.files import save_figure
-from ..io.scene import load
+from ..io.scene import load, touchdown_table
 from ..mechanics.errors import InputError
 from ..report.figures import indicator_figure, posture_figure
-from ..report.tables import solve_report, solve_table
-from .common import add_format, emit, out_folder
+from ..report.tables import solve_table
+from .common import add_format, emit, out_folder, scene_context
 
 
 def add_parser(commands):
@@ -50,6 +50,10 @@ def run(args) -> int:
                            out / f"posture.{args.format}"),
                save_figure(indicator_figure({"reference": opt.reference, "optimum": opt.impact}),
                            out / f"indicators.{args.format}")]
-    emit(args, solve_report(scene, opt, [str(f) for f in figures]), out / "result.json",
-         solve_table(scene, opt), figures)
+    result = opt.to_dict()
+    report = {**scene_context(scene), "objective_terms": scene.problem.objective, **result,
+              "touchdown": touchdown_table(scene.strike, opt.state),
+              "reference": {"touchdown": scene.touchdown, **result["reference"]},
+              "notes": list(scene.notes) + result["notes"], "figures": [str(f) for f in figures]}
+    emit(args, report, solve_table(scene, opt), out / "result.json", figures)
     return 0 if opt.success else 1

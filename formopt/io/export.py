@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..mechanics.model import joint_angles
 from .files import atomic
 from .markerset import SIDES
 
@@ -45,8 +46,8 @@ def motion(kin) -> np.ndarray:
     trunk = kin.angles["trunk"]
     cols = [-trunk]
     for s in SIDES:
-        thigh, shank, foot = (kin.angles[f"{s}.{k}"] for k in ("thigh", "shank", "foot"))
-        cols += [thigh + trunk, thigh - shank, foot - shank]
+        j = joint_angles({"trunk": trunk, **{k: kin.angles[f"{s}.{k}"] for k in ("thigh", "shank", "foot")}})
+        cols += [j["hip"], j["knee"], j["ankle"]]
     return np.degrees(np.column_stack(cols))
 
 def write_mot(path, kin):

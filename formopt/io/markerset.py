@@ -18,16 +18,17 @@ or recognised from a trial's labels):
     hip = [...]                             # "landmark" hips
     heel, forefoot = [...]                  # optional; else from the foot's geometry
 
-A cluster needs three points that do not lie on a line; a map is refused naming the key.
+A cluster needs three different points (a map is refused naming the file and the key); that
+they do not lie on a line is checked on the standing trial.
 """
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..mechanics.errors import InputError
+from . import validate as val
 
 SHIPPED = Path(__file__).parent / "markersets"
 SIDES = ("R", "L")  # the sides a map names (its `sides` prefixes), right first
@@ -79,71 +80,58 @@ class MarkerSet:
 
 
 def load(name_or_file) -> MarkerSet:
-    """A shipped map by name (rbds, plugin_gait, ric) or a TOML file."""
+    """A shipped map by name (rbds, plugin_gait, ric) or a TOML file; an error names the file
+    and the key (io.validate)."""
     path = Path(name_or_file)
     if not path.suffix:
         path = SHIPPED / f"{name_or_file}.toml"
         if not path.exists():
             raise InputError(f"--markers {name_or_file!r}: not a shipped marker map "
                              f"({', '.join(shipped())}) nor a file")
+    data = val.read_toml(path, "a marker map")
     try:
-        data = tomllib.loads(path.read_text())
-    except (OSError, tomllib.TOMLDecodeError) as err:
-        raise InputError(f"{path}: not a readable marker map ({err})") from None
-    return _parse(data, path)
+        return _parse(data, path)
+    except val.ValidationError as err:
+        raise err.in_file(path) from None
 
 
 def shipped() -> list[str]:
     return sorted(p.stem for p in SHIPPED.glob("*.toml"))
 
 
-def _parse(data: dict, path: Path) -> MarkerSet:
-    def need(table, key, where, kind=list):
-        value = table.get(key)
-        if not isinstance(value, kind) or (kind is list and not all(isinstance(v, str) for v in value)):
-            raise InputError(f"{path}: {where}{key} must be "
-                             f"{'a list of labels' if kind is list else 'a ' + kind.__name__}")
-        return value
+LEG_KEYS = (*SEGMENTS, "knee", "ankle", "hip", "heel", "forefoot")
 
-    known = {"name", "title", "sides", "pelvis", "leg"}
-    unknown = set(data) - known
-    if unknown:
-        raise InputError(f"{path}: unknown key {sorted(unknown)[0]!r} (keys: {', '.join(sorted(known))})")
-    sides = need(data, "sides", "", dict)
-    if set(sides) != {"R", "L"}:
-        raise InputError(f"{path}: sides must give the R and L label prefixes")
-    pelvis = need(data, "pelvis", "", dict)
-    leg = need(data, "leg", "", dict)
-    cluster = need(pelvis, "cluster", "pelvis.")
-    hip = pelvis.get("hip")
-    if hip not in ("harrington", "landmark"):
-        raise InputError(f"{path}: pelvis.hip must be \"harrington\" or \"landmark\", not {hip!r}")
+
+def _parse(data: dict, path: Path) -> MarkerSet:
+    """A marker map from its parsed TOML (the schema in the module's docstring)."""
+    val.keys(data, "", {"name", "title", "sides", "pelvis", "leg"}, ("sides", "pelvis", "leg"))
+    sides = val.table(data, "sides", {"R", "L"}, ("R", "L"))
+    for side in sides:
+        val.string(sides, side, "sides")
+    pelvis = val.table(data, "pelvis", {"cluster", "hip", "asis", "psis"}, ("cluster", "hip"))
+    leg = val.table(data, "leg", set(LEG_KEYS), (*SEGMENTS, "knee", "ankle"))
+    cluster = val.labels(pelvis, "cluster", "pelvis", at_least=3, distinct=True)
+    hip = val.choice(pelvis["hip"], "pelvis.hip", ("harrington", "landmark"))
     asis = psis = None
     if hip == "harrington":
-        asis, psis = (tuple(need(pelvis, k, "pelvis.")) for k in ("asis", "psis"))
-        if len(asis) != 2 or len(psis) != 2:
-            raise InputError(f"{path}: pelvis.asis and pelvis.psis name the right then the left marker")
+        asis, psis = (val.labels(pelvis, k, "pelvis", at_least=2, distinct=True) for k in ("asis", "psis"))
+        for key, pair in (("asis", asis), ("psis", psis)):
+            if len(pair) != 2:
+                raise val.ValidationError(f"pelvis.{key}", "names the right then the left marker: "
+                                                           f"two labels, not {len(pair)}")
     elif "hip" not in leg:
-        raise InputError(f"{path}: a \"landmark\" hip needs leg.hip")
-    if len(cluster) < 3:
-        raise InputError(f"{path}: pelvis.cluster needs at least three markers")
-    parsed = {}
-    for key in (*SEGMENTS, "knee", "ankle", "hip", "heel", "forefoot"):
-        if key in leg:
-            parsed[key] = tuple(need(leg, key, "leg."))
-        elif key in (*SEGMENTS, "knee", "ankle"):
-            raise InputError(f"{path}: leg.{key} is missing")
-    unknown = set(leg) - set(parsed)
-    if unknown:
-        raise InputError(f"{path}: unknown key leg.{sorted(unknown)[0]}")
+        raise val.ValidationError("leg.hip", "missing: a \"landmark\" hip names its landmarks")
+    parsed = {key: val.labels(leg, key, "leg", at_least=3 if key in SEGMENTS else 1,
+                              distinct=key in SEGMENTS) for key in LEG_KEYS if key in leg}
     for seg in SEGMENTS:
-        refs = [n for n in parsed[seg] if n.startswith("@")]
-        if any(r != JOINT_OF[seg] for r in refs) or len(parsed[seg]) < 3:
-            raise InputError(f"{path}: leg.{seg} needs three points (markers, or {JOINT_OF[seg]})")
+        refs = [n for n in parsed[seg] if n.startswith("@") and n != JOINT_OF[seg]]
+        if refs:
+            raise val.ValidationError(f"leg.{seg}", f"{refs[0]!r}: a {seg} cluster may borrow only "
+                                                    f"{JOINT_OF[seg]}, the joint centre above it")
     if ("heel" in parsed) != ("forefoot" in parsed):
-        raise InputError(f"{path}: leg.heel and leg.forefoot go together")
-    return MarkerSet(data.get("name", path.stem), data.get("title", path.stem), str(path),
-                     dict(sides), tuple(cluster), hip, asis, psis, parsed)
+        raise val.ValidationError("leg.heel", "leg.heel and leg.forefoot go together")
+    return MarkerSet(val.string(data, "name", "", path.stem), val.string(data, "title", "", path.stem),
+                     str(path), dict(sides), cluster, hip, asis, psis, parsed)
 
 
 def recognise(labels) -> MarkerSet:

@@ -1,30 +1,27 @@
 """Scene files (TOML): what is studied, validated at the boundary.
 
-Every error is a SceneError naming the key (`touchdown.angles_deg.knee`) and what is wrong
-with it; nothing invalid reaches the mechanics. Degrees at this edge, SI inside.
+Every error is a SceneError (io.validate.ValidationError) naming the file, the key
+(`touchdown.angles_deg.knee`), the value and the allowed range (mechanics.limits); nothing
+invalid reaches the mechanics. Degrees at this edge, SI inside.
 """
 
 from __future__ import annotations
 
-import difflib
 import math
-import tomllib
 from dataclasses import dataclass, field, replace
-from pathlib import Path
 
 import numpy as np
 
 from ..mechanics import body as bodies
+from ..mechanics import limits
 from ..mechanics.body import Body, Segment
 from ..mechanics.contact import LAWS
 from ..mechanics.impact import GRAPHS, Impact
-from ..mechanics.landing import (INTEGRATORS, JOINT_LIMITS, JOINT_MODELS, RUNNING_JOINTS, Joints,
-                                 LandingModel)
-from ..mechanics.errors import InputError, one_line
-from ..mechanics.model import MODELS, RATE_LIMIT, SPEED_LIMIT, STATE, STRIKES, Model, Swing, build_model
+from ..mechanics.landing import INTEGRATORS, JOINT_MODELS, RUNNING_JOINTS, Joints, LandingModel
+from ..mechanics.model import MODELS, STATE, STRIKES, Model, Swing, build_model
 from ..optim.objective import OBJECTIVES, STANCE_PEAK_BW
 from ..optim.posture import Gait, Inadmissible, PostureProblem, Problem, admissible
-from ..optim.variables import RANGE_OF_MOTION_DEG
+from . import validate as val
 
 # The segments each model needs; a segment a model does not use may be given and is ignored.
 # Shank + foot keeps the thigh's geometry: the touchdown state moves the knee through it.
@@ -38,19 +35,8 @@ OPTIONAL_SEGMENTS = ("swing_leg",)
 ANGLES = ("trunk", "hip", "knee", "ankle")
 RATES = ("trunk", "thigh", "shank", "foot")
 
-
-class SceneError(InputError):
-    """A scene that cannot be used: `key` names the offending entry (one line, shortened)."""
-
-    def __init__(self, key: str, message: str):
-        self.key = one_line(key)
-        message = one_line(message, 400)
-        super().__init__(f"{self.key}: {message}" if key else message)
-
-
-def _short(value, limit: int = 60) -> str:
-    """A value as it appears in an error: its repr, one line, at most `limit` characters."""
-    return one_line(repr(value), limit)
+# A scene that cannot be used: `key` names the offending entry (io.validate, one line).
+SceneError = val.ValidationError
 
 
 @dataclass(frozen=True)
@@ -139,41 +125,24 @@ def touchdown_table(strike: str, state) -> dict:
             "angular_velocity_dps": {k: math.degrees(s["omega_" + k]) for k in RATES}}
 
 
-MAX_SCENE_BYTES = 1_000_000  # a scene is a page of text; larger is a mistake
-
-
 def load(path) -> Scene:
-    """Read and validate a scene file."""
-    path = Path(path)
+    """Read and validate a scene file; an error names the file and the key."""
+    data = val.read_toml(path, "a scene")
     try:
-        size = path.stat().st_size
-        if size > MAX_SCENE_BYTES:
-            raise SceneError("", f"{path} is {size / 1e6:.1f} MB: a scene file is text of at most "
-                                 f"{MAX_SCENE_BYTES // 1000} kB")
-        text = path.read_text(encoding="utf-8")
-    except OSError as err:
-        raise SceneError("", f"cannot read {path}: {err.strerror}") from None
-    except UnicodeDecodeError as err:
-        raise SceneError("", f"{path} is not UTF-8 text (byte {err.start}): a scene is a TOML "
-                             "file") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise SceneError("", f"{path} is not valid TOML: {err}") from None
-    except RecursionError:
-        raise SceneError("", f"{path}: values nested too deeply to be a scene") from None
-    return parse(data, str(path))
+        return parse(data, str(path))
+    except SceneError as err:
+        raise err.in_file(path) from None
 
 
 def parse(data: dict, path: str = "") -> Scene:
     """Validate a scene given as a dictionary (the parsed TOML)."""
-    _keys(data, "", {"scene", "body", "touchdown", "ground", "optimize", "joints", "landing",
+    val.keys(data, "", {"scene", "body", "touchdown", "ground", "optimize", "joints", "landing",
                      "numerics"}, ("scene", "touchdown", "ground"))
-    scene = _table(data, "scene", {"name", "model"}, {"name"})
-    name = _string(scene, "name", "scene")
-    model = _choice(scene.get("model", "leg"), "scene.model", MODELS)
+    scene = val.table(data, "scene", {"name", "model"}, {"name"})
+    name = val.string(scene, "name", "scene")
+    model = val.choice(scene.get("model", "leg"), "scene.model", MODELS)
     body, notes = _body(data.get("body", {}), model)
-    touchdown = _table(data, "touchdown", {"strike", "hip_velocity", "angles_deg", "angular_velocity_dps",
+    touchdown = val.table(data, "touchdown", {"strike", "hip_velocity", "angles_deg", "angular_velocity_dps",
                                            "swing_angles_deg", "swing_velocity_dps"},
                        ("strike", "hip_velocity", "angles_deg", "angular_velocity_dps"))
     strike, state = _touchdown(touchdown)
@@ -181,14 +150,13 @@ def parse(data: dict, path: str = "") -> Scene:
     for key in ("swing_angles_deg", "swing_velocity_dps"):
         if key in touchdown and model != "full-body":
             notes += (f"touchdown.{key} is only used by model 'full-body' and was ignored",)
-    ground = _table(data, "ground", {"friction", "slope_deg", "contact"}, {"friction"})
-    friction = _number(ground, "friction", "ground", low=0.0, low_open=True)
-    contact_law = _choice(ground.get("contact", "no-slip"), "ground.contact", LAWS)
-    slope = _number(ground, "slope_deg", "ground", default=0.0, low=-60.0, high=60.0)
+    ground = val.table(data, "ground", {"friction", "slope_deg", "contact"}, {"friction"})
+    friction = val.number(ground, "friction", "ground", limit=limits.FRICTION)
+    contact_law = val.choice(ground.get("contact", "no-slip"), "ground.contact", LAWS)
+    slope = val.number(ground, "slope_deg", "ground", default=0.0, limit=limits.SLOPE_DEG)
     problem = None
     if "optimize" in data:
-        problem, more = _optimize(data["optimize"], model, strike, contact_law)
-        notes += more
+        problem = _optimize(data["optimize"], model, strike, contact_law)
     joints = _joints(data.get("joints", {}), model, body.mass)
     landing = _landing(data.get("landing", {}))
     if model == "effective-mass" and (problem and problem.landing or data.get("joints")):
@@ -203,25 +171,25 @@ def _numerics(data) -> Numerics:
     integrator. hessian "auto": exact for impacts, limited-memory through a landing."""
     if not isinstance(data, dict):
         raise SceneError("numerics", "must be a table")
-    _keys(data, "numerics", {"graph", "compiled", "hessian", "integrator"}, set())
+    val.keys(data, "numerics", {"graph", "compiled", "hessian", "integrator"}, set())
     default = Numerics()
     compiled = data.get("compiled", default.compiled)
     if not isinstance(compiled, bool) and compiled != "auto":
-        raise SceneError("numerics.compiled", f"must be true, false or \"auto\", not {_short(compiled)}")
-    return Numerics(_choice(data.get("graph", default.graph), "numerics.graph", GRAPHS), compiled,
-                    _choice(data.get("hessian", default.hessian), "numerics.hessian",
+        raise SceneError("numerics.compiled", f"must be true, false or \"auto\", not {val.short(compiled)}")
+    return Numerics(val.choice(data.get("graph", default.graph), "numerics.graph", GRAPHS), compiled,
+                    val.choice(data.get("hessian", default.hessian), "numerics.hessian",
                             ("auto", "exact", "limited-memory")),
-                    _choice(data.get("integrator", default.integrator), "numerics.integrator",
+                    val.choice(data.get("integrator", default.integrator), "numerics.integrator",
                             INTEGRATORS))
 
 
 def _swing(data) -> Swing:
     where = "touchdown"
-    angles = _table(data, "swing_angles_deg", {"hip", "knee", "ankle"}, ("hip", "knee", "ankle"), where)
-    rates = _table(data, "swing_velocity_dps", {"thigh", "shank", "foot"}, ("thigh", "shank", "foot"), where)
-    a = {k: math.radians(_number(angles, k, f"{where}.swing_angles_deg", low=-180.0, high=180.0))
+    angles = val.table(data, "swing_angles_deg", {"hip", "knee", "ankle"}, ("hip", "knee", "ankle"), where)
+    rates = val.table(data, "swing_velocity_dps", {"thigh", "shank", "foot"}, ("thigh", "shank", "foot"), where)
+    a = {k: math.radians(val.number(angles, k, f"{where}.swing_angles_deg", limit=limits.ANGLE_DEG))
          for k in ("hip", "knee", "ankle")}
-    w = {k: math.radians(_number(rates, k, f"{where}.swing_velocity_dps", low=-5000.0, high=5000.0))
+    w = {k: math.radians(val.number(rates, k, f"{where}.swing_velocity_dps", limit=limits.RATE_DPS))
          for k in ("thigh", "shank", "foot")}
     return Swing(a["hip"], a["knee"], a["ankle"], w["thigh"], w["shank"], w["foot"])
 
@@ -243,8 +211,8 @@ def _joints(data, model, mass) -> Joints:
     defaults scaled to the body's mass (landing.RUNNING_JOINTS), within landing.JOINT_LIMITS."""
     if not isinstance(data, dict):
         raise SceneError("joints", "must be a table")
-    _keys(data, "joints", JOINT_KEYS, set())
-    kind = _choice(data.get("model", "spring-damper"), "joints.model", JOINT_MODELS)
+    val.keys(data, "joints", JOINT_KEYS, set())
+    kind = val.choice(data.get("model", "spring-damper"), "joints.model", JOINT_MODELS)
     names = MODEL_JOINTS[model]
     for key in (*SPRING_KEYS, "locked", "moments"):
         wanted = "locked" if key == "locked" else "torque" if key == "moments" else "spring-damper"
@@ -255,9 +223,9 @@ def _joints(data, model, mass) -> Joints:
     if kind == "spring-damper":
         values = {}
         for key, what in zip(SPRING_KEYS, ("stiffness", "damping", "preload")):
-            table = _table(data, key, set(names), set(), "joints") if key in data else {}
-            high = JOINT_LIMITS[what] * mass
-            values[key] = {j: _number(table, j, f"joints.{key}", low=-high if what == "preload" else 0.0,
+            table = val.table(data, key, set(names), set(), "joints") if key in data else {}
+            high = limits.JOINT_LIMITS[what] * mass
+            values[key] = {j: val.number(table, j, f"joints.{key}", low=-high if what == "preload" else 0.0,
                                       high=high, default=RUNNING_JOINTS[what].get(j, 0.0) * mass)
                            for j in names}
         per_deg = math.degrees(1.0)  # N m/deg -> N m/rad
@@ -271,23 +239,26 @@ def _joints(data, model, mass) -> Joints:
         if not isinstance(locked, list) or not locked:
             raise SceneError("joints.locked", f"must be a non-empty list of {', '.join(names)}")
         for j in locked:
-            _choice(j, "joints.locked", names)
+            val.choice(j, "joints.locked", names)
         return Joints(kind, locked=tuple(locked))
     return Joints(kind)
+
+
+TIME_MS = limits.Range(-1e4, 1e4, "ms")  # a prescribed moment's time: a landing lasts < 2 s
 
 
 def _torque_joints(data, names) -> Joints:
     """[joints.moments]: time_ms (increasing, from 0) and <joint>_nm columns of the same
     length, extensor / plantarflexor positive, linear between samples."""
     allowed = {"time_ms"} | {f"{j}_nm" for j in names}
-    table = _table(data, "moments", allowed, {"time_ms"}, "joints")
+    table = val.table(data, "moments", allowed, {"time_ms"}, "joints")
     columns = {}
     for key in sorted(table):
         column = table[key]
         if not isinstance(column, list) or len(column) < 2:
             raise SceneError(f"joints.moments.{key}", "must be a list of at least two numbers")
-        limit = 1e4 if key == "time_ms" else 5e3
-        columns[key] = [_value(v, f"joints.moments.{key}[{i}]", -limit, limit)
+        r = TIME_MS if key == "time_ms" else limits.JOINT_MOMENT_NM
+        columns[key] = [val.value(v, f"joints.moments.{key}[{i}]", r.low, r.high, unit=r.unit)
                         for i, v in enumerate(column)]
     times = columns.pop("time_ms")
     if times[0] != 0.0 or any(b <= a for a, b in zip(times, times[1:])):
@@ -305,11 +276,11 @@ def _torque_joints(data, names) -> Joints:
 def _landing(data) -> Integration:
     if not isinstance(data, dict):
         raise SceneError("landing", "must be a table")
-    _keys(data, "landing", {"dt_ms", "duration_ms"}, set())
+    val.keys(data, "landing", {"dt_ms", "duration_ms"}, set())
     default = Integration()
     return Integration(
-        _number(data, "dt_ms", "landing", default=default.dt * 1e3, low=1e-4, high=5.0) * 1e-3,
-        _number(data, "duration_ms", "landing", default=default.duration * 1e3, low=1.0,
+        val.number(data, "dt_ms", "landing", default=default.dt * 1e3, low=1e-4, high=5.0) * 1e-3,
+        val.number(data, "duration_ms", "landing", default=default.duration * 1e3, low=1.0,
                 high=2000.0) * 1e-3)
 
 
@@ -323,95 +294,97 @@ HIP_MODELS = ("leg", "leg-trunk", "full-body")  # models with a thigh: a hip to 
 RATE_VARIABLES = tuple("omega_" + r for r in RATES)
 
 
-def _optimize(data, model, strike, law) -> tuple[Problem, tuple[str, ...]]:
+def _optimize(data, model, strike, law) -> Problem:
+    """[optimize]: the posture problem (variables and bounds, objective, multi-start, limits,
+    gait, local mode), with what the model, strike and contact law admit."""
     if not isinstance(data, dict):
         raise SceneError("optimize", "must be a table")
-    _keys(data, "optimize", OPTIMIZE_KEYS, ("variables", "objective"))
-    variables = data["variables"]
-    allowed = ANGLES + RATE_VARIABLES
-    if not isinstance(variables, list) or not variables:
-        raise SceneError("optimize.variables", f"must be a non-empty list of {', '.join(allowed)}")
-    for v in variables:
-        _choice(v, "optimize.variables", allowed)
-    if len(set(variables)) != len(variables):
-        raise SceneError("optimize.variables", "lists a variable twice")
-    if "trunk" in variables and model != "leg-trunk":
-        raise SceneError("optimize.variables", "'trunk' needs scene.model = \"leg-trunk\": the "
-                                               "paper's leg has a point-mass trunk whose angle does not matter")
-    notes = []
-    bounds_deg = _table(data, "bounds_deg", set(ANGLES), set(), "optimize") if "bounds_deg" in data else {}
-    bounds_dps = _table(data, "bounds_dps", set(RATES), set(), "optimize") if "bounds_dps" in data else {}
-    lower, upper = [], []
-    for v in variables:
-        if v in ANGLES:
-            rom = RANGE_OF_MOTION_DEG[v]
-            lo, hi = _pair(bounds_deg, v, "optimize.bounds_deg") if v in bounds_deg else rom
-            if lo >= hi:
-                raise SceneError(f"optimize.bounds_deg.{v}", f"lower bound {lo:g} must be below the upper {hi:g}")
-            if lo < rom[0] or hi > rom[1]:
-                notes.append(f"optimize.bounds_deg.{v} [{lo:g}, {hi:g}] clipped to the range of motion "
-                             f"[{rom[0]:g}, {rom[1]:g}] deg (AAOS)")
-                lo, hi = max(lo, rom[0]), min(hi, rom[1])
-                if lo >= hi:
-                    raise SceneError(f"optimize.bounds_deg.{v}", "lies outside the joint's range of motion "
-                                                                 f"[{rom[0]:g}, {rom[1]:g}] deg")
-        else:
-            rate = v.removeprefix("omega_")
-            if rate not in bounds_dps:
-                raise SceneError(f"optimize.bounds_dps.{rate}", f"missing (variable {v!r} needs bounds)")
-            lo, hi = _pair(bounds_dps, rate, "optimize.bounds_dps", limit=5000.0)
-            if lo >= hi:
-                raise SceneError(f"optimize.bounds_dps.{rate}", f"lower bound {lo:g} must be below the upper {hi:g}")
-        lower.append(math.radians(lo))
-        upper.append(math.radians(hi))
-    objective = data["objective"]
-    if isinstance(objective, str):
-        objective = {_choice(objective, "optimize.objective", OBJECTIVES): 1.0}
-    elif isinstance(objective, dict):
-        _keys(objective, "optimize.objective", set(OBJECTIVES), set())
-        objective = {k: _number(objective, k, "optimize.objective") for k in objective}
-        if not any(objective.values()):
-            raise SceneError("optimize.objective", "needs at least one non-zero weight")
-    else:
-        raise SceneError("optimize.objective", f"must be one of {', '.join(OBJECTIVES)} or a table "
-                                               "of weights, e.g. {{ T_c = 1.0, dv_trunk_x = 20.0 }}")
-    starts = _integer(data, "starts", "optimize", default=8, low=1, high=1000)
-    seed = _integer(data, "seed", "optimize", default=0, low=0, high=2**32 - 1)
-    tolerance = _number(data, "tolerance", "optimize", default=1e-8, low=1e-14, high=1e-2)
-    overstride = (_number(data, "max_overstride_m", "optimize", low=-2.0, high=2.0)
+    val.keys(data, "optimize", OPTIMIZE_KEYS, ("variables", "objective"))
+    variables, lower, upper = _variables(data, model, strike)
+    objective = _objective(data["objective"])
+    starts = val.integer(data, "starts", "optimize", default=8, low=1, high=1000)
+    seed = val.integer(data, "seed", "optimize", default=0, low=0, high=2**32 - 1)
+    tolerance = val.number(data, "tolerance", "optimize", default=1e-8, low=1e-14, high=1e-2)
+    overstride = (val.number(data, "max_overstride_m", "optimize", low=-2.0, high=2.0)
                   if "max_overstride_m" in data else None)
     hip_height = None
     if "hip_height_m" in data:
-        hip_height = _pair(data, "hip_height_m", "optimize", limit=3.0)
+        hip_height = val.pair(data, "hip_height_m", "optimize", limit=3.0)
         if hip_height[0] >= hip_height[1]:
             raise SceneError("optimize.hip_height_m", "the lower height must be below the upper")
-    contact_friction = data.get("contact_friction", False)
-    if not isinstance(contact_friction, bool):
-        raise SceneError("optimize.contact_friction", f"must be true or false, not {_short(contact_friction)}")
-    max_iterations = _integer(data, "max_iterations", "optimize", default=200, low=1, high=100000)
+    contact_friction = val.flag(data, "contact_friction", "optimize", False)
+    max_iterations = val.integer(data, "max_iterations", "optimize", default=200, low=1, high=100000)
     max_slip = None
     if "max_slip_mps" in data:
-        max_slip = _number(data, "max_slip_mps", "optimize", low=0.0, high=100.0)
+        max_slip = val.number(data, "max_slip_mps", "optimize", low=0.0, high=100.0)
     gait = _gait(data["gait"], model) if "gait" in data else None
     radius = None
     if "around" in data or "radius_deg" in data:
         if data.get("around", "reference") != "reference":
             raise SceneError("optimize.around", f"must be \"reference\" (the scene's touchdown), "
-                                                f"not {_short(data['around'])}")
-        radius = math.radians(_number(data, "radius_deg", "optimize", default=5.0, low=0.0,
-                                      high=90.0, low_open=True))
+                                                f"not {val.short(data['around'])}")
+        radius = math.radians(val.number(data, "radius_deg", "optimize", default=5.0, low=0.0,
+                                         high=90.0, low_open=True))
     if "support" in objective and model not in HIP_MODELS:
         raise SceneError("optimize.objective.support", f"the stance's support needs a knee and a "
                                                        f"hip: scene.model {', '.join(HIP_MODELS)}")
-    peak = _number(data, "stance_peak_bw", "optimize", default=STANCE_PEAK_BW, low=0.5, high=10.0)
-    problem = Problem(tuple(variables), tuple(lower), tuple(upper), objective, overstride, hip_height,
+    peak = val.number(data, "stance_peak_bw", "optimize", default=STANCE_PEAK_BW, low=0.5, high=10.0)
+    problem = Problem(variables, lower, upper, objective, overstride, hip_height,
                       starts, seed, tolerance, contact_friction, max_iterations, max_slip, gait,
                       radius, peak)
     try:
         admissible(law, strike, problem)
     except Inadmissible as err:
         raise SceneError(err.key, err.reason) from None
-    return problem, tuple(notes)
+    return problem
+
+
+def _variables(data, model, strike) -> tuple[tuple, tuple, tuple]:
+    """optimize.variables and their bounds: (names, lower, upper), SI. Angles default to the
+    joint's range of motion and may not leave it; rates need their bounds_dps."""
+    variables = data["variables"]
+    allowed = ANGLES + RATE_VARIABLES
+    if not isinstance(variables, list) or not variables:
+        raise SceneError("optimize.variables", f"must be a non-empty list of {', '.join(allowed)}")
+    for v in variables:
+        val.choice(v, "optimize.variables", allowed)
+    if len(set(variables)) != len(variables):
+        raise SceneError("optimize.variables", "lists a variable twice")
+    if "trunk" in variables and model != "leg-trunk":
+        raise SceneError("optimize.variables", "'trunk' needs scene.model = \"leg-trunk\": the "
+                                               "paper's leg has a point-mass trunk whose angle does not matter")
+    bounds_deg = val.table(data, "bounds_deg", set(ANGLES), set(), "optimize") if "bounds_deg" in data else {}
+    bounds_dps = val.table(data, "bounds_dps", set(RATES), set(), "optimize") if "bounds_dps" in data else {}
+    lower, upper = [], []
+    for v in variables:
+        if v in ANGLES:
+            lo, hi = (val.joint_bounds(bounds_deg[v], f"optimize.bounds_deg.{v}", v)
+                      if v in bounds_deg else limits.RANGE_OF_MOTION_DEG[v])
+        else:
+            rate = v.removeprefix("omega_")
+            if rate not in bounds_dps:
+                raise SceneError(f"optimize.bounds_dps.{rate}", f"missing (variable {v!r} needs bounds)")
+            lo, hi = val.pair(bounds_dps, rate, "optimize.bounds_dps", limit=limits.RATE_DPS.high)
+            if lo >= hi:
+                raise SceneError(f"optimize.bounds_dps.{rate}", f"lower bound {lo:g} must be below the upper {hi:g}")
+        lower.append(math.radians(lo))
+        upper.append(math.radians(hi))
+    return tuple(variables), tuple(lower), tuple(upper)
+
+
+def _objective(objective) -> dict:
+    """optimize.objective: a name (weight 1) or a table of weights, at least one non-zero."""
+    if isinstance(objective, str):
+        objective = {val.choice(objective, "optimize.objective", OBJECTIVES): 1.0}
+    elif isinstance(objective, dict):
+        val.keys(objective, "optimize.objective", set(OBJECTIVES), set())
+        objective = {k: val.number(objective, k, "optimize.objective") for k in objective}
+        if not any(objective.values()):
+            raise SceneError("optimize.objective", "needs at least one non-zero weight")
+    else:
+        raise SceneError("optimize.objective", f"must be one of {', '.join(OBJECTIVES)} or a table "
+                                               "of weights, e.g. { T_c = 1.0, dv_trunk_x = 20.0 }")
+    return objective
 
 
 def _gait(data, model) -> Gait:
@@ -419,7 +392,7 @@ def _gait(data, model) -> Gait:
     foot's speed along the ground, the cadence."""
     if not isinstance(data, dict):
         raise SceneError("optimize.gait", "must be a table")
-    _keys(data, "optimize.gait", GAIT_KEYS, set())
+    val.keys(data, "optimize.gait", GAIT_KEYS, set())
     if model not in HIP_MODELS:
         raise SceneError("optimize.gait", f"places the hip over the strike point: scene.model "
                                           f"{', '.join(HIP_MODELS)}, not {model!r}")
@@ -430,10 +403,10 @@ def _gait(data, model) -> Gait:
         if not (isinstance(value, list) and len(value) == 2):
             raise SceneError(key, "must be [x, z] in m: x forward along the ground (a foot landing "
                                   "ahead of the hip gives x < 0), z normal to it")
-        place = (_value(value[0], key, -1.5, 1.5), _value(value[1], key, 0.1, 2.0))
-    velocity = (_number(data, "foot_velocity_mps", "optimize.gait", low=-20.0, high=20.0)
+        place = (val.value(value[0], key, -1.5, 1.5), val.value(value[1], key, 0.1, 2.0))
+    velocity = (val.number(data, "foot_velocity_mps", "optimize.gait", low=-20.0, high=20.0)
                 if "foot_velocity_mps" in data else None)
-    cadence = (_number(data, "cadence_spm", "optimize.gait", low=60.0, high=300.0)
+    cadence = (val.number(data, "cadence_spm", "optimize.gait", limit=limits.CADENCE_SPM)
                if "cadence_spm" in data else None)
     return Gait(place, velocity, cadence)
 
@@ -452,18 +425,18 @@ SEGMENT_KEYS = {
 def _body(data, model) -> tuple[Body, tuple[str, ...]]:
     if not isinstance(data, dict):
         raise SceneError("body", "must be a table")
-    _keys(data, "body", {"preset", "mass", "height", "sex", *bodies.SEGMENTS}, set())
+    val.keys(data, "body", {"preset", "mass", "height", "sex", *bodies.SEGMENTS}, set())
     notes = []
     if "preset" in data:
         for key in ("mass", "height", "sex"):
             if key in data:
                 raise SceneError(f"body.{key}", "give either body.preset or body.mass/height, not both")
-        _choice(data["preset"], "body.preset", ("paper",))
+        val.choice(data["preset"], "body.preset", ("paper",))
         base = bodies.paper_body()
     elif "mass" in data or "height" in data:
-        mass = _number(data, "mass", "body", low=1.0, high=500.0)
-        height = _number(data, "height", "body", low=0.5, high=2.5)
-        sex = _choice(data.get("sex", "male"), "body.sex", tuple(bodies.DE_LEVA))
+        mass = val.number(data, "mass", "body", limit=limits.BODY_MASS_KG)
+        height = val.number(data, "height", "body", limit=limits.BODY_HEIGHT_M)
+        sex = val.choice(data.get("sex", "male"), "body.sex", tuple(bodies.DE_LEVA))
         base = bodies.scaled_body(mass, height, sex)
     else:
         base = None
@@ -493,7 +466,7 @@ def _body(data, model) -> tuple[Body, tuple[str, ...]]:
 
 def _segment(name, data, base: Segment | None) -> Segment:
     where = f"body.{name}"
-    _keys(data, where, SEGMENT_KEYS[name], set())
+    val.keys(data, where, SEGMENT_KEYS[name], set())
     if "inertia_proximal" in data and "inertia_com" in data:
         raise SceneError(f"{where}.inertia_com", "give inertia_proximal or inertia_com, not both")
     values = _segment_values(base) if base else {}
@@ -507,30 +480,30 @@ def _segment(name, data, base: Segment | None) -> Segment:
             raise SceneError(f"{where}.{key}", "missing")
     if not point_mass and not {"inertia_proximal", "inertia_com"} & set(values):
         raise SceneError(f"{where}.inertia_com", "missing (give inertia_com or inertia_proximal)")
-    mass = _number(values, "mass", where, low=0.0, low_open=name != "swing_leg")
+    mass = val.number(values, "mass", where, low=0.0, low_open=name != "swing_leg")
     if name == "swing_leg":
         return bodies.swing_leg(mass)
     if point_mass:
         return bodies.trunk(mass)
     if name == "foot":
-        com = _pair(values, "com", where)
-        heel, forefoot = _pair(values, "heel", where), _pair(values, "forefoot", where)
+        com = val.pair(values, "com", where)
+        heel, forefoot = val.pair(values, "heel", where), val.pair(values, "forefoot", where)
         if not heel[0] < forefoot[0]:
             raise SceneError(f"{where}.heel", "must lie behind the forefoot (smaller x in the foot frame)")
         proximal = float(np.dot(com, com))
     else:
-        length = _number(values, "length", where, low=0.0, low_open=True)
-        com = _number(values, "com", where, low=0.0, high=length)
+        length = val.number(values, "length", where, low=0.0, low_open=True)
+        com = val.number(values, "com", where, low=0.0, high=length)
         proximal = com**2
     if "inertia_proximal" in values:
-        inertia = _number(values, "inertia_proximal", where, low=0.0, low_open=True) - mass * proximal
+        inertia = val.number(values, "inertia_proximal", where, low=0.0, low_open=True) - mass * proximal
         if inertia <= 0:
             raise SceneError(f"{where}.inertia_proximal",
                              f"must exceed mass * distance^2 to the centre of mass "
                              f"({mass * proximal:.4g} kg m^2): the inertia about the centre of mass "
                              f"would be {inertia:.3g}")
     else:
-        inertia = _number(values, "inertia_com", where, low=0.0, low_open=True)
+        inertia = val.number(values, "inertia_com", where, low=0.0, low_open=True)
     if name == "foot":
         return bodies.foot(mass, com, inertia, heel, forefoot)
     if name == "trunk":
@@ -554,94 +527,14 @@ def _segment_values(seg: Segment) -> dict:
 # -- touchdown --------------------------------------------------------------------------
 
 def _touchdown(data) -> tuple[str, np.ndarray]:
-    strike = _choice(data["strike"], "touchdown.strike", tuple(STRIKES))
-    velocity = _pair(data, "hip_velocity", "touchdown", limit=SPEED_LIMIT)
-    angles = _table(data, "angles_deg", set(ANGLES), set(ANGLES), "touchdown")
-    rates = _table(data, "angular_velocity_dps", set(RATES), set(RATES) - {"trunk"}, "touchdown")
+    strike = val.choice(data["strike"], "touchdown.strike", tuple(STRIKES))
+    velocity = val.pair(data, "hip_velocity", "touchdown", limit=limits.SPEED_LIMIT)
+    angles = val.table(data, "angles_deg", set(ANGLES), set(ANGLES), "touchdown")
+    rates = val.table(data, "angular_velocity_dps", set(RATES), set(RATES) - {"trunk"}, "touchdown")
     where_a, where_r = "touchdown.angles_deg", "touchdown.angular_velocity_dps"
-    a = {k: math.radians(_number(angles, k, where_a, low=-180.0, high=180.0)) for k in ANGLES}
-    top = math.degrees(RATE_LIMIT)
-    w = {k: math.radians(_number(rates, k, where_r, default=0.0, low=-top, high=top))
+    a = {k: math.radians(val.number(angles, k, where_a, limit=limits.ANGLE_DEG)) for k in ANGLES}
+    w = {k: math.radians(val.number(rates, k, where_r, default=0.0, limit=limits.RATE_DPS))
          for k in RATES}
     values = {**a, "hip_vx": velocity[0], "hip_vz": velocity[1],
               **{"omega_" + k: v for k, v in w.items()}}
     return strike, np.array([values[k] for k in STATE])
-
-
-# -- primitives -------------------------------------------------------------------------
-
-def _keys(data: dict, where: str, allowed: set, required):
-    prefix = f"{where}." if where else ""
-    for key in data:
-        if key not in allowed:
-            close = difflib.get_close_matches(key, sorted(allowed), n=1)
-            hint = f" (did you mean {close[0]!r}?)" if close else \
-                f" (expected one of: {', '.join(sorted(allowed))})"
-            raise SceneError(prefix + key, "unknown key" + hint)
-    for key in required if isinstance(required, tuple) else sorted(required):
-        if key not in data:
-            raise SceneError(prefix + key, "missing")
-
-
-def _table(data: dict, key: str, allowed: set, required: set, where: str = "") -> dict:
-    full = f"{where}.{key}" if where else key
-    value = data.get(key)
-    if not isinstance(value, dict):
-        raise SceneError(full, "missing" if value is None else
-                         f"must be a table, not {type(value).__name__}")
-    _keys(value, full, allowed, required)
-    return value
-
-
-def _number(data, key, where, default=None, low=-math.inf, high=math.inf, low_open=False) -> float:
-    return _value(data.get(key, default), f"{where}.{key}", low, high, low_open)
-
-
-def _value(value, full, low=-math.inf, high=math.inf, low_open=False) -> float:
-    if value is None:
-        raise SceneError(full, "missing")
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise SceneError(full, f"must be a number, not {type(value).__name__} {_short(value)}")
-    try:
-        value = float(value)
-    except OverflowError:
-        raise SceneError(full, f"must be a finite number, not {_short(value)}") from None
-    if not math.isfinite(value):
-        raise SceneError(full, f"must be finite, not {value}")
-    if value < low or (low_open and value == low) or value > high:
-        bound = f"> {low:g}" if low_open and high == math.inf else \
-            f"between {low:g} and {high:g}" if high != math.inf else f">= {low:g}"
-        raise SceneError(full, f"must be {bound}, not {value:g}")
-    return value
-
-
-def _integer(data, key, where, default, low, high) -> int:
-    value = data.get(key, default)
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise SceneError(f"{where}.{key}", f"must be a whole number, not {_short(value)}")
-    if not low <= value <= high:
-        raise SceneError(f"{where}.{key}", f"must be between {low} and {high}, not {value}")
-    return value
-
-
-def _pair(data, key, where, limit=math.inf) -> tuple[float, float]:
-    full = f"{where}.{key}"
-    value = data.get(key)
-    if not isinstance(value, list) or len(value) != 2:
-        raise SceneError(full, f"must be a pair of numbers, not {_short(value)}")
-    return tuple(_value(v, f"{full}[{i}]", low=-limit, high=limit) for i, v in enumerate(value))
-
-
-def _string(data, key, where) -> str:
-    value = data.get(key)
-    if not isinstance(value, str) or not value.strip():
-        raise SceneError(f"{where}.{key}", f"must be a non-empty string, not {_short(value)}")
-    return value
-
-
-def _choice(value, key, choices) -> str:
-    if value not in choices:
-        close = difflib.get_close_matches(str(value), choices, n=1)
-        hint = f" (did you mean {close[0]!r}?)" if close else ""
-        raise SceneError(key, f"must be one of {', '.join(choices)}, not {_short(value)}{hint}")
-    return value

@@ -21,7 +21,6 @@ The kinematic state at touchdown (`STATE`) is mapped to (q, q') by segment kinem
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import casadi as ca
@@ -29,17 +28,13 @@ import numpy as np
 
 from .body import Body
 from .errors import InputError
+from .limits import ANGLE_LIMIT, RATE_LIMIT, SPEED_LIMIT
 
 # The touchdown state vector, SI: joint and trunk angles (rad; design.md section 2), the hip
 # velocity (m/s, x forward, z up) and absolute segment angular velocities (rad/s, CCW).
 STATE = ("trunk", "hip", "knee", "ankle", "hip_vx", "hip_vz",
          "omega_trunk", "omega_thigh", "omega_shank", "omega_foot")
-# What a touchdown state may hold (SI): angles within a turn; the hip at most 30 m/s (2.4
-# times the fastest human sprint, 12.4 m/s); segment rates at most 5000 deg/s (sprinting
-# limbs reach about 2000). Beyond them a result is an overflow, not a runner.
-ANGLE_LIMIT = math.pi  # rad
-SPEED_LIMIT = 30.0  # m/s
-RATE_LIMIT = math.radians(5000.0)  # rad/s
+# What a touchdown state may hold (SI, limits.py): beyond it a result is an overflow, not a runner.
 STATE_LIMITS = tuple(ANGLE_LIMIT if k < 4 else SPEED_LIMIT if k < 6 else RATE_LIMIT
                      for k in range(len(STATE)))
 STATE_UNITS = ("rad",) * 4 + ("m/s",) * 2 + ("rad/s",) * 4
@@ -111,22 +106,55 @@ def ground_axes(slope):
     return np.array([np.cos(slope), np.sin(slope)]), np.array([-np.sin(slope), np.cos(slope)])
 
 
+def segment_angles(joints: dict) -> dict:
+    """Segment angles from joint angles (rad, design.md section 2; any numbers or CasADi).
+
+    `joints`: trunk (from the upward vertical, leaning forward positive), hip flexion, knee
+    flexion, ankle dorsiflexion (0 with the foot perpendicular to the shank). Returns trunk,
+    thigh and shank (from the downward vertical, distal end ahead positive) and foot (from the
+    ground, toe-up positive):
+
+        thigh = hip - trunk,  shank = thigh - knee,  foot = shank + ankle
+
+    The inverse of `joint_angles`.
+    """
+    thigh = joints["hip"] - joints["trunk"]
+    shank = thigh - joints["knee"]
+    return {"trunk": joints["trunk"], "thigh": thigh, "shank": shank,
+            "foot": shank + joints["ankle"]}
+
+
+def joint_angles(segments: dict) -> dict:
+    """Joint angles from segment angles (rad, design.md section 2), each joint from the two
+    segments it joins that `segments` holds:
+
+        hip = thigh + trunk,  knee = thigh - shank,  ankle = foot - shank
+
+    The inverse of `segment_angles` (conventions there).
+    """
+    pairs = {"hip": ("thigh", "trunk"), "knee": ("thigh", "shank"), "ankle": ("foot", "shank")}
+    out = {"trunk": segments["trunk"]} if "trunk" in segments else {}
+    for joint, (a, b) in pairs.items():
+        if a in segments and b in segments:
+            out[joint] = segments[a] + segments[b] if joint == "hip" else segments[a] - segments[b]
+    return out
+
+
 def segment_kinematics(x, body: Body, swing: Swing | None = None):
     """Origin, angle, origin velocity and angular velocity of each segment frame (SX).
 
-    The hip is at the origin here; positions are shifted afterwards. Thigh angle = hip - trunk,
-    shank = thigh - knee, foot = shank + ankle; the trunk leans forward (clockwise) by `trunk`.
-    The swing leg, when given, follows the same rules with its own joint angles.
+    The hip is at the origin here; positions are shifted afterwards. Frame angles are
+    counter-clockwise (body.py): the segment angles of `segment_angles`, except the trunk's,
+    which leans forward clockwise. The swing leg, when given, follows the same rules with its
+    own joint angles.
     """
     s = dict(zip(STATE, ca.vertsplit(x)))
-    angle = {"trunk": -s["trunk"], "thigh": s["hip"] - s["trunk"]}
-    angle["shank"] = angle["thigh"] - s["knee"]
-    angle["foot"] = angle["shank"] + s["ankle"]
+    angle = {**segment_angles(s), "trunk": -s["trunk"]}
     omega = {k: s["omega_" + k] for k in ("trunk", "thigh", "shank", "foot")}
     if swing is not None:
-        angle["swing_thigh"] = swing.hip - s["trunk"]
-        angle["swing_shank"] = angle["swing_thigh"] - swing.knee
-        angle["swing_foot"] = angle["swing_shank"] + swing.ankle
+        own = segment_angles({"trunk": s["trunk"], "hip": swing.hip, "knee": swing.knee,
+                              "ankle": swing.ankle})
+        angle.update({f"swing_{k}": own[k] for k in ("thigh", "shank", "foot")})
         omega.update(swing_thigh=swing.omega_thigh, swing_shank=swing.omega_shank,
                      swing_foot=swing.omega_foot)
     hip = ca.vertcat(0, 0), ca.vertcat(s["hip_vx"], s["hip_vz"])

@@ -129,6 +129,27 @@ class Optimum:
         """One line for a table's headline: interior, held by named limits, or no optimum."""
         return verdict_of(self.active) if self.success else f"NO OPTIMUM ({self.status})"
 
+    def to_dict(self) -> dict:
+        """JSON-ready dictionary: the outcome, indicators at the optimum and at the reference
+        (ImpactResult.to_dict), objective terms, saving (J per step, W), active set, starts.
+        The touchdowns in the scene's schema (degrees) are the caller's context."""
+        from dataclasses import asdict
+
+        return {
+            "success": self.success, "status": self.status, "status_explained": explain(self.status),
+            "objective": self.objective, "T_c": self.impact.T_c,
+            "impulse": {k: list(v) for k, v in self.impact.impulse.items()},
+            "indicators": self.impact.to_dict(),
+            "reference": {"indicators": self.reference.to_dict()},
+            "verdict": self.verdict, "terms": self.terms,
+            "reference_objective": self.reference_objective, "reference_terms": self.reference_terms,
+            "saving_per_step": self.saving, "saving_W": self.power,
+            "active": [asdict(c) for c in self.active], "held_by": [c.name for c in self.held_by],
+            "local": asdict(self.local) if self.local else None, "sensitivity": self.sensitivity,
+            "starts": [asdict(s) for s in self.starts], "local_optima": self.local_optima,
+            "seed": self.seed, "solve_time_s": self.solve_time, "build_time_s": self.build_time,
+            "notes": list(self.notes)}
+
 
 def verdict_of(active) -> str:
     """'interior optimum', or 'HELD BY' the active inequalities and bounds."""

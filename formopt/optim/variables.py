@@ -21,14 +21,8 @@ import math
 import casadi as ca
 import numpy as np
 
+from ..mechanics.limits import RANGE_OF_MOTION_DEG  # noqa: F401  (re-exported, one home)
 from ..mechanics.model import STATE, Model
-
-# Active ranges of motion (deg): American Academy of Orthopaedic Surgeons (1965), Joint Motion:
-# Method of Measuring and Recording, as tabulated in Norkin C.C. & White D.J. (2016) Measurement
-# of Joint Motion, 5th ed.: hip extension 30 / flexion 120, knee flexion 135 (0 = straight),
-# ankle plantarflexion 50 / dorsiflexion 20; trunk: thoracolumbar extension 25 / flexion 80.
-RANGE_OF_MOTION_DEG = {"trunk": (-25.0, 80.0), "hip": (-30.0, 120.0), "knee": (0.0, 135.0),
-                       "ankle": (-50.0, 20.0)}
 
 
 PARAMETERS = 3 + len(STATE)  # speed, friction, slope, reference state

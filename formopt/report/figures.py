@@ -226,11 +226,11 @@ def _axis_label(param: str) -> str:
             "friction": "friction coefficient"}.get(param, param)
 
 
-def comparison_figure(c) -> Figure:
-    """Measured and optimal touchdowns overlaid, per-joint differences, T_c across steps."""
-    from ..studies.compare import JOINTS, report
+def comparison_figure(c, rep: dict) -> Figure:
+    """Measured and optimal touchdowns overlaid, per-joint differences, T_c across steps;
+    `rep` the comparison's JSON report (Comparison.to_dict)."""
+    from ..studies.compare import JOINTS
 
-    rep = report(c)
     fig, axes = _subplots(1, 3, figsize=(14, 4.8), gridspec_kw={"width_ratios": [1.1, 1, 1]})
     ax = axes[0]
     ground(ax, 0.0)

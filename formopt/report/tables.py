@@ -6,7 +6,6 @@ person reads; the JSON reports beside them hold the same numbers for other tools
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from pathlib import Path
 
@@ -15,30 +14,7 @@ from ..mechanics.contact import LAWS
 from ..mechanics.impact import ImpactResult
 from ..optim.objective import UNITS
 from ..optim.solution import explain
-from ..studies.compare import JOINTS, Comparison, report
-
-
-def solve_report(scene: Scene, opt, figures) -> dict:
-    """The JSON report of an optimisation."""
-    return {
-        "scene": scene.name, "model": scene.kind, "success": opt.success, "status": opt.status,
-        "status_explained": explain(opt.status),
-        "objective": opt.objective, "objective_terms": scene.problem.objective,
-        "touchdown": touchdown_table(scene.strike, opt.state),
-        "T_c": opt.impact.T_c, "impulse": {k: list(v) for k, v in opt.impact.impulse.items()},
-        "indicators": opt.impact.to_dict(),
-        "reference": {"touchdown": scene.touchdown, "indicators": opt.reference.to_dict()},
-        "verdict": opt.verdict, "terms": opt.terms, "reference_objective": opt.reference_objective,
-        "reference_terms": opt.reference_terms, "saving_per_step": opt.saving, "saving_W": opt.power,
-        "active": [dataclasses.asdict(c) for c in opt.active],
-        "held_by": [c.name for c in opt.held_by],
-        "local": dataclasses.asdict(opt.local) if opt.local else None,
-        "sensitivity": opt.sensitivity,
-        "starts": [dataclasses.asdict(s) for s in opt.starts],
-        "local_optima": opt.local_optima, "seed": opt.seed,
-        "solve_time_s": opt.solve_time, "build_time_s": opt.build_time,
-        "notes": list(scene.notes) + list(opt.notes), "figures": figures,
-    }
+from ..studies.compare import JOINTS, Comparison
 
 
 def impact_table(scene: Scene, r: ImpactResult) -> str:
@@ -207,8 +183,8 @@ def _objective_text(terms: dict) -> str:
     return " + ".join(f"{w:g} {k}" if w != 1 else k for k, w in terms.items())
 
 
-def comparison_table(c: Comparison) -> str:
-    rep = report(c)
+def comparison_table(c: Comparison, rep: dict) -> str:
+    """A comparison as a terminal table; `rep` its JSON report (Comparison.to_dict)."""
     st = c.steps
     lines = [f"{rep['source']}: {len(st.touchdowns)} touchdowns ({st.method}), {len(st.valid)} with "
              f"sound markers; cadence {st.cadence_spm:.1f} steps/min; speed {st.speed:.2f} m/s "

@@ -63,13 +63,44 @@ class Comparison:
     body: Body
     law: str  # the contact law of `results` and of the optima (contact.LAWS)
     problem: Problem  # the optimum's: bounds (rad), objective, gait
-    settings: dict  # every setting that made this comparison (report()["settings"])
+    settings: dict  # every setting that made this comparison (to_dict()["settings"])
     per_step: dict[int, StepOptimum] = field(default_factory=dict)  # touchdown index -> optimum
     hip_from_strike: tuple[float, float] = (0.0, 0.0)  # m, the mean touchdown's placement
 
     @property
     def steps(self) -> Steps:
         return self.measurement.steps
+
+    def to_dict(self) -> dict:
+        """JSON-ready dictionary (README, "Measured touchdowns"): the settings, the measurement,
+        every touchdown, the per-side summary, the optimum of the mean touchdown against it,
+        the per-step optima."""
+        opt, cal, st = self.optimum, self.measurement.calibration, self.steps
+        optimum, reference = _angles_deg(opt.state), _angles_deg(self.reference)
+        return {
+            "settings": self.settings, "source": self.measurement.trial.source,
+            "law": self.law, "cadence_spm": st.cadence_spm, "belt_speed": st.belt_speed,
+            "speed": st.speed, "touchdown_method": st.method, "axes": cal.axes.describe(),
+            "segment_lengths_m": cal.lengths, "body": self.body.source,
+            "touchdowns_total": len(st.touchdowns), "touchdowns_valid_data": len(st.valid),
+            "left_out": st.left_out, "notes": st.notes,
+            "touchdowns": [touchdown_row(self, k) for k in range(len(st.touchdowns))],
+            "summary": summary(self),
+            "optimum": {"success": opt.success, "status": opt.status, "verdict": opt.verdict,
+                        "strike": self.strike, "law": self.law,
+                        "bounds_deg": {v: [math.degrees(lo), math.degrees(hi)] for v, lo, hi in
+                                       zip(self.problem.variables, self.problem.lower, self.problem.upper)},
+                        "objective_terms": self.problem.objective, "gait": gait(self),
+                        "touchdown": {"angles_deg": optimum, "hip_velocity": list(opt.state[4:6])},
+                        "T_c": opt.impact.T_c, "terms": opt.terms, "objective": opt.objective,
+                        "held_by": [a.name for a in opt.held_by],
+                        "active": [a.name for a in opt.active],
+                        "saving_J_per_step": opt.saving, "saving_W": opt.power},
+            "per_step": per_step_summary(self),
+            "reference": {"angles_deg": reference, "T_c": opt.reference.T_c,
+                          "terms": opt.reference_terms, "objective": opt.reference_objective},
+            "difference_deg": {k: optimum[k] - reference[k] for k in JOINTS},
+        }
 
 
 def impact_strike(td: Touchdown) -> str:
@@ -142,6 +173,11 @@ def _deg(values: dict) -> dict:
     return {k: math.degrees(v) for k, v in values.items()}
 
 
+def _angles_deg(state) -> dict:
+    """The trunk and joint angles (deg) of a touchdown state (model.STATE, SI)."""
+    return {k: math.degrees(state[STATE.index(k)]) for k in JOINTS}
+
+
 def touchdown_row(c: Comparison, k: int) -> dict:
     """One touchdown in the JSON report (README, "Measured touchdowns")."""
     td, s, r = c.steps.touchdowns[k], c.strikes[k], c.results[k]
@@ -158,43 +194,10 @@ def touchdown_row(c: Comparison, k: int) -> dict:
     if k in c.per_step:
         o = c.per_step[k]
         row["optimum"] = {"success": o.success, "status": o.status,
-                          "angles_deg": {j: math.degrees(o.state[STATE.index(j)]) for j in JOINTS},
+                          "angles_deg": _angles_deg(o.state),
                           "objective": o.objective, "measured_objective": o.measured,
                           "saving_J": o.saving}
     return row
-
-
-def report(c: Comparison) -> dict:
-    """The JSON report (the CLI's --json)."""
-    def deg(state):
-        return {k: math.degrees(state[STATE.index(k)]) for k in JOINTS}
-
-    opt, cal = c.optimum, c.measurement.calibration
-    return {
-        "settings": c.settings, "source": c.measurement.trial.source,
-        "law": c.law, "cadence_spm": c.steps.cadence_spm, "belt_speed": c.steps.belt_speed,
-        "speed": c.steps.speed, "touchdown_method": c.steps.method, "axes": cal.axes.describe(),
-        "segment_lengths_m": cal.lengths, "body": c.body.source,
-        "touchdowns_total": len(c.steps.touchdowns), "touchdowns_valid_data": len(c.steps.valid),
-        "left_out": c.steps.left_out, "notes": c.steps.notes,
-        "touchdowns": [touchdown_row(c, k) for k in range(len(c.steps.touchdowns))],
-        "summary": summary(c),
-        "optimum": {"success": opt.success, "status": opt.status, "verdict": opt.verdict,
-                    "strike": c.strike, "law": c.law,
-                    "bounds_deg": {v: [math.degrees(lo), math.degrees(hi)] for v, lo, hi in
-                                   zip(c.problem.variables, c.problem.lower, c.problem.upper)},
-                    "objective_terms": c.problem.objective, "gait": gait(c),
-                    "touchdown": {"angles_deg": deg(opt.state), "hip_velocity": list(opt.state[4:6])},
-                    "T_c": opt.impact.T_c, "terms": opt.terms, "objective": opt.objective,
-                    "held_by": [a.name for a in opt.held_by],
-                    "active": [a.name for a in opt.active],
-                    "saving_J_per_step": opt.saving, "saving_W": opt.power},
-        "per_step": per_step_summary(c),
-        "reference": {"angles_deg": deg(c.reference), "T_c": opt.reference.T_c,
-                      "terms": opt.reference_terms, "objective": opt.reference_objective},
-        "difference_deg": {k: v for k, v in zip(JOINTS, np.subtract(
-            [deg(opt.state)[k] for k in JOINTS], [deg(c.reference)[k] for k in JOINTS]))},
-    }
 
 
 def gait(c: Comparison) -> dict:

@@ -30,7 +30,7 @@ import numpy as np
 
 from ..io.files import OutputError, write_csv
 from ..mechanics.landing import simulate_state
-from ..mechanics.model import STATE
+from ..mechanics.model import STATE, joint_angles
 from ..mechanics.errors import InputError
 from . import optimum_map
 
@@ -280,7 +280,8 @@ def _landing_row(scene, values, models) -> dict:
         if second:
             k = int(np.searchsorted(L.t, second.time))
             q_e = L.q[min(k, len(L.t) - 1)]
-            ankle = math.degrees(lm.model.segment_angle(q_e, "foot") - lm.model.segment_angle(q_e, "shank"))
+            ankle = math.degrees(joint_angles({k: lm.model.segment_angle(q_e, k)
+                                                for k in ("shank", "foot")})["ankle"])
         normal = L.force[:, 1]
         f_max = float(np.nanmax(normal)) if np.any(np.isfinite(normal)) else None
         dv = np.sum([e.dv_trunk for e in L.impacts if e.dv_trunk], axis=0) if lm.model.trunk else (None, None)

@@ -171,3 +171,26 @@ def test_rigid_trunk_needs_its_inertia(reference):
     reference["body"]["trunk"] = {"mass": 44.0, "length": 0.5, "com": 0.31, "inertia_com": 2.7}
     reference["body"]["swing_leg"] = {"mass": 14.5}
     assert impact(parse(reference)).T_c > 0
+
+
+@pytest.mark.parametrize("bounds,needle", [([0.0, 150.0], "knee's range of motion"),
+                                           ([-10.0, 60.0], "knee's range of motion"),
+                                           ([60.0, 10.0], "lo < hi")])
+def test_bounds_beyond_the_range_of_motion_are_refused_as_compare_refuses_them(bounds, needle,
+                                                                                capsys):
+    """One rule for scenes and compare (io.validate.joint_bounds): refused, not clipped."""
+    data = tomllib.loads((PROBLEMS / "demo.toml").read_text())
+    data["optimize"]["variables"] = ["hip", "knee", "ankle"]
+    data["optimize"]["bounds_deg"] = {"knee": bounds}
+    with pytest.raises(SceneError) as err:
+        parse(data, "demo.toml")
+    assert err.value.key == "optimize.bounds_deg.knee" and needle in str(err.value)
+    assert main(["compare", "--trial", "t.c3d", "--static", "s.c3d", "--mass", "62", "--height",
+                 "1.81", "--bounds", f"knee={bounds[0]:g}:{bounds[1]:g}"]) == 2
+    assert f"--bounds.knee: [{bounds[0]:g}, {bounds[1]:g}]" in capsys.readouterr().err  # not the files
+
+
+def test_load_names_the_file(tmp_path):
+    text = REFERENCE.read_text().replace("friction = 0.8", "friction = 800.0")
+    with pytest.raises(SceneError, match=r"scene.toml: ground.friction: must be > 0 and <= 100, not 800"):
+        load(write(tmp_path, text))
