@@ -20,6 +20,7 @@ import numpy as np
 
 from ..io.markerset import SIDES
 from ..io.mocap import MocapError, Trial
+from ..mechanics.model import joint_angles
 from .filters import lowpass
 from .joints import Calibration
 from .kinematics import Kinematics
@@ -230,8 +231,7 @@ def _touchdown(kin: Kinematics, side: str, frame: int, time: float, belt: float,
     v = (hip_p[frame + 1] - hip_p[frame - 1]) / (2 * dt)
     return Touchdown(time=time, side=side, frame=frame, strike=strike_pattern(a["foot"]),
                      foot_strike_angle=a["foot"], segments={"trunk": trunk, **a},
-                     angles={"trunk": trunk, "hip": a["thigh"] + trunk, "knee": a["thigh"] - a["shank"],
-                             "ankle": a["foot"] - a["shank"]},
+                     angles=joint_angles({"trunk": trunk, **a}),
                      rates={k: rate(f"{side}.{k}") for k in ("thigh", "shank", "foot")},
                      hip_velocity=(float(v[0] + belt), float(v[1])),
                      hip_height=float(hip_p[frame][1] - low),
