@@ -18,8 +18,9 @@ from ..mechanics import body as bodies
 from ..mechanics.body import Body, Segment
 from ..mechanics.contact import LAWS
 from ..mechanics.impact import GRAPHS, Impact
-from ..mechanics.landing import (INTEGRATORS, JOINT_LIMITS, JOINT_MODELS, RUNNING_JOINTS, Joints,
-                                 LandingModel)
+from ..mechanics.dynamics import JOINT_MODELS, Joints
+from ..mechanics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
+from ..mechanics.landing import JOINT_LIMITS, RUNNING_JOINTS, LandingModel
 from ..mechanics.errors import InputError, one_line
 from ..mechanics.model import MODELS, RATE_LIMIT, SPEED_LIMIT, STATE, STRIKES, Model, Swing, build_model
 from ..optim.objective import OBJECTIVES, STANCE_PEAK_BW
@@ -62,7 +63,7 @@ class Numerics:
     # pays: the landing's per-step functions, not the impact map or the NLP)
     compiled: bool | str = "auto"
     hessian: str = "auto"  # IPOPT: "exact", "limited-memory", or "auto" (exact for impacts)
-    integrator: str = "adaptive"  # the landing's integrator (mechanics.landing.INTEGRATORS)
+    integrator: str = DEFAULT_INTEGRATOR  # the landing's integrator (mechanics.integrators)
 
 
 @dataclass(frozen=True)
