@@ -68,6 +68,8 @@ class Joints:
     moments: dict[str, tuple[float, ...]] = field(default_factory=dict)  # N m at `times` (torque)
 
 
+FREE = Joints()  # free hinges: no joint moments
+
 class Dynamics:
     """The finite motion of one model, joint model and ground, as CasADi expressions.
 
@@ -77,7 +79,7 @@ class Dynamics:
     constants so that one compiled function serves every joint setting.
     """
 
-    def __init__(self, model: Model, joints: Joints = Joints(), slope: float = 0.0):
+    def __init__(self, model: Model, joints: Joints = FREE, slope: float = 0.0):
         if joints.model not in JOINT_MODELS:
             raise InputError(f"joint model {joints.model!r}: expected one of {', '.join(JOINT_MODELS)}")
         self.model, self.joints, self.slope = model, joints, slope

@@ -38,7 +38,7 @@ import numpy as np
 
 from . import contact
 from .compiled import caller
-from .dynamics import FEET, GRAVITY, Dynamics, Joints
+from .dynamics import FEET, FREE, GRAVITY, Dynamics, Joints
 from .errors import InputError
 from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, grow, locate, shrink
 from .integrators import step as integrator_step
@@ -170,7 +170,7 @@ class LandingModel(Dynamics):
     the dynamics (dynamics.Dynamics), the impact map per contact set, and the integrator
     step and the forces at a state per contact set, compiled (or interpreted)."""
 
-    def __init__(self, model: Model, joints: Joints = Joints(), slope: float = 0.0,
+    def __init__(self, model: Model, joints: Joints = FREE, slope: float = 0.0,
                  compiled: bool = True, integrator: str = DEFAULT_INTEGRATOR, law: str = "no-slip"):
         if not set(FEET) <= set(model.index):
             raise InputError(f"model {model.kind!r} has no foot to land on (it is impact-only)")
@@ -439,24 +439,8 @@ class _Run:
         x = np.concatenate([self.q, self.qd, [self.dissipated]])
         args = (self.s_anchor, self.joint, self.mu * self.slide, self.t)
         h, taken = self.accepted_step(step, x, args)
-        events = taken["events"]
-        # an armed point strikes at the ground; one that never rose since it was let go, a
-        # hair below it (SINK), so that the event has a root and the point cannot sink further
-        sink = [0.0 if self.armed[p] else SINK for p in FEET]
-        hits = [k for k, p in enumerate(FEET) if p not in self.active and events[k] + sink[k] <= 0.0]
-        stops = self.lm.law == "coulomb" and self.slide != 0 and self.slide * events[2] <= 0.0
-        what = None
-        if hits or stops:  # the earliest event ends the step
-            candidates = []
-            if hits:
-                candidates.append((locate(lambda s: min(step(x, s, *args)["events"][k] + sink[k]
-                                                        for k in hits), h), "hit"))
-            if stops:
-                candidates.append((locate(lambda s: self.slide * step(x, s, *args)["events"][2], h),
-                                   "stop"))
-            h, what = min(candidates)
-            taken = step(x, h, *args)
-        x_next = taken["x_next"]
+        h, what, hits = self.earliest_event(lambda s: step(x, s, *args)["events"], h, taken["events"])
+        x_next = taken["x_next"] if what is None else step(x, h, *args)["x_next"]
         if not np.all(np.isfinite(x_next)):
             raise Diverged(f"the landing diverged at {self.t * 1e3:.2f} ms: the state is no longer "
                            f"finite {self.remedy}")
@@ -472,6 +456,23 @@ class _Run:
             self.strike_now(points, self.t)
         elif what == "stop":  # the sliding point comes to rest: it sticks where it is
             self.slide, self.s_anchor = 0, self.anchor()
+
+    def earliest_event(self, events_at, h, events):
+        """(step length, "hit", "stop" or None, the striking points' indices in FEET) from the
+        event values after a step of h (`events`) and after a step of s (`events_at(s)`).
+
+        An armed point strikes at the ground; one that never rose since it was let go, a hair
+        below it (SINK), so that the event has a root and the point cannot sink further. A
+        sliding point (Coulomb) stops when its tangential velocity reaches zero."""
+        sink = [0.0 if self.armed[p] else SINK for p in FEET]
+        hits = [k for k, p in enumerate(FEET) if p not in self.active and events[k] + sink[k] <= 0.0]
+        stops = self.lm.law == "coulomb" and self.slide != 0 and self.slide * events[2] <= 0.0
+        candidates = []
+        if hits:
+            candidates.append((locate(lambda s: min(events_at(s)[k] + sink[k] for k in hits), h), "hit"))
+        if stops:
+            candidates.append((locate(lambda s: self.slide * events_at(s)[2], h), "stop"))
+        return (*min(candidates), hits) if candidates else (h, None, hits)
 
     def accepted_step(self, step, x, args):
         """(h, the step's outputs): the adaptive scheme shrinks h until the local error is

@@ -5,13 +5,13 @@ held point does not accelerate, kinetic friction opposes sliding) and its interf
 import casadi as ca
 import numpy as np
 import pytest
+from helpers import PROBLEMS, random_states
 
 from formopt import load
 from formopt.mechanics import dynamics
 from formopt.mechanics.dynamics import FEET, GRAVITY, Dynamics, Joints
 from formopt.mechanics.landing import LandingModel
 from formopt.optim import objective
-from helpers import PROBLEMS, random_states
 
 SETS = [((), False), (("forefoot",), False), (("heel",), False), (("heel", "forefoot"), False),
         (("forefoot",), True), (("heel", "forefoot"), True)]

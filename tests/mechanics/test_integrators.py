@@ -1,17 +1,18 @@
 """The step builders of integrators.py against scipy's solve_ivp on the same dynamics, their
 orders of accuracy, the step-size control and the event locator."""
 
+import itertools
 import math
 
 import casadi as ca
 import numpy as np
 import pytest
+from helpers import PROBLEMS
 from scipy.integrate import solve_ivp
 
 from formopt import load
 from formopt.mechanics import integrators
 from formopt.mechanics.landing import LandingModel, simulate_state
-from helpers import PROBLEMS
 
 T_END = 0.02  # s of a forefoot-pinned leg with spring-damper joints (the landing's contact phase)
 SCHEMES = {"midpoint": (integrators.midpoint, 2), "rk4": (integrators.rk4, 4),
@@ -73,14 +74,14 @@ def test_order_of_accuracy(pinned, scheme):
     builder, order = SCHEMES[scheme]
     errors = [np.max(np.abs(integrate(f, x0, builder, steps) - reference)[:2 * n])
               for steps in (5, 10, 20, 40)]
-    slopes = [math.log2(a / b) for a, b in zip(errors, errors[1:])]
+    slopes = [math.log2(a / b) for a, b in itertools.pairwise(errors)]
     assert all(order - 0.1 < s < order + 0.6 for s in slopes), slopes
 
 
 def test_dormand_prince_error_estimate_tracks_the_true_error(pinned):
     """The embedded 4th-order estimate (in TOLERANCE units, 1 = accepted) bounds the local
     error of one step against solve_ivp from the same state."""
-    f, x0, _, n = pinned
+    f, x0, _, _ = pinned
     X, H = ca.SX.sym("x", x0.size), ca.SX.sym("h")
     x5, error = integrators.dormand_prince(f, X, 0.0, H)
     step = ca.Function("step", [X, H], [x5, error])
