@@ -163,8 +163,6 @@ class Landing:
         return float(np.sum(np.diff(self.t)[self.slide[:-1] != 0]))
 
 
-
-
 class LandingModel(Dynamics):
     """The landing equations of one model, joint model, ground, contact law and integrator:
     the dynamics (dynamics.Dynamics), the impact map per contact set, and the integrator
@@ -187,9 +185,10 @@ class LandingModel(Dynamics):
         estimate in units of TOLERANCE (1 is the largest accepted), zero for fixed steps.
         x' = [q', q'', power] of `motion` with no applied moments."""
         n, motion = self.model.n, self.motion(active, sliding)
+        no_moments = ca.DM.zeros(len(self.hinges))
 
         def f(state, time):
-            out = motion(state[:n], state[n:2 * n], s_anchor, joint, mu_s, time, ca.DM.zeros(len(self.hinges)))
+            out = motion(state[:n], state[n:2 * n], s_anchor, joint, mu_s, time, no_moments)
             return ca.vertcat(out[0], out[1], out[3])
 
         return integrator_step(scheme or self.integrator, f, x, t, h)
