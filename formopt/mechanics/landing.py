@@ -72,6 +72,10 @@ class Ended(enum.StrEnum):
     BOTH_DOWN = "heel and forefoot both down"
     DURATION = "duration reached"
     CHATTER = f"contact chatter: more than {MAX_SWITCHES} contact changes"
+    # the same under the no-slip law, with what it means there
+    HELD_CHATTER = (f"contact chatter: more than {MAX_SWITCHES} contact changes (held, the ground "
+                    "would pull the point; let go, it sinks: the no-slip law has no motion here, "
+                    "\"coulomb\" may)")
 
 
 class Diverged(RuntimeError):
@@ -325,7 +329,7 @@ class _Run:
                 self.both_down(out, pulling)
                 break
             if self.contact_changes(out["force"], normals, pulling):
-                if self.ended is Ended.CHATTER:
+                if self.ended in (Ended.CHATTER, Ended.HELD_CHATTER):
                     break
                 continue
             self.contact_phase(out)
@@ -407,10 +411,8 @@ class _Run:
             return False
         self.switches += 1
         if self.switches > MAX_SWITCHES:
-            self.ended = Ended.CHATTER
-            self.warnings.append(Ended.CHATTER.value + (
-                " (held, the ground would pull the point; let go, it sinks: the no-slip "
-                "law has no motion here, \"coulomb\" may)" if self.lm.law == "no-slip" else ""))
+            self.ended = Ended.HELD_CHATTER if self.lm.law == "no-slip" else Ended.CHATTER
+            self.warnings.append(self.ended.value)
             return True
         if pulling:
             pulled = [p for p, n in zip(self.active, normals) if n < 0]
