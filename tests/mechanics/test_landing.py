@@ -8,12 +8,17 @@ from dataclasses import replace
 import casadi as ca
 import numpy as np
 import pytest
+from helpers import PROBLEMS, land
 
 from formopt import SceneError, impact, load
 from formopt.cli import main
-from formopt.mechanics.landing import Ended, LandingModel, absorbed_function, landing_function
-from helpers import PROBLEMS, land
 from formopt.io.scene import parse
+from formopt.mechanics.landing import (
+    Ended,
+    LandingModel,
+    absorbed_function,
+    landing_function,
+)
 
 SPRING = PROBLEMS / "landing_spring.toml"
 
