@@ -3,10 +3,10 @@
     python benchmarks/impact_speed.py [--states 10000] [--repeats 20]
 
 Prints medians over repeats (seed printed): build and compile time; a compiled, mapped CasADi
-batch (states/s on one core); a single state through the Python API (compiled ctypes call,
-the checked ImpactResult API, and CasADi's interpreted call); the gradient of T_c against its
-value; and, in the same run, Pinocchio's impulseDynamics on the same states (a Python loop of
-C++ calls: Pinocchio has no batch API).
+batch (states/s on one core); a single state through the Python API (compiled: ca.external
+called through Function.buffer; the checked ImpactResult API; CasADi's interpreted call); the
+gradient of T_c against its value; and, in the same run, Pinocchio's impulseDynamics on the
+same states (a Python loop of C++ calls: Pinocchio has no batch API).
 """
 
 from __future__ import annotations
@@ -88,7 +88,7 @@ def main():
                  f"{tb / args.states * 1e9:.0f} ns/state"))
 
     single = Compiled(f)
-    rows.append(("single state, compiled (ctypes)", f"{per_call(single, X[:2000]) * 1e6:.2f} us", ""))
+    rows.append(("single state, compiled (buffer)", f"{per_call(single, X[:2000]) * 1e6:.2f} us", ""))
     checked = Impact(model, args.strike, 0.0, FRICTION, compiled=True)
     rows.append(("single state, checked ImpactResult", f"{per_call(checked, X[:2000]) * 1e6:.2f} us",
                  "condition number, warnings"))

@@ -17,7 +17,9 @@ from ..mechanics import limits
 from ..mechanics.body import Body, Segment
 from ..mechanics.contact import LAWS
 from ..mechanics.impact import GRAPHS, Impact
-from ..mechanics.landing import INTEGRATORS, JOINT_MODELS, RUNNING_JOINTS, Joints, LandingModel
+from ..mechanics.dynamics import JOINT_MODELS, Joints
+from ..mechanics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
+from ..mechanics.landing import RUNNING_JOINTS, LandingModel
 from ..mechanics.model import MODELS, STATE, STRIKES, Model, Swing, build_model
 from ..optim.objective import OBJECTIVES, STANCE_PEAK_BW
 from ..optim.posture import Gait, Inadmissible, PostureProblem, Problem, admissible
@@ -48,7 +50,7 @@ class Numerics:
     # pays: the landing's per-step functions, not the impact map or the NLP)
     compiled: bool | str = "auto"
     hessian: str = "auto"  # IPOPT: "exact", "limited-memory", or "auto" (exact for impacts)
-    integrator: str = "adaptive"  # the landing's integrator (mechanics.landing.INTEGRATORS)
+    integrator: str = DEFAULT_INTEGRATOR  # the landing's integrator (mechanics.integrators)
 
 
 @dataclass(frozen=True)
@@ -208,7 +210,7 @@ SPRING_KEYS = ("stiffness_nm_per_deg", "damping_nms_per_deg", "preload_nm")
 
 def _joints(data, model, mass) -> Joints:
     """[joints]: the landing's joint model. Spring-damper values not given take the running
-    defaults scaled to the body's mass (landing.RUNNING_JOINTS), within landing.JOINT_LIMITS."""
+    defaults scaled to the body's mass (landing.RUNNING_JOINTS), within limits.JOINT_LIMITS."""
     if not isinstance(data, dict):
         raise SceneError("joints", "must be a table")
     val.keys(data, "joints", JOINT_KEYS, set())

@@ -3,9 +3,10 @@
 `library(f)` generates C for f, compiles it with the system's C compiler and caches the shared
 library under a key of the generated source and the compiler flags, so a second run (or a
 second process) does not compile again. `external(f)` loads it back as a CasADi Function (for
-use inside other CasADi graphs, or mapped over batches); `Compiled(f)` calls it through ctypes
-with preallocated buffers, which costs about a microsecond per call instead of CasADi's
-Python dispatch.
+use inside other CasADi graphs, or mapped over batches); `Compiled(f)` calls that external
+through CasADi's `Function.buffer()` on preallocated numpy arrays, which costs about a
+microsecond per call instead of CasADi's Python dispatch (`f.call`, tens of microseconds).
+`caller(f, compiled)` gives either, with the same call interface.
 
 The cache folder is $FORMOPT_CACHE, or ~/.cache/formopt.
 """
@@ -13,7 +14,6 @@ The cache folder is $FORMOPT_CACHE, or ~/.cache/formopt.
 from __future__ import annotations
 
 import contextlib
-import ctypes
 import hashlib
 import os
 import shutil
@@ -77,7 +77,7 @@ def _compile(source: str, name: str, level: str) -> Path:
         c_file, so_file = Path(tmp) / f"{name}.c", Path(tmp) / target.name
         c_file.write_text(source)
         done = subprocess.run([cc, *flags, str(c_file), "-o", str(so_file), "-lm"],
-                              capture_output=True, text=True)
+                              capture_output=True, text=True, check=False)
         if done.returncode != 0:
             raise RuntimeError(f"compiling {name} failed:\n{done.stderr[-2000:]}")
         os.replace(so_file, target)  # atomic: a half-written library is never seen as built
@@ -93,25 +93,24 @@ class Compiled:
     """Call a compiled CasADi Function from Python with preallocated buffers.
 
     `Compiled(f)(x, ...)` returns a dict of dense numpy arrays, one per output, like
-    `f.call`; the arrays are fresh copies.
+    `f.call`; the arrays are fresh copies. The library is `external(f)`, evaluated through
+    `Function.buffer()` on numpy arrays bound once (column-major nonzeros of each input and
+    output).
     """
 
     def __init__(self, function: ca.Function):
         self.function = function
-        self._lib = ctypes.CDLL(str(library(function)))
-        self._call = getattr(self._lib, function.name())
-        self._call.restype = ctypes.c_int
-        real_p = ctypes.POINTER(ctypes.c_double)
+        self._external = external(function)
+        self._buffer, self._eval = self._external.buffer()
+        # The generated code of an SX Function is arithmetic only and always returns 0; others
+        # (an MX graph's linear solvers) have their status read, which costs about 1 us a call.
+        self._checked = not function.is_a("SXFunction")
         self._ins = [np.zeros(function.nnz_in(i)) for i in range(function.n_in())]
         self._outs = [np.zeros(function.nnz_out(i)) for i in range(function.n_out())]
-        self._arg = (real_p * max(function.sz_arg(), 1))(
-            *[a.ctypes.data_as(real_p) for a in self._ins])
-        self._res = (real_p * max(function.sz_res(), 1))(
-            *[r.ctypes.data_as(real_p) for r in self._outs])
-        self._iw = np.zeros(max(function.sz_iw(), 1), dtype=np.int64)
-        self._w = np.zeros(max(function.sz_w(), 1))
-        self._iw_p = self._iw.ctypes.data_as(ctypes.POINTER(ctypes.c_longlong))
-        self._w_p = self._w.ctypes.data_as(real_p)
+        for i, a in enumerate(self._ins):
+            self._buffer.set_arg(i, memoryview(a))
+        for i, r in enumerate(self._outs):
+            self._buffer.set_res(i, memoryview(r))
         self._layout = []  # (name, shape of a matrix output or None for a vector, sparsity)
         for i in range(function.n_out()):
             sp = function.sparsity_out(i)
@@ -125,7 +124,8 @@ class Compiled:
                 buffer[:] = np.ravel(value, order="F")
             else:  # a number or a vector
                 buffer[:] = value
-        if self._call(self._arg, self._res, self._iw_p, self._w_p, 0) != 0:
+        self._eval()
+        if self._checked and self._buffer.ret() != 0:
             raise RuntimeError(f"{self.function.name()}: evaluation failed")
         out = {}
         for (name, shape, pattern), values in zip(self._layout, self._outs):
@@ -137,3 +137,19 @@ class Compiled:
                 out[name] = np.zeros(shape)
                 out[name][pattern] = values
         return out
+
+
+class Interpreted:
+    """The call interface of Compiled for a CasADi Function run by CasADi (no C compiler)."""
+
+    def __init__(self, function: ca.Function):
+        self.function = function
+
+    def __call__(self, *args) -> dict[str, np.ndarray]:
+        return {k: v.full().ravel() if v.size2() == 1 else v.full()
+                for k, v in zip(self.function.name_out(), self.function.call(list(args)))}
+
+
+def caller(function: ca.Function, compiled: bool = True) -> Compiled | Interpreted:
+    """`function` with a numpy call interface: compiled to C (`Compiled`) or interpreted."""
+    return Compiled(function) if compiled else Interpreted(function)

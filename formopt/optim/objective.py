@@ -26,6 +26,7 @@ import math
 
 import casadi as ca
 
+from ..mechanics.dynamics import GRAVITY
 from ..mechanics.landing import RUNNING_JOINTS
 from ..mechanics.model import Model, landmarks
 
@@ -33,7 +34,6 @@ OBJECTIVES = ("T_c", "T_c_total", "dv_trunk_x", "dv_trunk_z", "dv_com_x", "dv_co
 UNITS = {"T_c": "J", "T_c_total": "J", "dv_trunk_x": "m/s", "dv_trunk_z": "m/s",
          "dv_com_x": "m/s", "dv_com_z": "m/s", "support": "J"}
 STANCE_PEAK_BW = 2.4  # body weights: RBDS001's peak vertical force, 23.5 N/kg at 3.5 m/s
-GRAVITY = 9.81  # m/s^2
 SUPPORT_JOINTS = ("knee", "ankle")
 
 

@@ -29,6 +29,7 @@ from ..mechanics import contact
 from ..mechanics.compiled import cached_nlpsol
 from ..mechanics.errors import InputError
 from ..mechanics.impact import Impact, ImpactResult, check_ground, impact_function
+from ..mechanics.integrators import DEFAULT_INTEGRATOR
 from ..mechanics.landing import Joints, LandingModel, landing_function, simulate_state
 from ..mechanics.model import STRIKES, Model, ground_axes, positions
 from . import multistart
@@ -127,7 +128,7 @@ class PostureProblem:
     def __init__(self, model: Model, strike: str, reference, problem: Problem,
                  slope: float, friction: float, joints: Joints | None = None,
                  duration: float = 0.2, graph: str = "SX", compiled: bool = False,
-                 hessian: str = "auto", integrator: str = "rk4", law: str = "no-slip"):
+                 hessian: str = "auto", integrator: str = DEFAULT_INTEGRATOR, law: str = "no-slip"):
         """`reference`: the touchdown state (STATE, SI) whose other values stay fixed;
         `slope` (rad), `friction`: the problem's ground (p0; parameters of the NLP);
         `duration` (s): the longest landing; `graph`, `compiled`, `hessian` ("auto": exact

@@ -151,7 +151,7 @@ def run(quick: bool = False, progress=None) -> Bench:
     ladder, totals = {}, {}
     for level in LEVELS[1:]:
         say(f"landing: {level}")
-        model = LandingModel(models[level], scene.joints, scene.slope)
+        model = LandingModel(models[level], scene.joints, scene.slope, integrator="rk4")
         totals[level] = [land(model, x, 5e-4).T_c_total for x in landing_states]
         ladder[level] = Row(level, "ladder, rk4 dt 0.5 ms", "landing",
                             _median_time(lambda x, m=model: land(m, x, 5e-4), landing_states), 0.0)

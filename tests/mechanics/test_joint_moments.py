@@ -10,7 +10,8 @@ import pytest
 
 from formopt import load
 from formopt.cli import main
-from formopt.mechanics.landing import (FLEXION, RUNNING_JOINTS, Diverged, Joints, LandingModel,
+from formopt.mechanics.dynamics import FLEXION
+from formopt.mechanics.landing import (RUNNING_JOINTS, Diverged, Joints, LandingModel,
                                        simulate_state)
 from formopt.mechanics.model import STATE
 from helpers import PROBLEMS, SEED, random_states

@@ -3,16 +3,22 @@
 import copy
 import json
 import tomllib
+from dataclasses import replace
 
 import casadi as ca
 import numpy as np
 import pytest
+from helpers import PROBLEMS, land
 
 from formopt import SceneError, impact, load
 from formopt.cli import main
-from formopt.mechanics.landing import LandingModel, absorbed_function, landing_function
-from helpers import PROBLEMS, land
 from formopt.io.scene import parse
+from formopt.mechanics.landing import (
+    Ended,
+    LandingModel,
+    absorbed_function,
+    landing_function,
+)
 
 SPRING = PROBLEMS / "landing_spring.toml"
 
@@ -41,6 +47,21 @@ def test_two_impacts_and_their_bookkeeping(spring, spring_landing):
     assert L.T_c_total == pytest.approx(sum(e.T_c for e in L.impacts))
     assert L.energy_error < 1e-6  # J: T + V + springs + damped + absorbed is constant
     assert L.drift < 1e-9
+
+
+def test_how_it_ended_is_an_enum_that_reads_as_text(spring_landing):
+    """Landing.ended is an Ended member; JSON and tables show its text, as before the enum."""
+    L = spring_landing
+    assert L.ended is Ended.BOTH_DOWN and L.valid
+    assert json.loads(json.dumps(L.to_dict()))["ended"] == "heel and forefoot both down"
+    assert f"{L.ended}" == "heel and forefoot both down"
+
+
+def test_a_landing_cut_short_names_why(spring):
+    """Stopped at its duration before the heel is down: one violation, the enum's text."""
+    L = land(replace(spring, integration=replace(spring.integration, duration=0.01)))
+    assert L.ended is Ended.DURATION
+    assert L.violations == ["duration reached"]
 
 
 def test_first_impact_equals_formopt_impact(spring, spring_landing):
