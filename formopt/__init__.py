@@ -10,13 +10,37 @@ optim (the posture NLP), io (scenes, motion capture, files), studies (compare, s
 bench), report (tables, figures), cli.
 """
 
+from importlib import import_module
 from importlib.metadata import PackageNotFoundError, version
+from typing import TYPE_CHECKING
 
-from .api import compare, impact, load, simulate, solve, sweep
-from .io.scene import Scene, SceneError
-from .mechanics.impact import Impact, ImpactResult
-from .mechanics.landing import Landing
-from .optim.solution import Optimum
+# Public names and the module each lives in. They are imported on first use (PEP 562), so
+# that `import formopt` (and the command line, which must answer Ctrl-C from its first
+# instant) does not load CasADi, SciPy and Matplotlib before they are needed.
+_PUBLIC = {"load": "api", "impact": "api", "simulate": "api", "solve": "api", "sweep": "api",
+           "compare": "api", "Scene": "io.scene", "SceneError": "io.scene",
+           "Impact": "mechanics.impact", "ImpactResult": "mechanics.impact",
+           "Landing": "mechanics.landing", "Optimum": "optim.solution"}
+
+if TYPE_CHECKING:
+    from .api import compare, impact, load, simulate, solve, sweep
+    from .io.scene import Scene, SceneError
+    from .mechanics.impact import Impact, ImpactResult
+    from .mechanics.landing import Landing
+    from .optim.solution import Optimum
+
+
+def __getattr__(name: str):
+    if name in _PUBLIC:
+        value = getattr(import_module(f".{_PUBLIC[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'formopt' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted([*globals(), *_PUBLIC])
+
 
 try:
     __version__ = version("formopt")

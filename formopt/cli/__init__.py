@@ -16,16 +16,15 @@ its traceback.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+from importlib import import_module
 
 from .. import __version__
-from ..io.files import OutputError
-from ..mechanics.errors import InputError, one_line
-from ..mechanics.landing import Diverged
-from . import bench, compare, impact, simulate, solve, sweep
+from ..mechanics.errors import one_line
 
-COMMANDS = {"impact": impact, "solve": solve, "simulate": simulate, "sweep": sweep,
-            "compare": compare, "bench": bench}
+# One module per command, imported when the command line is parsed (inside main's handlers).
+COMMANDS = ("impact", "solve", "simulate", "sweep", "compare", "bench")
 
 
 def parser() -> argparse.ArgumentParser:
@@ -33,15 +32,34 @@ def parser() -> argparse.ArgumentParser:
                                   "the least energy at foot strike.")
     top.add_argument("--version", action="version", version=f"formopt {__version__}")
     commands = top.add_subparsers(dest="command", required=True)
-    for name, module in COMMANDS.items():
-        module.add_parser(commands)
+    for name in COMMANDS:
+        import_module(f".{name}", __name__).add_parser(commands)
     return top
 
 
 def main(argv=None) -> int:
+    """Run one command; Ctrl-C at any moment is one line and exit 130, a closed pipe a quiet
+    exit (141, as a shell reports SIGPIPE)."""
+    try:
+        status = _run(argv)
+        sys.stdout.flush()  # a closed pipe shows here, not at the interpreter's exit
+        return status
+    except KeyboardInterrupt as err:
+        print("formopt: interrupted" + (f": {err}" if str(err) else ""), file=sys.stderr)
+        return 130
+    except BrokenPipeError:  # the reader went away (formopt ... | head): stop quietly
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
+
+
+def _run(argv) -> int:
+    from ..io.files import OutputError
+    from ..mechanics.errors import InputError
+    from ..mechanics.landing import Diverged
+
     args = parser().parse_args(argv)
     try:
-        return COMMANDS[args.command].run(args)
+        return import_module(f".{args.command}", __name__).run(args)
     except (InputError, OutputError) as err:
         where = getattr(args, "scene", None)
         prefix = f"{where}: " if where and isinstance(err, InputError) and \
@@ -51,8 +69,5 @@ def main(argv=None) -> int:
     except Diverged as err:  # not a result: the run did not reach its goal
         print(f"formopt: {one_line(err, 600)}", file=sys.stderr)
         return 1
-    except KeyboardInterrupt as err:
-        print("formopt: interrupted" + (f": {err}" if str(err) else ""), file=sys.stderr)
-        return 130
 
 
