@@ -28,7 +28,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io.files import OutputError, write_csv
+from ..io.files import OutputError, append_csv, append_rows, write_csv
+from ..mechanics import limits
 from ..mechanics.landing import simulate_state
 from ..mechanics.model import STATE, joint_angles
 from ..mechanics.errors import InputError
@@ -73,6 +74,15 @@ class LandingRow:
 
 
 COLUMNS = [f.name for f in fields(LandingRow)]
+SPEED = limits.Range(-limits.SPEED_LIMIT, limits.SPEED_LIMIT, "m/s")
+# What each parameter may take (mechanics.limits, with their sources); a value beyond is a
+# typing error, not a runner, and is refused before any work.
+RANGES = {"speed_mps": SPEED, "hip_vx": SPEED, "hip_vz": SPEED, "friction": limits.FRICTION,
+          "slope_deg": limits.SLOPE_DEG, **{f"{k}_deg": limits.ANGLE_DEG
+                                            for k in ("trunk", "hip", "knee", "ankle")}}
+# The most points one sweep takes: a 1000 x 1000 grid, about 30 min of landings on two cores
+# (benchmarks/sweep_scaling.py); a larger grid is refused before any work or memory is spent.
+MAX_POINTS = 1_000_000
 
 
 def parse_param(text: str) -> tuple[str, np.ndarray]:
@@ -85,9 +95,30 @@ def parse_param(text: str) -> tuple[str, np.ndarray]:
         values = np.linspace(float(start), float(stop), int(count))
     except ValueError:
         raise InputError(f"--param {text!r}: expected NAME=START:STOP:COUNT, e.g. ankle_deg=-20:20:41") from None
-    if not 1 <= len(values) <= 100000 or not np.all(np.isfinite(values)):
-        raise InputError(f"--param {text!r}: COUNT must be 1 to 100000 and the range finite")
+    if not 1 <= len(values) <= MAX_POINTS or not np.all(np.isfinite(values)):
+        raise InputError(f"--param {text!r}: COUNT must be 1 to {MAX_POINTS} and the range finite")
+    allowed = RANGES[name]
+    for value in (values[0], values[-1]):
+        if value not in allowed:
+            raise InputError(f"--param {text!r}: {name} = {value:g} is outside its range, "
+                             f"{allowed.text()} (mechanics.limits)")
     return name, values
+
+
+def check_grid(params: list[tuple[str, np.ndarray]]) -> None:
+    """Refuse a grid that names one quantity twice (speed_mps and hip_vx are both the hip's
+    forward velocity) or has more than MAX_POINTS points, before any work."""
+    seen: dict[str, str] = {}
+    for name, _ in params:
+        quantity = PARAMETERS[name] or name
+        if quantity in seen:
+            raise InputError(f"--param {name}: sets the same quantity as --param {seen[quantity]}; "
+                             "give each quantity once")
+        seen[quantity] = name
+    points = math.prod(len(v) for _, v in params)
+    if points > MAX_POINTS:
+        raise InputError(f"the grid has {points:.3g} points, more than the {MAX_POINTS} one sweep "
+                         "takes: split it into several sweeps")
 
 
 def apply(scene, values: dict):
@@ -118,6 +149,7 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
     note(text): told of a repaired file. Ctrl-C raises KeyboardInterrupt("N rows written ...").
     """
     path = Path(path)
+    check_grid(params)
     names = [n for n, _ in params]
     optima = scene.problem is not None and not landings
     if optima:  # an optimum map: warm-started chains along a serpentine
@@ -128,23 +160,15 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
         columns, work, size = COLUMNS, landing_rows, CHUNK
         grid = [dict(zip(names, combo)) for combo in itertools.product(*[v for _, v in params])]
     header = names + [c for c in columns if c not in names]  # a swept ground column once
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fh = path.open("a+", newline="")
-    except OSError as err:
-        raise OutputError(f"{path}: cannot write the sweep ({err.strerror})") from None
+    fh, existing, torn = append_csv(path, header)
     with fh:
-        _lock(fh, path)
-        if _repair(fh) and note:
+        if torn and note:
             note(f"{path}: dropped a torn last row (an interrupted write); it is computed again")
-        done = _done(path, header, names)
+        done = _done(path, existing, names, {_key(g, names) for g in grid})
         todo = [g for g in grid if _key(g, names) not in done]
         if workers > 1 or scheduler:  # every worker busy: chains no longer than a fair share
             size = max(1, min(size, math.ceil(len(todo) / (4 * (workers if not scheduler else 8)))))
         chunks = [todo[k:k + size] for k in range(0, len(todo), size)]
-        writer = csv.writer(fh)
-        if fh.tell() == 0:
-            writer.writerow(header)
         bar = None
         if progress:
             from tqdm import tqdm
@@ -153,8 +177,8 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
         written = len(grid) - len(todo)
         try:
             for chunk, rows in _results(work, scene, chunks, workers, scheduler):
-                writer.writerows([{**row, **values}[c] for c in header] for values, row in zip(chunk, rows))
-                fh.flush()
+                append_rows(fh, path, ([{**row, **values}[c] for c in header]
+                                       for values, row in zip(chunk, rows)))
                 written += len(chunk)
                 if bar:
                     bar.update(len(chunk))
@@ -182,40 +206,12 @@ def valid(row: dict) -> bool:
     return not row["error"] and row["valid"] == "True"
 
 
-def _lock(fh, path):
-    """An exclusive lock on the open sweep file, or OutputError if another sweep holds it."""
-    try:
-        import fcntl
-    except ImportError:  # not a POSIX system: no lock
-        return
-    try:
-        fcntl.flock(fh.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except BlockingIOError:
-        raise OutputError(f"{path}: another sweep is writing this file; wait for it to end or "
-                          "give another --out") from None
-
-
-def _repair(fh) -> bool:
-    """Cut a torn last line (no newline at the end of the file); True if one was cut."""
-    fh.seek(0, os.SEEK_END)
-    size = fh.tell()
-    if size == 0:
-        return False
-    fh.seek(0)
-    text = fh.read()
-    if text.endswith("\n"):
-        return False
-    fh.truncate(len(text[:text.rfind("\n") + 1].encode()))
-    fh.seek(0, os.SEEK_END)
-    return True
-
-
 def _results(work, scene, chunks, workers, scheduler):
     """(chunk, rows) as each chunk finishes, wherever it ran; work(scene, chunk) -> rows."""
     if scheduler:
         from dask.distributed import Client, as_completed
 
-        with Client(scheduler) as client:
+        with _client(Client, scheduler) as client:
             futures = {client.submit(work, scene, chunk, pure=False): chunk for chunk in chunks}
             for future in as_completed(futures):
                 yield futures[future], future.result()
@@ -234,13 +230,33 @@ def _results(work, scene, chunks, workers, scheduler):
             yield chunk, work(scene, chunk)
 
 
+WATCH = 0.1  # s: how often a pool worker looks for its parent where the kernel does not tell it
+
+
+def _client(Client, address: str):
+    """A Dask client of the scheduler at `address`; OutputError in one line when the address is
+    malformed or nobody answers within 10 s."""
+    try:
+        return Client(address, timeout="10s")
+    except (OSError, ValueError, TypeError) as err:  # dask's TimeoutError is an OSError
+        raise OutputError(f"--scheduler {address!r}: no Dask scheduler there "
+                          f"({type(err).__name__}: {str(err).splitlines()[0][:120] if str(err) else ''})") from None
+
+
 def _worker_start(parent: int):
-    """A pool worker ignores Ctrl-C (its sweep stops it) and ends when its sweep is killed."""
+    """A pool worker ignores Ctrl-C (its sweep stops it) and ends when its sweep is killed:
+    at once on Linux (the kernel sends SIGKILL when the parent dies, prctl PR_SET_PDEATHSIG),
+    elsewhere within WATCH seconds (it polls its parent)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        import ctypes
+        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # 1 = PR_SET_PDEATHSIG
+    except (OSError, AttributeError):  # not Linux: the watch below
+        pass
 
     def watch():
         while os.getppid() == parent:
-            time.sleep(0.5)
+            time.sleep(WATCH)
         os._exit(1)
 
     threading.Thread(target=watch, daemon=True).start()
@@ -269,7 +285,7 @@ def _landing_row(scene, values, models) -> dict:
               "slope_deg": values.get("slope_deg", math.degrees(scene.slope))}
     try:
         s = apply(scene, values)
-        key = repr((s.kind, s.body, s.swing, s.joints, s.slope, s.numerics))  # what the model holds
+        key = repr((s.kind, s.body, s.swing, s.joints, s.slope, s.numerics, s.contact))  # what the model holds
         if key not in models:
             models[key] = s.landing()
         lm = models[key]
@@ -299,13 +315,18 @@ def _key(values: dict, names) -> tuple:
     return tuple(round(float(values[n]), 9) for n in names)
 
 
-def _done(path: Path, header, names) -> set:
-    if not path.exists() or path.stat().st_size == 0:
-        return set()
-    rows = read(path)
-    with path.open(newline="") as fh:
-        found = next(csv.reader(fh), [])
-    if found != header:
-        raise InputError(f"{path} holds another sweep (columns {found[:4]}...): "
-                         "give another --out or remove it")
-    return {_key({n: float(r[n]) for n in names}, names) for r in rows}
+def _done(path: Path, rows: list[dict], names, grid: set) -> set:
+    """The grid points already in the sweep's rows; OutputError if a row is not a number where
+    a parameter should be, or belongs to another grid (the same parameters, other values)."""
+    done = set()
+    for k, r in enumerate(rows):
+        try:
+            key = _key({n: float(r[n]) for n in names}, names)
+        except ValueError:
+            raise OutputError(f"{path}: row {k + 1} holds {[r[n] for n in names]} where numbers "
+                              "should be; mend or remove the file") from None
+        if key not in grid:
+            raise OutputError(f"{path}: holds points of another grid ({dict(zip(names, key))}); "
+                              "give another --out or remove it")
+        done.add(key)
+    return done
