@@ -21,7 +21,7 @@ import numpy as np
 
 from ..mechanics.compiled import external
 from ..mechanics.impact import Impact, impact_function, on_ground
-from ..mechanics.landing import LandingModel, simulate_state
+from ..mechanics.landing import Diverged, LandingModel, simulate_state
 from ..mechanics.model import STATE, build_model
 from ..optim.posture import PostureProblem
 from ..io.scene import load
@@ -136,29 +136,32 @@ def run(quick: bool = False, progress=None) -> Bench:
           for integ in ("rk4", "midpoint")}
 
     def land(model, x, dt):
-        return simulate_state(model, scene.strike, x, scene.friction, dt, 0.2)
+        """T_c_total (J) of one landing; NaN when it diverges (a row says so, the bench goes on)."""
+        try:
+            return simulate_state(model, scene.strike, x, scene.friction, dt, 0.2).T_c_total
+        except Diverged:
+            return math.nan
 
     say("landing: reference")
-    ref_total = [land(lm["rk4"], x, reference_dt).T_c_total for x in landing_states]
+    ref_total = [land(lm["rk4"], x, reference_dt) for x in landing_states]
     for integ in ("rk4", "midpoint"):
         for dt in steps:
             say(f"landing: leg, {integ}, dt {dt * 1e3:g} ms")
-            totals = [land(lm[integ], x, dt).T_c_total for x in landing_states]
-            errors = np.abs(np.subtract(totals, ref_total)) / np.abs(ref_total)
+            totals = np.array([land(lm[integ], x, dt) for x in landing_states])
+            error, note = _landing_errors(totals, ref_total)
             rows.append(Row("leg", f"{integ} dt {dt * 1e3:g} ms", "landing",
                             _median_time(lambda x, m=lm[integ], h=dt: land(m, x, h), landing_states),
-                            float(np.max(errors)), note=f"median {np.median(errors):.1e}"))
+                            error, note=note))
     ladder, totals = {}, {}
     for level in LEVELS[1:]:
         say(f"landing: {level}")
         model = LandingModel(models[level], scene.joints, scene.slope, integrator="rk4")
-        totals[level] = [land(model, x, 5e-4).T_c_total for x in landing_states]
+        totals[level] = [land(model, x, 5e-4) for x in landing_states]
         ladder[level] = Row(level, "ladder, rk4 dt 0.5 ms", "landing",
                             _median_time(lambda x, m=model: land(m, x, 5e-4), landing_states), 0.0)
         rows.append(ladder[level])
     for level, row in ladder.items():
-        errors = np.abs(np.subtract(totals[level], totals["full-body"])) / np.abs(totals["full-body"])
-        row.error, row.note = float(np.max(errors)), f"median {np.median(errors):.1e}"
+        row.error, row.note = _landing_errors(np.array(totals[level]), totals["full-body"])
 
     # optimisations: the ladder (exact Hessian), then Hessian and compilation for the leg
     problem = replace(scene.problem, starts=1)
@@ -186,6 +189,18 @@ def run(quick: bool = False, progress=None) -> Bench:
                         float(np.max(np.abs(posture - optima["leg"]))),
                         note=f"{stats['return_status']}; posture error against the leg's exact optimum, deg"))
     return Bench(rows, batch_states_per_s, scene.friction, scene.slope)
+
+
+def _landing_errors(totals: np.ndarray, reference) -> tuple[float, str]:
+    """(largest relative error of T_c_total, note with the median and the diverged count); a
+    diverged landing (NaN) counts in the note, not in the error; all diverged: error NaN."""
+    errors = np.abs(totals - np.asarray(reference)) / np.abs(reference)
+    good = errors[np.isfinite(errors)]
+    diverged = int(np.sum(~np.isfinite(totals)))
+    note = f"median {np.median(good):.1e}" if good.size else "no landing converged"
+    if diverged:
+        note += f"; {diverged} of {len(totals)} landings DIVERGED (the step is too long)"
+    return (float(np.max(good)) if good.size else math.nan), note
 
 
 def _batch(model, strike, states, friction, slope, n=10000):
