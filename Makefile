@@ -17,7 +17,7 @@ $(STAMP): $(BIN)/python pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(BIN)/formopt solve problems/demo.toml --out out/demo
+	$(BIN)/formopt solve demo --out out/demo
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q

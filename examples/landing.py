@@ -1,5 +1,5 @@
 """A landing: from the forefoot's touchdown until the heel comes down, with passive knee and
-ankle: the running joints (problems/landing_spring.toml).
+ankle: the running joints (formopt/scenes/landing_spring.toml).
 
     python examples/landing.py [OUT]
 """
@@ -15,7 +15,7 @@ from formopt.report.tables import landing_table
 ROOT = Path(__file__).resolve().parent.parent
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
-scene = formopt.load(ROOT / "problems" / "landing_spring.toml")
+scene = formopt.load(ROOT / "formopt" / "scenes" / "landing_spring.toml")
 landing = formopt.simulate(scene)
 print(landing_table(scene, landing))
 for name, fig in landing_figures(landing, scene.model(), scene.slope, scene.strike).items():

@@ -12,16 +12,22 @@ bench), report (tables, figures), cli.
 
 from importlib.metadata import PackageNotFoundError, version
 
-from .api import compare, impact, load, simulate, solve, sweep
+from .api import compare, impact, load, scene_path, scenes, simulate, solve, sweep
 from .io.scene import Scene, SceneError
-from .mechanics.impact import Impact, ImpactResult
+from .mechanics.body import Body, paper_body, scaled_body
+from .mechanics.errors import InputError
+from .mechanics.impact import Impact, ImpactResult, impact_function
 from .mechanics.landing import Landing
+from .mechanics.model import Model, build_model
 from .optim.solution import Optimum
+from .studies.compare import Comparison
 
 try:
     __version__ = version("formopt")
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0+unknown"
 
-__all__ = ["load", "impact", "simulate", "solve", "sweep", "compare", "Scene", "SceneError",
-           "Impact", "ImpactResult", "Landing", "Optimum", "__version__"]
+__all__ = ["load", "scenes", "scene_path", "impact", "simulate", "solve", "sweep", "compare",
+           "Scene", "SceneError", "InputError", "Body", "paper_body", "scaled_body", "Model",
+           "build_model", "Impact", "ImpactResult", "impact_function", "Landing", "Optimum",
+           "Comparison", "__version__"]

@@ -25,7 +25,7 @@ import numpy as np
 
 from formopt.io import mocap
 
-DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "rbds"
+DATA = Path(__file__).resolve().parents[1] / "data" / "rbds"
 HEIGHT = 1.81
 KINEMATIC = False
 

@@ -6,6 +6,9 @@
     formopt sweep SCENE       landings across a grid of parameters (resumable)
     formopt compare ...       measured touchdowns of a motion-capture trial against the optimum
     formopt bench             time and accuracy of each model level and numerical option
+    formopt scenes            the shipped scenes; `formopt scenes copy NAME DIR` copies one
+
+SCENE is a scene file (TOML) or the name of a shipped scene (`formopt solve demo`).
 
 Exit status: 0 success; 1 a run that did not reach its goal (no start converged, a diverged
 landing), with the reason; 2 bad input (scene, data, option or output path), in one line
@@ -22,10 +25,12 @@ from .. import __version__
 from ..io.files import OutputError
 from ..mechanics.errors import InputError, one_line
 from ..mechanics.landing import Diverged
-from . import bench, compare, impact, simulate, solve, sweep
+from ..api import scene_path
+from . import bench, compare, impact, scenes, simulate, solve, sweep
 
 COMMANDS = {"impact": impact, "solve": solve, "simulate": simulate, "sweep": sweep,
-            "compare": compare, "bench": bench}
+            "compare": compare, "bench": bench, "scenes": scenes}
+SCENE_COMMANDS = ("impact", "solve", "simulate", "sweep")  # SCENE: a file or a shipped name
 
 
 def parser() -> argparse.ArgumentParser:
@@ -41,6 +46,8 @@ def parser() -> argparse.ArgumentParser:
 def main(argv=None) -> int:
     args = parser().parse_args(argv)
     try:
+        if args.command in SCENE_COMMANDS:
+            args.scene = str(scene_path(args.scene))
         return COMMANDS[args.command].run(args)
     except (InputError, OutputError) as err:
         where = getattr(args, "scene", None)
