@@ -14,7 +14,7 @@ from formopt.report.figures import indicator_figure
 ROOT = Path(__file__).resolve().parent.parent
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
-scene = formopt.load(ROOT / "formopt" / "scenes" / "forefoot_strike.toml")
+scene = formopt.load("forefoot_strike")
 result = formopt.impact(scene)
 print(f"T = {result.T:.2f} J, absorbed T_c = {result.T_c:.3f} J, after T_a = {result.T_a:.2f} J")
 print(f"ground impulse (t, n) = {result.impulse['forefoot']} N s; mu_c = {result.mu_c:.2f}; "

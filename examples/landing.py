@@ -15,7 +15,7 @@ from formopt.report.tables import landing_table
 ROOT = Path(__file__).resolve().parent.parent
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
-scene = formopt.load(ROOT / "formopt" / "scenes" / "landing_spring.toml")
+scene = formopt.load("landing_spring")
 landing = formopt.simulate(scene)
 print(landing_table(scene, landing))
 for name, fig in landing_figures(landing, scene.model(), scene.slope, scene.strike).items():

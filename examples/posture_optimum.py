@@ -15,7 +15,7 @@ from formopt.report.tables import solve_table
 ROOT = Path(__file__).resolve().parent.parent
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
-scene = formopt.load(ROOT / "formopt" / "scenes" / "demo.toml")
+scene = formopt.load("demo")
 optimum = formopt.solve(scene)
 print(solve_table(scene, optimum))
 fig = posture_figure(scene.body, scene.strike, scene.slope,

@@ -17,7 +17,7 @@ from formopt.report.figures import sweep_figure
 ROOT = Path(__file__).resolve().parent.parent
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
-scene = formopt.load(ROOT / "formopt" / "scenes" / "landing_spring.toml")
+scene = formopt.load("landing_spring")
 rows = formopt.sweep(scene, [("knee_deg", np.linspace(5.0, 30.0, 11))], out / "sweep_knee.csv",
                      progress=False)
 good = [r for r in rows if formopt.studies.sweep.valid(r)]
