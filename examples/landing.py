@@ -1,4 +1,7 @@
-"""A landing: from the forefoot's touchdown until the heel comes down, with passive knee and
+"""A landing
+=========
+
+From the forefoot's touchdown until the heel comes down, with passive knee and
 ankle: the running joints (formopt/scenes/landing_spring.toml).
 
     python examples/landing.py [OUT]
@@ -12,7 +15,6 @@ from formopt.io.files import save_figure
 from formopt.report.figures import landing_figures
 from formopt.report.tables import landing_table
 
-ROOT = Path(__file__).resolve().parent.parent
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
 scene = formopt.load("landing_spring")

@@ -1,4 +1,7 @@
-"""A measured runner: the touchdowns of RBDS subject 001 at 3.5 m/s (Fukuchi, Fukuchi &
+"""A measured runner
+=================
+
+The touchdowns of RBDS subject 001 at 3.5 m/s (Fukuchi, Fukuchi &
 Duarte 2017, PeerJ 5:e3298, CC BY 4.0) against the least-T_c posture at the same speed.
 
     python examples/measured_runner.py [OUT]     (reads data/rbds, shipped with the repository)

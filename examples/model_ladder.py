@@ -1,4 +1,7 @@
-"""The model ladder: the same touchdown on each model level, from the effective mass to the
+"""The model ladder
+================
+
+The same touchdown on each model level, from the effective mass to the
 full planar body, and the absorbed energy each gives.
 
     python examples/model_ladder.py [OUT]

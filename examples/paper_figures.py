@@ -1,5 +1,8 @@
 """The paper's figures ("Energy efficient walking and running - impact dynamics based on
-varying geometric constraints"): runs problems/paper.py, which draws Fig. 4-6 and the model
+varying geometric constraints")
+=====================================================================================================================
+
+Runs problems/paper.py, which draws Fig. 4-6 and the model
 comparison and prints what each shows.
 
     python examples/paper_figures.py [OUT]

@@ -1,4 +1,7 @@
-"""A posture optimum: the touchdown posture of formopt/scenes/demo.toml that absorbs the least
+"""A posture optimum
+=================
+
+The touchdown posture of formopt/scenes/demo.toml that absorbs the least
 energy, what holds it there, and how it differs from the reference.
 
     python examples/posture_optimum.py [OUT]
@@ -12,7 +15,6 @@ from formopt.io.files import save_figure
 from formopt.report.figures import posture_figure
 from formopt.report.tables import solve_table
 
-ROOT = Path(__file__).resolve().parent.parent
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
 scene = formopt.load("demo")

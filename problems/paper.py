@@ -47,7 +47,7 @@ from formopt.mechanics.landing import Joints  # noqa: E402
 from formopt.studies import sweep  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
-BASE = HERE / "landing_spring.toml"
+BASE = HERE.parent / "formopt" / "scenes" / "landing_spring.toml"
 FOOT_ANGLES = (5.0, 10.0, 15.0)  # deg, |sole angle| at touchdown, toe-up (heel) or toe-down
 COLORS = {"heel": "tab:orange", "forefoot": "tab:blue"}
 

@@ -57,7 +57,7 @@ def posture_figure(body: Body, strike: str, slope: float, postures) -> Figure:
 
 def indicator_figure(results: dict[str, ImpactResult]) -> Figure:
     """Bars of T_c, impulses, mu_c and dv of the trunk for each labelled result."""
-    names = ["T_c (J)", "normal impulse (N s)", "tangential impulse (N s)", "mu_c",
+    names = ["T_c (J)", "normal impulse (N s)", "tangential impulse (N s)", "mu_c (-)",
              "dv trunk x (m/s)", "dv trunk z (m/s)"]
 
     def values(r):
