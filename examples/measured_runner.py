@@ -16,7 +16,7 @@ from formopt.io.files import save_figure
 from formopt.report.figures import comparison_figure
 from formopt.report.tables import comparison_table
 
-DATA = Path(__file__).resolve().parent.parent / "data" / "rbds"
+DATA = Path(formopt.__file__).resolve().parents[1] / "data" / "rbds"  # the repository's data/ (a checkout)
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
 trial = mocap.read(DATA / "RBDS001runT35.c3d")

@@ -7,6 +7,7 @@ Every fenced block of README.md and docs/**/*.md runs, page by page in a fresh f
   `python` the interpreter running these tests; the lines after it, up to the next `$`, are
   its output (stdout and stderr, as a terminal shows them);
 - ```toml blocks parse.
+Pages run in a fresh folder that holds `data` (the repository's shipped trials).
 Output is compared line by line (trailing spaces ignored; `...` inside a line stands for any
 text). A block whose preceding line is `<!-- test: abridged -->` shows only some of the
 output: its lines must appear in that order, `...` lines marking the gaps. A block marked
@@ -108,7 +109,9 @@ def commands(text: str) -> list[tuple[str, str]]:
 
 @pytest.fixture()
 def shell_env(tmp_path):
-    """PATH with `formopt` and `python` running this interpreter on this source tree."""
+    """PATH with `formopt` and `python` running this interpreter on this source tree; the
+    folder holds `data` (a link to the repository's), as a reader at its root has."""
+    (tmp_path / "data").symlink_to(ROOT / "data")
     bin_dir = tmp_path / ".bin"
     bin_dir.mkdir()
     for name, target in (("formopt", f'"{sys.executable}" -m formopt.cli'), ("python", f'"{sys.executable}"')):
