@@ -181,3 +181,16 @@ def test_gallery_is_drawn_by_the_current_code():
     gallery)."""
     manifest = runpy.run_path(str(ROOT / "docs" / "gallery_manifest.py"))
     assert not manifest["stale"](), "stale gallery, run `make gallery`: " + ", ".join(manifest["stale"]())
+
+
+def test_compare_reads_file_paths():
+    """`formopt.compare("run.c3d", "static.c3d", mass=..., height=...)`, as the docs show:
+    paths are read (a missing one named in an InputError), the result is a Comparison."""
+    import formopt
+
+    with pytest.raises(formopt.InputError, match="run.c3d: no such file"):
+        formopt.compare("run.c3d", "static.c3d", mass=62, height=1.81)
+    ric = ROOT / "data" / "ric"
+    c = formopt.compare(str(ric / "20160226T120637_run.c3d"), ric / "20160226T120637_static.c3d",
+                        mass=79, height=1.77, starts=1, per_step=False)
+    assert isinstance(c, formopt.Comparison) and c.strike == "heel" and c.optimum.success
