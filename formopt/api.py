@@ -44,10 +44,10 @@ def scenes() -> dict[str, str]:
 
 
 def scene_path(scene: str | PathLike) -> Path:
-    """The file of `scene`: a path as given when it exists, else a shipped scene's name
+    """The file of `scene`: a path as given when it is a file, else a shipped scene's name
     (`demo` or `demo.toml`); SceneError naming the shipped names otherwise."""
     path = Path(scene)
-    if path.exists() or path.parent != Path("."):
+    if path.is_file() or path.parent != Path("."):
         return path
     shipped = SCENES / f"{path.stem}.toml"
     if path.suffix in ("", ".toml") and shipped.exists():
