@@ -1,12 +1,14 @@
 # make demo: set up .venv when missing, install formopt, optimise the demo scene's posture
 # (prints the result, writes figures and JSON to out/demo).
 # make test: the same set-up, then the whole test suite.
+# make docs: the documentation site (docs/_build/html), warnings as errors; runs the examples.
+# make gallery: the figures in docs/gallery, redrawn by the examples, and their manifest.
 PYTHON ?= python3.11
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test bench gallery clean
+.PHONY: demo test bench gallery docs clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV) || python3 -m venv $(VENV)
@@ -17,7 +19,7 @@ $(STAMP): $(BIN)/python pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(BIN)/formopt solve problems/demo.toml --out out/demo
+	$(BIN)/formopt solve demo --out out/demo
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
@@ -32,6 +34,16 @@ bench: $(STAMP)
 
 gallery: $(STAMP)
 	for f in examples/*.py; do $(BIN)/python $$f docs/gallery || exit 1; done
+	$(BIN)/python docs/gallery_manifest.py write
+
+DOCS_STAMP := $(VENV)/.docs-installed
+
+$(DOCS_STAMP): $(STAMP)
+	$(BIN)/python -m pip install --quiet -e '.[docs]'
+	touch $(DOCS_STAMP)
+
+docs: $(DOCS_STAMP)
+	$(BIN)/python -m sphinx -W --keep-going -q -b html docs docs/_build/html
 
 clean:
-	rm -rf $(VENV) build *.egg-info
+	rm -rf $(VENV) build *.egg-info docs/_build docs/auto_examples

@@ -20,7 +20,7 @@ import tempfile
 import time
 from pathlib import Path
 
-DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "rbds"
+DATA = Path(__file__).resolve().parents[1] / "data" / "rbds"
 ARGS = ["compare", "--trial", str(DATA / "RBDS001runT35.c3d"), "--static", str(DATA / "RBDS001static.c3d"),
         "--mass", "62", "--height", "1.81"]
 

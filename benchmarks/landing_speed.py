@@ -1,6 +1,6 @@
 """Speed and accuracy of the landing simulation (two impacts and the contact phase between).
 
-    python benchmarks/landing_speed.py [--scene problems/landing_spring.toml] [--repeats 20]
+    python benchmarks/landing_speed.py [--scene formopt/scenes/landing_spring.toml] [--repeats 20]
 
 Prints, against a reference (RK4 at dt = 12.5 us): for the default integrator (adaptive
 Dormand-Prince, tolerance 1e-8, steps up to the scene's dt) and for fixed-step RK4 at
@@ -32,7 +32,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--scene", default=str(ROOT / "problems" / "landing_spring.toml"))
+    parser.add_argument("--scene", default=str(ROOT / "formopt" / "scenes" / "landing_spring.toml"))
     parser.add_argument("--repeats", type=int, default=20)
     args = parser.parse_args()
     scene = load(args.scene)

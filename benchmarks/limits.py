@@ -52,7 +52,7 @@ def main():
     for slope in (-30.0, 30.0):
         row(f"heel strike on {slope:+g} deg", strike="heel", slope=slope, ankle=10.0)
 
-    scene = load(ROOT / "problems" / "demo.toml")
+    scene = load(ROOT / "formopt" / "scenes" / "demo.toml")
     problem = PostureProblem(scene.model(), scene.strike, scene.state,
                              scene.problem, scene.slope, scene.friction)
     opt = problem.solve()

@@ -1,7 +1,7 @@
 """Speed of an optimum map: 10,000 gait-anchored optima on 2 cores, warm-started chains
 against cold solves.
 
-    python benchmarks/optimum_map_speed.py [--scene problems/demo.toml] [--side 100] [--workers 2]
+    python benchmarks/optimum_map_speed.py [--scene formopt/scenes/demo.toml] [--side 100] [--workers 2]
 
 Sweeps the running speed (2-6 m/s) and the friction (0.4-1.0) on a side x side grid with
 `formopt sweep`'s machinery (studies.sweep.run: serpentine chains, IPOPT warm starts, rows
@@ -29,7 +29,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--scene", default=str(ROOT / "problems" / "demo.toml"))
+    parser.add_argument("--scene", default=str(ROOT / "formopt" / "scenes" / "demo.toml"))
     parser.add_argument("--side", type=int, default=100)
     parser.add_argument("--workers", type=int, default=2)
     args = parser.parse_args()

@@ -51,7 +51,7 @@ def numbers(data, prefix="") -> dict[str, float]:
 
 def collect() -> dict:
     report = {}
-    for scene in sorted((ROOT / "problems").glob("*.toml")):
+    for scene in sorted((ROOT / "formopt" / "scenes").glob("*.toml")):
         tables = tomllib.loads(scene.read_text())
         rel = str(scene.relative_to(ROOT))
         report[f"impact {rel}"] = run("impact", rel)

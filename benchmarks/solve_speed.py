@@ -1,12 +1,12 @@
 """Speed of the posture optimisation (the demo's gait-anchored problem), interpreted and compiled.
 
-    python benchmarks/solve_speed.py [--scene problems/demo.toml] [--repeats 30]
+    python benchmarks/solve_speed.py [--scene formopt/scenes/demo.toml] [--repeats 30]
 
 Prints medians (seed printed): building the NLP, generating and compiling it (cold cache) and
 loading it again (cached); one IPOPT solve from the reference posture and from seeded random
 starts, with CasADi's interpreted functions and with compiled ones; IPOPT with the exact
 Hessian against its limited-memory (L-BFGS) approximation; and the landing objective
-(problems/landing_optimum.toml: both impacts and the contact phase). No peer tool solves this problem
+(formopt/scenes/landing_optimum.toml: both impacts and the contact phase). No peer tool solves this problem
 (Pinocchio has no optimiser; bioptim and OpenSim Moco optimise trajectories, not the impact
 map), so the reference figure is IPOPT's own with a quasi-Newton Hessian.
 """
@@ -31,7 +31,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--scene", default=str(ROOT / "problems" / "demo.toml"))
+    parser.add_argument("--scene", default=str(ROOT / "formopt" / "scenes" / "demo.toml"))
     parser.add_argument("--repeats", type=int, default=30)
     args = parser.parse_args()
     os.environ["FORMOPT_CACHE"] = tempfile.mkdtemp(prefix="formopt-bench-")  # a cold cache
@@ -72,7 +72,7 @@ def main():
         for u0 in rng.uniform(0, 1, (args.repeats, len(scene.problem.variables))):
             times.append(problem.solve_from(u0)[2])
         rows.append((label, "solve from a random start", f"{statistics.median(times) * 1e3:.2f} ms"))
-    landing = load(ROOT / "problems" / "landing_optimum.toml")
+    landing = load(ROOT / "formopt" / "scenes" / "landing_optimum.toml")
     label = "landing objective (T_c_total), limited-memory"
     t = time.perf_counter()
     problem = landing.posture_problem()

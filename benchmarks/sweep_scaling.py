@@ -1,6 +1,6 @@
 """Scaling of a landing sweep from 1 to 2 workers: local process pool and Dask distributed.
 
-    python benchmarks/sweep_scaling.py [--scene problems/landing_spring.toml]
+    python benchmarks/sweep_scaling.py [--scene formopt/scenes/landing_spring.toml]
 
 A 41 x 8 grid (ankle angle x running speed, 328 landings); each setting runs on an empty
 output file. Prints wall time, landings per second and the speed-up over one worker. The
@@ -23,7 +23,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--scene", default=str(ROOT / "problems" / "landing_spring.toml"))
+    parser.add_argument("--scene", default=str(ROOT / "formopt" / "scenes" / "landing_spring.toml"))
     args = parser.parse_args()
     scene = load(args.scene)
     params = [sweep.parse_param("ankle_deg=-25:-5:41"), sweep.parse_param("hip_vx=3:5:8")]

@@ -1,4 +1,7 @@
-"""A compiled batch: the impact map as C code, mapped over many touchdown states at once
+"""A compiled batch
+================
+
+The impact map as C code, mapped over many touchdown states at once
 (the absorbed energy of 10,000 random forefoot strikes).
 
     python examples/compiled_batch.py [OUT]

@@ -1,4 +1,7 @@
-"""The impact of one touchdown: what the forefoot strike of problems/forefoot_strike.toml
+"""The impact of one touchdown
+===========================
+
+What the forefoot strike of formopt/scenes/forefoot_strike.toml
 absorbs, the ground's impulse, and whether the no-slip assumption holds.
 
     python examples/impact_of_a_touchdown.py [OUT]
@@ -11,10 +14,9 @@ import formopt
 from formopt.io.files import save_figure
 from formopt.report.figures import indicator_figure
 
-ROOT = Path(__file__).resolve().parent.parent
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
-scene = formopt.load(ROOT / "problems" / "forefoot_strike.toml")
+scene = formopt.load("forefoot_strike")
 result = formopt.impact(scene)
 print(f"T = {result.T:.2f} J, absorbed T_c = {result.T_c:.3f} J, after T_a = {result.T_a:.2f} J")
 print(f"ground impulse (t, n) = {result.impulse['forefoot']} N s; mu_c = {result.mu_c:.2f}; "

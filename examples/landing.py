@@ -1,5 +1,8 @@
-"""A landing: from the forefoot's touchdown until the heel comes down, with passive knee and
-ankle: the running joints (problems/landing_spring.toml).
+"""A landing
+=========
+
+From the forefoot's touchdown until the heel comes down, with passive knee and
+ankle: the running joints (formopt/scenes/landing_spring.toml).
 
     python examples/landing.py [OUT]
 """
@@ -12,10 +15,9 @@ from formopt.io.files import save_figure
 from formopt.report.figures import landing_figures
 from formopt.report.tables import landing_table
 
-ROOT = Path(__file__).resolve().parent.parent
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
-scene = formopt.load(ROOT / "problems" / "landing_spring.toml")
+scene = formopt.load("landing_spring")
 landing = formopt.simulate(scene)
 print(landing_table(scene, landing))
 for name, fig in landing_figures(landing, scene.model(), scene.slope, scene.strike).items():

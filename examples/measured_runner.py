@@ -1,7 +1,10 @@
-"""A measured runner: the touchdowns of RBDS subject 001 at 3.5 m/s (Fukuchi, Fukuchi &
+"""A measured runner
+=================
+
+The touchdowns of RBDS subject 001 at 3.5 m/s (Fukuchi, Fukuchi &
 Duarte 2017, PeerJ 5:e3298, CC BY 4.0) against the least-T_c posture at the same speed.
 
-    python examples/measured_runner.py [OUT]     (needs ../shared/data beside the repository)
+    python examples/measured_runner.py [OUT]     (reads data/rbds, shipped with the repository)
 """
 
 import sys
@@ -13,7 +16,7 @@ from formopt.io.files import save_figure
 from formopt.report.figures import comparison_figure
 from formopt.report.tables import comparison_table
 
-DATA = Path(__file__).resolve().parent.parent.parent / "shared" / "data" / "rbds"
+DATA = Path(formopt.__file__).resolve().parents[1] / "data" / "rbds"  # the repository's data/ (a checkout)
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
 trial = mocap.read(DATA / "RBDS001runT35.c3d")

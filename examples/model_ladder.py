@@ -1,4 +1,7 @@
-"""The model ladder: the same touchdown on each model level, from the effective mass to the
+"""The model ladder
+================
+
+The same touchdown on each model level, from the effective mass to the
 full planar body, and the absorbed energy each gives.
 
     python examples/model_ladder.py [OUT]
@@ -14,10 +17,9 @@ import formopt
 from formopt.io.files import save_figure
 from formopt.mechanics.model import MODELS
 
-ROOT = Path(__file__).resolve().parent.parent
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
-full = formopt.load(ROOT / "formopt" / "studies" / "data" / "full_body.toml")
+full = formopt.load(Path(formopt.__file__).parent / "studies" / "data" / "full_body.toml")  # package data
 T_c = {kind: formopt.impact(replace(full, kind=kind)).T_c for kind in MODELS}
 for kind, value in T_c.items():
     print(f"{kind:15s} T_c {value:8.3f} J")

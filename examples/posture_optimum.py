@@ -1,4 +1,7 @@
-"""A posture optimum: the touchdown posture of problems/demo.toml that absorbs the least
+"""A posture optimum
+=================
+
+The touchdown posture of formopt/scenes/demo.toml that absorbs the least
 energy, what holds it there, and how it differs from the reference.
 
     python examples/posture_optimum.py [OUT]
@@ -12,10 +15,9 @@ from formopt.io.files import save_figure
 from formopt.report.figures import posture_figure
 from formopt.report.tables import solve_table
 
-ROOT = Path(__file__).resolve().parent.parent
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
-scene = formopt.load(ROOT / "problems" / "demo.toml")
+scene = formopt.load("demo")
 optimum = formopt.solve(scene)
 print(solve_table(scene, optimum))
 fig = posture_figure(scene.body, scene.strike, scene.slope,

@@ -1,4 +1,7 @@
-"""A sweep: the landing of problems/landing_spring.toml across touchdown knee angles, written
+"""A sweep
+=======
+
+The landing of formopt/scenes/landing_spring.toml across touchdown knee angles, written
 row by row to a CSV file (rerun the same command and it resumes).
 
     python examples/sweep.py [OUT]
@@ -14,10 +17,9 @@ import formopt.studies.sweep
 from formopt.io.files import save_figure
 from formopt.report.figures import sweep_figure
 
-ROOT = Path(__file__).resolve().parent.parent
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
-scene = formopt.load(ROOT / "problems" / "landing_spring.toml")
+scene = formopt.load("landing_spring")
 rows = formopt.sweep(scene, [("knee_deg", np.linspace(5.0, 30.0, 11))], out / "sweep_knee.csv",
                      progress=False)
 good = [r for r in rows if formopt.studies.sweep.valid(r)]

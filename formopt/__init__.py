@@ -17,17 +17,25 @@ from typing import TYPE_CHECKING
 # Public names and the module each lives in. They are imported on first use (PEP 562), so
 # that `import formopt` (and the command line, which must answer Ctrl-C from its first
 # instant) does not load CasADi, SciPy and Matplotlib before they are needed.
-_PUBLIC = {"load": "api", "impact": "api", "simulate": "api", "solve": "api", "sweep": "api",
-           "compare": "api", "Scene": "io.scene", "SceneError": "io.scene",
+_PUBLIC = {"load": "api", "scenes": "api", "scene_path": "api", "impact": "api",
+           "simulate": "api", "solve": "api", "sweep": "api", "compare": "api",
+           "Scene": "io.scene", "SceneError": "io.scene", "InputError": "mechanics.errors",
+           "Body": "mechanics.body", "paper_body": "mechanics.body", "scaled_body": "mechanics.body",
+           "Model": "mechanics.model", "build_model": "mechanics.model",
            "Impact": "mechanics.impact", "ImpactResult": "mechanics.impact",
-           "Landing": "mechanics.landing", "Optimum": "optim.solution"}
+           "impact_function": "mechanics.impact", "Landing": "mechanics.landing",
+           "Optimum": "optim.solution", "Comparison": "studies.compare"}
 
 if TYPE_CHECKING:
-    from .api import compare, impact, load, simulate, solve, sweep
+    from .api import compare, impact, load, scene_path, scenes, simulate, solve, sweep
     from .io.scene import Scene, SceneError
-    from .mechanics.impact import Impact, ImpactResult
+    from .mechanics.body import Body, paper_body, scaled_body
+    from .mechanics.errors import InputError
+    from .mechanics.impact import Impact, ImpactResult, impact_function
     from .mechanics.landing import Landing
+    from .mechanics.model import Model, build_model
     from .optim.solution import Optimum
+    from .studies.compare import Comparison
 
 
 def __getattr__(name: str):
@@ -47,5 +55,7 @@ try:
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0+unknown"
 
-__all__ = ["load", "impact", "simulate", "solve", "sweep", "compare", "Scene", "SceneError",
-           "Impact", "ImpactResult", "Landing", "Optimum", "__version__"]
+__all__ = ["load", "scenes", "scene_path", "impact", "simulate", "solve", "sweep", "compare",
+           "Scene", "SceneError", "InputError", "Body", "paper_body", "scaled_body", "Model",
+           "build_model", "Impact", "ImpactResult", "impact_function", "Landing", "Optimum",
+           "Comparison", "__version__"]

@@ -1,26 +1,101 @@
 """The public API: a scene in, a checked result out.
 
-    scene = formopt.load("problems/demo.toml")
+    scene = formopt.load("demo")        # a shipped scene's name (formopt.scenes()) or a path
     formopt.impact(scene)      # ImpactResult: the indicators of the scene's touchdown
     formopt.simulate(scene)    # Landing: the finite motion from touchdown to both points down
     formopt.solve(scene)       # Optimum: the posture of the [optimize] table
-    formopt.sweep(scene, [("ankle_deg", values)], "out/sweep.csv")
-    formopt.compare(trial, static, mass=62.0, height=1.81)
+    formopt.sweep(scene, [("ankle_deg", values)], "out/sweep.csv")   # a list of row dicts
+    formopt.compare("run.c3d", "static.c3d", mass=62.0, height=1.81)
 
 Each goes through the scene's factories (formopt.io.scene.Scene), so every [numerics] option
-reaches it. Results are dataclasses with `to_dict()` (JSON-ready).
+reaches it. Results are dataclasses.
 """
 
 from __future__ import annotations
 
-from .io.scene import Scene, load
+from os import PathLike
+from pathlib import Path
+
+from .io import mocap
+from .io.scene import Scene, SceneError
+from .io.scene import load as load_file
 from .mechanics.impact import ImpactResult
 from .mechanics.landing import Landing, simulate_state
 from .optim.solution import Optimum
-from .studies.compare import compare
+from .studies import compare as studies_compare
 from .studies.sweep import run as sweep
 
-__all__ = ["load", "impact", "simulate", "solve", "sweep", "compare"]
+__all__ = ["load", "scenes", "scene_path", "impact", "simulate", "solve", "sweep", "compare"]
+
+SCENES = Path(__file__).resolve().parent / "scenes"  # the shipped scenes (package data)
+
+
+def scenes() -> dict[str, str]:
+    """The shipped scenes: {name: the first sentence of its header comment, at most 100
+    characters}."""
+    def title(path: Path) -> str:
+        lines = path.read_text().splitlines()
+        header = " ".join(line.lstrip("# ").strip() for line in
+                          lines[:next((k for k, line in enumerate(lines) if not line.startswith("#")),
+                                      len(lines))])
+        first = header.split(". ")[0].rstrip(".")
+        return first if len(first) <= 100 else first[:99].rstrip() + "…"
+    return {p.stem: title(p) for p in sorted(SCENES.glob("*.toml"))}
+
+
+def scene_path(scene: str | PathLike) -> Path:
+    """The file of `scene`: a path as given when it is a file, else a shipped scene's name
+    (`demo` or `demo.toml`); SceneError naming the shipped names otherwise."""
+    path = Path(scene)
+    if path.is_file() or path.parent != Path("."):
+        return path
+    shipped = SCENES / f"{path.stem}.toml"
+    if path.suffix in ("", ".toml") and shipped.exists():
+        return shipped
+    raise SceneError("", f"{scene}: no such file, and not a shipped scene "
+                         f"({', '.join(scenes())}; `formopt scenes` lists them)")
+
+
+def load(scene: str | PathLike) -> Scene:
+    """Read and validate a scene: a TOML file, or a shipped scene by name (`load("demo")`).
+
+    Parameters
+    ----------
+    scene : str or path-like
+        A scene file, or the name of a shipped scene (`formopt.scenes()` lists them).
+
+    Returns
+    -------
+    Scene
+        The typed SI scene with its factories (impact, landing, posture problem).
+    """
+    return load_file(scene_path(scene))
+
+
+def compare(trial, static, mass: float, height: float, forces=None,
+            **settings) -> studies_compare.Comparison:
+    """A measured runner against the optimum for their body (formopt.studies.compare.compare).
+
+    Parameters
+    ----------
+    trial, static : str, path-like or formopt.io.mocap.Trial
+        The running trial (C3D, or RBDS marker text) and the standing calibration trial; a
+        path is read with `formopt.io.mocap.read`.
+    mass, height : float
+        The runner's mass (kg) and stature (m).
+    forces : str or path-like, optional
+        The force text file of a text trial (RBDS layout).
+    **settings
+        The keyword arguments of `formopt.studies.compare.compare` (sex, friction, law, ...).
+
+    Returns
+    -------
+    Comparison
+        The measured touchdowns, their impacts and the gait-anchored optimum.
+    """
+    def read(t, extra=None):
+        return t if isinstance(t, mocap.Trial) else mocap.read(t, extra)
+    return studies_compare.compare(read(trial, forces), read(static), mass, height, **settings)
 
 
 def impact(scene: Scene) -> ImpactResult:

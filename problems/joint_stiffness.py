@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-DATA = Path(__file__).resolve().parent.parent.parent / "shared" / "data" / "rbds" / "RBDS001processed.txt"
+DATA = Path(__file__).resolve().parent.parent / "data" / "rbds" / "RBDS001processed.txt"
 SPEEDS = ("25", "35", "45")
 
 

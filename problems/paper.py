@@ -3,7 +3,7 @@
     python problems/paper.py [--out out/paper]
 
 Every comparison holds the leg posture and velocities fixed and changes one thing. The base
-touchdown is problems/landing_spring.toml's (the paper's body at 3.5 m/s; trunk 5, hip 30,
+touchdown is formopt/scenes/landing_spring.toml's (the paper's body at 3.5 m/s; trunk 5, hip 30,
 knee 20 deg, so the shank is 5 deg ahead of vertical; the foot swept back at -300 deg/s) with
 the running joints (RBDS001's stiffness and touchdown moments). A heel strike puts the sole
 toe-up (ankle dorsiflexed), a forefoot strike toe-down (plantarflexed), by the same angle.
@@ -47,7 +47,7 @@ from formopt.mechanics.landing import Joints  # noqa: E402
 from formopt.studies import sweep  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
-BASE = HERE / "landing_spring.toml"
+BASE = HERE.parent / "formopt" / "scenes" / "landing_spring.toml"
 FOOT_ANGLES = (5.0, 10.0, 15.0)  # deg, |sole angle| at touchdown, toe-up (heel) or toe-down
 COLORS = {"heel": "tab:orange", "forefoot": "tab:blue"}
 

@@ -31,7 +31,7 @@ from formopt.measure.filters import lowpass
 from formopt.measure.kinematics import kabsch, kinematics, pitch as cluster_pitch
 from formopt.measure.touchdowns import touchdowns
 
-DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "rbds"
+DATA = Path(__file__).resolve().parents[1] / "data" / "rbds"
 HEIGHT = 1.81
 KINEMATIC = False
 

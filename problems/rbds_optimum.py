@@ -17,7 +17,7 @@ from formopt.io.files import write_csv
 from formopt.mechanics.contact import LAWS
 from formopt.studies.compare import compare, report
 
-DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "rbds"
+DATA = Path(__file__).resolve().parents[1] / "data" / "rbds"
 WEIGHTS = (0.0, 0.1, 0.3)
 
 

@@ -28,7 +28,7 @@ from formopt.mechanics.body import scaled_body
 from formopt.mechanics.contact import LAWS
 from formopt.mechanics.model import STATE, build_model, positions
 
-DATA = Path(__file__).resolve().parent.parent.parent / "shared" / "data" / "rbds"
+DATA = Path(__file__).resolve().parent.parent / "data" / "rbds"
 MASS, HEIGHT = 62.0, 1.81  # RBDSinfo.txt, subject 001
 FRICTION = 0.8
 FOOT_ANGLES = (5.0, 15.0)  # deg, |sole angle| of the strikes compared

@@ -1,6 +1,6 @@
 """Heel-only versus forefoot-only optima: the least absorbed energy for each strike pattern.
 
-    python problems/strike_optima.py [--scene problems/demo.toml] [--out out/strike_optima]
+    python problems/strike_optima.py [--scene demo] [--out out/strike_optima]
 
 Solves the scene's problem twice, once with each strike pattern (everything else equal),
 prints the two optima side by side with what holds each, and draws them over each other.
@@ -20,7 +20,7 @@ from formopt.io.scene import touchdown_table
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--scene", default="problems/demo.toml")
+    parser.add_argument("--scene", default="demo")
     parser.add_argument("--out", default="out/strike_optima")
     args = parser.parse_args()
     base = load(args.scene)

@@ -14,8 +14,9 @@ from formopt.mechanics.model import Model, Point, PointMass, RigidBody
 
 SEED = 20261122
 ROOT = Path(__file__).resolve().parent.parent  # the repository
-PROBLEMS = ROOT / "problems"
-DATA = ROOT.parent / "shared" / "data"  # the real trials, beside the repository
+PROBLEMS = ROOT / "problems"  # the scripts
+SHIPPED = ROOT / "formopt" / "scenes"  # the shipped scenes (package data)
+DATA = ROOT / "data"  # the real trials shipped with the repository (data/README.md)
 DEG = np.pi / 180
 
 

@@ -13,6 +13,7 @@ import time
 import tomllib
 
 import pytest
+from helpers import DATA, SHIPPED
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -20,9 +21,8 @@ from formopt.cli import main
 from formopt.io import markerset
 from formopt.mechanics.errors import InputError
 from formopt.studies import sweep
-from helpers import DATA, PROBLEMS
 
-SCENES = {p.name: tomllib.loads(p.read_text()) for p in sorted(PROBLEMS.glob("*.toml"))}
+SCENES = {p.name: tomllib.loads(p.read_text()) for p in sorted(SHIPPED.glob("*.toml"))}
 FAST = settings(max_examples=150, deadline=None, derandomize=True,
                 suppress_health_check=[HealthCheck.function_scoped_fixture])
 
@@ -169,7 +169,7 @@ def test_broken_files_exit_2_with_one_line(tmp_path, capsys, content, command):
 @pytest.mark.parametrize("command", ["simulate", "solve"])
 def test_bad_output_paths_exit_2_and_leave_no_temporary_files(tmp_path, capsys, out, command):
     (tmp_path / "a_file").write_text("not a folder")
-    scene = PROBLEMS / ("landing_spring.toml" if command == "simulate" else "demo.toml")
+    scene = SHIPPED / ("landing_spring.toml" if command == "simulate" else "demo.toml")
     extra = ["--starts", "1"] if command == "solve" else []
     assert check([command, str(scene), "--out", str(tmp_path / out), *extra], capsys,
                  json_out=False) == 2
@@ -190,7 +190,7 @@ def test_numeric_api_refuses_absurd_states():
             impact(x)
 
 
-SPRING = str(PROBLEMS / "landing_spring.toml")
+SPRING = str(SHIPPED / "landing_spring.toml")
 
 
 def sweep_args(out, points=9, workers=1):

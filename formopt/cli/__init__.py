@@ -6,6 +6,9 @@
     formopt sweep SCENE       landings across a grid of parameters (resumable)
     formopt compare ...       measured touchdowns of a motion-capture trial against the optimum
     formopt bench             time and accuracy of each model level and numerical option
+    formopt scenes            the shipped scenes; `formopt scenes copy NAME DIR` copies one
+
+SCENE is a scene file (TOML) or the name of a shipped scene (`formopt solve demo`).
 
 Exit status: 0 success; 1 a run that did not reach its goal (no start converged, a diverged
 landing), with the reason; 2 bad input (scene, data, option or output path), in one line
@@ -24,7 +27,8 @@ from .. import __version__
 from ..mechanics.errors import one_line
 
 # One module per command, imported when the command line is parsed (inside main's handlers).
-COMMANDS = ("impact", "solve", "simulate", "sweep", "compare", "bench")
+COMMANDS = ("impact", "solve", "simulate", "sweep", "compare", "bench", "scenes")
+SCENE_COMMANDS = ("impact", "solve", "simulate", "sweep")  # SCENE: a file or a shipped name
 
 
 def parser() -> argparse.ArgumentParser:
@@ -53,12 +57,15 @@ def main(argv=None) -> int:
 
 
 def _run(argv) -> int:
+    from ..api import scene_path
     from ..io.files import OutputError
     from ..mechanics.errors import InputError
     from ..mechanics.landing import Diverged
 
     args = parser().parse_args(argv)
     try:
+        if args.command in SCENE_COMMANDS:
+            args.scene = str(scene_path(args.scene))
         return import_module(f".{args.command}", __name__).run(args)
     except (InputError, OutputError) as err:
         where = getattr(args, "scene", None)

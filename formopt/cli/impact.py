@@ -10,7 +10,8 @@ from .common import emit, scene_context
 
 def add_parser(commands):
     cmd = commands.add_parser("impact", help="indicators of the foot strike a scene describes")
-    cmd.add_argument("scene", help="scene file (TOML), e.g. problems/forefoot_strike.toml")
+    cmd.add_argument("scene", help="scene file (TOML) or a shipped scene's name, e.g. forefoot_strike "
+                     "(`formopt scenes` lists them, `formopt scenes copy NAME DIR` copies one)")
     cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
 
 

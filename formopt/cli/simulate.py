@@ -16,7 +16,8 @@ from .common import add_format, emit, out_folder, scene_context
 def add_parser(commands):
     cmd = commands.add_parser("simulate", help="follow the landing from the touchdown")
     add_format(cmd)
-    cmd.add_argument("scene", help="scene file, e.g. problems/landing_spring.toml")
+    cmd.add_argument("scene", help="scene file with a [landing] table or a shipped scene's name, "
+                     "e.g. landing_spring (`formopt scenes` lists them, `formopt scenes copy NAME DIR` copies one)")
     cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
     cmd.add_argument("--out", help="folder for figures, CSV and JSON (default out/<scene>)")
 

@@ -17,7 +17,8 @@ from .common import add_format, emit, out_folder, scene_context
 def add_parser(commands):
     cmd = commands.add_parser("solve", help="optimise the touchdown posture of a scene")
     add_format(cmd)
-    cmd.add_argument("scene", help="scene file with an [optimize] table, e.g. problems/demo.toml")
+    cmd.add_argument("scene", help="scene file with an [optimize] table or a shipped scene's name, "
+                     "e.g. demo (`formopt scenes` lists them, `formopt scenes copy NAME DIR` copies one)")
     cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
     cmd.add_argument("--out", help="folder for figures and result files (default out/<scene>)")
     cmd.add_argument("--starts", type=int, help="number of starts (overrides the scene)")

@@ -18,7 +18,8 @@ def add_parser(commands):
     cmd = commands.add_parser("sweep", help="landings, or the optimum of a scene with an [optimize] "
                                             "table, across a range of parameters (resumable)")
     add_format(cmd)
-    cmd.add_argument("scene", help="scene file, e.g. problems/landing_spring.toml")
+    cmd.add_argument("scene", help="scene file or a shipped scene's name, "
+                     "e.g. landing_spring (`formopt scenes` lists them, `formopt scenes copy NAME DIR` copies one)")
     cmd.add_argument("--param", action="append", required=True,
                      help="NAME=START:STOP:COUNT (repeat for a grid); NAME one of "
                           + ", ".join(f"{n} ({u})" for n, u in sweep.UNITS.items())

@@ -57,7 +57,7 @@ def posture_figure(body: Body, strike: str, slope: float, postures) -> Figure:
 
 def indicator_figure(results: dict[str, ImpactResult]) -> Figure:
     """Bars of T_c, impulses, mu_c and dv of the trunk for each labelled result."""
-    names = ["T_c (J)", "normal impulse (N s)", "tangential impulse (N s)", "mu_c",
+    names = ["T_c (J)", "normal impulse (N s)", "tangential impulse (N s)", "mu_c (-)",
              "dv trunk x (m/s)", "dv trunk z (m/s)"]
 
     def values(r):
@@ -73,8 +73,10 @@ def indicator_figure(results: dict[str, ImpactResult]) -> Figure:
         ax.set_title(name, fontsize=9)
         ax.set_xticks([])
         ax.axhline(0, color="0.3", lw=0.8)
-    axes[0].legend(fontsize=8)
-    fig.tight_layout()
+    # one legend below the panels: inside one it would cover a bar
+    fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=len(results),
+               fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0.08, 1, 1))
     return fig
 
 
@@ -82,6 +84,14 @@ def _subplots(*args, figsize=(6.4, 4.8), **kwargs):
     """(figure, axes) of a new Figure, outside pyplot."""
     fig = Figure(figsize=figsize, dpi=120)
     return fig, fig.subplots(*args, **kwargs)
+
+
+def _rings(ax, points, ms: float, label: str | None = None):
+    """Hollow markers seen on any colour map and on the white of masked cells: a black ring
+    over a wider white one."""
+    x, y = np.array(points, dtype=float).reshape(-1, 2).T
+    ax.plot(x, y, "o", mfc="none", mec="white", mew=2.6, ms=ms + 1)
+    ax.plot(x, y, "o", mfc="none", mec="black", mew=1.0, ms=ms, label=label)
 
 
 def landing_figures(landing, model, slope: float, strike: str) -> dict[str, Figure]:
@@ -204,7 +214,7 @@ def sweep_figure(rows: list[dict], params: list[str]) -> Figure:
         fig.colorbar(mesh, ax=ax, label=title)
         bad = [(float(r[px]), float(r[py])) for r in rows if not r["error"] and not valid(r)]
         if bad:
-            ax.plot(*np.array(bad).T, "o", mfc="none", mec="white", ms=5, label="invalid")
+            _rings(ax, bad, 5, "invalid")
         if failed:
             ax.plot([float(r[px]) for r in failed], [float(r[py]) for r in failed], "x",
                     color="red", ms=5, label="failed (no landing)")
@@ -237,6 +247,8 @@ def comparison_figure(c, rep: dict) -> Figure:
     stick_figure(ax, c.body, c.reference, c.strike, 0.0, "0.5", f"measured (mean {c.strike} touchdown)")
     stick_figure(ax, c.body, c.optimum.state, c.strike, 0.0, "tab:blue", "optimum, same speed")
     ax.set_aspect("equal")
+    ax.set_xlabel("x, forward from the strike point (m)")
+    ax.set_ylabel("z, up (m)")
     ax.legend(fontsize=7, loc="upper left")
     ax.set_title("touchdown posture", fontsize=10)
     ax = axes[1]
@@ -247,7 +259,7 @@ def comparison_figure(c, rep: dict) -> Figure:
     ax.errorbar(JOINTS, np.zeros(4), yerr=sd, fmt="none", ecolor="0.3", capsize=4,
                 label="measured step-to-step sd")
     ax.axhline(0, color="0.3", lw=0.8)
-    ax.set_ylabel("deg")
+    ax.set_ylabel("optimum - measured joint angle (deg)")
     ax.legend(fontsize=7)
     ax.set_title("how far the optimum is, joint by joint", fontsize=10)
     ax = axes[2]
@@ -265,37 +277,69 @@ def comparison_figure(c, rep: dict) -> Figure:
     return fig
 
 
+PARETO_ERROR = {"impact": "max relative error of T_c (-)",
+                "landing": "max relative error of landing T_c (-)",
+                "optimisation": "posture error of the optimum (deg)"}
+# where a point's name may go: offsets (points) right of it, tried in turn
+LABEL_SPOTS = ((4, 3), (4, -9), (4, 13), (4, -19), (-4, 3), (-4, -9))
+FONT_PT = 6  # the names' font size; a character about 0.6 of it wide
+
+
+def _name_points(ax, named) -> None:
+    """Write each (x, y, name) beside its point at the first spot of LABEL_SPOTS whose box
+    overlaps no name written before (boxes estimated in points from the axes' transform)."""
+    ax.get_xlim(), ax.get_ylim()  # the autoscaled limits the transform needs
+    to_pt = 72 / ax.figure.dpi
+    boxes = []
+    for x, y, name in named:
+        px, py = ax.transData.transform((x, y)) * to_pt
+        width, height = 0.6 * FONT_PT * len(name), FONT_PT + 2
+        for dx, dy in LABEL_SPOTS:
+            x0 = px + dx if dx > 0 else px + dx - width
+            box = (x0, py + dy, x0 + width, py + dy + height)
+            if not any(box[0] < b[2] and b[0] < box[2] and box[1] < b[3] and b[1] < box[3] for b in boxes):
+                break
+        boxes.append(box)
+        ax.annotate(name, (x, y), fontsize=FONT_PT, xytext=(dx, dy), textcoords="offset points",
+                    ha="left" if dx > 0 else "right",
+                    bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none", "alpha": 0.7})
+
+
 def pareto_figure(rows) -> Figure:
     """Time against error of every bench row, one panel per kind of work. The model ladder
     (errors against the full body) and the numerical options (errors against the paper's leg
-    at its finest setting) are drawn apart, each with its Pareto front."""
+    at its finest setting) are drawn apart, each with its Pareto front; every point named
+    (`_name_points`: names that do not overlap)."""
     works = [w for w in ("impact", "landing", "optimisation") if any(r.work == w for r in rows)]
-    fig, axes = _subplots(1, len(works), figsize=(5.5 * len(works), 4.5))
+    fig, axes = _subplots(1, len(works), figsize=(5.5 * len(works), 4.8))
     groups = (("model ladder", "tab:orange", lambda r: r.option.startswith("ladder")),
               ("numerical options, paper's leg", "tab:blue", lambda r: not r.option.startswith("ladder")))
     for ax, work in zip(np.atleast_1d(axes), works):
+        named = []
         for name, color, member in groups:
-            pts = sorted((r.time_s, max(r.error, 1e-16), r.level if member(r) and name == "model ladder"
+            pts = sorted((r.time_s, max(r.error, 1e-16), r.level if name == "model ladder"
                           else r.option) for r in rows
                          if r.work == work and member(r) and np.isfinite(r.error))
             if not pts:
                 continue
             front, best = [], np.inf
-            for t, e, _ in pts:
+            for t, e, label in pts:
                 if e < best:
-                    front.append((t, e))
+                    front.append((t, e, label))
                     best = e
             ax.scatter([p[0] for p in pts], [p[1] for p in pts], s=18, color=color, label=name)
-            ax.plot(*np.array(front).T, "--", color=color, lw=1)
-            for t, e, label in pts:
-                ax.annotate(label, (t, e), fontsize=6, xytext=(3, 2), textcoords="offset points")
+            ax.plot([p[0] for p in front], [p[1] for p in front], "--", color=color, lw=1)
+            named += pts
         ax.set_xscale("log")
         ax.set_yscale("log")
+        ax.margins(x=0.15, y=0.15)
+        _name_points(ax, named)
         ax.set_xlabel("time per unit of work (s)")
-        ax.set_ylabel("error (1e-16 stands for exact)")
-        ax.set_title(work, fontsize=10)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
+        ax.set_ylabel(PARETO_ERROR[work])
+        ax.set_title(f"{work} (error 1e-16 stands for exact)", fontsize=10)
+    handles = {h.get_label(): h for ax in np.atleast_1d(axes) for h in ax.collections}
+    fig.legend(handles.values(), handles.keys(), loc="lower center", ncol=2, fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
     return fig
 
 
@@ -336,8 +380,7 @@ def optimum_map_figure(rows: list[dict], params: list[str], variables) -> Figure
             mesh = ax.pcolormesh(xs, ys, np.ma.masked_invalid(grid), shading="nearest", cmap="viridis")
             fig.colorbar(mesh, ax=ax, label=label)
             if held:
-                ax.plot([float(r[px]) for r in held], [float(r[py]) for r in held], "o", mfc="none",
-                        mec="white", ms=3)
+                _rings(ax, [(float(r[px]), float(r[py])) for r in held], 4)
             if failed:
                 ax.plot([float(r[px]) for r in failed], [float(r[py]) for r in failed], "x",
                         color="red", ms=4)

@@ -7,9 +7,9 @@ import pytest
 
 import formopt
 from formopt.studies import sweep
-from helpers import PROBLEMS
+from helpers import SHIPPED
 
-LANDING = PROBLEMS / "landing_optimum.toml"  # an [optimize] table through the landing
+LANDING = SHIPPED / "landing_optimum.toml"  # an [optimize] table through the landing
 
 
 def with_numerics(**options):

@@ -13,10 +13,9 @@ from formopt import SceneError, impact, load
 from formopt.cli import main
 from formopt.io.scene import parse
 
-from helpers import PROBLEMS, touchdown
+from helpers import SHIPPED, touchdown
 
-PROBLEMS = PROBLEMS
-REFERENCE = PROBLEMS / "forefoot_strike.toml"
+REFERENCE = SHIPPED / "forefoot_strike.toml"
 
 
 @pytest.fixture()
@@ -24,7 +23,7 @@ def reference():
     return tomllib.loads(REFERENCE.read_text())
 
 
-@pytest.mark.parametrize("path", sorted(PROBLEMS.glob("*.toml")), ids=lambda p: p.name)
+@pytest.mark.parametrize("path", sorted(SHIPPED.glob("*.toml")), ids=lambda p: p.name)
 def test_shipped_scenes_load_and_run(path):
     scene = load(path)
     r = impact(scene)
@@ -140,7 +139,7 @@ def test_cli_missing_file():
 
 
 def test_cli_unreachable_flat_posture(tmp_path):
-    text = (PROBLEMS / "flat_strike.toml").read_text().replace("ankle = -4.0", "ankle = 0.0")
+    text = (SHIPPED / "flat_strike.toml").read_text().replace("ankle = -4.0", "ankle = 0.0")
     out = run_cli("impact", write(tmp_path, text))
     assert out.returncode == 2 and "sole on the ground" in out.stderr
 
@@ -158,7 +157,7 @@ def test_cli_json(capsys):
 
 
 def test_cli_table(capsys):
-    assert main(["impact", str(PROBLEMS / "heel_strike.toml")]) == 0
+    assert main(["impact", str(SHIPPED / "heel_strike.toml")]) == 0
     text = capsys.readouterr().out
     assert "T_c" in text and "heel" in text and "valid:" in text
 

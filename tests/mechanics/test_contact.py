@@ -170,9 +170,9 @@ def test_impact_json_shows_every_law(tmp_path):
     import subprocess
     import sys
 
-    from helpers import PROBLEMS
+    from helpers import SHIPPED
 
-    text = (PROBLEMS / "forefoot_strike.toml").read_text().replace(
+    text = (SHIPPED / "forefoot_strike.toml").read_text().replace(
         "friction = 0.8", 'friction = 0.8\ncontact = "coulomb"')
     scene = tmp_path / "coulomb.toml"
     scene.write_text(text)

@@ -14,9 +14,9 @@ from formopt.mechanics.dynamics import FLEXION
 from formopt.mechanics.landing import (RUNNING_JOINTS, Diverged, Joints, LandingModel,
                                        simulate_state)
 from formopt.mechanics.model import STATE
-from helpers import PROBLEMS, SEED, random_states
+from helpers import PROBLEMS, SEED, SHIPPED, random_states
 
-SPRING = PROBLEMS / "landing_spring.toml"
+SPRING = SHIPPED / "landing_spring.toml"
 ENDS = ("heel and forefoot both down", "duration reached", "contact chatter")
 
 
@@ -76,7 +76,7 @@ def test_preload_pushes_the_strike_point_harder(spring):
 
 
 def test_running_defaults_are_the_ones_measured_from_rbds001():
-    script = runpy.run_path(str(PROBLEMS / "joint_stiffness.py"))  # reads ../shared/data/rbds
+    script = runpy.run_path(str(PROBLEMS / "joint_stiffness.py"))  # reads data/rbds
     measured = script["measure"]()["35"]
     for joint in ("knee", "ankle"):
         assert RUNNING_JOINTS["stiffness"][joint] == pytest.approx(measured[joint]["stiffness"], abs=0.001)
@@ -85,7 +85,7 @@ def test_running_defaults_are_the_ones_measured_from_rbds001():
 
 
 def test_scene_defaults_scale_with_body_mass(spring):
-    scene = load(PROBLEMS / "forefoot_strike.toml")  # no [joints]: the running joints
+    scene = load(SHIPPED / "forefoot_strike.toml")  # no [joints]: the running joints
     mass = scene.body.mass
     assert scene.joints.model == "spring-damper"
     assert math.radians(scene.joints.stiffness["knee"]) == pytest.approx(RUNNING_JOINTS["stiffness"]["knee"] * mass)

@@ -8,7 +8,7 @@ from dataclasses import replace
 import casadi as ca
 import numpy as np
 import pytest
-from helpers import PROBLEMS, land
+from helpers import SHIPPED, land
 
 from formopt import SceneError, impact, load
 from formopt.cli import main
@@ -20,7 +20,7 @@ from formopt.mechanics.landing import (
     landing_function,
 )
 
-SPRING = PROBLEMS / "landing_spring.toml"
+SPRING = SHIPPED / "landing_spring.toml"
 
 
 @pytest.fixture(scope="module")
@@ -225,7 +225,7 @@ def test_sweep_on_a_process_pool_and_on_dask_gives_the_same_rows(spring, tmp_pat
 def test_no_foot_point_passes_through_the_floor(name):
     """A point released where it stood, never lifted, strikes again when it moves into the
     ground: the foot stays above it (to the integration's drift), whatever the end."""
-    scene = load(PROBLEMS / name)
+    scene = load(SHIPPED / name)
     L = land(scene)
     model = scene.model()
     heights = np.array([[q[model.cols(p)][1] for p in ("heel", "forefoot")] for q in L.q])

@@ -9,9 +9,9 @@ import pytest
 
 from formopt import simulate
 from formopt.io.scene import parse
-from helpers import PROBLEMS
+from helpers import SHIPPED
 
-SPRING = tomllib.loads((PROBLEMS / "landing_spring.toml").read_text())
+SPRING = tomllib.loads((SHIPPED / "landing_spring.toml").read_text())
 # a forefoot strike whose foot is not swept back: it needs friction 1.96 to stick, so under
 # Coulomb it slides (the shipped scene's swept foot sticks at friction 0.8)
 SPRING["touchdown"].update(angles_deg={"trunk": 5.0, "hip": 25.0, "knee": 15.0, "ankle": -12.0},

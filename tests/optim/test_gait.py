@@ -1,10 +1,11 @@
-"""The gait-anchored optimum (problems/demo.toml): the gait held to 1e-9 m, the optimum
+"""The gait-anchored optimum (formopt/scenes/demo.toml): the gait held to 1e-9 m, the optimum
 interior and confirmed by a brute-force scan and 3,000 feasible perturbations, its
 multipliers and sensitivities against re-solves, its posture free of the weights' scale."""
 
 import copy
 import math
 import tomllib
+from pathlib import Path
 
 import casadi as ca
 import numpy as np
@@ -13,9 +14,9 @@ import pytest
 from formopt import load, solve
 from formopt.io.scene import parse
 from formopt.mechanics.model import STATE
-from helpers import PROBLEMS, assert_nlp_derivatives
+from helpers import SHIPPED, assert_nlp_derivatives
 
-DEMO = PROBLEMS / "demo.toml"
+DEMO = SHIPPED / "demo.toml"
 HIP, KNEE, ANKLE = (STATE.index(k) for k in ("hip", "knee", "ankle"))
 
 
@@ -140,7 +141,7 @@ def test_the_optimum_does_not_depend_on_the_weights_scale(demo, scale):
 
 def test_a_tiny_weight_on_T_c_alone_finds_the_same_optimum():
     """The issue's case: objective = { T_c = 1e-12 } stopped at 2.12 J against 0.921 J."""
-    data = tomllib.loads((PROBLEMS.parent / "tests" / "optim" / "bounded.toml").read_text())
+    data = tomllib.loads((Path(__file__).with_name("bounded.toml")).read_text())
     optima = []
     for weight in (1e-12, 1.0):
         d = copy.deepcopy(data)

@@ -14,9 +14,9 @@ from dataclasses import replace
 from formopt import load, solve
 from formopt.cli import main
 from formopt.io.scene import parse
-from helpers import PROBLEMS, assert_nlp_derivatives
+from helpers import SHIPPED, assert_nlp_derivatives
 
-DEMO = PROBLEMS / "demo.toml"
+DEMO = SHIPPED / "demo.toml"
 BOUNDED = Path(__file__).with_name("bounded.toml")  # a vertex optimum: multipliers on bounds
 
 
@@ -142,7 +142,7 @@ def test_cli_solve_not_converged_exits_1(tmp_path, capsys):
 
 
 def test_solve_without_optimize_table_is_bad_input(capsys):
-    scene = PROBLEMS / "heel_strike.toml"
+    scene = SHIPPED / "heel_strike.toml"
     assert main(["solve", str(scene)]) == 2
     assert "no [optimize] table" in capsys.readouterr().err
 
@@ -176,7 +176,7 @@ def test_compiled_solver_gives_the_same_optimum(demo, tmp_path, monkeypatch):
     assert list(tmp_path.glob("touchdown_nlp_*.so")), "the compiled NLP is cached"
 
 
-LANDING = PROBLEMS / "landing_optimum.toml"
+LANDING = SHIPPED / "landing_optimum.toml"
 
 
 @pytest.fixture(scope="module")

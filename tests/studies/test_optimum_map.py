@@ -7,9 +7,9 @@ import pytest
 from formopt import load, solve
 from formopt.cli import main
 from formopt.studies import optimum_map, sweep
-from helpers import PROBLEMS
+from helpers import SHIPPED
 
-DEMO = PROBLEMS / "demo.toml"
+DEMO = SHIPPED / "demo.toml"
 PARAMS = [("speed_mps", np.linspace(3.0, 4.0, 5)), ("friction", np.array([0.6, 0.8, 1.0]))]
 
 

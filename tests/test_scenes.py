@@ -1,0 +1,48 @@
+"""The shipped scenes: package data listed by `formopt scenes`, copied by `formopt scenes copy`,
+and taken by name wherever a scene file is."""
+
+import json
+
+import pytest
+
+import formopt
+from formopt.cli import main
+from helpers import SHIPPED
+
+
+def test_every_shipped_scene_is_listed_with_a_title():
+    names = formopt.scenes()
+    assert set(names) == {p.stem for p in SHIPPED.glob("*.toml")}
+    assert all(0 < len(title) <= 100 for title in names.values())
+
+
+def test_a_name_and_its_path_load_the_same_scene():
+    assert formopt.load("heel_strike").state.tolist() == \
+        formopt.load(SHIPPED / "heel_strike.toml").state.tolist()
+    assert formopt.scene_path("demo.toml") == formopt.scene_path("demo") == SHIPPED / "demo.toml"
+
+
+def test_a_path_wins_over_a_shipped_name(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "demo.toml").write_text((SHIPPED / "heel_strike.toml").read_text())
+    assert formopt.load("demo.toml").strike == "heel"
+
+
+def test_an_unknown_name_is_refused_naming_the_shipped_ones():
+    with pytest.raises(formopt.SceneError, match="nosuch: no such file, and not a shipped scene.*demo"):
+        formopt.load("nosuch")
+
+
+def test_copy_writes_once_and_refuses_to_overwrite(tmp_path, capsys):
+    assert main(["scenes", "copy", "demo", str(tmp_path / "mine")]) == 0
+    copied = tmp_path / "mine" / "demo.toml"
+    assert copied.read_text() == (SHIPPED / "demo.toml").read_text()
+    assert "formopt solve" in capsys.readouterr().out
+    assert main(["scenes", "copy", "demo", str(tmp_path / "mine")]) == 2
+    assert "exists already" in capsys.readouterr().err
+    assert main(["scenes", "copy", "nosuch", str(tmp_path)]) == 2
+
+
+def test_commands_take_a_shipped_name(capsys):
+    assert main(["impact", "heel_strike", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["strike"] == "heel"
