@@ -262,7 +262,8 @@ def test_killed_sweep_takes_its_pool_workers_with_it(tmp_path):
 
 def test_a_newline_in_a_file_name_stays_on_one_line(tmp_path, capsys):
     assert check(["impact", str(tmp_path / "no\nsuch.toml")], capsys, json_out=False) == 2
-    assert check(["simulate", SPRING, "--out", str(tmp_path / "a\nb" / "c")], capsys, json_out=False) in (0, 2)
+    # a newline is a legal character of a Linux path: the landing runs and its output says where
+    assert check(["simulate", SPRING, "--out", str(tmp_path / "a\nb" / "c")], capsys, json_out=False) == 0
 
 
 # -- compare scenes and marker maps: the same vocabulary as scenes (issue 25) -------------------

@@ -8,7 +8,7 @@ import pytest
 from formopt import impact, load, solve
 from formopt.cli import main
 from formopt.cli.common import scene_context
-from helpers import PROBLEMS
+from helpers import SHIPPED
 
 
 def printed(argv, capsys) -> dict:
@@ -19,14 +19,14 @@ def printed(argv, capsys) -> dict:
 
 
 def test_impact_report_is_the_result_in_its_context(capsys):
-    path = PROBLEMS / "heel_strike.toml"
+    path = SHIPPED / "heel_strike.toml"
     scene = load(path)
     report = printed(["impact", str(path), "--json"], capsys)
     assert report == json.loads(json.dumps({**scene_context(scene), **impact(scene).to_dict()}))
 
 
 def test_solve_report_is_the_optimum_in_its_context(tmp_path, capsys):
-    path = PROBLEMS / "demo.toml"
+    path = SHIPPED / "demo.toml"
     report = printed(["solve", str(path), "--json", "--starts", "1", "--out", str(tmp_path)], capsys)
     assert json.loads((tmp_path / "result.json").read_text()) == report  # written whole, the same
     opt = solve(load(path), starts=1).to_dict()

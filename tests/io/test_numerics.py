@@ -25,8 +25,7 @@ def test_graph_reaches_the_impact_and_the_posture_problem(graph):
 
 
 @pytest.mark.parametrize("compiled", [True, False, "auto"])
-def test_compiled_reaches_impact_landing_and_posture_problem(compiled, tmp_path, monkeypatch):
-    monkeypatch.setenv("FORMOPT_CACHE", str(tmp_path))
+def test_compiled_reaches_impact_landing_and_posture_problem(compiled):
     scene = with_numerics(compiled=compiled)
     assert scene.impact().compiled is (compiled is True)
     assert scene.landing().compiled is (compiled is not False)  # "auto": the landing pays

@@ -178,7 +178,7 @@ def test_rigid_trunk_needs_its_inertia(reference):
 def test_bounds_beyond_the_range_of_motion_are_refused_as_compare_refuses_them(bounds, needle,
                                                                                 capsys):
     """One rule for scenes and compare (io.validate.joint_bounds): refused, not clipped."""
-    data = tomllib.loads((PROBLEMS / "demo.toml").read_text())
+    data = tomllib.loads((SHIPPED / "demo.toml").read_text())
     data["optimize"]["variables"] = ["hip", "knee", "ankle"]
     data["optimize"]["bounds_deg"] = {"knee": bounds}
     with pytest.raises(SceneError) as err:

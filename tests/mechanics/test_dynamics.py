@@ -5,7 +5,7 @@ held point does not accelerate, kinetic friction opposes sliding) and its interf
 import casadi as ca
 import numpy as np
 import pytest
-from helpers import PROBLEMS, random_states
+from helpers import SHIPPED, random_states
 
 from formopt import load
 from formopt.mechanics import dynamics
@@ -19,7 +19,7 @@ SETS = [((), False), (("forefoot",), False), (("heel",), False), (("heel", "fore
 
 @pytest.fixture(scope="module")
 def spring():
-    scene = load(PROBLEMS / "landing_spring.toml")
+    scene = load(SHIPPED / "landing_spring.toml")
     return scene, Dynamics(scene.model(), scene.joints, scene.slope)
 
 

@@ -7,7 +7,7 @@ import math
 import casadi as ca
 import numpy as np
 import pytest
-from helpers import PROBLEMS
+from helpers import SHIPPED
 from scipy.integrate import solve_ivp
 
 from formopt import load
@@ -23,7 +23,7 @@ SCHEMES = {"midpoint": (integrators.midpoint, 2), "rk4": (integrators.rk4, 4),
 def pinned():
     """x' = f(x, t) of the paper's leg held at the forefoot after its impact (the motion of
     dynamics.py with springs, dampers and Baumgarte terms), x0, and solve_ivp's x(T_END)."""
-    scene = load(PROBLEMS / "landing_spring.toml")
+    scene = load(SHIPPED / "landing_spring.toml")
     lm = LandingModel(scene.model(), scene.joints, scene.slope, False, "adaptive", "no-slip")
     m = lm.model
     q0, qd0 = m.state_numeric(scene.state, "forefoot")
@@ -123,7 +123,7 @@ def test_the_landing_strikes_at_the_ground():
     """The heel's impact of the spring landing is at the ground to within 1e-13 m, the
     tolerance the hand-written locator had on the event value (the adaptive integrator,
     where the event cuts a step)."""
-    scene = load(PROBLEMS / "landing_spring.toml")
+    scene = load(SHIPPED / "landing_spring.toml")
     lm = LandingModel(scene.model(), scene.joints, scene.slope, True, "adaptive", "no-slip")
     L = simulate_state(lm, scene.strike, scene.state, scene.friction, scene.integration.dt,
                        scene.integration.duration)

@@ -203,17 +203,13 @@ def test_cli_sweep_bad_param_exits_2(capsys):
     assert "ankel_deg" in capsys.readouterr().err
 
 
-def test_sweep_on_a_process_pool_and_on_dask_gives_the_same_rows(spring, tmp_path):
-    from dask.distributed import LocalCluster
-
+def test_sweep_on_a_process_pool_and_on_dask_gives_the_same_rows(spring, tmp_path, dask_scheduler):
     from formopt.studies import sweep
 
     params = [sweep.parse_param("ankle_deg=-16:-10:4"), sweep.parse_param("hip_vx=3:4:5")]
     serial = sweep.run(spring, params, tmp_path / "serial.csv", progress=False)
     pool = sweep.run(spring, params, tmp_path / "pool.csv", progress=False, workers=2)
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
-        dask = sweep.run(spring, params, tmp_path / "dask.csv", progress=False,
-                         scheduler=cluster.scheduler_address)
+    dask = sweep.run(spring, params, tmp_path / "dask.csv", progress=False, scheduler=dask_scheduler)
 
     def key(rows):
         return sorted((r["ankle_deg"], r["hip_vx"], r["T_c_total"]) for r in rows)

@@ -111,10 +111,10 @@ def test_infeasible_scene_reports_its_status_and_no_optimum():
     data["optimize"]["starts"] = 3
     opt = solve(parse(data, "infeasible.toml"))
     assert not opt.success
-    assert opt.status in ("Infeasible_Problem_Detected", "Restoration_Failed",
-                          "Maximum_Iterations_Exceeded", "Solved_To_Acceptable_Level",
-                          "Solve_Succeeded")
     assert not any(s.converged for s in opt.starts)
+    # IPOPT's own word, from one of the starts, and not a success
+    assert opt.status in {s.status for s in opt.starts}
+    assert opt.status not in ("Solve_Succeeded", "Solved_To_Acceptable_Level")
     assert opt.active == () and opt.sensitivity == {}
     assert any("not an optimum" in n for n in opt.notes)
 
@@ -166,14 +166,13 @@ def test_bad_optimize_tables(edit, key):
     assert err.value.key == key
 
 
-def test_compiled_solver_gives_the_same_optimum(demo, tmp_path, monkeypatch):
-    monkeypatch.setenv("FORMOPT_CACHE", str(tmp_path))
+def test_compiled_solver_gives_the_same_optimum(demo, compile_cache):
     scene, problem, opt = demo
     compiled = replace(scene, numerics=replace(scene.numerics, compiled=True)).posture_problem()
     sol, stats, _ = compiled.solve_from(problem.to_unit(opt.state))
     assert stats["return_status"] == "Solve_Succeeded"
     assert float(sol["f"]) / compiled.scale == pytest.approx(opt.objective, rel=1e-9)
-    assert list(tmp_path.glob("touchdown_nlp_*.so")), "the compiled NLP is cached"
+    assert list(compile_cache.glob("touchdown_nlp_*.so")), "the compiled NLP is cached"
 
 
 LANDING = SHIPPED / "landing_optimum.toml"

@@ -43,16 +43,12 @@ def test_warm_started_optima_are_the_cold_optima(serial):
                                    np.degrees(cold.state[[1, 2, 3]]), atol=1e-5)
 
 
-def test_a_second_run_resumes_and_the_pool_and_dask_agree(serial, tmp_path):
-    from dask.distributed import LocalCluster
-
+def test_a_second_run_resumes_and_the_pool_and_dask_agree(serial, tmp_path, dask_scheduler):
     scene = load(DEMO)
     again = sweep.run(scene, PARAMS, tmp_path / "pool.csv", progress=False, workers=2)
     np.testing.assert_allclose(angles(again), angles(serial), atol=1e-6)
     assert sweep.run(scene, PARAMS, tmp_path / "pool.csv", progress=False) == again  # resumed
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
-        dask = sweep.run(scene, PARAMS, tmp_path / "dask.csv", progress=False,
-                         scheduler=cluster.scheduler_address)
+    dask = sweep.run(scene, PARAMS, tmp_path / "dask.csv", progress=False, scheduler=dask_scheduler)
     np.testing.assert_allclose(angles(dask), angles(serial), atol=1e-6)
 
 
