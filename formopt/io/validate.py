@@ -27,7 +27,7 @@ class ValidationError(InputError):
         text = f"{self.key}: {self.reason}" if key else self.reason
         super().__init__(f"{one_line(source, 200)}: {text}" if source else text)
 
-    def in_file(self, source) -> "ValidationError":
+    def in_file(self, source) -> ValidationError:
         """The same error, naming the file it came from."""
         return ValidationError(self.key, self.reason, str(source))
 

@@ -21,6 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+
 from .errors import InputError
 
 SEGMENTS = ("trunk", "swing_leg", "thigh", "shank", "foot")
@@ -90,7 +91,7 @@ def trunk(mass: float, com: float = 0.0, inertia_com: float = 0.0, length: float
     return Segment("trunk", mass, (0.0, com), inertia_com, landmarks)
 
 
-def effective_mass(body: "Body") -> Segment:
+def effective_mass(body: Body) -> Segment:
     """The lower limb (shank and foot) as one mass at the strike point: the effective mass of
     the impact in Lieberman et al. (2010)'s one-degree-of-freedom picture."""
     return Segment("effective_mass", body["shank"].mass + body["foot"].mass, (0.0, 0.0), 0.0,

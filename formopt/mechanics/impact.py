@@ -33,8 +33,9 @@ import numpy as np
 
 from . import contact
 from .compiled import Compiled
-from .model import STATE, STRIKES, Model, check_state, ground_axes, landmarks
 from .errors import InputError
+from .model import STATE, STRIKES, Model, check_state, ground_axes, landmarks
+
 # Ill-conditioned beyond this: results lose more than 10 of 16 digits.
 CONDITION_LIMIT = 1e10
 GRAPHS = ("SX", "MX")
@@ -220,7 +221,7 @@ def _momentum_impulse(momentum, t, n):
     return ca.vertcat(ca.dot(momentum, t), ca.dot(momentum, n))
 
 
-class Check(str, Enum):
+class Check(str, Enum):  # noqa: UP042 - not StrEnum: str(Check.X) would change
     """What a checked impact found (ImpactResult.checks, one per warning)."""
 
     BELOW_GROUND = "below_ground"  # the other foot point is below the ground
@@ -327,7 +328,7 @@ class Impact:
         self.function = impact_function(model, strike, graph=graph, law=law)
         self._compiled = Compiled(self.function) if compiled else None
 
-    def at(self, friction: float, slope: float) -> "Impact":
+    def at(self, friction: float, slope: float) -> Impact:
         """The same impact map (its graph and compiled code shared) on another ground."""
         check_ground(friction, slope)
         other = copy.copy(self)
@@ -386,7 +387,7 @@ class Impact:
             condition=condition, friction=self.friction, slope=self.slope,
             valid=not any(c not in INFORMATION for c, _ in found),
             warnings=tuple(w for _, w in found), checks=tuple(c for c, _ in found),
-            law=self.law, slip_velocity=out["slip"], mode=contact.MODES.get(int(round(out["mode"]))),
+            law=self.law, slip_velocity=out["slip"], mode=contact.MODES.get(round(out["mode"])),
             mu_c_posture=abs(out["mu_posture"]) if self.strike != "flat" else None,
             contact_laws=laws)
 
@@ -419,7 +420,7 @@ class Impact:
         t, n = impulse.sum(axis=0)
         if law == "no-slip":
             valid = valid and n > 0 and abs(t) <= self.friction * n * (1 + RTOL)
-        mode = contact.MODES.get(int(round(out["mode_coulomb"]))) if law == "coulomb" else None
+        mode = contact.MODES.get(round(out["mode_coulomb"])) if law == "coulomb" else None
         return LawResult(
             T_c=float(out[f"T_c_{key}"]),
             impulse={p: (float(a), float(b)) for p, (a, b) in zip(points, impulse)},

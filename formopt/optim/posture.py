@@ -204,7 +204,7 @@ class PostureProblem:
         """(mode, sliding direction s) of the reference touchdown's Coulomb impact."""
         out = self.impact.evaluate(self.reference)
         mode, v0 = np.ravel(out["mode_coulomb"])[0], np.ravel(out["v_contact"])
-        return int(round(float(mode))), 1 if float(v0[0]) >= 0 else -1
+        return round(float(mode)), 1 if float(v0[0]) >= 0 else -1
 
     def _law(self, out, mu) -> dict:
         """The impact indicators under the problem's law, smooth in the posture: no-slip and

@@ -259,7 +259,7 @@ def trials_table(rows) -> str:
         cells = []
         for k, i in zip(pick, idx):
             v = Path(row[i]).name if k == "trial" else row[i]
-            cells.append(f"{v:{width[k]}.2f}" if isinstance(v, float) else f"{str(v):>{width[k]}s}")
+            cells.append(f"{v:{width[k]}.2f}" if isinstance(v, float) else f"{v!s:>{width[k]}s}")
         out.append("  ".join(cells))
     return "\n".join(out)
 

@@ -19,12 +19,12 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
+from ..io.scene import load
 from ..mechanics.compiled import external
 from ..mechanics.impact import Impact, impact_function, on_ground
 from ..mechanics.landing import Diverged, LandingModel, simulate_state
 from ..mechanics.model import STATE, build_model
 from ..optim.posture import PostureProblem
-from ..io.scene import load
 
 LEVELS = ("effective-mass", "shank-foot", "leg", "leg-trunk", "full-body")
 DATA = Path(__file__).resolve().parent / "data"

@@ -8,12 +8,11 @@ import tomllib
 
 import numpy as np
 import pytest
+from helpers import SHIPPED, touchdown
 
 from formopt import SceneError, impact, load
 from formopt.cli import main
 from formopt.io.scene import parse
-
-from helpers import SHIPPED, touchdown
 
 REFERENCE = SHIPPED / "forefoot_strike.toml"
 
@@ -92,7 +91,7 @@ def test_bad_input_names_the_key(reference, path, value, key, message):
 
 def test_body_given_two_ways_is_refused(reference):
     reference["body"] = {"preset": "paper", "mass": 70.0}
-    with pytest.raises(SceneError, match="body.mass: give either"):
+    with pytest.raises(SceneError, match=r"body.mass: give either"):
         parse(reference)
 
 
@@ -178,7 +177,7 @@ def test_rigid_trunk_needs_its_inertia(reference):
 def test_bounds_beyond_the_range_of_motion_are_refused_as_compare_refuses_them(bounds, needle,
                                                                                 capsys):
     """One rule for scenes and compare (io.validate.joint_bounds): refused, not clipped."""
-    data = tomllib.loads((PROBLEMS / "demo.toml").read_text())
+    data = tomllib.loads((SHIPPED / "demo.toml").read_text())
     data["optimize"]["variables"] = ["hip", "knee", "ankle"]
     data["optimize"]["bounds_deg"] = {"knee": bounds}
     with pytest.raises(SceneError) as err:
