@@ -489,11 +489,11 @@ def _segment(name, data, base: Segment | None) -> Segment:
     if point_mass:
         return bodies.trunk(mass)
     if name == "foot":
-        com = val.pair(values, "com", where)
+        com_xy = val.pair(values, "com", where)
         heel, forefoot = val.pair(values, "heel", where), val.pair(values, "forefoot", where)
         if not heel[0] < forefoot[0]:
             raise SceneError(f"{where}.heel", "must lie behind the forefoot (smaller x in the foot frame)")
-        proximal = float(np.dot(com, com))
+        proximal = float(np.dot(com_xy, com_xy))
     else:
         length = val.number(values, "length", where, low=0.0, low_open=True)
         com = val.number(values, "com", where, low=0.0, high=length)
@@ -508,7 +508,7 @@ def _segment(name, data, base: Segment | None) -> Segment:
     else:
         inertia = val.number(values, "inertia_com", where, low=0.0, low_open=True)
     if name == "foot":
-        return bodies.foot(mass, com, inertia, heel, forefoot)
+        return bodies.foot(mass, com_xy, inertia, heel, forefoot)
     if name == "trunk":
         return bodies.trunk(mass, com, inertia, length)
     return bodies.bar(name, mass, length, com, inertia)

@@ -19,6 +19,7 @@ Units: kg, m, kg m^2.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -157,7 +158,7 @@ def paper_body() -> Body:
 # J Biomech 29(9):1223-1230, Table 4. Per sex: reference stature (m), and per segment:
 # length (m at the reference stature), mass fraction, centre of mass from the proximal end
 # (fraction of length), sagittal radius of gyration (fraction of length). Foot: heel to toe tip.
-DE_LEVA = {
+DE_LEVA: dict[str, dict[str, Any]] = {  # sex -> stature (m), segment -> the four fractions
     "male": {"stature": 1.741,
              "thigh": (0.4222, 0.1416, 0.4095, 0.329),
              "shank": (0.4340, 0.0433, 0.4459, 0.255),

@@ -92,6 +92,7 @@ def solve_table(scene: Scene, opt) -> str:
     limits), the gait held, the objective's terms, the sensitivities."""
     ok = "converged" if opt.success else "NOT CONVERGED"
     problem = scene.problem
+    assert problem is not None  # an optimum comes from a scene's [optimize] table
     lines = [f"{scene.name}  ({scene.path})",
              f"model {scene.kind}; body {scene.body.source}; {scene.strike} strike on "
              f"{math.degrees(scene.slope):+.1f} deg ground, friction {scene.friction:g}, "
