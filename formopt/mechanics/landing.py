@@ -297,8 +297,9 @@ class _Run:
         self.slip_at: list[float] = []
         self.warnings: list[str] = []
         self.absorbed, self.dissipated, self.t = 0.0, 0.0, 0.0
-        self.record: dict[str, list] = {k: [] for k in ("t", "q", "qd", "T", "V", "spring", "dissipated", "absorbed",
-                                       "energy", "force", "active", "slide")}
+        self.record: dict[str, list] = {k: [] for k in (
+            "t", "q", "qd", "T", "V", "spring", "dissipated", "absorbed", "energy", "force", "active",
+            "slide")}
         self.height = GRAVITY * m.momentum_matrix[1]  # q -> gravitational potential energy (J)
         self.V0 = float(self.height @ self.q)
         self.drift, self.mu_max, self.switches, self.s_anchor = 0.0, 0.0, 0, 0.0

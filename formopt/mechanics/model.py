@@ -231,7 +231,8 @@ class Model:
         self._check()
         qs = ca.SX.sym("q", self.n)
         self._jacobian = ca.Function("Phi_b_q", [qs], [ca.jacobian(self.constraints(qs), qs)])
-        self._state_functions: dict[str, ca.Function] = {}  # strike point -> Function x -> (q, q'), built on first use
+        # strike point -> Function x -> (q, q'), built on first use
+        self._state_functions: dict[str, ca.Function] = {}
         self.M = self._mass_matrix()
         self.M_inv = np.linalg.inv(self.M)
 

@@ -198,7 +198,7 @@ class PostureProblem:
             self.options["ipopt.constr_viol_tol"] = GAIT_TOLERANCE
         self.solver = cached_nlpsol("touchdown", self.nlp, self.options, compiled)
         self._sensitivity: ca.Function | None = None  # built on first use (sensitivity())
-        self._solvers: dict[str, ca.Function] = {}  # solvers with other IPOPT options (solve_from(options=...))
+        self._solvers: dict[str, ca.Function] = {}  # other IPOPT options (solve_from(options=...))
         self.constraint_function = ca.Function("g", [w, p], [g])
         self.build_time = time.perf_counter() - t0
 
