@@ -23,13 +23,13 @@ import casadi as ca
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
-from helpers import SEED, random_states  # noqa: E402  (the tests' touchdown distribution)
+from helpers import SEED, random_states  # the tests' touchdown distribution
 
-from formopt import Impact  # noqa: E402
-from formopt.mechanics.model import build_model  # noqa: E402
-from formopt.mechanics.impact import impact_function, on_ground  # noqa: E402
-from formopt.mechanics.body import paper_body  # noqa: E402
-from formopt.mechanics.compiled import Compiled, external  # noqa: E402
+from formopt import Impact
+from formopt.mechanics.body import paper_body
+from formopt.mechanics.compiled import Compiled, external
+from formopt.mechanics.impact import impact_function, on_ground
+from formopt.mechanics.model import build_model
 
 FRICTION = 0.8  # the shipped scenes' ground (a shoe on a belt)
 

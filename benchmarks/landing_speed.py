@@ -24,8 +24,8 @@ from pathlib import Path
 import casadi as ca
 
 from formopt import load
-from formopt.studies import sweep
 from formopt.mechanics.landing import LandingModel, absorbed_function, simulate_state
+from formopt.studies import sweep
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -65,7 +65,7 @@ def main():
         result = run(dt, integrator)
         err = abs(result.T_c_total - ref.T_c_total) / ref.T_c_total
         print(f"{label:>22s} {err:22.2e} {abs(result.impacts[1].time - ref.impacts[1].time) * 1e6:15.4f} "
-              f"{median_ms(lambda: run(dt, integrator)):17.2f}")
+              f"{median_ms(lambda dt=dt, integrator=integrator: run(dt, integrator)):17.2f}")
     with tempfile.TemporaryDirectory() as tmp:
         params = [sweep.parse_param("ankle_deg=-18:-5:40"), sweep.parse_param("knee_deg=8:32:25")]
         t = time.perf_counter()

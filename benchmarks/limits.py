@@ -18,12 +18,12 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests" / "mechanics"))  # test_extremes
-from helpers import touchdown  # noqa: E402
-from test_extremes import body_with  # noqa: E402
+from helpers import touchdown
+from test_extremes import body_with
 
-from formopt import Impact, load  # noqa: E402
-from formopt.mechanics.model import build_model  # noqa: E402
-from formopt.optim.posture import PostureProblem  # noqa: E402
+from formopt import Impact, load
+from formopt.mechanics.model import build_model
+from formopt.optim.posture import PostureProblem
 
 ROOT = Path(__file__).resolve().parent.parent
 

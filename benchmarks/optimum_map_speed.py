@@ -55,7 +55,7 @@ def main():
     iterations, times, ok = [], [], 0
     for k in sample:
         p = np.array([float(rows[k]["speed_mps"]), float(rows[k]["friction"])])
-        sol, stats, elapsed = pp.solve_from(w0, p)
+        _sol, stats, elapsed = pp.solve_from(w0, p)
         iterations.append(stats["iter_count"])
         times.append(elapsed)
         ok += stats["return_status"] in CONVERGED

@@ -17,7 +17,7 @@ import formopt  # noqa: E402
 
 project = "formopt"
 author = "the formopt developers"
-copyright = "2026, the formopt developers"  # noqa: A001 (Sphinx's name)
+copyright = "2026, the formopt developers"  # Sphinx's name for it
 release = formopt.__version__
 
 extensions = ["myst_parser", "numpydoc", "sphinx.ext.autodoc", "sphinx.ext.autosummary",

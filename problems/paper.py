@@ -35,16 +35,16 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-from formopt import impact  # noqa: E402
-from formopt import simulate as land  # noqa: E402
-from formopt.io.files import save_figure  # noqa: E402
-from formopt.io.scene import load, parse  # noqa: E402
-from formopt.mechanics.contact import LAWS  # noqa: E402
-from formopt.mechanics.landing import Joints  # noqa: E402
-from formopt.studies import sweep  # noqa: E402
+from formopt import impact
+from formopt import simulate as land
+from formopt.io.files import save_figure
+from formopt.io.scene import load, parse
+from formopt.mechanics.contact import LAWS
+from formopt.mechanics.landing import Joints
+from formopt.studies import sweep
 
 HERE = Path(__file__).resolve().parent
 BASE = HERE.parent / "formopt" / "scenes" / "landing_spring.toml"

@@ -28,15 +28,17 @@ from formopt.measure import Measurement, measure
 from formopt.measure.axes import Axes
 from formopt.measure.clean import clean
 from formopt.measure.filters import lowpass
-from formopt.measure.kinematics import kabsch, kinematics, pitch as cluster_pitch
+from formopt.measure.kinematics import kabsch, kinematics
+from formopt.measure.kinematics import pitch as cluster_pitch
 from formopt.measure.touchdowns import touchdowns
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "rbds"
 HEIGHT = 1.81
 KINEMATIC = False
+UP = np.array([0.0, 1.0, 0.0])  # the lab's vertical
 
 
-def second_method(m: Measurement, up=np.array([0.0, 1.0, 0.0])):
+def second_method(m: Measurement, up=UP):
     """Right-side (hip, knee, ankle) at the foot-speed touchdowns: standing angle + cluster pitch."""
     cal, trial = m.calibration, m.trial
     forward = cal.axes.forward - (cal.axes.forward @ up) * up

@@ -22,8 +22,8 @@ import numpy as np
 
 from formopt import Impact
 from formopt.io import mocap
-from formopt.measure import measure
 from formopt.io.files import save_figure, write_csv
+from formopt.measure import measure
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.contact import LAWS
 from formopt.mechanics.model import STATE, build_model, positions

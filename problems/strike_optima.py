@@ -10,12 +10,11 @@ import argparse
 from dataclasses import replace
 from pathlib import Path
 
-from formopt import load
-from formopt.report.tables import solve_report
-from formopt import solve
+from formopt import load, solve
 from formopt.io.files import save_figure, write_json
-from formopt.report.figures import indicator_figure, posture_figure
 from formopt.io.scene import touchdown_table
+from formopt.report.figures import indicator_figure, posture_figure
+from formopt.report.tables import solve_report
 
 
 def main():

@@ -8,9 +8,7 @@ import casadi as ca
 import numpy as np
 
 import formopt
-
-from formopt.mechanics.model import STATE
-from formopt.mechanics.model import Model, Point, PointMass, RigidBody
+from formopt.mechanics.model import STATE, Model, Point, PointMass, RigidBody
 
 SEED = 20261122
 ROOT = Path(__file__).resolve().parent.parent  # the repository

@@ -29,7 +29,6 @@ import tomllib
 from dataclasses import dataclass
 
 import pytest
-
 from helpers import ROOT
 
 PAGES = [ROOT / "README.md"] + sorted(p for p in (ROOT / "docs").rglob("*.md")
@@ -188,7 +187,7 @@ def test_compare_reads_file_paths():
     paths are read (a missing one named in an InputError), the result is a Comparison."""
     import formopt
 
-    with pytest.raises(formopt.InputError, match="run.c3d: no such file"):
+    with pytest.raises(formopt.InputError, match=r"run.c3d: no such file"):
         formopt.compare("run.c3d", "static.c3d", mass=62, height=1.81)
     ric = ROOT / "data" / "ric"
     c = formopt.compare(str(ric / "20160226T120637_run.c3d"), ric / "20160226T120637_static.c3d",

@@ -32,7 +32,7 @@ def imports(path):
             else:
                 target = node.module or ""
             if target.startswith("formopt"):
-                yield target if node.module else target, [a.name for a in node.names]
+                yield target, [a.name for a in node.names]
         elif isinstance(node, ast.Import):
             for a in node.names:
                 if a.name.startswith("formopt"):

@@ -4,10 +4,10 @@ and taken by name wherever a scene file is."""
 import json
 
 import pytest
+from helpers import SHIPPED
 
 import formopt
 from formopt.cli import main
-from helpers import SHIPPED
 
 
 def test_every_shipped_scene_is_listed_with_a_title():
@@ -29,7 +29,7 @@ def test_a_path_wins_over_a_shipped_name(tmp_path, monkeypatch):
 
 
 def test_an_unknown_name_is_refused_naming_the_shipped_ones():
-    with pytest.raises(formopt.SceneError, match="nosuch: no such file, and not a shipped scene.*demo"):
+    with pytest.raises(formopt.SceneError, match=r"nosuch: no such file, and not a shipped scene.*demo"):
         formopt.load("nosuch")
 
 

@@ -8,9 +8,9 @@ import sys
 import time
 
 import pytest
+from helpers import DATA, ROOT
 
 from formopt.cli import main
-from helpers import DATA, ROOT
 
 # a run of 8-20 s: reading the trial, touchdowns, per-step optima
 COMMAND = [sys.executable, "-m", "formopt.cli", "compare", "--trial", str(DATA / "rbds/RBDS001runT35.c3d"),

@@ -26,6 +26,8 @@ from importlib import import_module
 from .. import __version__
 from ..mechanics.errors import one_line
 
+__all__ = ["COMMANDS", "main", "parser"]  # the command modules are the CLI's own
+
 # One module per command, imported when the command line is parsed (inside main's handlers).
 COMMANDS = ("impact", "solve", "simulate", "sweep", "compare", "bench", "scenes")
 SCENE_COMMANDS = ("impact", "solve", "simulate", "sweep")  # SCENE: a file or a shipped name

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from typing import Any
 
 from ..io import markerset, mocap
 from ..io import validate as val
@@ -25,7 +26,7 @@ from ..studies.compare import BOUNDS_DEG, JOINTS, SUPPORT, compare
 from .common import add_format, emit, out_folder
 
 # every setting: its default and what it is (the option's help)
-SETTINGS = {
+SETTINGS: dict[str, tuple[Any, str]] = {
     "trial": (None, "running trial: C3D, or RBDS marker text (repeatable: one row each)"),
     "static": (None, "standing calibration trial (C3D or text)"),
     "forces": (None, "force text file for a text trial (RBDS layout)"),
@@ -100,7 +101,7 @@ def check(table: dict, where: str, folder: Path | None = None) -> dict:
     io.validate and converted (numbers to float, bounds to {joint: (lo, hi)} deg, files
     relative to `folder`); keys not in `table` stay out."""
     val.keys(table, where, set(SETTINGS))
-    out = {}
+    out: dict[str, Any] = {}
     for key in table:
         if key in RANGES:
             out[key] = val.number(table, key, where, limit=RANGES[key])
@@ -108,8 +109,8 @@ def check(table: dict, where: str, folder: Path | None = None) -> dict:
             out[key] = val.integer(table, key, where, None, *WHOLE[key])
         elif key in FILES:
             name = val.string(table, key, where)
-            relative = folder is not None and (key != "markers" or name.endswith(".toml"))
-            out[key] = str(folder / name) if relative else name
+            relative = key != "markers" or name.endswith(".toml")
+            out[key] = str(folder / name) if folder is not None and relative else name
         elif key == "per_step":
             out[key] = val.flag(table, key, where, True)
         elif key == "bounds":

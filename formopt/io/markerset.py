@@ -146,6 +146,7 @@ def recognise(labels) -> MarkerSet:
             return ms
         if best is None or len(missing) < len(best[1]):
             best = (ms, missing)
+    assert best is not None  # shipped() is never empty
     ms, missing = best
     raise InputError(f"the markers match no shipped marker map: closest {ms.name}, which misses "
                      f"{', '.join(missing[:6])}{' ...' if len(missing) > 6 else ''}; "

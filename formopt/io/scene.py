@@ -7,6 +7,7 @@ invalid reaches the mechanics. Degrees at this edge, SI inside.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field, replace
 
@@ -16,8 +17,8 @@ from ..mechanics import body as bodies
 from ..mechanics import limits
 from ..mechanics.body import Body, Segment
 from ..mechanics.contact import LAWS
-from ..mechanics.impact import GRAPHS, Impact
 from ..mechanics.dynamics import JOINT_MODELS, Joints
+from ..mechanics.impact import GRAPHS, Impact
 from ..mechanics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
 from ..mechanics.landing import RUNNING_JOINTS, LandingModel
 from ..mechanics.model import MODELS, STATE, STRIKES, Model, Swing, build_model
@@ -161,7 +162,7 @@ def parse(data: dict, path: str = "") -> Scene:
         problem = _optimize(data["optimize"], model, strike, contact_law)
     joints = _joints(data.get("joints", {}), model, body.mass)
     landing = _landing(data.get("landing", {}))
-    if model == "effective-mass" and (problem and problem.landing or data.get("joints")):
+    if model == "effective-mass" and ((problem and problem.landing) or data.get("joints")):
         raise SceneError("scene.model", "'effective-mass' is an impact-only model: no [joints], "
                                         "landing or T_c_total")
     return Scene(name, model, body, strike, state, friction, math.radians(slope), path, notes,
@@ -263,7 +264,7 @@ def _torque_joints(data, names) -> Joints:
         columns[key] = [val.value(v, f"joints.moments.{key}[{i}]", r.low, r.high, unit=r.unit)
                         for i, v in enumerate(column)]
     times = columns.pop("time_ms")
-    if times[0] != 0.0 or any(b <= a for a, b in zip(times, times[1:])):
+    if times[0] != 0.0 or any(b <= a for a, b in itertools.pairwise(times)):
         raise SceneError("joints.moments.time_ms", "must start at 0 (the touchdown) and increase")
     if not columns:
         raise SceneError("joints.moments", f"missing: give a moment column ({', '.join(sorted(allowed - {'time_ms'}))})")
@@ -488,11 +489,11 @@ def _segment(name, data, base: Segment | None) -> Segment:
     if point_mass:
         return bodies.trunk(mass)
     if name == "foot":
-        com = val.pair(values, "com", where)
+        com_xy = val.pair(values, "com", where)
         heel, forefoot = val.pair(values, "heel", where), val.pair(values, "forefoot", where)
         if not heel[0] < forefoot[0]:
             raise SceneError(f"{where}.heel", "must lie behind the forefoot (smaller x in the foot frame)")
-        proximal = float(np.dot(com, com))
+        proximal = float(np.dot(com_xy, com_xy))
     else:
         length = val.number(values, "length", where, low=0.0, low_open=True)
         com = val.number(values, "com", where, low=0.0, high=length)
@@ -507,7 +508,7 @@ def _segment(name, data, base: Segment | None) -> Segment:
     else:
         inertia = val.number(values, "inertia_com", where, low=0.0, low_open=True)
     if name == "foot":
-        return bodies.foot(mass, com, inertia, heel, forefoot)
+        return bodies.foot(mass, com_xy, inertia, heel, forefoot)
     if name == "trunk":
         return bodies.trunk(mass, com, inertia, length)
     return bodies.bar(name, mass, length, com, inertia)

@@ -27,7 +27,7 @@ class ValidationError(InputError):
         text = f"{self.key}: {self.reason}" if key else self.reason
         super().__init__(f"{one_line(source, 200)}: {text}" if source else text)
 
-    def in_file(self, source) -> "ValidationError":
+    def in_file(self, source) -> ValidationError:
         """The same error, naming the file it came from."""
         return ValidationError(self.key, self.reason, str(source))
 
@@ -132,7 +132,8 @@ def pair(data: dict, key: str, where: str, limit=math.inf) -> tuple[float, float
     v = data.get(key)
     if not isinstance(v, list) or len(v) != 2:
         raise ValidationError(full, f"must be a pair of numbers, not {short(v)}")
-    return tuple(value(x, f"{full}[{i}]", low=-limit, high=limit) for i, x in enumerate(v))
+    low, high = (value(x, f"{full}[{i}]", low=-limit, high=limit) for i, x in enumerate(v))
+    return low, high
 
 
 def string(data: dict, key: str, where: str, default=None) -> str:

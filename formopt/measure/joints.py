@@ -46,6 +46,7 @@ def harrington_hip(ref: dict, ms: msets.MarkerSet, side: str, up) -> np.ndarray:
     +-(0.33 PW + 7.3)) mm (+ right, - left). y is taken upward along the lab's up, so a
     mirrored file frame does not flip it. `ref`: label -> standing position (3,), m.
     """
+    assert ms.asis is not None and ms.psis is not None  # io.markerset: a "harrington" hip has them
     m = {n: ref[n] * 1e3 for n in (*ms.asis, *ms.psis)}
     mid_asis = (m[ms.asis[0]] + m[ms.asis[1]]) / 2
     mid_psis = (m[ms.psis[0]] + m[ms.psis[1]]) / 2

@@ -67,7 +67,8 @@ def kinematics(trial: Trial, cal: Calibration, cutoff_hz: float = CUTOFF_HZ) -> 
     if trial.frames < 10:
         raise MocapError(f"{trial.source}: {trial.frames} frames: too short for a run")
     filtered = {n: lowpass(trial.markers[n], trial.rate, cutoff_hz, trial.source) for n in needed}
-    carried, fits, residual = {}, {}, {}
+    carried: dict[str, np.ndarray] = {}  # label -> (frames, 3), m
+    fits, residual = {}, {}
     for name, (cluster, ref, p0) in cal.points.items():
         if cluster not in fits:  # one fit per cluster and frame (the pelvis carries both hips)
             current = np.stack([filtered[n] if n in filtered else carried[n] for n in cluster], axis=1)

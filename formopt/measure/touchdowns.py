@@ -20,7 +20,7 @@ import numpy as np
 
 from ..io.markerset import SIDES
 from ..io.mocap import MocapError, Trial
-from ..mechanics.model import joint_angles
+from ..mechanics.model import joint_angles, xy
 from .filters import lowpass
 from .joints import Calibration
 from .kinematics import Kinematics
@@ -121,6 +121,7 @@ def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration,
         raise MocapError(f"{trial.source}: a running speed of {speed:.3g} m/s is outside "
                          f"{SPEED_RANGE[0]:g}-{SPEED_RANGE[1]:g} m/s: wrong units or rate")
     if trial.force is not None:
+        assert trial.force_rate is not None  # io.mocap reads the force with its rate
         method = "force plate"
         times = [(t, min(SIDES, key=lambda s: foot_low[s][int(t * kin.rate)]))
                  for t in force_plate_touchdowns(trial.force, trial.force_rate, cal.axes.up,
@@ -209,7 +210,7 @@ def _check_cadence(trial: Trial, kin: Kinematics, foot_low: dict, cadence: float
 
 def _separated(times, gap: float) -> np.ndarray:
     """`times` (sorted, s) without those within `gap` s after the last one kept."""
-    out = []
+    out: list[float] = []
     for t in times:
         if not out or t - out[-1] > gap:
             out.append(float(t))
@@ -235,6 +236,6 @@ def _touchdown(kin: Kinematics, side: str, frame: int, time: float, belt: float,
                      rates={k: rate(f"{side}.{k}") for k in ("thigh", "shank", "foot")},
                      hip_velocity=(float(v[0] + belt), float(v[1])),
                      hip_height=float(hip_p[frame][1] - low),
-                     hip_from_point={p: tuple(map(float, hip_p[frame] - kin.points[f"{side}.{p}"][frame]))
+                     hip_from_point={p: xy(hip_p[frame] - kin.points[f"{side}.{p}"][frame])
                                      for p in ("heel", "forefoot")},
                      valid_data=not problems, problems=problems)

@@ -19,8 +19,10 @@ Units: kg, m, kg m^2.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
+
 from .errors import InputError
 
 SEGMENTS = ("trunk", "swing_leg", "thigh", "shank", "foot")
@@ -90,7 +92,7 @@ def trunk(mass: float, com: float = 0.0, inertia_com: float = 0.0, length: float
     return Segment("trunk", mass, (0.0, com), inertia_com, landmarks)
 
 
-def effective_mass(body: "Body") -> Segment:
+def effective_mass(body: Body) -> Segment:
     """The lower limb (shank and foot) as one mass at the strike point: the effective mass of
     the impact in Lieberman et al. (2010)'s one-degree-of-freedom picture."""
     return Segment("effective_mass", body["shank"].mass + body["foot"].mass, (0.0, 0.0), 0.0,
@@ -156,7 +158,7 @@ def paper_body() -> Body:
 # J Biomech 29(9):1223-1230, Table 4. Per sex: reference stature (m), and per segment:
 # length (m at the reference stature), mass fraction, centre of mass from the proximal end
 # (fraction of length), sagittal radius of gyration (fraction of length). Foot: heel to toe tip.
-DE_LEVA = {
+DE_LEVA: dict[str, dict[str, Any]] = {  # sex -> stature (m), segment -> the four fractions
     "male": {"stature": 1.741,
              "thigh": (0.4222, 0.1416, 0.4095, 0.329),
              "shank": (0.4340, 0.0433, 0.4459, 0.255),

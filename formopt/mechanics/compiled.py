@@ -108,9 +108,9 @@ class Compiled:
         self._ins = [np.zeros(function.nnz_in(i)) for i in range(function.n_in())]
         self._outs = [np.zeros(function.nnz_out(i)) for i in range(function.n_out())]
         for i, a in enumerate(self._ins):
-            self._buffer.set_arg(i, memoryview(a))
+            self._buffer.set_arg(i, a.data)
         for i, r in enumerate(self._outs):
-            self._buffer.set_res(i, memoryview(r))
+            self._buffer.set_res(i, r.data)
         self._layout = []  # (name, shape of a matrix output or None for a vector, sparsity)
         for i in range(function.n_out()):
             sp = function.sparsity_out(i)

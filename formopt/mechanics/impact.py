@@ -27,14 +27,16 @@ import copy
 import math
 from dataclasses import asdict, dataclass, field
 from enum import Enum
+from typing import Any
 
 import casadi as ca
 import numpy as np
 
 from . import contact
 from .compiled import Compiled
-from .model import STATE, STRIKES, Model, check_state, ground_axes, landmarks
 from .errors import InputError
+from .model import STATE, STRIKES, Model, check_state, ground_axes, landmarks, xy
+
 # Ill-conditioned beyond this: results lose more than 10 of 16 digits.
 CONDITION_LIMIT = 1e10
 GRAPHS = ("SX", "MX")
@@ -220,7 +222,7 @@ def _momentum_impulse(momentum, t, n):
     return ca.vertcat(ca.dot(momentum, t), ca.dot(momentum, n))
 
 
-class Check(str, Enum):
+class Check(str, Enum):  # noqa: UP042 - not StrEnum: str(Check.X) would change
     """What a checked impact found (ImpactResult.checks, one per warning)."""
 
     BELOW_GROUND = "below_ground"  # the other foot point is below the ground
@@ -327,7 +329,7 @@ class Impact:
         self.function = impact_function(model, strike, graph=graph, law=law)
         self._compiled = Compiled(self.function) if compiled else None
 
-    def at(self, friction: float, slope: float) -> "Impact":
+    def at(self, friction: float, slope: float) -> Impact:
         """The same impact map (its graph and compiled code shared) on another ground."""
         check_ground(friction, slope)
         other = copy.copy(self)
@@ -347,7 +349,7 @@ class Impact:
         x = check_state(x)
         raw = self.evaluate(x)
         condition = float(np.linalg.cond(raw.pop("G")))
-        out = {k: np.asarray(v, float).ravel() for k, v in raw.items()}
+        out: dict[str, Any] = {k: np.asarray(v, float).ravel() for k, v in raw.items()}  # 1-D, or float
         out.update({k: float(v[0]) for k, v in out.items() if v.size == 1})
         points = STRIKES[self.strike]
         if not condition < CONDITION_LIMIT:
@@ -364,7 +366,7 @@ class Impact:
         if not pushes:
             found.append((Check.NO_PUSH, "mu_c is undefined: the ground does not push (total "
                                          f"normal impulse {total_n:.3g} N s)"))
-        elif self.law == "no-slip" and mu_c > self.friction * (1 + RTOL):
+        elif self.law == "no-slip" and mu_c is not None and mu_c > self.friction * (1 + RTOL):
             found.append((Check.SLIP, f"the foot slips: mu_c {mu_c:.3f} exceeds the friction "
                                       f"{self.friction:g}"))
         if self.strike == "flat" and self.law != "frictionless":
@@ -380,13 +382,13 @@ class Impact:
                                 for p in points},
             impulse_total=(float(total_t), float(total_n)),
             mu_c=mu_c, mu_c_momentum=abs(out["mu_momentum_signed"]) if pushes else None,
-            dv_trunk=tuple(float(v) for v in out["dv_trunk"]) if self.model.trunk else None,
-            dv_com=tuple(float(v) for v in out["dv_com"]),
+            dv_trunk=xy(out["dv_trunk"]) if self.model.trunk else None,
+            dv_com=xy(out["dv_com"]),
             qd_minus=out["qd_minus"], qd_plus=out["qd_plus"],
             condition=condition, friction=self.friction, slope=self.slope,
             valid=not any(c not in INFORMATION for c, _ in found),
             warnings=tuple(w for _, w in found), checks=tuple(c for c, _ in found),
-            law=self.law, slip_velocity=out["slip"], mode=contact.MODES.get(int(round(out["mode"]))),
+            law=self.law, slip_velocity=out["slip"], mode=contact.MODES.get(round(out["mode"])),
             mu_c_posture=abs(out["mu_posture"]) if self.strike != "flat" else None,
             contact_laws=laws)
 
@@ -419,14 +421,14 @@ class Impact:
         t, n = impulse.sum(axis=0)
         if law == "no-slip":
             valid = valid and n > 0 and abs(t) <= self.friction * n * (1 + RTOL)
-        mode = contact.MODES.get(int(round(out["mode_coulomb"]))) if law == "coulomb" else None
+        mode = contact.MODES.get(round(out["mode_coulomb"])) if law == "coulomb" else None
         return LawResult(
             T_c=float(out[f"T_c_{key}"]),
             impulse={p: (float(a), float(b)) for p, (a, b) in zip(points, impulse)},
             mode=mode if self.model.tangential else None,
             slip_velocity=float(out[f"slip_{key}"]),
-            dv_trunk=tuple(float(v) for v in np.ravel(out[f"dv_trunk_{key}"])) if self.model.trunk else None,
-            dv_com=tuple(float(v) for v in np.ravel(out[f"dv_com_{key}"])),
+            dv_trunk=xy(out[f"dv_trunk_{key}"]) if self.model.trunk else None,
+            dv_com=xy(out[f"dv_com_{key}"]),
             valid=bool(valid))
 
 

@@ -55,7 +55,7 @@ def rk4(f: Rhs, x, t, h):
 def dormand_prince(f: Rhs, x, t, h, tol: float = TOLERANCE):
     """(x(t + h), error) by Dormand-Prince 5(4): x5 = x + h sum b5_i k_i, e = h sum (b5_i -
     b4_i) k_i, error = max_i |e_i| / (tol (1 + |x_i|)) (accept the step when error <= 1)."""
-    k = []
+    k: list = []  # the stages k_i, as x
     for c, a in zip(DP_C, DP_A):
         k.append(f(x + h * sum((a_i * k_i for a_i, k_i in zip(a, k)), ca.SX.zeros(x.shape)),
                    t + c * h))

@@ -42,7 +42,7 @@ from .dynamics import FEET, FREE, GRAVITY, Dynamics, Joints
 from .errors import InputError
 from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, grow, locate, shrink
 from .integrators import step as integrator_step
-from .model import STATE, STRIKES, Model, check_state
+from .model import STATE, STRIKES, Model, check_state, xy
 
 DIVERGED = 1e-4  # energy-balance drift, relative to the touchdown kinetic energy, that is a divergence
 SINK = 1e-7  # m: how far below the ground a point let go where it stood strikes again
@@ -290,16 +290,21 @@ class _Run:
                 raise InputError(f"{strike} strike: the {p} is {-start['heights'][k] * 1e3:.1f} mm "
                                  "below the ground at touchdown")
         self.mu = 0.0 if lm.law == "frictionless" else friction
-        self.active, self.slide = (), 0  # contact set; sliding direction of the held foot (0: held)
-        self.impacts, self.releases, self.slip_at, self.warnings = [], [], [], []
+        self.active: tuple[str, ...] = ()  # the contact set
+        self.slide = 0  # sliding direction of the held foot (0: held)
+        self.impacts: list[ImpactEvent] = []
+        self.releases: list[tuple[float, str, float]] = []  # (time, points, normal force)
+        self.slip_at: list[float] = []
+        self.warnings: list[str] = []
         self.absorbed, self.dissipated, self.t = 0.0, 0.0, 0.0
-        self.record = {k: [] for k in ("t", "q", "qd", "T", "V", "spring", "dissipated", "absorbed",
-                                       "energy", "force", "active", "slide")}
+        self.record: dict[str, list] = {k: [] for k in (
+            "t", "q", "qd", "T", "V", "spring", "dissipated", "absorbed", "energy", "force", "active",
+            "slide")}
         self.height = GRAVITY * m.momentum_matrix[1]  # q -> gravitational potential energy (J)
         self.V0 = float(self.height @ self.q)
         self.drift, self.mu_max, self.switches, self.s_anchor = 0.0, 0.0, 0, 0.0
         self.ended, self.h_next = Ended.DURATION, dt
-        self.armed = {}
+        self.armed: dict[str, bool] = {}
 
     def run(self) -> Landing:
         """The state machine: impact, then per state strike / release / slide / finish, else
@@ -341,17 +346,17 @@ class _Run:
         m, lm = self.m, self.lm
         new = tuple(self.active) + tuple(p for p in points if p not in self.active)
         out = lm.impact_map(new)(self.q, self.qd, self.joint, self.friction)
-        qd_plus, T_c, total = (np.asarray(v, float).ravel() for v in out[:3])
+        qd_plus, absorbed, total = (np.asarray(v, float).ravel() for v in out[:3])
         mode, slip = int(out[3]), float(out[4])
-        T_c = float(T_c[0])
+        T_c = float(absorbed[0])
         dv = (m.com_matrix(m.trunk) @ (qd_plus - self.qd)) if m.trunk else None
-        mu_c = abs(total[0]) / total[1] if total[1] > 0 else None  # undefined when not pushed
+        mu_c = float(abs(total[0]) / total[1]) if total[1] > 0 else None  # undefined when not pushed
         if lm.law == "no-slip" and (mu_c is None or mu_c > self.friction):
             self.slip_at.append(time)
         if mu_c is not None:
             self.mu_max = max(self.mu_max, mu_c)
         self.impacts.append(ImpactEvent(time, "+".join(points), new, T_c,
-                                        tuple(map(float, dv)) if dv is not None else None,
+                                        xy(dv) if dv is not None else None,
                                         (float(total[0]), float(total[1])), mu_c,
                                         contact.MODES[mode], slip))
         self.absorbed += T_c

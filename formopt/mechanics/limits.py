@@ -34,7 +34,7 @@ class Range:
             return f"> {self.low:g} and <= {self.high:g}{unit}"
         return f"between {self.low:g} and {self.high:g}{unit}"
 
-    def scaled(self, factor: float, unit: str) -> "Range":
+    def scaled(self, factor: float, unit: str) -> Range:
         """The same range in another unit (value * factor), e.g. rad/s -> deg/s."""
         return Range(self.low * factor, self.high * factor, unit, self.low_open)
 

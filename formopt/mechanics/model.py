@@ -97,6 +97,12 @@ def check_state(x) -> np.ndarray:
     return x
 
 
+def xy(v) -> tuple[float, float]:
+    """A planar vector (2 numbers, any array shape) as the pair (x, y) of floats."""
+    x, y = np.ravel(v)
+    return float(x), float(y)
+
+
 def ground_axes(slope):
     """Tangent (forward, along the ground) and normal (up, out of the ground) unit vectors of
     a ground of `slope` rad: numpy arrays for a number, CasADi columns for a symbol."""
@@ -225,7 +231,8 @@ class Model:
         self._check()
         qs = ca.SX.sym("q", self.n)
         self._jacobian = ca.Function("Phi_b_q", [qs], [ca.jacobian(self.constraints(qs), qs)])
-        self._state_functions = {}  # strike point -> Function x -> (q, q'), built on first use
+        # strike point -> Function x -> (q, q'), built on first use
+        self._state_functions: dict[str, ca.Function] = {}
         self.M = self._mass_matrix()
         self.M_inv = np.linalg.inv(self.M)
 
@@ -312,7 +319,7 @@ class Model:
     @property
     def momentum_matrix(self) -> np.ndarray:
         """(2 x n) map from q' to the total linear momentum (kg m/s)."""
-        return sum(self.body[s].mass * self.com_matrix(s) for s in self.segments)
+        return sum((self.body[s].mass * self.com_matrix(s) for s in self.segments), np.zeros((2, self.n)))
 
     @property
     def mass(self) -> float:

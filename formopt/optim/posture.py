@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -144,7 +145,7 @@ class PostureProblem:
                                problem.upper, friction, slope)
         self.law = law
         self.impact = Impact(model, strike, slope, friction, law=law)  # checks every optimum
-        self.mode = self._coulomb_mode() if law == "coulomb" else None
+        self.mode: tuple[int, int] | None = self._coulomb_mode() if law == "coulomb" else None
         self.duration = duration
         self.landing = (LandingModel(model, joints or Joints(), slope, integrator=integrator)
                         if problem.landing else None)
@@ -168,11 +169,12 @@ class PostureProblem:
             terms["support"] = support(x, model, STRIKES[strike][0], problem.stance_peak_bw)
         landing = None
         if self.landing:
-            self._t_ref = self.second_impact(self.reference)
-            if self._t_ref is None:
+            t_ref = self.second_impact(self.reference)
+            if t_ref is None:
                 raise InputError("the reference touchdown's landing never brings the other foot point "
                                  f"down within {duration * 1e3:g} ms: no landing to optimise "
                                  "(check [joints] and [landing].duration_ms)")
+            self._t_ref: float = t_ref  # s, the reference's second impact
             landing = landing_function(self.landing, strike, LANDING_STEPS)(x=x, t_e=tau * duration)
             terms["T_c_total"] = landing["T_c_total"]
             self._T_c_total = ca.Function("T_c_total", [w, p], [landing["T_c_total"]])
@@ -195,8 +197,8 @@ class PostureProblem:
         if problem.gait is not None:
             self.options["ipopt.constr_viol_tol"] = GAIT_TOLERANCE
         self.solver = cached_nlpsol("touchdown", self.nlp, self.options, compiled)
-        self._sensitivity = None  # built on first use (sensitivity())
-        self._solvers = {}  # solvers with other IPOPT options (solve_from(options=...))
+        self._sensitivity: ca.Function | None = None  # built on first use (sensitivity())
+        self._solvers: dict[str, ca.Function] = {}  # other IPOPT options (solve_from(options=...))
         self.constraint_function = ca.Function("g", [w, p], [g])
         self.build_time = time.perf_counter() - t0
 
@@ -204,7 +206,7 @@ class PostureProblem:
         """(mode, sliding direction s) of the reference touchdown's Coulomb impact."""
         out = self.impact.evaluate(self.reference)
         mode, v0 = np.ravel(out["mode_coulomb"])[0], np.ravel(out["v_contact"])
-        return int(round(float(mode))), 1 if float(v0[0]) >= 0 else -1
+        return round(float(mode)), 1 if float(v0[0]) >= 0 else -1
 
     def _law(self, out, mu) -> dict:
         """The impact indicators under the problem's law, smooth in the posture: no-slip and
@@ -215,6 +217,7 @@ class PostureProblem:
             law = {k: out[f"{k}_{key}"] for k in ("T_c", "impulse", "slip", "dv_trunk", "dv_com")}
         else:
             W_c, v0 = out["W_c"], out["v_contact"]
+            assert self.mode is not None  # set for the Coulomb law (__init__)
             impulse, region = contact.coulomb_in_mode(W_c, v0, mu, *self.mode)
             law = {"T_c": contact.absorbed(W_c, v0, impulse), "impulse": impulse,
                    "slip": (v0 + W_c @ impulse)[0], "region": region,
@@ -227,6 +230,7 @@ class PostureProblem:
 
     def _simulate(self, x, dt: float, friction: float | None = None):
         """The event-driven landing from touchdown state x, or None if the state cannot land."""
+        assert self.landing is not None  # called only for a problem with a landing
         try:
             return simulate_state(self.landing, self.strike, x,
                                   self.friction if friction is None else friction, dt, self.duration)
@@ -382,7 +386,7 @@ class PostureProblem:
         dw[free] = np.linalg.lstsq(K, rhs, rcond=None)[0][:n]
         df = dLdp.ravel() * self.weight / self.scale
         dx = dw[:self.posture.size] * self.posture.per_unit()[:, None]  # deg per unit of p
-        result = {"d_objective_d_speed": float(df[0]), "d_objective_d_friction": float(df[1])}
+        result: dict[str, Any] = {"d_objective_d_speed": float(df[0]), "d_objective_d_friction": float(df[1])}
         for k, name in enumerate(("speed", "friction")):
             result[f"d_posture_d_{name}_deg"] = dict(zip(self.problem.variables, map(float, dx[:, k])))
         return result

@@ -193,7 +193,7 @@ def active_set(records, g, lam_g, lam_x, posture, u, scale, weight) -> tuple[Con
 
 def distinct(points, tol=DISTINCT) -> int:
     """How many of the points (arrays, rad) differ by more than tol in some entry."""
-    found = []
+    found: list[np.ndarray] = []
     for p in points:
         if all(np.max(np.abs(p - q)) > tol for q in found):
             found.append(p)

@@ -24,7 +24,6 @@ import numpy as np
 from ..mechanics.limits import RANGE_OF_MOTION_DEG  # noqa: F401  (re-exported, one home)
 from ..mechanics.model import STATE, Model
 
-
 PARAMETERS = 3 + len(STATE)  # speed, friction, slope, reference state
 SPEED, FRICTION, SLOPE = 0, 1, 2  # their places in p
 

@@ -212,9 +212,9 @@ def sweep_figure(rows: list[dict], params: list[str]) -> Figure:
             grid[ys.index(float(r[py])), xs.index(float(r[px]))] = value(r, key)
         mesh = ax.pcolormesh(xs, ys, np.ma.masked_invalid(grid), shading="nearest", cmap="viridis")
         fig.colorbar(mesh, ax=ax, label=title)
-        bad = [(float(r[px]), float(r[py])) for r in rows if not r["error"] and not valid(r)]
-        if bad:
-            _rings(ax, bad, 5, "invalid")
+        invalid = [(float(r[px]), float(r[py])) for r in rows if not r["error"] and not valid(r)]
+        if invalid:
+            _rings(ax, invalid, 5, "invalid")
         if failed:
             ax.plot([float(r[px]) for r in failed], [float(r[py]) for r in failed], "x",
                     color="red", ms=5, label="failed (no landing)")
@@ -290,7 +290,7 @@ def _name_points(ax, named) -> None:
     overlaps no name written before (boxes estimated in points from the axes' transform)."""
     ax.get_xlim(), ax.get_ylim()  # the autoscaled limits the transform needs
     to_pt = 72 / ax.figure.dpi
-    boxes = []
+    boxes: list[tuple[float, float, float, float]] = []
     for x, y, name in named:
         px, py = ax.transData.transform((x, y)) * to_pt
         width, height = 0.6 * FONT_PT * len(name), FONT_PT + 2

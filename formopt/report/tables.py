@@ -92,6 +92,7 @@ def solve_table(scene: Scene, opt) -> str:
     limits), the gait held, the objective's terms, the sensitivities."""
     ok = "converged" if opt.success else "NOT CONVERGED"
     problem = scene.problem
+    assert problem is not None  # an optimum comes from a scene's [optimize] table
     lines = [f"{scene.name}  ({scene.path})",
              f"model {scene.kind}; body {scene.body.source}; {scene.strike} strike on "
              f"{math.degrees(scene.slope):+.1f} deg ground, friction {scene.friction:g}, "
@@ -259,7 +260,7 @@ def trials_table(rows) -> str:
         cells = []
         for k, i in zip(pick, idx):
             v = Path(row[i]).name if k == "trial" else row[i]
-            cells.append(f"{v:{width[k]}.2f}" if isinstance(v, float) else f"{str(v):>{width[k]}s}")
+            cells.append(f"{v:{width[k]}.2f}" if isinstance(v, float) else f"{v!s:>{width[k]}s}")
         out.append("  ".join(cells))
     return "\n".join(out)
 

@@ -19,12 +19,12 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
+from ..io.scene import load
 from ..mechanics.compiled import external
 from ..mechanics.impact import Impact, impact_function, on_ground
 from ..mechanics.landing import Diverged, LandingModel, simulate_state
 from ..mechanics.model import STATE, build_model
 from ..optim.posture import PostureProblem
-from ..io.scene import load
 
 LEVELS = ("effective-mass", "shank-foot", "leg", "leg-trunk", "full-body")
 DATA = Path(__file__).resolve().parent / "data"
@@ -107,7 +107,7 @@ def run(quick: bool = False, progress=None) -> Bench:
         mu = [abs(r.mu_c - f.mu_c) for r, f in zip(results[level], finest)
               if r.mu_c is not None and f.mu_c is not None]
         dv = [np.hypot(*np.subtract(r.dv_trunk, f.dv_trunk)) for r, f in zip(results[level], finest)
-              if r.dv_trunk is not None]
+              if r.dv_trunk is not None and f.dv_trunk is not None]
         row = next(r for r in rows if r.level == level and r.work == "impact" and r.option.startswith("ladder"))
         row.error = float(np.max(errors))
         row.error_mu_c = float(np.max(mu)) if mu else float("nan")
@@ -152,18 +152,20 @@ def run(quick: bool = False, progress=None) -> Bench:
             rows.append(Row("leg", f"{integ} dt {dt * 1e3:g} ms", "landing",
                             _median_time(lambda x, m=lm[integ], h=dt: land(m, x, h), landing_states),
                             error, note=note))
-    ladder, totals = {}, {}
+    ladder: dict[str, Row] = {}
+    level_totals: dict[str, list[float]] = {}
     for level in LEVELS[1:]:
         say(f"landing: {level}")
         model = LandingModel(models[level], scene.joints, scene.slope, integrator="rk4")
-        totals[level] = [land(model, x, 5e-4) for x in landing_states]
+        level_totals[level] = [land(model, x, 5e-4) for x in landing_states]
         ladder[level] = Row(level, "ladder, rk4 dt 0.5 ms", "landing",
                             _median_time(lambda x, m=model: land(m, x, 5e-4), landing_states), 0.0)
         rows.append(ladder[level])
     for level, row in ladder.items():
-        row.error, row.note = _landing_errors(np.array(totals[level]), totals["full-body"])
+        row.error, row.note = _landing_errors(np.array(level_totals[level]), level_totals["full-body"])
 
     # optimisations: the ladder (exact Hessian), then Hessian and compilation for the leg
+    assert scene.problem is not None  # the bench's scene has an [optimize] table
     problem = replace(scene.problem, starts=1)
     optima = {}
     for level in LEVELS:

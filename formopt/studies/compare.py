@@ -161,7 +161,7 @@ def step_optimum(pp: PostureProblem, state, start, friction: float) -> StepOptim
     mean step's optimum): one IPOPT run of the same NLP, the step in its parameters."""
     p = pp.posture.parameters(friction=friction, reference=state)
     sol, stats, _ = pp.solve_from(pp.start(start), p)
-    w, x, impact, ok = pp.accept(sol, stats, p)
+    w, x, _impact, ok = pp.accept(sol, stats, p)
     post = pp.posture
     own = (np.asarray(state)[post.index] - post.lower) / (post.upper - post.lower)  # unclipped
     return StepOptimum(ok, stats["return_status"] if stats["return_status"] not in CONVERGED or ok

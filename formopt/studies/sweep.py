@@ -30,9 +30,9 @@ import numpy as np
 
 from ..io.files import OutputError, append_csv, append_rows, write_csv
 from ..mechanics import limits
+from ..mechanics.errors import InputError
 from ..mechanics.landing import simulate_state
 from ..mechanics.model import STATE, joint_angles
-from ..mechanics.errors import InputError
 from . import optimum_map
 
 PARAMETERS = {"speed_mps": "hip_vx", "trunk_deg": "trunk", "hip_deg": "hip", "knee_deg": "knee", "ankle_deg": "ankle",

@@ -3,8 +3,9 @@ built once (Comparison.to_dict) and written whole beside its figure."""
 
 import json
 
-from formopt.cli import main
 from helpers import DATA
+
+from formopt.cli import main
 
 RBDS = DATA / "rbds"
 

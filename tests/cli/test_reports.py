@@ -4,11 +4,11 @@ printed by cli/common.emit."""
 import json
 
 import pytest
+from helpers import SHIPPED
 
 from formopt import impact, load, solve
 from formopt.cli import main
 from formopt.cli.common import scene_context
-from helpers import SHIPPED
 
 
 def printed(argv, capsys) -> dict:

@@ -14,7 +14,7 @@ def test_a_device_fifo_or_folder_is_refused_and_left_alone(tmp_path):
     fifo = tmp_path / "pipe"
     os.mkfifo(fifo)
     for target in (fifo, tmp_path, "/dev/null"):
-        with pytest.raises(OutputError, match="FIFO|folder|device"):
+        with pytest.raises(OutputError, match=r"FIFO|folder|device"):
             write_text(target, "x")
     assert stat.S_ISFIFO(fifo.stat().st_mode) and stat.S_ISCHR(os.stat("/dev/null").st_mode)
     with pytest.raises(OutputError, match="empty"):

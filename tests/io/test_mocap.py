@@ -3,9 +3,9 @@ force plate; the marker maps; the text writer read back."""
 
 import numpy as np
 import pytest
+from helpers import DATA
 
 from formopt.io import markerset, mocap
-from helpers import DATA
 
 RBDS, RIC = DATA / "rbds", DATA / "ric"
 RUN35 = RBDS / "RBDS001runT35.c3d"
@@ -49,6 +49,6 @@ def test_the_text_writer_read_back_gives_the_trial(run35, tmp_path):
 
 def test_require_names_the_missing_markers(run35):
     run35.require(["R.ASIS"], "the test")
-    with pytest.raises(mocap.MocapError, match="RBDS001runT35.c3d: the test needs markers that are "
+    with pytest.raises(mocap.MocapError, match=r"RBDS001runT35.c3d: the test needs markers that are "
                                                "missing: R.Nose, L.Nose"):
         run35.require(["R.ASIS", "R.Nose", "L.Nose"], "the test")

@@ -4,10 +4,10 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from helpers import SHIPPED
 
 import formopt
 from formopt.studies import sweep
-from helpers import SHIPPED
 
 LANDING = SHIPPED / "landing_optimum.toml"  # an [optimize] table through the landing
 

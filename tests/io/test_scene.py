@@ -8,12 +8,11 @@ import tomllib
 
 import numpy as np
 import pytest
+from helpers import SHIPPED, touchdown
 
 from formopt import SceneError, impact, load
 from formopt.cli import main
 from formopt.io.scene import parse
-
-from helpers import SHIPPED, touchdown
 
 REFERENCE = SHIPPED / "forefoot_strike.toml"
 
@@ -92,7 +91,7 @@ def test_bad_input_names_the_key(reference, path, value, key, message):
 
 def test_body_given_two_ways_is_refused(reference):
     reference["body"] = {"preset": "paper", "mass": 70.0}
-    with pytest.raises(SceneError, match="body.mass: give either"):
+    with pytest.raises(SceneError, match=r"body.mass: give either"):
         parse(reference)
 
 

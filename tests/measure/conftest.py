@@ -2,10 +2,10 @@
 plate) and the Running Injury Clinic runner (clusters only, no units, no force plate)."""
 
 import pytest
+from trials import FORCES25, HEIGHT, RUN25, RUN35, STATIC
 
 from formopt.io import mocap
 from formopt.measure import measure
-from trials import FORCES25, HEIGHT, RUN25, RUN35, STATIC
 
 
 @pytest.fixture(scope="session")

@@ -6,8 +6,17 @@ import numpy as np
 import pytest
 
 from formopt.io.mocap import MocapError, Trial
-from formopt.measure.clean import (FROZEN, MAX_GAP, SPIKE, clean, fill_gaps, frozen, missing_samples,
-                                   runs, spikes)
+from formopt.measure.clean import (
+    FROZEN,
+    MAX_GAP,
+    SPIKE,
+    clean,
+    fill_gaps,
+    frozen,
+    missing_samples,
+    runs,
+    spikes,
+)
 
 RATE = 150.0  # Hz
 
@@ -96,5 +105,5 @@ def test_clean_marks_fills_and_records_what_it_did():
 
 
 def test_a_marker_with_no_valid_frame_is_refused():
-    with pytest.raises(MocapError, match="run.c3d: marker R.Knee has no valid frame"):
+    with pytest.raises(MocapError, match=r"run.c3d: marker R.Knee has no valid frame"):
         clean(Trial({"R.Knee": np.zeros((20, 3))}, RATE, source="run.c3d"))

@@ -10,13 +10,13 @@ import struct
 
 import numpy as np
 import pytest
+from trials import HEIGHT, RUN35, STATIC
 
 from formopt.cli import main
 from formopt.io import markerset, mocap
 from formopt.measure import measure
 from formopt.measure.clean import clean
 from formopt.measure.units import cluster_size
-from trials import HEIGHT, RUN35, STATIC
 
 
 @pytest.fixture(scope="module")
@@ -62,7 +62,7 @@ def test_unit_lies_are_refused(short, static):
     refused(lie, static, f"clusters are {ratio:.3g} times the standing trial's: are the units .m. right")
     big_static = damaged(static, markers={k: v * 1e3 for k, v in static.markers.items()})
     big_static.source = "static.c3d"
-    with pytest.raises(mocap.MocapError, match="static.c3d: the standing markers span .* are the units"):
+    with pytest.raises(mocap.MocapError, match=r"static.c3d: the standing markers span .* are the units"):
         measure(short, big_static, HEIGHT)
 
 
@@ -103,7 +103,7 @@ def test_a_mirrored_lab_is_said_and_changes_nothing(short, static, sound):
 
 def test_a_run_given_as_the_static_is_refused(short):
     as_static = damaged(short, source="run_as_static.c3d")
-    with pytest.raises(mocap.MocapError, match="run_as_static.c3d: not a standing trial: the pelvis moves"):
+    with pytest.raises(mocap.MocapError, match=r"run_as_static.c3d: not a standing trial: the pelvis moves"):
         measure(short, as_static, HEIGHT)
 
 

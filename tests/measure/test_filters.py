@@ -65,6 +65,6 @@ def test_cutoffs_outside_zero_to_nyquist_are_refused(cutoff):
 
 
 def test_too_short_a_signal_is_refused():
-    with pytest.raises(MocapError, match="run.c3d: 9 samples are too few to filter"):
+    with pytest.raises(MocapError, match=r"run.c3d: 9 samples are too few to filter"):
         lowpass(np.zeros((9, 3)), RATE, CUTOFF_HZ, "run.c3d")
     assert lowpass(np.ones((10, 3)), RATE, CUTOFF_HZ) == pytest.approx(np.ones((10, 3)))

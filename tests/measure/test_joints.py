@@ -7,12 +7,12 @@ import math
 
 import numpy as np
 import pytest
+from trials import HEIGHT, STATIC
 
 from formopt.io import markerset
 from formopt.io.mocap import MocapError
 from formopt.measure.clean import clean
 from formopt.measure.joints import LENGTH_PER_HEIGHT, calibrate, harrington_hip
-from trials import HEIGHT, STATIC
 
 UP = np.array([0.0, 1.0, 0.0])  # RBDS's lab Y (test_pipeline: the force's mean is along it)
 

@@ -7,11 +7,11 @@ import math
 
 import numpy as np
 import pytest
+from helpers import PROBLEMS
+from trials import HEIGHT, RIC_HEIGHT, RIC_RUN, RIC_STATIC
 
 from formopt.io import mocap
 from formopt.measure import measure
-from helpers import PROBLEMS
-from trials import HEIGHT, RIC_HEIGHT, RIC_RUN, RIC_STATIC
 
 
 @pytest.fixture(scope="module")

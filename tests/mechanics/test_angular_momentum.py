@@ -3,12 +3,11 @@
 import casadi as ca
 import numpy as np
 import pytest
+from helpers import random_states, split_leg
 
 from formopt import Impact
 from formopt.mechanics.impact import angular_momentum_impact
 from formopt.mechanics.model import build_model
-
-from helpers import random_states, split_leg
 
 
 @pytest.mark.parametrize("kind", ["leg", "shank-foot", "leg-trunk", "split-leg"])
@@ -18,7 +17,7 @@ def test_projection_equals_angular_momentum(body, kind, strike):
     impact = Impact(model, strike, 0.0, 0.8)
     for x in random_states(30, seed=7, strike=strike):
         r = impact(x)
-        q, qd = model.state(ca.DM(x), strike)
+        q, _qd = model.state(ca.DM(x), strike)
         q = np.asarray(ca.evalf(q), float).ravel()
         qd_plus = angular_momentum_impact(model, q, r.qd_minus, strike)
         scale = np.max(np.abs(r.qd_minus))

@@ -3,8 +3,7 @@
 import numpy as np
 import pytest
 
-from formopt.mechanics.body import paper_body, scaled_body
-from formopt.mechanics.body import DE_LEVA
+from formopt.mechanics.body import DE_LEVA, paper_body, scaled_body
 
 
 def test_paper_body():

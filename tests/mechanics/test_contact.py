@@ -4,10 +4,10 @@ independent checks of the Coulomb impulse."""
 import casadi as ca
 import numpy as np
 import pytest
+from helpers import random_states
 
 from formopt.mechanics import contact
 from formopt.mechanics.impact import impact_function, on_ground
-from helpers import random_states
 
 MUS = (0.2, 0.5, 0.8, 1.5, 4.0)
 
@@ -119,7 +119,7 @@ def test_coulomb_gradients_match_finite_differences_in_each_mode(leg, strike):
     jac = ca.Function("jacobian_of_coulomb", [x], [values, ca.jacobian(values, x), out["mode"]])
     seen = set()
     for state in random_states(60, seed=5, strike=strike):
-        v, J, mode = (np.asarray(a, float) for a in jac(state))
+        _v, J, mode = (np.asarray(a, float) for a in jac(state))
         h = 1e-6
         numeric = np.column_stack([
             (np.asarray(jac(state + h * e)[0], float) - np.asarray(jac(state - h * e)[0], float)).ravel() / (2 * h)

@@ -9,16 +9,14 @@ import math
 
 import numpy as np
 import pytest
+from helpers import touchdown
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from formopt import Impact
-from formopt.mechanics.model import build_model
-from formopt.mechanics.body import paper_body
-from formopt.mechanics.body import Body, bar, foot, trunk
+from formopt.mechanics.body import Body, bar, foot, paper_body, trunk
 from formopt.mechanics.impact import CONDITION_LIMIT
-
-from helpers import touchdown
+from formopt.mechanics.model import build_model
 
 EPS = np.finfo(float).eps
 SETTINGS = settings(max_examples=60, deadline=None, derandomize=True,

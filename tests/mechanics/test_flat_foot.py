@@ -3,10 +3,9 @@
 import casadi as ca
 import numpy as np
 import pytest
+from helpers import random_states
 
 from formopt import Impact
-
-from helpers import random_states
 
 
 def full_system(model, x, slope):

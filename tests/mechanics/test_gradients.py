@@ -3,10 +3,9 @@
 import casadi as ca
 import numpy as np
 import pytest
+from helpers import random_states
 
 from formopt.mechanics.impact import impact_function, on_ground
-
-from helpers import random_states
 
 OUTPUTS = ("T_c", "impulse", "impulse_total", "dv_trunk", "dv_com", "T_a")
 

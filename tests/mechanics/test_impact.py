@@ -3,12 +3,10 @@
 import casadi as ca
 import numpy as np
 import pytest
+from helpers import random_states, split_leg
 
 from formopt import Impact
-from formopt.mechanics.model import build_model
-from formopt.mechanics.model import STRIKES
-
-from helpers import random_states, split_leg
+from formopt.mechanics.model import STRIKES, build_model
 
 
 def numeric_projection(model, q, points, slope):
@@ -123,9 +121,9 @@ def test_one_graph_serves_every_ground(leg, strike, law):
                                              (0.8, np.radians(70.0)), (0.8, np.nan)])
 def test_a_ground_the_impact_cannot_take_is_refused(leg, friction, slope):
     from formopt.mechanics.errors import InputError
-    with pytest.raises(InputError, match="friction|slope"):
+    with pytest.raises(InputError, match=r"friction|slope"):
         Impact(leg, "forefoot", slope, friction)
-    with pytest.raises(InputError, match="friction|slope"):
+    with pytest.raises(InputError, match=r"friction|slope"):
         Impact(leg, "forefoot", 0.0, 0.8).at(friction, slope)
 
 

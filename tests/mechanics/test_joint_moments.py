@@ -7,14 +7,13 @@ import runpy
 
 import numpy as np
 import pytest
+from helpers import PROBLEMS, SEED, SHIPPED, random_states
 
 from formopt import load
 from formopt.cli import main
 from formopt.mechanics.dynamics import FLEXION
-from formopt.mechanics.landing import (RUNNING_JOINTS, Diverged, Joints, LandingModel,
-                                       simulate_state)
+from formopt.mechanics.landing import RUNNING_JOINTS, Diverged, Joints, LandingModel, simulate_state
 from formopt.mechanics.model import STATE
-from helpers import PROBLEMS, SEED, SHIPPED, random_states
 
 SPRING = SHIPPED / "landing_spring.toml"
 ENDS = ("heel and forefoot both down", "duration reached", "contact chatter")
@@ -100,7 +99,7 @@ def test_stiff_damping_is_integrated_by_the_adaptive_scheme_and_refused_by_the_f
     L = landing(spring, stiff)
     assert np.all(np.isfinite(L.energy)) and L.energy_error < 1e-5
     assert L.ended == "heel and forefoot both down"
-    with pytest.raises(Diverged, match="diverged at .* ms"):
+    with pytest.raises(Diverged, match=r"diverged at .* ms"):
         landing(spring, stiff, integrator="rk4", dt=2e-4)
 
 

@@ -5,15 +5,12 @@ import tomllib
 
 import numpy as np
 import pytest
+from helpers import ROOT, land, random_states, touchdown
 
 from formopt import Impact, SceneError, impact, load
-from formopt.mechanics.impact import angular_momentum_impact
-from formopt.mechanics.model import build_model
-from helpers import ROOT, land
-from formopt.mechanics.model import Swing
 from formopt.io.scene import parse
-
-from helpers import random_states, touchdown
+from formopt.mechanics.impact import angular_momentum_impact
+from formopt.mechanics.model import Swing, build_model
 
 FULL = ROOT / "formopt" / "studies" / "data" / "full_body.toml"
 SWING = Swing(math.radians(-10), math.radians(80), 0.0, math.radians(400), 0.0, 0.0)
@@ -60,7 +57,7 @@ def test_full_body_scene_and_landing():
     scene = load(FULL)
     assert scene.swing is not None and scene.model().kind == "full-body"
     L = land(scene)
-    assert L.energy_error < 1e-6 and [e.contact for e in L.impacts][0] == "forefoot"
+    assert L.energy_error < 1e-6 and L.impacts[0].contact == "forefoot"
     assert L.impacts[0].T_c == pytest.approx(impact(scene).T_c, rel=1e-10)
 
 

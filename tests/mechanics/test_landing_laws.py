@@ -6,10 +6,10 @@ import tomllib
 
 import numpy as np
 import pytest
+from helpers import SHIPPED
 
 from formopt import simulate
 from formopt.io.scene import parse
-from helpers import SHIPPED
 
 SPRING = tomllib.loads((SHIPPED / "landing_spring.toml").read_text())
 # a forefoot strike whose foot is not swept back: it needs friction 1.96 to stick, so under

@@ -5,11 +5,10 @@ import casadi as ca
 import numpy as np
 import pinocchio as pin
 import pytest
-
-from formopt import Impact
+from helpers import random_states
 from oracle import contact_jacobian, pinocchio_leg, pinocchio_state, point_velocities
 
-from helpers import random_states
+from formopt import Impact
 
 
 @pytest.mark.parametrize("strike", ["heel", "forefoot", "flat"])

@@ -10,11 +10,11 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 import pytest
+from helpers import SHIPPED, assert_nlp_derivatives
 
 from formopt import load, solve
 from formopt.io.scene import parse
 from formopt.mechanics.model import STATE
-from helpers import SHIPPED, assert_nlp_derivatives
 
 DEMO = SHIPPED / "demo.toml"
 HIP, KNEE, ANKLE = (STATE.index(k) for k in ("hip", "knee", "ankle"))
@@ -70,7 +70,7 @@ def test_the_gait_is_held_and_the_optimum_is_interior(demo):
 
 def test_a_brute_force_scan_of_the_free_angle_confirms_the_optimum(demo):
     """The leg has one free angle under the gait: scan the ankle in 0.02 deg steps."""
-    scene, problem, opt = demo
+    _scene, problem, opt = demo
     best = math.inf
     for ankle in np.radians(np.arange(-40.0, 0.0, 0.02)):
         x = on_gait(problem, opt.state, ankle)
@@ -81,7 +81,7 @@ def test_a_brute_force_scan_of_the_free_angle_confirms_the_optimum(demo):
 
 
 def test_feasible_perturbations_do_not_beat_the_optimum(demo):
-    scene, problem, opt = demo
+    _scene, problem, opt = demo
     rng = np.random.default_rng(12)
     tried = 0
     for delta in rng.normal(scale=3.0, size=4000):  # deg of ankle, hip and knee back on the gait
@@ -95,7 +95,7 @@ def test_feasible_perturbations_do_not_beat_the_optimum(demo):
 
 
 def test_nlp_derivatives_match_finite_differences(demo):
-    scene, problem, opt = demo
+    _scene, problem, opt = demo
     rng = np.random.default_rng(5)
     assert_nlp_derivatives(problem, [problem.to_unit(opt.state),
                                      *rng.uniform(0.1, 0.9, (3, problem.posture.size))], h=1e-6)
@@ -114,7 +114,7 @@ def test_the_hip_height_multiplier_predicts_a_re_solve(demo):
 
 
 def test_posture_sensitivity_to_speed_and_friction_matches_re_solves(demo):
-    scene, problem, opt = demo
+    _scene, problem, opt = demo
     u0 = problem.to_unit(opt.state)
     for k, name in enumerate(("speed", "friction")):
         h = 1e-4
@@ -132,7 +132,7 @@ def test_posture_sensitivity_to_speed_and_friction_matches_re_solves(demo):
 
 @pytest.mark.parametrize("scale", [1e-12, 1e6])
 def test_the_optimum_does_not_depend_on_the_weights_scale(demo, scale):
-    scene, problem, opt = demo
+    _scene, _problem, opt = demo
     scaled = solve(edited(objective={"T_c": scale, "support": 0.1 * scale}))
     assert scaled.success and scaled.verdict == opt.verdict
     np.testing.assert_allclose(scaled.state, opt.state, atol=1e-9)
@@ -175,7 +175,7 @@ def test_support_term_is_the_elastic_energy_of_the_joint_moments(demo):
     from formopt.mechanics.landing import RUNNING_JOINTS
     from formopt.optim.objective import support_moments
 
-    scene, problem, opt = demo
+    scene, _problem, opt = demo
     moments = {j: abs(float(m)) for j, m in
                support_moments(ca.DM(opt.state), scene.model(), "forefoot").items()}
     mass = scene.body.mass

@@ -3,18 +3,17 @@
 import copy
 import json
 import tomllib
+from dataclasses import replace
 from pathlib import Path
 
 import casadi as ca
 import numpy as np
 import pytest
-
-from dataclasses import replace
+from helpers import SHIPPED, assert_nlp_derivatives
 
 from formopt import load, solve
 from formopt.cli import main
 from formopt.io.scene import parse
-from helpers import SHIPPED, assert_nlp_derivatives
 
 DEMO = SHIPPED / "demo.toml"
 BOUNDED = Path(__file__).with_name("bounded.toml")  # a vertex optimum: multipliers on bounds
@@ -28,7 +27,7 @@ def demo():
 
 
 def test_demo_converges_to_a_valid_optimum(demo):
-    scene, problem, opt = demo
+    _scene, _problem, opt = demo
     assert opt.success and opt.status == "Solve_Succeeded"
     assert opt.impact.valid
     assert opt.impact.T_c < opt.reference.T_c
@@ -38,7 +37,7 @@ def test_demo_converges_to_a_valid_optimum(demo):
 
 
 def test_feasible_perturbations_do_not_beat_the_optimum(demo):
-    scene, problem, opt = demo
+    _scene, problem, opt = demo
     rng = np.random.default_rng(123)
     u_opt = problem.to_unit(opt.state)
     tried = 0
@@ -53,7 +52,7 @@ def test_feasible_perturbations_do_not_beat_the_optimum(demo):
 
 
 def test_nlp_derivatives_match_finite_differences(demo):
-    scene, problem, opt = demo
+    _scene, problem, opt = demo
     rng = np.random.default_rng(4)
     assert_nlp_derivatives(problem, [problem.to_unit(opt.state),
                                      *rng.uniform(0.1, 0.9, (4, len(problem.index)))])
@@ -61,7 +60,7 @@ def test_nlp_derivatives_match_finite_differences(demo):
 
 def test_speed_sensitivity_matches_a_resolve(demo):
     """The envelope theorem's dT_c*/dv against re-solving at v +- dv."""
-    scene, problem, opt = demo
+    _scene, problem, opt = demo
     dv = 1e-3
     u0 = problem.to_unit(opt.state)
     values = []
@@ -78,7 +77,7 @@ def test_multipliers_predict_a_moved_bound(demo):
     scene, problem, opt = demo
     active = {c.name: c for c in opt.active}
     assert "hip_height_max" in active
-    lo, hi = scene.problem.hip_height
+    _lo, hi = scene.problem.hip_height
     delta = 1e-4
     moved = copy.copy(problem)
     moved.ubg = problem.ubg.copy()
@@ -91,7 +90,7 @@ def test_multipliers_predict_a_moved_bound(demo):
 
 
 def test_box_multiplier_predicts_a_moved_bound(demo):
-    scene, problem, opt = demo
+    scene, _problem, opt = demo
     active = {c.name: c for c in opt.active}
     assert "ankle_lower" in active
     delta = 0.01  # deg
@@ -200,7 +199,7 @@ def test_landing_optimum_agrees_with_the_event_driven_simulation(landing_optimum
 
 def test_landing_nlp_gradient_matches_finite_differences(landing_optimum):
 
-    scene, opt = landing_optimum
+    scene, _opt = landing_optimum
     problem = scene.posture_problem()
     w0 = problem.start(scene.state)
     w = ca.MX.sym("w", w0.size)
@@ -254,7 +253,7 @@ def test_every_status_has_a_plain_explanation():
 def test_the_verdict_does_not_depend_on_the_scale_of_the_weights(demo):
     """The active set is decided on the normalised NLP: bounded.toml's vertex at weights
     1e-12, 1 and 1e6 is held by the same constraints, with multipliers in proportion."""
-    scene, problem, opt = demo
+    _scene, _problem, opt = demo
     for weight in (1e-12, 1.0, 1e6):
         data = tomllib.loads(BOUNDED.read_text())
         data["optimize"]["objective"] = {"T_c": weight}

@@ -7,11 +7,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import assert_nlp_derivatives
 
 from formopt import SceneError, solve
 from formopt.io.scene import parse
 from formopt.mechanics import contact
-from helpers import assert_nlp_derivatives
 
 DEMO = tomllib.loads((Path(__file__).with_name("bounded.toml")).read_text())
 
@@ -48,13 +48,13 @@ def test_fixed_mode_objective_is_the_impact_maps_where_the_mode_holds(coulomb):
 
 
 def test_coulomb_nlp_derivatives_match_finite_differences(coulomb):
-    s, problem = coulomb
+    _s, problem = coulomb
     rng = np.random.default_rng(8)
     assert_nlp_derivatives(problem, rng.uniform(0.1, 0.9, (5, len(problem.index))))
 
 
 def test_coulomb_optimum_is_valid_in_its_mode_and_within_the_slip_bound(coulomb):
-    s, problem = coulomb
+    _s, problem = coulomb
     opt = problem.solve()
     assert opt.success and opt.impact.valid and opt.impact.law == "coulomb"
     assert opt.impact.mode == contact.MODES[problem.mode[0]]

@@ -4,8 +4,8 @@ import json
 
 import pytest
 
-from formopt.studies.bench import LEVELS
 from formopt.cli import main
+from formopt.studies.bench import LEVELS
 
 
 @pytest.fixture(scope="module")

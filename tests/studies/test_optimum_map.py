@@ -1,13 +1,15 @@
 """Optimum maps (formopt sweep on a scene with [optimize]): warm-started chains agree with
 cold solves, rows resume, the pool and Dask give the same map, the CLI draws it."""
 
+import itertools
+
 import numpy as np
 import pytest
+from helpers import SHIPPED
 
 from formopt import load, solve
 from formopt.cli import main
 from formopt.studies import optimum_map, sweep
-from helpers import SHIPPED
 
 DEMO = SHIPPED / "demo.toml"
 PARAMS = [("speed_mps", np.linspace(3.0, 4.0, 5)), ("friction", np.array([0.6, 0.8, 1.0]))]
@@ -26,7 +28,7 @@ def test_the_serpentine_visits_every_point_next_to_the_one_before():
     params = [("a", np.arange(3.0)), ("b", np.arange(4.0)), ("c", np.arange(2.0))]
     walk = optimum_map.serpentine(params)
     assert len({tuple(p.values()) for p in walk}) == 24
-    for p, q in zip(walk, walk[1:]):
+    for p, q in itertools.pairwise(walk):
         assert sum(abs(p[k] - q[k]) for k in p) == 1.0
 
 

@@ -3,12 +3,12 @@ each quantity once, a bounded grid, a CSV of this sweep only."""
 
 import numpy as np
 import pytest
+from helpers import SHIPPED
 
 from formopt.io.files import OutputError
 from formopt.io.scene import load
 from formopt.mechanics.errors import InputError
 from formopt.studies import sweep
-from helpers import SHIPPED
 
 SPRING = SHIPPED / "landing_spring.toml"
 
