@@ -82,15 +82,23 @@ def _median_time(f, args, repeats=1):
 
 
 def run(quick: bool = False, progress=None) -> Bench:
-    """All rows, the compiled batch throughput of the paper's leg (states/s), the ground.
-    Longer than 60 lines: one section per kind of work, in the order of the table."""
+    """All rows (impacts, landings, optimisations, in the order of the table), the compiled
+    batch throughput of the paper's leg (states/s) and the ground."""
     say = progress or (lambda text: None)
     scene = load(DATA / "full_body.toml")
     states = read_states()[: 20 if quick else 200]
-    rows: list[Row] = []
     models = {level: build_model(scene.body, level, scene.strike, scene.swing) for level in LEVELS}
+    rows = _impact_rows(scene, models, states, say)
+    batch_states_per_s = _batch(models["leg"], scene.strike, states, scene.friction, scene.slope)
+    rows += _landing_rows(scene, models, states[: 5 if quick else 20], quick, say)
+    rows += _optimisation_rows(scene, models, quick, say)
+    return Bench(rows, batch_states_per_s, scene.friction, scene.slope)
 
-    # indicators per level against the full body
+
+def _impact_rows(scene, models, states, say) -> list[Row]:
+    """Build and evaluation per level against the full body, then SX/MX and compilation for the
+    paper's leg against its interpreted SX values."""
+    rows: list[Row] = []
     results = {}
     for level in LEVELS:
         say(f"impact: {level}")
@@ -113,26 +121,26 @@ def run(quick: bool = False, progress=None) -> Bench:
         row.error_mu_c = float(np.max(mu)) if mu else float("nan")
         row.error_dv = float(np.max(dv)) if dv else float("nan")
         row.note = f"median relative T_c error {np.median(errors):.2e}"
-
-    # numerical options for the paper's leg
-    leg = models["leg"]
     reference = np.array([r.T_c for r in results["leg"]])
     for graph in ("SX", "MX"):
         for compiled in (False, True):
             say(f"impact: leg, {graph}, {'compiled' if compiled else 'interpreted'}")
-            impact = Impact(leg, scene.strike, scene.slope, scene.friction, compiled=compiled, graph=graph)
+            impact = Impact(models["leg"], scene.strike, scene.slope, scene.friction, compiled=compiled,
+                            graph=graph)
             values = np.array([float(np.ravel(impact.evaluate(x)["T_c"])[0]) for x in states])
             rows.append(Row("leg", f"{graph} {'compiled' if compiled else 'interpreted'}", "impact",
                             _median_time(impact.evaluate, states),
                             float(np.max(np.abs(values - reference) / reference)),
                             note=f"{impact.function.n_instructions()} instructions"))
-    batch_states_per_s = _batch(leg, scene.strike, states, scene.friction, scene.slope)
+    return rows
 
-    # landings: step and integrator for the leg, then the ladder
-    landing_states = states[: 5 if quick else 20]
+
+def _landing_rows(scene, models, states, quick, say) -> list[Row]:
+    """Step and integrator for the paper's leg against a fine RK4 reference, then the ladder
+    (RK4, 0.5 ms) against the full body. A diverged landing is counted in its row's note."""
     steps = (1e-3, 5e-4) if quick else (2e-3, 1e-3, 5e-4, 2.5e-4)
     reference_dt = 1e-4 if quick else 6.25e-5
-    lm = {integ: LandingModel(leg, scene.joints, scene.slope, integrator=integ)
+    lm = {integ: LandingModel(models["leg"], scene.joints, scene.slope, integrator=integ)
           for integ in ("rk4", "midpoint")}
 
     def land(model, x, dt):
@@ -143,54 +151,60 @@ def run(quick: bool = False, progress=None) -> Bench:
             return math.nan
 
     say("landing: reference")
-    ref_total = [land(lm["rk4"], x, reference_dt) for x in landing_states]
+    rows: list[Row] = []
+    ref_total = [land(lm["rk4"], x, reference_dt) for x in states]
     for integ in ("rk4", "midpoint"):
         for dt in steps:
             say(f"landing: leg, {integ}, dt {dt * 1e3:g} ms")
-            totals = np.array([land(lm[integ], x, dt) for x in landing_states])
+            totals = np.array([land(lm[integ], x, dt) for x in states])
             error, note = _landing_errors(totals, ref_total)
             rows.append(Row("leg", f"{integ} dt {dt * 1e3:g} ms", "landing",
-                            _median_time(lambda x, m=lm[integ], h=dt: land(m, x, h), landing_states),
+                            _median_time(lambda x, m=lm[integ], h=dt: land(m, x, h), states),
                             error, note=note))
     ladder: dict[str, Row] = {}
     level_totals: dict[str, list[float]] = {}
     for level in LEVELS[1:]:
         say(f"landing: {level}")
         model = LandingModel(models[level], scene.joints, scene.slope, integrator="rk4")
-        level_totals[level] = [land(model, x, 5e-4) for x in landing_states]
+        level_totals[level] = [land(model, x, 5e-4) for x in states]
         ladder[level] = Row(level, "ladder, rk4 dt 0.5 ms", "landing",
-                            _median_time(lambda x, m=model: land(m, x, 5e-4), landing_states), 0.0)
+                            _median_time(lambda x, m=model: land(m, x, 5e-4), states), 0.0)
         rows.append(ladder[level])
     for level, row in ladder.items():
         row.error, row.note = _landing_errors(np.array(level_totals[level]), level_totals["full-body"])
+    return rows
 
-    # optimisations: the ladder (exact Hessian), then Hessian and compilation for the leg
+
+def _optimisation_rows(scene, models, quick, say) -> list[Row]:
+    """The ladder with an exact Hessian against the full body's optimum, then the Hessian and
+    compilation for the paper's leg against its exact optimum (posture errors in deg)."""
     assert scene.problem is not None  # the bench's scene has an [optimize] table
     problem = replace(scene.problem, starts=1)
+    rows: list[Row] = []
     optima = {}
+    repeats = 3 if quick else 10
     for level in LEVELS:
         say(f"optimisation: {level}")
         pp = PostureProblem(models[level], scene.strike, scene.state, problem, scene.slope, scene.friction)
         sol, stats, _ = pp.solve_from(pp.to_unit(scene.state))
         optima[level] = np.degrees(pp.to_state(np.asarray(sol["x"], float).ravel())[pp.index])
         rows.append(Row(level, "ladder, exact Hessian", "optimisation",
-                        _median_time(pp.solve_from, [pp.to_unit(scene.state)], 3 if quick else 10),
+                        _median_time(pp.solve_from, [pp.to_unit(scene.state)], repeats),
                         0.0, note=stats["return_status"]))
-    for level in LEVELS:
-        row = next(r for r in rows if r.level == level and r.work == "optimisation" and r.option.startswith("ladder"))
-        row.error = float(np.max(np.abs(optima[level] - optima["full-body"])))
+    for row in rows:
+        row.error = float(np.max(np.abs(optima[row.level] - optima["full-body"])))
         row.note += "; posture error against the full body's optimum, deg"
     for hessian, compiled in (("limited-memory", False), ("exact", True)):
         say(f"optimisation: leg, {hessian}, {'compiled' if compiled else 'interpreted'}")
-        pp = PostureProblem(leg, scene.strike, scene.state, problem, scene.slope, scene.friction,
+        pp = PostureProblem(models["leg"], scene.strike, scene.state, problem, scene.slope, scene.friction,
                             compiled=compiled, hessian=hessian)
         sol, stats, _ = pp.solve_from(pp.to_unit(scene.state))
         posture = np.degrees(pp.to_state(np.asarray(sol["x"], float).ravel())[pp.index])
         rows.append(Row("leg", f"{hessian} Hessian{', compiled' if compiled else ''}", "optimisation",
-                        _median_time(pp.solve_from, [pp.to_unit(scene.state)], 3 if quick else 10),
+                        _median_time(pp.solve_from, [pp.to_unit(scene.state)], repeats),
                         float(np.max(np.abs(posture - optima["leg"]))),
                         note=f"{stats['return_status']}; posture error against the leg's exact optimum, deg"))
-    return Bench(rows, batch_states_per_s, scene.friction, scene.slope)
+    return rows
 
 
 def _landing_errors(totals: np.ndarray, reference) -> tuple[float, str]:
