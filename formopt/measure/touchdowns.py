@@ -9,6 +9,12 @@ touchdown relative to standing; Altman & Davis 2012, Gait Posture 35:298-300): r
 > 8 deg, forefoot < -1.6 deg, midfoot between. A touchdown whose markers around it (+-30 ms)
 were missing, spiked, frozen, or whose clusters were not rigid (residual > 12 mm) is listed
 with valid_data False and left out of the means.
+
+Contact order (contact_order): which of the heel and forefoot points (the heel marker and the
+metatarsal markers, or where a map has none the foot cluster's sole points) reaches its stance
+level first: each point's lowest height from STEP_WINDOW before the touchdown to ORDER_WINDOW
+after it is its stance level, and it has reached it when it is within LEVEL_M of it; "flat"
+when the two reach times differ by at most FLAT_S.
 """
 
 from __future__ import annotations
@@ -34,6 +40,13 @@ SPEED_RANGE = (0.5, 12.0)  # m/s: running
 CADENCE_TOLERANCE = 0.1  # relative: touchdowns against the feet's rhythm
 REARFOOT_DEG, FOREFOOT_DEG = 8.0, -1.6  # Altman & Davis (2012) foot strike angle thresholds
 FORCE_CUTOFF_HZ = 50.0  # low-pass of the force before the threshold (at most 0.4 of its rate)
+ORDER_WINDOW = 0.15  # s after a touchdown: both points are down by then (stance >= 0.2 s)
+LEVEL_M = 0.003  # m above its stance level a point counts as down: 2-3 times the filtered
+#                  markers' noise, and less than the 5-20 mm each point still falls in the
+#                  frames before it lands
+FLAT_S = 0.010  # s: two contacts this close are one ("flat"): about two frames at 150-200 Hz
+#                 (each reach time is quantised to a frame), and under a third of the 25-50 ms
+#                 rise to the impact peak, within which the rigid impact is one event
 SEPARATION = {"force plate": 0.15, "kinematics": 0.25}  # s: a touchdown within this of the
 #                                                        last one is the same contact
 
@@ -52,6 +65,8 @@ class Touchdown:
     hip_velocity: tuple[float, float]  # m/s, ground frame (belt added)
     hip_height: float  # m above the lower foot point
     hip_from_point: dict[str, tuple[float, float]]  # m: the hip from the heel and the forefoot (forward, up)
+    contact_order: str = "flat"  # "heel", "forefoot" or "flat": the point the markers put down first
+    reach_s: tuple[float, float] = (0.0, 0.0)  # s after the touchdown: heel, forefoot at their stance level
     valid_data: bool = True
     problems: tuple[str, ...] = ()  # why valid_data is False
 
@@ -86,6 +101,19 @@ def strike_pattern(foot_strike_angle: float) -> str:
     """Rearfoot ("heel"), "midfoot" or "forefoot" from the foot strike angle (rad)."""
     deg = math.degrees(foot_strike_angle)
     return "heel" if deg > REARFOOT_DEG else "forefoot" if deg < FOREFOOT_DEG else "midfoot"
+
+
+def contact_order(heel, forefoot, frame: int, rate: float) -> tuple[str, tuple[float, float]]:
+    """(order, (heel, forefoot) reach times in s after `frame`) from the heights (frames; m)
+    of the heel and forefoot points (module docstring: stance level, LEVEL_M, FLAT_S)."""
+    lo = max(frame - round(STEP_WINDOW * rate), 0)
+    hi = min(frame + round(ORDER_WINDOW * rate) + 1, len(heel))
+    reach = []
+    for z in (heel[lo:hi], forefoot[lo:hi]):
+        reach.append((lo + int(np.flatnonzero(z <= z.min() + LEVEL_M)[0]) - frame) / rate)
+    gap = reach[0] - reach[1]
+    order = "flat" if abs(gap) <= FLAT_S + 1e-9 else "heel" if gap < 0 else "forefoot"
+    return order, (reach[0], reach[1])
 
 
 def force_plate_touchdowns(force, force_rate: float, up, threshold: float = FORCE_THRESHOLD_N,
@@ -229,6 +257,8 @@ def _touchdown(kin: Kinematics, side: str, frame: int, time: float, belt: float,
     trunk = float(kin.angles["trunk"][frame])
     hip_p = kin.points[f"{side}.hip"]
     v = (hip_p[frame + 1] - hip_p[frame - 1]) / (2 * dt)
+    order, reach = contact_order(kin.points[f"{side}.heel"][:, 1], kin.points[f"{side}.forefoot"][:, 1],
+                                 frame, kin.rate)
     return Touchdown(time=time, side=side, frame=frame, strike=strike_pattern(a["foot"]),
                      foot_strike_angle=a["foot"], segments={"trunk": trunk, **a},
                      angles=joint_angles({"trunk": trunk, **a}),
@@ -237,4 +267,13 @@ def _touchdown(kin: Kinematics, side: str, frame: int, time: float, belt: float,
                      hip_height=float(hip_p[frame][1] - low),
                      hip_from_point={p: tuple(map(float, hip_p[frame] - kin.points[f"{side}.{p}"][frame]))
                                      for p in ("heel", "forefoot")},
-                     valid_data=not problems, problems=problems)
+                     contact_order=order, reach_s=reach, valid_data=not problems, problems=problems)
+
+
+def shifted(kin: Kinematics, td: Touchdown, frames: int, belt: float) -> Touchdown:
+    """Touchdown `td` taken `frames` marker frames later (earlier when negative): its state's
+    sensitivity to the touchdown time (compare's uncertainty)."""
+    frame = min(max(td.frame + frames, 1), len(kin.t) - 2)
+    low = min(kin.points[f"{td.side}.{p}"][frame, 1] for p in ("heel", "forefoot"))
+    return _touchdown(kin, td.side, frame, td.time + (frame - td.frame) / kin.rate, belt, low,
+                      td.problems)
