@@ -250,8 +250,7 @@ def comparison_figure(c, rep: dict) -> Figure:
         o, name = c.sides[side], "right" if side == "R" else "left"
         ax = row[0]
         ground(ax, 0.0)
-        if o.point != "flat":
-            stick_figure(ax, c.body, o.reference, o.point, 0.0, "0.5", f"measured (mean {o.point} touchdown)")
+        stick_figure(ax, c.body, o.reference, o.point, 0.0, "0.5", f"measured (mean {o.point} touchdown)")
         if o.optimum is not None:
             stick_figure(ax, c.body, o.optimum.state, o.point, 0.0, "tab:blue", "optimum, same gait")
         ax.set_aspect("equal")
@@ -266,9 +265,9 @@ def comparison_figure(c, rep: dict) -> Figure:
                    color="tab:blue", label="optimum - measured")
             ax.errorbar(JOINTS, np.zeros(4), yerr=sd, fmt="none", ecolor="0.3", capsize=4,
                         label="measured step-to-step sd")
+            ax.legend(fontsize=7)
         ax.axhline(0, color="0.3", lw=0.8)
         ax.set_ylabel("optimum - measured joint angle (deg)")
-        ax.legend(fontsize=7)
         ax.set_title(f"{name}: how far the optimum is, joint by joint", fontsize=10)
         ax = row[2]
         ks = o.steps
