@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from formopt.measure import measure
-from formopt.measure.touchdowns import (FOREFOOT_DEG, REARFOOT_DEG, force_plate_touchdowns,
-                                        foot_speed_touchdowns, strike_pattern)
+from formopt.measure.touchdowns import (FLAT_S, FOREFOOT_DEG, LEVEL_M, REARFOOT_DEG, contact_order,
+                                        force_plate_touchdowns, foot_speed_touchdowns, strike_pattern)
 from trials import HEIGHT
 
 UP = np.array([0.0, 1.0, 0.0])
@@ -66,3 +66,26 @@ def test_foot_speed_touchdowns_agree_with_the_force_plate(run25, static, measure
     assert [td.side for td in kinematic.touchdowns[:10]] == \
         [measured[2.5].steps.touchdowns[np.argmin(np.abs(force_times - td.time))].side
          for td in kinematic.touchdowns[:10]]
+
+
+def _landing(down: int, frames: int = 80, level: float = 0.02, speed: float = 0.004):
+    """A point's height (m) falling `speed` m per frame until frame `down`, then at `level`."""
+    k = np.arange(frames)
+    return level + speed * np.clip(down - k, 0, None)
+
+
+@pytest.mark.parametrize("heel_down, fore_down, order", [
+    (20, 26, "heel"),     # 30 ms apart at 200 Hz: heel first
+    (26, 20, "forefoot"),
+    (20, 21, "flat"),     # 5 ms apart: within FLAT_S
+])
+def test_contact_order_from_each_point_reaching_its_own_stance_level(heel_down, fore_down, order):
+    rate = 200.0
+    # different stance levels (the heel marker sits lower on the shoe than the metatarsals')
+    heel, fore = _landing(heel_down, level=0.015), _landing(fore_down, level=0.045)
+    found, (t_heel, t_fore) = contact_order(heel, fore, 18, rate)
+    assert found == order
+    # each reach time: the frame where the point is LEVEL_M above its level (independent count)
+    for t, down in ((t_heel, heel_down), (t_fore, fore_down)):
+        assert t == pytest.approx((down - math.floor(LEVEL_M / 0.004) - 18) / rate)
+    assert (abs(t_heel - t_fore) <= FLAT_S) == (order == "flat")
