@@ -277,3 +277,39 @@ def shifted(kin: Kinematics, td: Touchdown, frames: int, belt: float) -> Touchdo
     low = min(kin.points[f"{td.side}.{p}"][frame, 1] for p in ("heel", "forefoot"))
     return _touchdown(kin, td.side, frame, td.time + (frame - td.frame) / kin.rate, belt, low,
                       td.problems)
+
+
+IMPACT_SEARCH_S = (0.005, 0.060)  # s after a touchdown where an impact peak is sought
+IMPACT_DEFAULT_S = 0.030  # s: the impact window when the force has no distinct impact peak
+LOADING_BAND = (0.2, 0.8)  # of the impact peak: the loading rate's stretch (Milner et al. 2006)
+
+
+@dataclass(frozen=True)
+class PlateImpact:
+    """What the plate measured over one touchdown's impact: from the touchdown (the force
+    through its threshold) to the impact peak, the first local maximum of the low-passed
+    vertical force within IMPACT_SEARCH_S, or IMPACT_DEFAULT_S without one."""
+
+    window_s: float  # s, the impact window's length
+    peak: bool  # a distinct impact peak was found
+    impulse_ratio: float  # forward / vertical impulse over the window (braking negative)
+    impact_peak_bw: float  # vertical force at the window's end, body weights
+    loading_rate_bw_per_s: float  # mean slope from 20 to 80 % of it, BW/s
+
+
+def plate_impact(force, rate: float, forward, up, time: float, weight: float,
+                 source: str = "") -> PlateImpact:
+    """The plate's impact of the touchdown at `time` (s): force (samples, 3; N, the ground on
+    the runner), `forward`, `up` the lab axes (3,), `weight` the runner's (N)."""
+    f = lowpass(force, rate, min(FORCE_CUTOFF_HZ, 0.4 * rate), source)
+    vertical, horizontal = f @ up, f @ forward
+    k0 = int(round(time * rate))
+    lo, hi = k0 + int(IMPACT_SEARCH_S[0] * rate), min(k0 + int(IMPACT_SEARCH_S[1] * rate), len(vertical) - 1)
+    peaks = [k for k in range(lo, hi) if vertical[k] >= vertical[k - 1] and vertical[k] > vertical[k + 1]]
+    end = peaks[0] if peaks else min(k0 + int(round(IMPACT_DEFAULT_S * rate)), len(vertical) - 1)
+    window = slice(k0, end + 1)
+    ratio = float(np.trapezoid(horizontal[window]) / np.trapezoid(vertical[window]))
+    top = float(vertical[end])
+    a, b = (k0 + int(np.flatnonzero(vertical[window] >= s * top)[0]) for s in LOADING_BAND)
+    rate_bw = (vertical[b] - vertical[a]) * rate / max(b - a, 1) / weight
+    return PlateImpact((end - k0) / rate, bool(peaks), ratio, top / weight, float(rate_bw))

@@ -207,6 +207,14 @@ def comparison_table(c: Comparison, rep: dict) -> str:
         lines.append(f"  {'':22s} first down: the model's sole " + ", ".join(
             f"{p} {n}" for p, n in s["impact_points"].items()) + "; the markers " + ", ".join(
             f"{p} {n}" for p, n in s["contact_order"].items()))
+        pl = s.get("plate")
+        if pl:
+            laws = ", ".join(f"{law} {v:+.2f}" for law, v in pl["laws_impulse_ratio"].items() if v is not None)
+            lines.append(f"  {'':22s} the plate over the impact ({pl['window_ms_mean']:.0f} ms, to the impact peak "
+                         f"in {pl['impact_peaks']}/{pl['steps']} steps, else 30 ms): horizontal/vertical impulse, medians, "
+                         f"{pl['impulse_ratio_median']:+.2f} (sd {pl['impulse_ratio_sd']:.2f}) against the rigid impact's "
+                         f"{laws}: nearest {pl['nearest_law']}; impact peak {pl['impact_peak_bw_mean']:.2f} BW, "
+                         f"loading rate {pl['loading_rate_bw_per_s_mean']:.0f} BW/s")
     for side, o in rep["optimum"].items():
         lines += _side_lines(c, side, o, st.cadence_spm)
     lines += ["", f"  every touchdown under each contact law (T_c mean, J; valid touchdowns; * {c.law}, "

@@ -24,7 +24,7 @@ import numpy as np
 from ..io import mocap
 from ..io.markerset import SIDES
 from ..measure import Measurement, Options, Steps, Touchdown, measure
-from ..measure.touchdowns import FLAT_S, shifted
+from ..measure.touchdowns import FLAT_S, PlateImpact, plate_impact, shifted
 from ..measure.filters import effective_cutoff
 from ..mechanics.body import Body, scaled_body
 from ..mechanics.contact import LAWS
@@ -34,6 +34,7 @@ from ..optim.posture import Gait, PostureProblem, Problem
 from ..optim.solution import CONVERGED, Optimum
 from ..optim.variables import RANGE_OF_MOTION_DEG
 
+G = 9.81  # m/s^2: body weights
 JOINTS = ("trunk", "hip", "knee", "ankle")
 SEGMENTS = ("trunk", "thigh", "shank", "foot")
 VARIABLES = ("hip", "knee", "ankle")
@@ -130,6 +131,7 @@ class Comparison:
     law: str  # the contact law of `results` and of the optima (contact.LAWS)
     settings: dict  # every setting that made this comparison (to_dict()["settings"])
     sole: list[tuple[str, float]]  # per touchdown: the model sole's lower point, the other's time down (s)
+    plate: list[PlateImpact | None] = field(default_factory=list)  # per touchdown, trials with forces
 
     @property
     def steps(self) -> Steps:
@@ -269,8 +271,11 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
                                        impacts, problem, friction, per_step)
     band = [(float(np.nanmin([a, *col])), float(np.nanmax([a, *col])))
             for a, col in zip(nominal, spread.T)]
+    t, axes = m.trial, m.calibration.axes
+    plate = [plate_impact(t.force, t.force_rate, axes.forward, axes.up, td.time, mass * G, t.source)
+             if steps.method == "force plate" else None for td in steps.touchdowns]
     return Comparison(m, results, points, band, sides, body, law, settings,
-                      [(lower, follows) for _, lower, follows in firsts])
+                      [(lower, follows) for _, lower, follows in firsts], plate)
 
 
 def variants(trial, static, height: float, options: Options, m: Measurement) -> list[list]:
@@ -332,6 +337,13 @@ def step_optimum(pp: PostureProblem, state, start, friction: float) -> StepOptim
                        x, float(pp.objective_function(w, p)), float(pp.objective_function(own, p)))
 
 
+def impulse_ratio(law) -> float | None:
+    """Tangential over normal impulse (forward positive) of one law's impact (LawResult)."""
+    t = sum(v[0] for v in law.impulse.values())
+    n = sum(v[1] for v in law.impulse.values())
+    return t / n if n > 0 else None
+
+
 def _finite(value: float) -> float | None:
     """JSON has no inf or nan: None."""
     return value if math.isfinite(value) else None
@@ -360,8 +372,14 @@ def touchdown_row(c: Comparison, k: int) -> dict:
            "hip_from_point_m": {q: list(v) for q, v in td.hip_from_point.items()},
            "valid_data": td.valid_data, "data_problems": list(td.problems),
            "T_c": r.T_c, "T_c_band_J": list(c.T_c_band[k]), "mu_c": r.mu_c, "valid": r.valid,
-           "contact_laws": {law: {key: getattr(v, key) for key in ("T_c", "valid", "mode", "slip_velocity")}
+           "contact_laws": {law: {**{key: getattr(v, key) for key in ("T_c", "valid", "mode", "slip_velocity")},
+                                  "impulse_ratio": impulse_ratio(v)}
                             for law, v in r.contact_laws.items()}}
+    pl = c.plate[k] if c.plate else None
+    if pl is not None:
+        row.update({"plate_impulse_ratio": pl.impulse_ratio, "impact_peak_bw": pl.impact_peak_bw,
+                    "loading_rate_bw_per_s": pl.loading_rate_bw_per_s,
+                    "impact_window_ms": pl.window_s * 1e3, "impact_peak_found": pl.peak})
     side = c.sides.get(td.side)
     if side is not None and k in side.per_step:
         o = side.per_step[k]
@@ -419,7 +437,35 @@ def summary(c: Comparison) -> dict:
                      "segment_angles_deg_sd": dict(zip(SEGMENTS, segments[1])),
                      "foot_strike_angle_deg_mean": float(fsa[0]), "foot_strike_angle_deg_sd": float(fsa[1]),
                      "T_c_point": point, "T_c_mean": float(T_c[0]), "T_c_sd": float(T_c[1]),
+                     "plate": plate_summary(c, side),
                      "laws": {law: {"T_c_mean": float(np.mean([r.contact_laws[law].T_c for _, r in rows])),
+                                    "impulse_ratio_median": _median([impulse_ratio(r.contact_laws[law]) for _, r in rows]),
                                     "valid": sum(r.contact_laws[law].valid for _, r in rows)}
                               for law in LAWS}}
     return out
+
+
+def _median(values) -> float | None:
+    values = [v for v in values if v is not None]
+    return float(np.median(values)) if values else None
+
+
+def plate_summary(c: Comparison, side: str) -> dict | None:
+    """A side's plate impacts (valid steps): the median impulse ratio of the plate and of each
+    law (medians: a law's ratio is unbounded where its normal impulse is near zero), mean
+    impact peak and loading rate, how many steps have a distinct impact peak, and the law
+    whose median ratio is nearest the plate's."""
+    rows = [(pl, r) for pl, td, r in zip(c.plate, c.steps.touchdowns, c.results)
+            if pl is not None and td.side == side and td.valid_data]
+    if not rows:
+        return None
+    ratio = float(np.median([pl.impulse_ratio for pl, _ in rows]))
+    laws = {law: _median([impulse_ratio(r.contact_laws[law]) for _, r in rows]) for law in LAWS}
+    return {"impulse_ratio_median": ratio, "impulse_ratio_sd": float(np.std([pl.impulse_ratio for pl, _ in rows])),
+            "impact_peak_bw_mean": float(np.mean([pl.impact_peak_bw for pl, _ in rows])),
+            "loading_rate_bw_per_s_mean": float(np.mean([pl.loading_rate_bw_per_s for pl, _ in rows])),
+            "window_ms_mean": float(np.mean([pl.window_s for pl, _ in rows]) * 1e3),
+            "impact_peaks": sum(pl.peak for pl, _ in rows), "steps": len(rows),
+            "laws_impulse_ratio": laws,
+            "nearest_law": min((law for law in laws if laws[law] is not None),
+                               key=lambda law: abs(laws[law] - ratio))}
