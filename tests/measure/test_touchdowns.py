@@ -89,3 +89,21 @@ def test_contact_order_from_each_point_reaching_its_own_stance_level(heel_down, 
     for t, down in ((t_heel, heel_down), (t_fore, fore_down)):
         assert t == pytest.approx((down - math.floor(LEVEL_M / 0.004) - 18) / rate)
     assert (abs(t_heel - t_fore) <= FLAT_S) == (order == "flat")
+
+
+def test_plate_impact_on_a_force_of_known_shape():
+    """A vertical force rising linearly to 1.5 BW in 25 ms (60 BW/s), falling to 1 BW and
+    rising to the active peak; the horizontal force -0.2 times the vertical: the window ends
+    at the impact peak, the impulse ratio is -0.2, the loading rate 60 BW/s (within what the
+    force's 50 Hz low-pass rounds off)."""
+    from formopt.measure.touchdowns import plate_impact
+    rate, weight, t0 = 1000.0, 600.0, 0.1
+    t = np.arange(0, 0.5, 1 / rate)
+    s = t - t0
+    bw = np.interp(s, [0.0, 0.025, 0.045, 0.12, 0.25], [0.0, 1.5, 1.0, 2.5, 0.0], left=0.0, right=0.0)
+    force = np.stack([-0.2 * bw * weight, np.zeros_like(t), bw * weight], axis=1)
+    found = plate_impact(force, rate, np.array([1.0, 0, 0]), np.array([0, 0, 1.0]), t0, weight)
+    assert found.peak and found.window_s == pytest.approx(0.025, abs=0.004)
+    assert found.impulse_ratio == pytest.approx(-0.2, abs=1e-6)
+    assert found.impact_peak_bw == pytest.approx(1.5, rel=0.1)
+    assert found.loading_rate_bw_per_s == pytest.approx(60.0, rel=0.1)
