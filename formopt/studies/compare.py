@@ -130,7 +130,8 @@ class Comparison:
     body: Body
     law: str  # the contact law of `results` and of the optima (contact.LAWS)
     settings: dict  # every setting that made this comparison (to_dict()["settings"])
-    sole: list[tuple[str, float]]  # per touchdown: the model sole's lower point, the other's time down (s)
+    sole: list[tuple[str, float, float]]  # per touchdown: the model sole's lower point, the
+    #                 other's time down (s), T_c (J) of an impact at the lower point alone
     plate: list[PlateImpact | None] = field(default_factory=list)  # per touchdown, trials with forces
 
     @property
@@ -275,7 +276,8 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
     plate = [plate_impact(t.force, t.force_rate, axes.forward, axes.up, td.time, mass * G, t.source)
              if steps.method == "force plate" else None for td in steps.touchdowns]
     return Comparison(m, results, points, band, sides, body, law, settings,
-                      [(lower, follows) for _, lower, follows in firsts], plate)
+                      [(lower, follows, r.T_c if p != "flat" else impacts[lower](td.state()).T_c)
+                       for (p, lower, follows), r, td in zip(firsts, results, steps.touchdowns)], plate)
 
 
 def variants(trial, static, height: float, options: Options, m: Measurement) -> list[list]:
@@ -364,7 +366,8 @@ def touchdown_row(c: Comparison, k: int) -> dict:
     row = {"time": td.time, "side": td.side, "frame": td.frame, "method": c.steps.method,
            "strike": td.strike, "foot_strike_angle_deg": math.degrees(td.foot_strike_angle),
            "impact_point": p, "contact_order": td.contact_order,
-           "model_sole": {"first": c.sole[k][0], "other_down_ms": _finite(c.sole[k][1] * 1e3)},
+           "model_sole": {"first": c.sole[k][0], "other_down_ms": _finite(c.sole[k][1] * 1e3),
+                          "T_c_first_alone": c.sole[k][2]},
            "reach_ms": {"heel": td.reach_s[0] * 1e3, "forefoot": td.reach_s[1] * 1e3},
            "segment_angles_deg": _deg(td.segments), "angles_deg": _deg(td.angles),
            "rates_dps": _deg(td.rates), "hip_velocity_mps": list(td.hip_velocity),
