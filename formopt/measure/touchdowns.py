@@ -7,8 +7,9 @@ speed. The cadence they give is checked against the feet's own rhythm: a force f
 not span the marker file is refused. Strike pattern from the foot strike angle (foot angle at
 touchdown relative to standing; Altman & Davis 2012, Gait Posture 35:298-300): rearfoot
 > 8 deg, forefoot < -1.6 deg, midfoot between. A touchdown whose markers around it (+-30 ms)
-were missing, spiked, frozen, or whose clusters were not rigid (residual > 12 mm) is listed
-with valid_data False and left out of the means.
+were missing, spiked, frozen, or whose clusters were not rigid (residual > 12 mm), or whose
+segment angle or rate jumps from its side's neighbouring steps (_jumps), is listed with
+valid_data False and its reason, and left out of the means.
 
 Contact order (contact_order): which of the heel and forefoot points (the heel marker and the
 metatarsal markers, or where a map has none the foot cluster's sole points) reaches its stance
@@ -20,7 +21,7 @@ when the two reach times differ by at most FLAT_S.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -47,6 +48,14 @@ LEVEL_M = 0.003  # m above its stance level a point counts as down: 2-3 times th
 FLAT_S = 0.010  # s: two contacts this close are one ("flat"): about two frames at 150-200 Hz
 #                 (each reach time is quantised to a frame), and under a third of the 25-50 ms
 #                 rise to the impact peak, within which the rigid impact is one event
+REST_OMEGA = 0.5  # rad/s: a foot resting flat turns slower than this (at up to ~180 steps/min)
+REST_QUANTILE = 0.25  # else the quarter of its low, level frames that turn least
+JUMP_NEIGHBOURS = 3  # steps each side a touchdown is compared with
+JUMP_SD = 5.0  # robust standard deviations (1.4826 MAD) of the neighbours
+JUMP_FLOOR = {"segments.foot": (5.0, "deg"), "segments.shank": (5.0, "deg"),
+              "segments.thigh": (5.0, "deg"), "rates.foot": (200.0, "deg/s"),
+              "rates.shank": (200.0, "deg/s"), "rates.thigh": (200.0, "deg/s")}
+#  floors: 3-5 times the step-to-step sd of touchdown angles (0.6-1.6 deg on the shipped runs)
 SEPARATION = {"force plate": 0.15, "kinematics": 0.25}  # s: a touchdown within this of the
 #                                                        last one is the same contact
 
@@ -170,6 +179,7 @@ def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration,
         if 2 <= frame < len(kin.t) - 2:
             problems = _problems(trial, kin, cal, side, frame, window)
             steps.append(_touchdown(kin, side, frame, t, belt, foot_low[side][frame], problems))
+    steps = _jumps(steps)
     bad = sum(not td.valid_data for td in steps)
     if bad:
         notes.append(f"{bad} of {len(steps)} touchdowns have unsound markers around them: "
@@ -188,17 +198,47 @@ def _foot_motion(kin: Kinematics, cal: Calibration, side: str):
 
 def _belt_speed(trial: Trial, motion: dict) -> float:
     """The ground's backward speed (m/s; 0 overground): the foot cluster's while it rests flat
-    (in the lowest third of its heights, turning under 0.5 rad/s, moving up or down under
-    0.1 m/s)."""
+    (in the lowest third of its heights, moving up or down under 0.1 m/s, turning under
+    REST_OMEGA); at a fast cadence, where the foot rolls through a short stance and never
+    turns that slowly, the quarter of those low, level frames that turn least."""
     speeds = []
     for v, height, omega in motion.values():
-        rest = (height < np.percentile(height, 35)) & (np.abs(omega) < 0.5) & (np.abs(v[:, 1]) < 0.1)
+        low = (height < np.percentile(height, 35)) & (np.abs(v[:, 1]) < 0.1)
+        rest = low & (np.abs(omega) < REST_OMEGA)
+        if rest.sum() < 5 and low.sum() >= 20:
+            rest = low & (np.abs(omega) <= np.percentile(np.abs(omega[low]), 100 * REST_QUANTILE))
         if rest.sum() >= 5:
             speeds.append(-float(np.median(v[rest, 0])))
     if not speeds:
         raise MocapError(f"{trial.source}: no stance found: the feet never rest on the ground "
                          f"(is the rate, {trial.rate:g} Hz, right?)")
     return float(np.mean(speeds))
+
+
+def _jumps(steps: list[Touchdown]) -> list[Touchdown]:
+    """Each touchdown whose foot, shank or thigh angle, or whose segment rate, lies far from
+    the median of its side's JUMP_NEIGHBOURS steps on each side (more than JUMP_SD robust
+    standard deviations of theirs and the floor of JUMP_FLOOR) marked unsound, the reason
+    named: a cluster that slipped or was relabelled for a step passes the rigidity test."""
+    out = list(steps)
+    for side in SIDES:
+        idx = [k for k, td in enumerate(steps) if td.side == side]
+        for key, (floor, unit) in JUMP_FLOOR.items():
+            kind, seg = key.split(".")
+            values = np.degrees([getattr(steps[k], kind)[seg] for k in idx])
+            for j, k in enumerate(idx):
+                near = np.delete(values[max(j - JUMP_NEIGHBOURS, 0):j + JUMP_NEIGHBOURS + 1],
+                                 min(j, JUMP_NEIGHBOURS))
+                if len(near) < 4:
+                    continue
+                med = float(np.median(near))
+                limit = max(floor, JUMP_SD * 1.4826 * float(np.median(np.abs(near - med))))
+                if abs(values[j] - med) > limit:
+                    td = out[k]
+                    why = (f"the {seg} {'angle' if kind == 'segments' else 'rate'} {values[j]:.0f} {unit} "
+                           f"is {values[j] - med:+.0f} from its neighbours' {med:.0f} (beyond {limit:.0f})")
+                    out[k] = replace(td, valid_data=False, problems=td.problems + (why,))
+    return out
 
 
 def _problems(trial: Trial, kin: Kinematics, cal: Calibration, side: str, frame: int,
