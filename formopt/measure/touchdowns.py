@@ -343,10 +343,10 @@ def plate_impact(force, rate: float, forward, up, time: float, weight: float,
     the runner), `forward`, `up` the lab axes (3,), `weight` the runner's (N)."""
     f = lowpass(force, rate, min(FORCE_CUTOFF_HZ, 0.4 * rate), source)
     vertical, horizontal = f @ up, f @ forward
-    k0 = int(round(time * rate))
+    k0 = round(time * rate)
     lo, hi = k0 + int(IMPACT_SEARCH_S[0] * rate), min(k0 + int(IMPACT_SEARCH_S[1] * rate), len(vertical) - 1)
     peaks = [k for k in range(lo, hi) if vertical[k] >= vertical[k - 1] and vertical[k] > vertical[k + 1]]
-    end = peaks[0] if peaks else min(k0 + int(round(IMPACT_DEFAULT_S * rate)), len(vertical) - 1)
+    end = peaks[0] if peaks else min(k0 + round(IMPACT_DEFAULT_S * rate), len(vertical) - 1)
     window = slice(k0, end + 1)
     ratio = float(np.trapezoid(horizontal[window]) / np.trapezoid(vertical[window]))
     top = float(vertical[end])

@@ -24,8 +24,8 @@ import numpy as np
 from ..io import mocap
 from ..io.markerset import SIDES
 from ..measure import Measurement, Options, Steps, Touchdown, measure
-from ..measure.touchdowns import FLAT_S, PlateImpact, plate_impact, shifted
 from ..measure.filters import effective_cutoff
+from ..measure.touchdowns import FLAT_S, PlateImpact, plate_impact, shifted
 from ..mechanics.body import Body, scaled_body
 from ..mechanics.contact import LAWS
 from ..mechanics.impact import Impact, ImpactResult

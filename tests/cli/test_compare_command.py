@@ -3,8 +3,9 @@ and bad input refused with exit 2."""
 
 import json
 
-from formopt.cli import main
 from helpers import DATA
+
+from formopt.cli import main
 
 RBDS = DATA / "rbds"
 RUN35, STATIC = RBDS / "RBDS001runT35.c3d", RBDS / "RBDS001static.c3d"

@@ -7,11 +7,19 @@ import math
 
 import numpy as np
 import pytest
+from trials import HEIGHT
 
 from formopt.measure import measure
-from formopt.measure.touchdowns import (FLAT_S, FOREFOOT_DEG, LEVEL_M, REARFOOT_DEG, contact_order,
-                                        force_plate_touchdowns, foot_speed_touchdowns, strike_pattern)
-from trials import HEIGHT
+from formopt.measure.touchdowns import (
+    FLAT_S,
+    FOREFOOT_DEG,
+    LEVEL_M,
+    REARFOOT_DEG,
+    contact_order,
+    foot_speed_touchdowns,
+    force_plate_touchdowns,
+    strike_pattern,
+)
 
 UP = np.array([0.0, 1.0, 0.0])
 

@@ -8,11 +8,16 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from formopt.measure.touchdowns import FLAT_S, Touchdown
 from formopt.mechanics import contact
 from formopt.mechanics.body import scaled_body
-from formopt.measure.touchdowns import FLAT_S, Touchdown
 from formopt.optim.posture import neighbours
-from formopt.studies.compare import SideOptimum, impact_point, modelled_state, sole_function
+from formopt.studies.compare import (
+    SideOptimum,
+    impact_point,
+    modelled_state,
+    sole_function,
+)
 
 BODY = scaled_body(62.0, 1.81)
 
@@ -84,9 +89,10 @@ def test_coulomb_neighbours_cross_each_boundary_of_the_region():
 
 @pytest.fixture(scope="module")
 def t35():
+    from helpers import DATA
+
     from formopt.io import mocap
     from formopt.studies.compare import compare
-    from helpers import DATA
     rbds = DATA / "rbds"
     return compare(mocap.read(rbds / "RBDS001runT35.c3d"), mocap.read(rbds / "RBDS001static.c3d"),
                    62.0, 1.81, starts=2, per_step=False)
