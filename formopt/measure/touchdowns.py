@@ -48,8 +48,6 @@ LEVEL_M = 0.003  # m above its stance level a point counts as down: 2-3 times th
 FLAT_S = 0.010  # s: two contacts this close are one ("flat"): about two frames at 150-200 Hz
 #                 (each reach time is quantised to a frame), and under a third of the 25-50 ms
 #                 rise to the impact peak, within which the rigid impact is one event
-REST_OMEGA = 0.5  # rad/s: a foot resting flat turns slower than this (at up to ~180 steps/min)
-REST_QUANTILE = 0.25  # else the quarter of its low, level frames that turn least
 JUMP_NEIGHBOURS = 3  # steps each side a touchdown is compared with
 JUMP_SD = 5.0  # robust standard deviations (1.4826 MAD) of the neighbours
 JUMP_FLOOR = {"segments.foot": (5.0, "deg"), "segments.shank": (5.0, "deg"),
@@ -198,15 +196,11 @@ def _foot_motion(kin: Kinematics, cal: Calibration, side: str):
 
 def _belt_speed(trial: Trial, motion: dict) -> float:
     """The ground's backward speed (m/s; 0 overground): the foot cluster's while it rests flat
-    (in the lowest third of its heights, moving up or down under 0.1 m/s, turning under
-    REST_OMEGA); at a fast cadence, where the foot rolls through a short stance and never
-    turns that slowly, the quarter of those low, level frames that turn least."""
+    (in the lowest third of its heights, turning under 0.5 rad/s, moving up or down under
+    0.1 m/s)."""
     speeds = []
     for v, height, omega in motion.values():
-        low = (height < np.percentile(height, 35)) & (np.abs(v[:, 1]) < 0.1)
-        rest = low & (np.abs(omega) < REST_OMEGA)
-        if rest.sum() < 5 and low.sum() >= 20:
-            rest = low & (np.abs(omega) <= np.percentile(np.abs(omega[low]), 100 * REST_QUANTILE))
+        rest = (height < np.percentile(height, 35)) & (np.abs(omega) < 0.5) & (np.abs(v[:, 1]) < 0.1)
         if rest.sum() >= 5:
             speeds.append(-float(np.median(v[rest, 0])))
     if not speeds:

@@ -138,6 +138,21 @@ class Comparison:
     def steps(self) -> Steps:
         return self.measurement.steps
 
+    @property
+    def main_side(self) -> SideOptimum:
+        """The side with the most steps averaged (a shorthand; the sides are never pooled)."""
+        return max(self.sides.values(), key=lambda o: len(o.steps))
+
+    @property
+    def strike(self) -> str:
+        """The main side's impact point."""
+        return self.main_side.point
+
+    @property
+    def optimum(self) -> Optimum | None:
+        """The main side's optimum (None when it has none: SideOptimum.why_not)."""
+        return self.main_side.optimum
+
     def to_dict(self) -> dict:
         """JSON-ready dictionary (README, "Measured touchdowns"): the settings, the measurement,
         every touchdown, the per-side summary, each side's optimum against its mean touchdown,

@@ -117,23 +117,6 @@ def test_plate_impact_on_a_force_of_known_shape():
     assert found.loading_rate_bw_per_s == pytest.approx(60.0, rel=0.1)
 
 
-def test_the_belt_is_found_at_210_steps_per_minute_where_the_foot_rolls_through_stance():
-    """A foot at 210 steps/min (0.571 s strides, 0.18 s stance) on a 4 m/s belt, turning at
-    0.8-1.6 rad/s all through stance: never under the 0.5 rad/s of a resting foot."""
-    from formopt.measure.touchdowns import REST_OMEGA, _belt_speed
-    rate, belt, stride = 200.0, 4.0, 60.0 / 105.0
-    t = np.arange(0, 10, 1 / rate)
-    phase = (t % stride) / stride
-    stance = phase < 0.18 / stride
-    height = np.where(stance, 0.05, 0.05 + 0.15 * np.sin(np.pi * (phase - 0.315) / 0.685) ** 2)
-    vx = np.where(stance, -belt, 2 * belt)
-    omega = np.where(stance, 1.2 + 0.4 * np.sin(2 * np.pi * phase / 0.315), 8.0)
-    assert np.abs(omega[stance]).min() > REST_OMEGA
-    motion = {s: (np.stack([vx, np.gradient(height, 1 / rate)], axis=1), height, omega) for s in "RL"}
-    trial = type("T", (), {"source": "fast.c3d", "rate": rate})()
-    assert _belt_speed(trial, motion) == pytest.approx(belt, rel=1e-9)
-
-
 def test_a_step_whose_foot_angle_jumps_is_left_out_with_its_reason():
     """A heel striker's foot cluster that slips for one step: its foot strike angle reads -17
     deg among steps of 17 +- 1 deg (the rigidity test passes it); only that step is left out."""
