@@ -41,7 +41,7 @@ SETTINGS: dict[str, tuple[Any, str]] = {
                             "without a force plate: touchdown when the foot's speed over the "
                             "ground falls below this fraction of the running speed"),
     "friction": (0.8, "the ground's friction"),
-    "contact": ("no-slip", "contact law of the impacts and the optima: " + ", ".join(LAWS)),
+    "contact": ("coulomb", "contact law of the impacts and the optima: " + ", ".join(LAWS)),
     "bounds": ({}, "the optimum's bounds in deg, JOINT=LO:HI, repeatable (default the ranges of "
                    "motion: " + ", ".join(f"{k}={lo:g}:{hi:g}" for k, (lo, hi) in BOUNDS_DEG.items()) + ")"),
     "support": (SUPPORT, "weight of the stance's support in the optimum's objective (0: T_c alone)"),
@@ -169,16 +169,18 @@ def settings(args) -> list[dict]:
 
 
 TOUCHDOWN_COLUMNS = ["time_s", "side", "valid_data", "strike", "foot_strike_angle_deg",
+                     "impact_point", "contact_order",
                      *[f"{k}_deg" for k in JOINTS], "thigh_deg", "shank_deg", "foot_deg",
-                     "hip_vx", "hip_vz", "T_c_J", "valid",
+                     "hip_vx", "hip_vz", "T_c_J", "T_c_low_J", "T_c_high_J", "valid",
                      *[f"{column}_{law}" for law in LAWS for column in ("T_c_J", "valid")],
                      "optimum_hip_deg", "optimum_knee_deg", "optimum_ankle_deg", "saving_J",
                      "data_problems"]
 
 TRIAL_COLUMNS = ["trial", "markers", "method", "touchdowns", "valid_data", "cadence_spm",
                  "speed_mps", "side", "steps", "strike", "foot_strike_angle_deg",
-                 *[f"{k}_deg" for k in JOINTS], "T_c_J", "optimum_verdict",
-                 *[f"optimum_{k}_deg" for k in ("hip", "knee", "ankle")], "saving_J_per_step"]
+                 *[f"{k}_deg" for k in JOINTS], "T_c_J", "impact_point", "reference_valid",
+                 "optimum_headline", *[f"optimum_{k}_deg" for k in ("hip", "knee", "ankle")],
+                 "saving_J_per_step", "saving_low_J", "saving_high_J", "resolvable"]
 
 
 def run_one(s: dict, args, out: Path, show: bool = True):
@@ -196,8 +198,9 @@ def run_one(s: dict, args, out: Path, show: bool = True):
     for t in rep["touchdowns"]:
         a, g, o = t["angles_deg"], t["segment_angles_deg"], t.get("optimum", {})
         rows.append([t["time"], t["side"], t["valid_data"], t["strike"], t["foot_strike_angle_deg"],
+                     t["impact_point"], t["contact_order"],
                      *[a[k] for k in JOINTS], g["thigh"], g["shank"], g["foot"],
-                     *t["hip_velocity_mps"], t["T_c"], t["valid"],
+                     *t["hip_velocity_mps"], t["T_c"], *t["T_c_band_J"], t["valid"],
                      *[t["contact_laws"][law][k] for law in LAWS for k in ("T_c", "valid")],
                      *[o["angles_deg"][k] if o.get("success") else "" for k in ("hip", "knee", "ankle")],
                      o.get("saving_J", "") if o.get("success") else "", "; ".join(t["data_problems"])])
@@ -210,16 +213,21 @@ def run_one(s: dict, args, out: Path, show: bool = True):
 
 
 def trial_rows(rep: dict) -> list[list]:
-    """The rows of trials.csv of one trial: one per side."""
+    """The rows of trials.csv of one trial: one per side, with that side's optimum."""
     rows = []
-    opt = rep["optimum"]
     for side, s in rep["summary"].items():
+        opt = rep["optimum"].get(side, {})
+        angles = opt.get("touchdown", {}).get("angles_deg", {})
+        band = opt.get("saving_band_J") or ["", ""]
+        saving = opt.get("saving_J_per_step")
         rows.append([rep["source"], rep["settings"]["markers"], rep["touchdown_method"],
                      rep["touchdowns_total"], rep["touchdowns_valid_data"], rep["cadence_spm"],
                      rep["speed"], side, s["steps"], s["strike"], s["foot_strike_angle_deg_mean"],
-                     *[s["angles_deg_mean"][k] for k in JOINTS], s["T_c_mean"], opt["verdict"],
-                     *[opt["touchdown"]["angles_deg"][k] for k in ("hip", "knee", "ankle")],
-                     opt["saving_J_per_step"]])
+                     *[s["angles_deg_mean"][k] for k in JOINTS], s["T_c_mean"], opt.get("point", ""),
+                     opt.get("reference", {}).get("valid", ""), opt.get("headline", ""),
+                     *[angles.get(k, "") for k in ("hip", "knee", "ankle")],
+                     "" if saving is None else saving, *band,
+                     "" if opt.get("resolvable") is None else opt["resolvable"]])
     return rows
 
 
@@ -235,7 +243,8 @@ def run(args) -> int:
                                   show=not args.json)  # --json: only the JSON below on stdout
         else:
             rep, result = run_one(s, args, root)
-        code = max(code, 0 if result.optimum.success else 1)
+        code = max(code, 0 if all(o.optimum is None or o.optimum.success
+                                  for o in result.sides.values()) else 1)
         table += trial_rows(rep)
         if many:
             write_csv(root / "trials.csv", table)  # after every trial: an interruption loses nothing

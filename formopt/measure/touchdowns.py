@@ -7,14 +7,21 @@ speed. The cadence they give is checked against the feet's own rhythm: a force f
 not span the marker file is refused. Strike pattern from the foot strike angle (foot angle at
 touchdown relative to standing; Altman & Davis 2012, Gait Posture 35:298-300): rearfoot
 > 8 deg, forefoot < -1.6 deg, midfoot between. A touchdown whose markers around it (+-30 ms)
-were missing, spiked, frozen, or whose clusters were not rigid (residual > 12 mm) is listed
-with valid_data False and left out of the means.
+were missing, spiked, frozen, or whose clusters were not rigid (residual > 12 mm), or whose
+segment angle or rate jumps from its side's neighbouring steps (_jumps), is listed with
+valid_data False and its reason, and left out of the means.
+
+Contact order (contact_order): which of the heel and forefoot points (the heel marker and the
+metatarsal markers, or where a map has none the foot cluster's sole points) reaches its stance
+level first: each point's lowest height from STEP_WINDOW before the touchdown to ORDER_WINDOW
+after it is its stance level, and it has reached it when it is within LEVEL_M of it; "flat"
+when the two reach times differ by at most FLAT_S.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -34,6 +41,19 @@ SPEED_RANGE = (0.5, 12.0)  # m/s: running
 CADENCE_TOLERANCE = 0.1  # relative: touchdowns against the feet's rhythm
 REARFOOT_DEG, FOREFOOT_DEG = 8.0, -1.6  # Altman & Davis (2012) foot strike angle thresholds
 FORCE_CUTOFF_HZ = 50.0  # low-pass of the force before the threshold (at most 0.4 of its rate)
+ORDER_WINDOW = 0.15  # s after a touchdown: both points are down by then (stance >= 0.2 s)
+LEVEL_M = 0.003  # m above its stance level a point counts as down: 2-3 times the filtered
+#                  markers' noise, and less than the 5-20 mm each point still falls in the
+#                  frames before it lands
+FLAT_S = 0.010  # s: two contacts this close are one ("flat"): about two frames at 150-200 Hz
+#                 (each reach time is quantised to a frame), and under a third of the 25-50 ms
+#                 rise to the impact peak, within which the rigid impact is one event
+JUMP_NEIGHBOURS = 3  # steps each side a touchdown is compared with
+JUMP_SD = 5.0  # robust standard deviations (1.4826 MAD) of the neighbours
+JUMP_FLOOR = {"segments.foot": (5.0, "deg"), "segments.shank": (5.0, "deg"),
+              "segments.thigh": (5.0, "deg"), "rates.foot": (200.0, "deg/s"),
+              "rates.shank": (200.0, "deg/s"), "rates.thigh": (200.0, "deg/s")}
+#  floors: 3-5 times the step-to-step sd of touchdown angles (0.6-1.6 deg on the shipped runs)
 SEPARATION = {"force plate": 0.15, "kinematics": 0.25}  # s: a touchdown within this of the
 #                                                        last one is the same contact
 
@@ -52,6 +72,8 @@ class Touchdown:
     hip_velocity: tuple[float, float]  # m/s, ground frame (belt added)
     hip_height: float  # m above the lower foot point
     hip_from_point: dict[str, tuple[float, float]]  # m: the hip from the heel and the forefoot (forward, up)
+    contact_order: str = "flat"  # "heel", "forefoot" or "flat": the point the markers put down first
+    reach_s: tuple[float, float] = (0.0, 0.0)  # s after the touchdown: heel, forefoot at their stance level
     valid_data: bool = True
     problems: tuple[str, ...] = ()  # why valid_data is False
 
@@ -86,6 +108,19 @@ def strike_pattern(foot_strike_angle: float) -> str:
     """Rearfoot ("heel"), "midfoot" or "forefoot" from the foot strike angle (rad)."""
     deg = math.degrees(foot_strike_angle)
     return "heel" if deg > REARFOOT_DEG else "forefoot" if deg < FOREFOOT_DEG else "midfoot"
+
+
+def contact_order(heel, forefoot, frame: int, rate: float) -> tuple[str, tuple[float, float]]:
+    """(order, (heel, forefoot) reach times in s after `frame`) from the heights (frames; m)
+    of the heel and forefoot points (module docstring: stance level, LEVEL_M, FLAT_S)."""
+    lo = max(frame - round(STEP_WINDOW * rate), 0)
+    hi = min(frame + round(ORDER_WINDOW * rate) + 1, len(heel))
+    reach = []
+    for z in (heel[lo:hi], forefoot[lo:hi]):
+        reach.append((lo + int(np.flatnonzero(z <= z.min() + LEVEL_M)[0]) - frame) / rate)
+    gap = reach[0] - reach[1]
+    order = "flat" if abs(gap) <= FLAT_S + 1e-9 else "heel" if gap < 0 else "forefoot"
+    return order, (reach[0], reach[1])
 
 
 def force_plate_touchdowns(force, force_rate: float, up, threshold: float = FORCE_THRESHOLD_N,
@@ -143,6 +178,7 @@ def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration,
         if 2 <= frame < len(kin.t) - 2:
             problems = _problems(trial, kin, cal, side, frame, window)
             steps.append(_touchdown(kin, side, frame, t, belt, foot_low[side][frame], problems))
+    steps = _jumps(steps)
     bad = sum(not td.valid_data for td in steps)
     if bad:
         notes.append(f"{bad} of {len(steps)} touchdowns have unsound markers around them: "
@@ -172,6 +208,32 @@ def _belt_speed(trial: Trial, motion: dict) -> float:
         raise MocapError(f"{trial.source}: no stance found: the feet never rest on the ground "
                          f"(is the rate, {trial.rate:g} Hz, right?)")
     return float(np.mean(speeds))
+
+
+def _jumps(steps: list[Touchdown]) -> list[Touchdown]:
+    """Each touchdown whose foot, shank or thigh angle, or whose segment rate, lies far from
+    the median of its side's JUMP_NEIGHBOURS steps on each side (more than JUMP_SD robust
+    standard deviations of theirs and the floor of JUMP_FLOOR) marked unsound, the reason
+    named: a cluster that slipped or was relabelled for a step passes the rigidity test."""
+    out = list(steps)
+    for side in SIDES:
+        idx = [k for k, td in enumerate(steps) if td.side == side]
+        for key, (floor, unit) in JUMP_FLOOR.items():
+            kind, seg = key.split(".")
+            values = np.degrees([getattr(steps[k], kind)[seg] for k in idx])
+            for j, k in enumerate(idx):
+                near = np.delete(values[max(j - JUMP_NEIGHBOURS, 0):j + JUMP_NEIGHBOURS + 1],
+                                 min(j, JUMP_NEIGHBOURS))
+                if len(near) < 4:
+                    continue
+                med = float(np.median(near))
+                limit = max(floor, JUMP_SD * 1.4826 * float(np.median(np.abs(near - med))))
+                if abs(values[j] - med) > limit:
+                    td = out[k]
+                    why = (f"the {seg} {'angle' if kind == 'segments' else 'rate'} {values[j]:.0f} {unit} "
+                           f"is {values[j] - med:+.0f} from its neighbours' {med:.0f} (beyond {limit:.0f})")
+                    out[k] = replace(td, valid_data=False, problems=td.problems + (why,))
+    return out
 
 
 def _problems(trial: Trial, kin: Kinematics, cal: Calibration, side: str, frame: int,
@@ -230,6 +292,8 @@ def _touchdown(kin: Kinematics, side: str, frame: int, time: float, belt: float,
     trunk = float(kin.angles["trunk"][frame])
     hip_p = kin.points[f"{side}.hip"]
     v = (hip_p[frame + 1] - hip_p[frame - 1]) / (2 * dt)
+    order, reach = contact_order(kin.points[f"{side}.heel"][:, 1], kin.points[f"{side}.forefoot"][:, 1],
+                                 frame, kin.rate)
     return Touchdown(time=time, side=side, frame=frame, strike=strike_pattern(a["foot"]),
                      foot_strike_angle=a["foot"], segments={"trunk": trunk, **a},
                      angles=joint_angles({"trunk": trunk, **a}),
@@ -238,4 +302,49 @@ def _touchdown(kin: Kinematics, side: str, frame: int, time: float, belt: float,
                      hip_height=float(hip_p[frame][1] - low),
                      hip_from_point={p: xy(hip_p[frame] - kin.points[f"{side}.{p}"][frame])
                                      for p in ("heel", "forefoot")},
-                     valid_data=not problems, problems=problems)
+                     contact_order=order, reach_s=reach, valid_data=not problems, problems=problems)
+
+
+def shifted(kin: Kinematics, td: Touchdown, frames: int, belt: float) -> Touchdown:
+    """Touchdown `td` taken `frames` marker frames later (earlier when negative): its state's
+    sensitivity to the touchdown time (compare's uncertainty)."""
+    frame = min(max(td.frame + frames, 1), len(kin.t) - 2)
+    low = min(kin.points[f"{td.side}.{p}"][frame, 1] for p in ("heel", "forefoot"))
+    return _touchdown(kin, td.side, frame, td.time + (frame - td.frame) / kin.rate, belt, low,
+                      td.problems)
+
+
+IMPACT_SEARCH_S = (0.005, 0.060)  # s after a touchdown where an impact peak is sought
+IMPACT_DEFAULT_S = 0.030  # s: the impact window when the force has no distinct impact peak
+LOADING_BAND = (0.2, 0.8)  # of the impact peak: the loading rate's stretch (Milner et al. 2006)
+
+
+@dataclass(frozen=True)
+class PlateImpact:
+    """What the plate measured over one touchdown's impact: from the touchdown (the force
+    through its threshold) to the impact peak, the first local maximum of the low-passed
+    vertical force within IMPACT_SEARCH_S, or IMPACT_DEFAULT_S without one."""
+
+    window_s: float  # s, the impact window's length
+    peak: bool  # a distinct impact peak was found
+    impulse_ratio: float  # forward / vertical impulse over the window (braking negative)
+    impact_peak_bw: float  # vertical force at the window's end, body weights
+    loading_rate_bw_per_s: float  # mean slope from 20 to 80 % of it, BW/s
+
+
+def plate_impact(force, rate: float, forward, up, time: float, weight: float,
+                 source: str = "") -> PlateImpact:
+    """The plate's impact of the touchdown at `time` (s): force (samples, 3; N, the ground on
+    the runner), `forward`, `up` the lab axes (3,), `weight` the runner's (N)."""
+    f = lowpass(force, rate, min(FORCE_CUTOFF_HZ, 0.4 * rate), source)
+    vertical, horizontal = f @ up, f @ forward
+    k0 = round(time * rate)
+    lo, hi = k0 + int(IMPACT_SEARCH_S[0] * rate), min(k0 + int(IMPACT_SEARCH_S[1] * rate), len(vertical) - 1)
+    peaks = [k for k in range(lo, hi) if vertical[k] >= vertical[k - 1] and vertical[k] > vertical[k + 1]]
+    end = peaks[0] if peaks else min(k0 + round(IMPACT_DEFAULT_S * rate), len(vertical) - 1)
+    window = slice(k0, end + 1)
+    ratio = float(np.trapezoid(horizontal[window]) / np.trapezoid(vertical[window]))
+    top = float(vertical[end])
+    a, b = (k0 + int(np.flatnonzero(vertical[window] >= s * top)[0]) for s in LOADING_BAND)
+    rate_bw = (vertical[b] - vertical[a]) * rate / max(b - a, 1) / weight
+    return PlateImpact((end - k0) / rate, bool(peaks), ratio, top / weight, float(rate_bw))

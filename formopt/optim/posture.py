@@ -6,10 +6,11 @@ terms), the constraint records (constraints.py: name, bounds, meaning, expressio
 contact law at the impact; multistart.solve runs it and solution.py reports the optimum (what
 holds it, its sensitivities). Derivatives are CasADi's (exact Hessian for the impact alone).
 
-Under Coulomb the impact's mode and sliding direction are fixed for the solve, from the
-reference touchdown: the mode's closed form is smooth, and the inequalities that bound the
-mode's region are constraints, so an optimum on a mode switch says so among its active
-constraints.
+Under Coulomb the impact's mode and sliding direction are fixed for each solve (from the
+reference touchdown unless given): the mode's closed form is smooth, and the inequalities that
+bound the mode's region are constraints. An optimum held by one of them is not left there:
+solve() solves again in the neighbouring mode (NEIGHBOURS), and on until no region holds the
+optimum or every neighbour has been tried, and keeps the best.
 
 With [optimize.gait] the gait's placement is held: the hip's position over the strike point
 (and optionally the foot's speed along the ground) are equalities, the hip velocity and the
@@ -20,7 +21,7 @@ that placement (foot angle, the knee-ankle split, trunk lean).
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import casadi as ca
@@ -117,6 +118,22 @@ def admissible(law: str, strike: str, problem: Problem) -> None:
                                                               "heel or forefoot strike, not a flat one")
 
 
+# Coulomb: (mode, region row) -> the modes across that boundary (contact.coulomb_in_mode's rows:
+# 0 the sliding direction s v_t >= 0 (across it: the other direction); SLIDE 1 k_n > 0 (no
+# neighbour: the sliding impact stops pressing), 2 the slide ends before v_t reaches zero;
+# STICK and REVERSE 1 v_t reaches zero first, 2 sticking holds (STICK) or not (REVERSE)).
+NEIGHBOURS = {(contact.SLIDE, 2): (contact.STICK, contact.REVERSE),
+              (contact.STICK, 1): (contact.SLIDE,), (contact.REVERSE, 1): (contact.SLIDE,),
+              (contact.STICK, 2): (contact.REVERSE,), (contact.REVERSE, 2): (contact.STICK,)}
+
+
+def neighbours(mode: tuple[int, int], row: int) -> list[tuple[int, int]]:
+    """The (mode, sliding direction) pairs across region row `row` (0-based) of `mode`."""
+    if row == 0:
+        return [(mode[0], -mode[1])]
+    return [(m, mode[1]) for m in NEIGHBOURS.get((mode[0], row), ())]
+
+
 class PostureProblem:
     """The NLP of one model, strike, ground and problem; solve() runs the multi-start.
 
@@ -129,13 +146,15 @@ class PostureProblem:
     def __init__(self, model: Model, strike: str, reference, problem: Problem,
                  slope: float, friction: float, joints: Joints | None = None,
                  duration: float = 0.2, graph: str = "SX", compiled: bool = False,
-                 hessian: str = "auto", integrator: str = DEFAULT_INTEGRATOR, law: str = "no-slip"):
+                 hessian: str = "auto", integrator: str = DEFAULT_INTEGRATOR, law: str = "no-slip",
+                 mode: tuple[int, int] | None = None):
         """`reference`: the touchdown state (STATE, SI) whose other values stay fixed;
         `slope` (rad), `friction`: the problem's ground (p0; parameters of the NLP);
         `duration` (s): the longest landing; `graph`, `compiled`, `hessian` ("auto": exact
         for impacts, limited-memory through a landing), `integrator`: scene [numerics];
-        `law`: the contact law at the impact (contact.LAWS). Longer than 60 lines: it
-        assembles the NLP from its parts in order."""
+        `law`: the contact law at the impact (contact.LAWS); `mode`: Coulomb's (mode, sliding
+        direction) to fix (default the reference's). Longer than 60 lines: it assembles the
+        NLP from its parts in order."""
         t0 = time.perf_counter()
         admissible(law, strike, problem)
         self.model, self.strike, self.problem = model, strike, problem
@@ -145,7 +164,11 @@ class PostureProblem:
                                problem.upper, friction, slope)
         self.law = law
         self.impact = Impact(model, strike, slope, friction, law=law)  # checks every optimum
-        self.mode: tuple[int, int] | None = self._coulomb_mode() if law == "coulomb" else None
+        self.mode: tuple[int, int] | None = (mode or self._coulomb_mode()) if law == "coulomb" else None
+        self._arguments = dict(model=model, strike=strike, reference=reference, problem=problem,
+                               slope=slope, friction=friction, joints=joints, duration=duration,
+                               graph=graph, compiled=compiled, hessian=hessian,
+                               integrator=integrator, law=law)
         self.duration = duration
         self.landing = (LandingModel(model, joints or Joints(), slope, integrator=integrator)
                         if problem.landing else None)
@@ -400,5 +423,36 @@ class PostureProblem:
         return dict(zip(self.problem.variables, map(float, g)))
 
     def solve(self, progress=None) -> Optimum:
-        """Run the multi-start (multistart.solve); `progress(k, n, start)` after each start."""
+        """Run the multi-start (multistart.solve); `progress(k, n, start)` after each start.
+        Under Coulomb an optimum held by its mode's region is solved again in each neighbouring
+        mode (neighbours), and on from a better one, each mode once; the best is kept."""
+        best = own = multistart.solve(self, progress)
+        if self.mode is None:
+            return best
+        tried: set[tuple[int, int]] = {self.mode}
+        queue = [(self.mode, best)]
+        while queue:
+            mode, found = queue.pop(0)
+            if not found.success:
+                continue
+            rows = [int(c.name.rsplit("_", 1)[1]) - 1 for c in found.held_by
+                    if c.name.startswith("coulomb_mode_")]
+            for nxt in (n for row in rows for n in neighbours(mode, row) if n not in tried):
+                tried.add(nxt)
+                other = PostureProblem(**{**self._arguments, "mode": nxt}).solve_fixed(progress)
+                if other.success and other.objective < best.objective - 1e-12:
+                    # the reference is measured in its own mode (another mode's closed form
+                    # does not hold there)
+                    best = replace(other, reference_objective=own.reference_objective,
+                                   reference_terms=own.reference_terms)
+                    queue.append((nxt, other))
+        if len(tried) > 1:
+            best = replace(best, notes=best.notes + (
+                "Coulomb modes tried: " + ", ".join(f"{contact.MODES[m]} {'forward' if s > 0 else 'backward'}"
+                                                    for m, s in sorted(tried))
+                + "; the best kept",))
+        return best
+
+    def solve_fixed(self, progress=None) -> Optimum:
+        """The multi-start in this problem's Coulomb mode only (multistart.solve)."""
         return multistart.solve(self, progress)

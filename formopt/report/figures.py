@@ -237,42 +237,51 @@ def _axis_label(param: str) -> str:
 
 
 def comparison_figure(c, rep: dict) -> Figure:
-    """Measured and optimal touchdowns overlaid, per-joint differences, T_c across steps;
+    """Per side, like against like: the mean touchdown of the side's impact point and its
+    optimum overlaid, the joint differences with the step-to-step sd, and T_c per step of that
+    impact point (each with its band over the measurement's variants) beside the optimum's;
     `rep` the comparison's JSON report (Comparison.to_dict)."""
     from ..studies.compare import JOINTS
 
-    fig, axes = _subplots(1, 3, figsize=(14, 4.8), gridspec_kw={"width_ratios": [1.1, 1, 1]})
-    ax = axes[0]
-    ground(ax, 0.0)
-    stick_figure(ax, c.body, c.reference, c.strike, 0.0, "0.5", f"measured (mean {c.strike} touchdown)")
-    stick_figure(ax, c.body, c.optimum.state, c.strike, 0.0, "tab:blue", "optimum, same speed")
-    ax.set_aspect("equal")
-    ax.set_xlabel("x, forward from the strike point (m)")
-    ax.set_ylabel("z, up (m)")
-    ax.legend(fontsize=7, loc="upper left")
-    ax.set_title("touchdown posture", fontsize=10)
-    ax = axes[1]
-    side = max(rep["summary"], key=lambda k: rep["summary"][k]["steps"])
-    sd = [rep["summary"][side]["angles_deg_sd"][k] for k in JOINTS]
-    diff = [rep["difference_deg"][k] for k in JOINTS]
-    ax.bar(JOINTS, diff, color="tab:blue", label="optimum - measured")
-    ax.errorbar(JOINTS, np.zeros(4), yerr=sd, fmt="none", ecolor="0.3", capsize=4,
-                label="measured step-to-step sd")
-    ax.axhline(0, color="0.3", lw=0.8)
-    ax.set_ylabel("optimum - measured joint angle (deg)")
-    ax.legend(fontsize=7)
-    ax.set_title("how far the optimum is, joint by joint", fontsize=10)
-    ax = axes[2]
-    for k, s in enumerate(("R", "L")):
-        values = [r.T_c for td, r in zip(c.steps.touchdowns, c.results) if td.side == s and td.valid_data]
-        if values:
-            ax.scatter(np.full(len(values), k) + np.random.default_rng(0).uniform(-0.15, 0.15, len(values)),
-                       values, s=10, alpha=0.6, label="right" if s == "R" else "left")
-    ax.axhline(c.optimum.impact.T_c, color="tab:blue", ls="--", label="optimum")
-    ax.set_xticks([0, 1], ["right", "left"])
-    ax.set_ylabel("absorbed energy T_c (J)")
-    ax.legend(fontsize=7)
-    ax.set_title(f"T_c per step (cadence {c.steps.cadence_spm:.0f} steps/min)", fontsize=10)
+    sides = [s for s in ("R", "L") if s in c.sides]
+    fig, axes = _subplots(len(sides), 3, figsize=(14, 4.4 * len(sides)), squeeze=False,
+                          gridspec_kw={"width_ratios": [1.1, 1, 1]})
+    for row, side in zip(axes, sides):
+        o, name = c.sides[side], "right" if side == "R" else "left"
+        ax = row[0]
+        ground(ax, 0.0)
+        stick_figure(ax, c.body, o.reference, o.point, 0.0, "0.5", f"measured (mean {o.point} touchdown)")
+        if o.optimum is not None:
+            stick_figure(ax, c.body, o.optimum.state, o.point, 0.0, "tab:blue", "optimum, same gait")
+        ax.set_aspect("equal")
+        ax.set_xlabel("x, forward from the strike point (m)")
+        ax.set_ylabel("z, up (m)")
+        ax.legend(fontsize=7, loc="upper left")
+        ax.set_title(f"{name}: {rep['optimum'][side]['headline']}"[:70], fontsize=8)
+        ax = row[1]
+        if o.optimum is not None:
+            sd = [rep["summary"][side]["angles_deg_sd"][k] for k in JOINTS]
+            ax.bar(JOINTS, [rep["optimum"][side]["difference_deg"][k] for k in JOINTS],
+                   color="tab:blue", label="optimum - measured")
+            ax.errorbar(JOINTS, np.zeros(4), yerr=sd, fmt="none", ecolor="0.3", capsize=4,
+                        label="measured step-to-step sd")
+            ax.legend(fontsize=7)
+        ax.axhline(0, color="0.3", lw=0.8)
+        ax.set_ylabel("optimum - measured joint angle (deg)")
+        ax.set_title(f"{name}: how far the optimum is, joint by joint", fontsize=10)
+        ax = row[2]
+        ks = o.steps
+        t = [c.steps.touchdowns[k].time for k in ks]
+        band = np.array([c.T_c_band[k] for k in ks])
+        values = np.array([c.results[k].T_c for k in ks])
+        ax.errorbar(t, values, yerr=[values - band[:, 0], band[:, 1] - values], fmt="o", ms=3,
+                    color="0.4", ecolor="0.7", label=f"measured {o.point} steps (band: filter, frame)")
+        if o.optimum is not None:
+            ax.axhline(o.optimum.impact.T_c, color="tab:blue", ls="--", label=f"optimum ({o.point})")
+        ax.set_xlabel("time (s)")
+        ax.set_ylabel(f"absorbed energy T_c (J, {c.law})")
+        ax.legend(fontsize=7)
+        ax.set_title(f"{name}: T_c per {o.point} step ({c.steps.cadence_spm:.0f} steps/min)", fontsize=10)
     fig.tight_layout()
     return fig
 

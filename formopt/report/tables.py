@@ -199,42 +199,25 @@ def comparison_table(c: Comparison, rep: dict) -> str:
         lines.append(f"  {'measured, ' + ('right' if side == 'R' else 'left'):22s} {s['steps']:5d} "
                      f"{s['strike']:>9s} " + " ".join(f"{a[k]:7.1f}" for k in JOINTS)
                      + f" {s['foot_strike_angle_deg_mean']:7.1f} {s['T_c_mean']:6.2f} ± {s['T_c_sd']:.2f}"
+                     + f" ({s['T_c_point']} steps)"
                      + f"  valid {s['laws'][c.law]['valid']}/{s['steps']}"
                      + (" (NOT ONE VALID)" if not s['laws'][c.law]['valid'] else "")
                      + (f"; {s['left_out']} left out (markers)" if s["left_out"] else ""))
         lines.append(f"  {'   sd':22s} {'':5s} {'':9s} " + " ".join(f"{sd[k]:7.1f}" for k in JOINTS)
                      + f" {s['foot_strike_angle_deg_sd']:7.1f}")
-    ref, opt = rep["reference"], rep["optimum"]
-    lines.append(f"  {'mean ' + c.strike + ' touchdown':22s} {'':5s} {'':9s} "
-                 + " ".join(f"{ref['angles_deg'][k]:7.1f}" for k in JOINTS) + f" {'':7s} {ref['T_c']:6.2f}")
-    lines.append(f"  {'optimum, same gait':22s} {'':5s} {c.strike:>9s} "
-                 + " ".join(f"{opt['touchdown']['angles_deg'][k]:7.1f}" for k in JOINTS)
-                 + f" {'':7s} {opt['T_c']:6.2f}  {opt['verdict']}")
-    lines.append(f"  {'optimum - measured':22s} {'':5s} {'':9s} "
-                 + " ".join(f"{rep['difference_deg'][k]:+7.1f}" for k in JOINTS)
-                 + f" {'':7s} {opt['T_c'] - ref['T_c']:+6.2f}")
-    ps = rep["per_step"]
-    if ps.get("converged"):
-        m, sd = ps["angles_deg_mean"], ps["angles_deg_sd"]
-        lines.append(f"  {'optimum per step':22s} {ps['converged']:5d} {'':9s} {'':7s} "
-                     + " ".join(f"{m[k]:7.1f}" for k in ("hip", "knee", "ankle"))
-                     + f"  saving {ps['saving_J_mean']:.2f} ± {ps['saving_J_sd']:.2f} J"
-                     + (f"; {ps['steps'] - ps['converged']} not converged" if ps['converged'] < ps['steps'] else ""))
-        lines.append(f"  {'   sd':22s} {'':5s} {'':9s} {'':7s} " + " ".join(f"{sd[k]:7.1f}" for k in ("hip", "knee", "ankle")))
-    g = opt["gait"]
-    lines += ["", f"  the optimum ({c.law}, friction {c.optimum.reference.friction:g}): "
-                  f"objective {_objective_text(opt['objective_terms'])}; the measured gait held: hip "
-                  f"{g['hip_from_strike_m'][0]:+.3f} m along, {g['hip_from_strike_m'][1]:.3f} m above "
-                  f"the strike point, hip velocity ({g['hip_velocity'][0]:+.2f}, {g['hip_velocity'][1]:+.2f}) "
-                  f"m/s, the measured segment rates" if opt["success"] else
-              f"  the optimum ({c.law}): {opt['verdict']}: {explain(opt['status'])}",
-              "  bounds (deg, --bounds JOINT=LO:HI): " + ", ".join(
-                  f"{k} {lo:g} to {hi:g}" for k, (lo, hi) in opt["bounds_deg"].items())]
-    if opt["success"]:
-        lines.append("  per step, measured -> optimum: " + ", ".join(
-            f"{k} {ref['terms'][k]:.3g} -> {v:.3g} J" for k, v in opt["terms"].items())
-            + f"; saving {opt['saving_J_per_step']:.3g} J per step, {opt['saving_W']:.3g} W at "
-              f"{st.cadence_spm:.1f} steps/min")
+        lines.append(f"  {'':22s} first down: the model's sole " + ", ".join(
+            f"{p} {n}" for p, n in s["impact_points"].items()) + "; the markers " + ", ".join(
+            f"{p} {n}" for p, n in s["contact_order"].items()))
+        pl = s.get("plate")
+        if pl:
+            laws = ", ".join(f"{law} {v:+.2f}" for law, v in pl["laws_impulse_ratio"].items() if v is not None)
+            lines.append(f"  {'':22s} the plate over the impact ({pl['window_ms_mean']:.0f} ms, to the impact peak "
+                         f"in {pl['impact_peaks']}/{pl['steps']} steps, else 30 ms): horizontal/vertical impulse, medians, "
+                         f"{pl['impulse_ratio_median']:+.2f} (sd {pl['impulse_ratio_sd']:.2f}) against the rigid impact's "
+                         f"{laws}: nearest {pl['nearest_law']}; impact peak {pl['impact_peak_bw_mean']:.2f} BW, "
+                         f"loading rate {pl['loading_rate_bw_per_s_mean']:.0f} BW/s")
+    for side, o in rep["optimum"].items():
+        lines += _side_lines(c, side, o, st.cadence_spm)
     lines += ["", f"  every touchdown under each contact law (T_c mean, J; valid touchdowns; * {c.law}, "
                   "the law above):",
               f"  {'':22s} " + " ".join(f"{law + (' *' if law == c.law else ''):>20s}" for law in LAWS)]
@@ -247,11 +230,51 @@ def comparison_table(c: Comparison, rep: dict) -> str:
     return "\n".join(lines)
 
 
+def _side_lines(c: Comparison, side: str, o: dict, cadence: float) -> list[str]:
+    """One side's optimum: its mean touchdown, the optimum, the saving with its band."""
+    name = "right" if side == "R" else "left"
+    ref = o["reference"]
+    lines = ["", f"  {name}: {o['headline']}",
+             f"  {'mean ' + o['point'] + ' touchdown':22s} {o['steps']:5d} {'':9s} "
+             + " ".join(f"{ref['angles_deg'][k]:7.1f}" for k in JOINTS) + f" {'':7s} {ref['T_c']:6.2f}"
+             + ("" if ref["valid"] else "  INVALID: " + "; ".join(ref["warnings"]))]
+    if "touchdown" not in o:
+        return lines
+    lines.append(f"  {'optimum, same gait':22s} {'':5s} {o['point']:>9s} "
+                 + " ".join(f"{o['touchdown']['angles_deg'][k]:7.1f}" for k in JOINTS)
+                 + f" {'':7s} {o['T_c']:6.2f}  {o['verdict']}")
+    lines.append(f"  {'optimum - measured':22s} {'':5s} {'':9s} "
+                 + " ".join(f"{o['difference_deg'][k]:+7.1f}" for k in JOINTS)
+                 + f" {'':7s} {o['T_c'] - ref['T_c']:+6.2f}")
+    ps = o["per_step"]
+    if ps.get("converged"):
+        m = ps["angles_deg_mean"]
+        lines.append(f"  {'optimum per step':22s} {ps['converged']:5d} {'':9s} {'':7s} "
+                     + " ".join(f"{m[k]:7.1f}" for k in ("hip", "knee", "ankle"))
+                     + f"  saving {ps['saving_J_mean']:.3f} ± {ps['saving_J_sd']:.3f} J")
+    if o["success"]:
+        g = o["gait"]
+        lines.append(f"  ({c.law}, objective {_objective_text(o['objective_terms'])}; held: hip "
+                     f"{g['hip_from_strike_m'][0]:+.3f} m along, {g['hip_from_strike_m'][1]:.3f} m above "
+                     f"the {o['point']}, hip velocity ({g['hip_velocity'][0]:+.2f}, {g['hip_velocity'][1]:+.2f}) "
+                     f"m/s, the measured segment rates)")
+    else:
+        lines.append(f"  the optimum ({c.law}): {o['verdict']}: {explain(o['status'])}")
+    if o["saving_J_per_step"] is not None:
+        lo, hi = o["saving_band_J"]
+        lines.append(f"  T_c per step {ref['T_c']:.3f} -> {o['T_c']:.3f} J: saving {o['saving_J_per_step']:.3f} J "
+                     f"({o['saving_W']:.2f} W at {cadence:.1f} steps/min), band {lo:+.3f} to {hi:+.3f} J "
+                     f"(T_c moves {o['T_c_uncertainty_J']:.3f} J with the filter and the touchdown frame)"
+                     + ("" if o["resolvable"] else ": no change that the measurement can resolve"))
+    return lines
+
+
 def trials_table(rows) -> str:
     """The table across trials (compare with several trials): one line per trial and side."""
     head = rows[0]
-    pick = ["trial", "side", "steps", "strike", "foot_strike_angle_deg", "hip_deg", "knee_deg",
-            "ankle_deg", "cadence_spm", "speed_mps", "T_c_J", "optimum_verdict", "saving_J_per_step"]
+    pick = ["trial", "side", "steps", "impact_point", "foot_strike_angle_deg", "hip_deg", "knee_deg",
+            "ankle_deg", "cadence_spm", "speed_mps", "T_c_J", "saving_J_per_step", "saving_low_J",
+            "saving_high_J", "optimum_headline"]
     idx = [head.index(k) for k in pick]
     width = {k: max(len(k), 10) for k in pick}
     width["trial"] = max(len(Path(r[head.index("trial")]).name) for r in rows[1:])

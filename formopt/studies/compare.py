@@ -1,33 +1,40 @@
 """Measured touchdowns against the optimum: the runner's own posture, indicators and the gap.
 
-For each touchdown of a trial (measure.measure), the indicators of that landing on the
-paper's leg scaled to the runner (de Leva); the gait-anchored optimum of the mean touchdown of
-the dominant strike (the measured hip placement over the strike point, hip velocity, segment
-rates and cadence held; hip, knee and ankle free within `bounds_deg`, default the ranges of
-motion; objective T_c + support weight * support, optim.objective); and the same optimum for
-every step of that strike, each anchored at its own placement (one NLP: the reference
-touchdown is a parameter). Only touchdowns with sound markers (valid_data) enter the means.
+For each touchdown of a trial (measure.measure), the impact on the paper's leg scaled to the
+runner (de Leva) at the point the model's sole puts down first (model_impact_point; the
+markers' contact order beside it), under the law asked (default Coulomb; every law kept), with
+T_c's band over the measurement's variants (the markers' cut-off across FILTER_BAND_HZ, the
+touchdown TIME_SHIFTS frames off). Per side, never pooled: the gait-anchored optimum of the
+mean touchdown of that side's dominant impact point (the measured hip placement over the
+strike point, hip velocity, segment rates and cadence held; hip, knee and ankle free within
+`bounds_deg`; objective T_c, optionally + support weight * support), its saving only against
+a mean touchdown valid under the law, with its band (SideOptimum); and the same optimum for
+every valid step of that point (one NLP: the reference touchdown is a parameter). Only
+touchdowns with sound markers (valid_data) enter the means.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
+import casadi as ca
 import numpy as np
 
 from ..io import mocap
 from ..io.markerset import SIDES
 from ..measure import Measurement, Options, Steps, Touchdown, measure
 from ..measure.filters import effective_cutoff
+from ..measure.touchdowns import FLAT_S, PlateImpact, plate_impact, shifted
 from ..mechanics.body import Body, scaled_body
 from ..mechanics.contact import LAWS
 from ..mechanics.impact import Impact, ImpactResult
-from ..mechanics.model import STATE, build_model
+from ..mechanics.model import STATE, STRIKES, build_model, landmarks
 from ..optim.posture import Gait, PostureProblem, Problem
 from ..optim.solution import CONVERGED, Optimum
 from ..optim.variables import RANGE_OF_MOTION_DEG
 
+G = 9.81  # m/s^2: body weights
 JOINTS = ("trunk", "hip", "knee", "ankle")
 SEGMENTS = ("trunk", "thigh", "shank", "foot")
 VARIABLES = ("hip", "knee", "ankle")
@@ -35,6 +42,14 @@ VARIABLES = ("hip", "knee", "ankle")
 # ranges of motion), the runner's trunk lean, speed and segment rates held at their means.
 BOUNDS_DEG = {k: RANGE_OF_MOTION_DEG[k] for k in VARIABLES}
 SUPPORT = 0.0  # the support term's weight: T_c alone (README, "What the optimum weighs")
+
+
+FILTER_BAND_HZ = (8.0, 20.0)  # the markers' cut-offs T_c's uncertainty spans: running
+#   kinematics are low-passed at 6-20 Hz (Winter's residual analysis gives 6-10 Hz for thigh
+#   and shank, the foot near touchdown keeps content up to 15-20 Hz); 8 and 20 bracket the
+#   choices around the default 10 Hz without passing the impact's marker artefacts
+TIME_SHIFTS = (-1, 1)  # marker frames: the touchdown one frame earlier and later
+VARIANTS = tuple([f"cutoff {f:g} Hz" for f in FILTER_BAND_HZ] + [f"touchdown {n:+d} frame" for n in TIME_SHIFTS])
 
 
 @dataclass(frozen=True)
@@ -53,30 +68,96 @@ class StepOptimum:
 
 
 @dataclass
+class SideOptimum:
+    """One side's optimum: the gait-anchored optimum of the mean touchdown of that side's
+    steps with the side's dominant impact point (valid markers), and its saving's band.
+
+    The saving is measured only against a reference that is valid under the law; its band
+    is saving +- u, u the largest change of the side's mean measured T_c when the markers'
+    cut-off moves across FILTER_BAND_HZ or the touchdown by TIME_SHIFTS (the optimum holds the
+    same measured rates, so what the measurement cannot fix in T_c it cannot fix in the
+    saving); `resolvable` when the band excludes zero."""
+
+    side: str
+    point: str  # the impact point of its steps (heel, forefoot)
+    steps: list[int]  # touchdown indices averaged
+    reference: np.ndarray  # their mean touchdown state (model.STATE, SI)
+    checked: ImpactResult  # the impact at the mean touchdown under the law
+    problem: Problem | None
+    optimum: Optimum | None  # None: no optimum solved (why_not)
+    why_not: str = ""
+    uncertainty: float = float("nan")  # J: u above
+    shifts: dict[str, float] = field(default_factory=dict)  # J: each variant's mean T_c - the nominal
+    hip_from_strike: tuple[float, float] = (0.0, 0.0)  # m
+    per_step: dict[int, StepOptimum] = field(default_factory=dict)
+
+    @property
+    def saving(self) -> float | None:
+        """J per step, against a valid reference only."""
+        opt = self.optimum
+        return opt.saving if opt is not None and opt.success and self.checked.valid else None
+
+    @property
+    def band(self) -> tuple[float, float] | None:
+        s = self.saving
+        return None if s is None else (s - self.uncertainty, s + self.uncertainty)
+
+    @property
+    def resolvable(self) -> bool | None:
+        band = self.band
+        return None if band is None else bool(band[0] > 0 or band[1] < 0)
+
+    @property
+    def headline(self) -> str:
+        """One line: the optimum's verdict, or why there is none or no saving."""
+        if self.optimum is None:
+            return f"NO OPTIMUM: {self.why_not}"
+        if not self.checked.valid:
+            return (f"REFERENCE INVALID under {self.checked.law} ({'; '.join(self.checked.warnings)}): "
+                    f"no saving measured against it; {self.optimum.verdict}")
+        if self.resolvable is False:
+            return f"no change that the measurement can resolve; {self.optimum.verdict}"
+        return self.optimum.verdict
+
+
+@dataclass
 class Comparison:
     measurement: Measurement
-    results: list[ImpactResult]  # one per touchdown, on the scaled model
-    strikes: list[str]  # the impact's strike point per touchdown (heel or forefoot)
-    reference: np.ndarray  # mean measured touchdown state of the dominant pattern (valid steps)
-    strike: str  # the dominant strike point
-    optimum: Optimum
+    results: list[ImpactResult]  # one per touchdown under `law`, at its impact point
+    points: list[str]  # the model's impact point per touchdown (heel, forefoot, flat)
+    T_c_band: list[tuple[float, float]]  # J per touchdown: least and most T_c over the variants
+    sides: dict[str, SideOptimum]
     body: Body
     law: str  # the contact law of `results` and of the optima (contact.LAWS)
-    problem: Problem  # the optimum's: bounds (rad), objective, gait
     settings: dict  # every setting that made this comparison (to_dict()["settings"])
-    per_step: dict[int, StepOptimum] = field(default_factory=dict)  # touchdown index -> optimum
-    hip_from_strike: tuple[float, float] = (0.0, 0.0)  # m, the mean touchdown's placement
+    sole: list[tuple[str, float, float]]  # per touchdown: the model sole's lower point, the
+    #                 other's time down (s), T_c (J) of an impact at the lower point alone
+    plate: list[PlateImpact | None] = field(default_factory=list)  # per touchdown, trials with forces
 
     @property
     def steps(self) -> Steps:
         return self.measurement.steps
 
+    @property
+    def main_side(self) -> SideOptimum:
+        """The side with the most steps averaged (a shorthand; the sides are never pooled)."""
+        return max(self.sides.values(), key=lambda o: len(o.steps))
+
+    @property
+    def strike(self) -> str:
+        """The main side's impact point."""
+        return self.main_side.point
+
+    @property
+    def optimum(self) -> Optimum | None:
+        """The main side's optimum (None when it has none: SideOptimum.why_not)."""
+        return self.main_side.optimum
+
     def to_dict(self) -> dict:
         """JSON-ready dictionary (README, "Measured touchdowns"): the settings, the measurement,
-        every touchdown, the per-side summary, the optimum of the mean touchdown against it,
-        the per-step optima."""
-        opt, cal, st = self.optimum, self.measurement.calibration, self.steps
-        optimum, reference = _angles_deg(opt.state), _angles_deg(self.reference)
+        every touchdown, the per-side summary, each side's optimum against its mean touchdown,
+        and its per-step optima."""
+        cal, st = self.measurement.calibration, self.steps
         return {
             "settings": self.settings, "source": self.measurement.trial.source,
             "law": self.law, "cadence_spm": st.cadence_spm, "belt_speed": st.belt_speed,
@@ -86,39 +167,88 @@ class Comparison:
             "left_out": st.left_out, "notes": st.notes,
             "touchdowns": [touchdown_row(self, k) for k in range(len(st.touchdowns))],
             "summary": summary(self),
-            "optimum": {"success": opt.success, "status": opt.status, "verdict": opt.verdict,
-                        "strike": self.strike, "law": self.law,
-                        "bounds_deg": {v: [math.degrees(lo), math.degrees(hi)] for v, lo, hi in
-                                       zip(self.problem.variables, self.problem.lower, self.problem.upper)},
-                        "objective_terms": self.problem.objective, "gait": gait(self),
-                        "touchdown": {"angles_deg": optimum, "hip_velocity": list(opt.state[4:6])},
-                        "T_c": opt.impact.T_c, "terms": opt.terms, "objective": opt.objective,
-                        "held_by": [a.name for a in opt.held_by],
-                        "active": [a.name for a in opt.active],
-                        "saving_J_per_step": opt.saving, "saving_W": opt.power},
-            "per_step": per_step_summary(self),
-            "reference": {"angles_deg": reference, "T_c": opt.reference.T_c,
-                          "terms": opt.reference_terms, "objective": opt.reference_objective},
-            "difference_deg": {k: optimum[k] - reference[k] for k in JOINTS},
+            "optimum": {side: side_dict(self, o) for side, o in self.sides.items()},
         }
 
 
-def impact_strike(td: Touchdown) -> str:
-    """The foot point that meets the ground first: heel or forefoot (midfoot: the lower)."""
-    if td.strike in ("heel", "forefoot"):
-        return td.strike
-    heel, fore = td.hip_from_point["heel"][1], td.hip_from_point["forefoot"][1]
-    return "heel" if heel >= fore else "forefoot"  # the hip higher above it: the lower point
+def side_dict(c: Comparison, o: SideOptimum) -> dict:
+    """One side's optimum in the JSON report: reference, optimum, saving with its band."""
+    reference = _angles_deg(o.reference)
+    out = {"point": o.point, "law": c.law, "steps": len(o.steps), "headline": o.headline,
+           "reference": {"angles_deg": reference, "T_c": o.checked.T_c, "valid": o.checked.valid,
+                         "warnings": list(o.checked.warnings)},
+           "saving_J_per_step": o.saving, "saving_band_J": list(o.band) if o.band else None,
+           "resolvable": o.resolvable, "T_c_uncertainty_J": _finite(o.uncertainty),
+           "T_c_shift_J": {k: _finite(v) for k, v in o.shifts.items()},
+           "saving_W": None if o.saving is None else o.saving * c.steps.cadence_spm / 60.0}
+    opt, problem = o.optimum, o.problem
+    if opt is None or problem is None:
+        return out
+    optimum = _angles_deg(opt.state)
+    out.update({
+        "success": opt.success, "status": opt.status, "verdict": opt.verdict,
+        "bounds_deg": {v: [math.degrees(lo), math.degrees(hi)] for v, lo, hi in
+                       zip(problem.variables, problem.lower, problem.upper)},
+        "objective_terms": problem.objective,
+        "gait": {"hip_from_strike_m": list(o.hip_from_strike), "hip_velocity": list(o.reference[4:6]),
+                 "cadence_spm": c.steps.cadence_spm},
+        "touchdown": {"angles_deg": optimum, "hip_velocity": list(opt.state[4:6])},
+        "T_c": opt.impact.T_c, "terms": opt.terms, "objective": opt.objective,
+        "reference_terms": opt.reference_terms, "held_by": [a.name for a in opt.held_by],
+        "active": [a.name for a in opt.active], "notes": list(opt.notes),
+        "difference_deg": {k: optimum[k] - reference[k] for k in JOINTS},
+        "per_step": per_step_summary(o)})
+    return out
+
+
+def impact_point(sole: ca.Function, td: Touchdown) -> tuple[str, str, float]:
+    """(impact point, the model sole's first point, the other point's time to the ground, s)
+    of a measured touchdown. The model's sole (flat in the foot frame) at the measured foot
+    angle relative to standing puts its lower point down first; the other point would follow
+    after its height over the ground divided by its own approach speed (inf when it rises).
+    The step is "flat" when that time is within touchdowns.FLAT_S and the markers' contact
+    order says so too (both sources agree on both at once); otherwise the model's lower
+    point. (A rigid flat-foot impact stops the whole foot at once and absorbs an order of
+    magnitude more than either point alone: it is kept for the steps both sources call flat.)"""
+    z_heel, z_fore, v_heel, v_fore = np.asarray(sole(td.state()), float).ravel()
+    lower, gap, speed = (("heel", z_fore - z_heel, -v_fore) if z_heel <= z_fore
+                         else ("forefoot", z_heel - z_fore, -v_heel))
+    follows = gap / speed if speed > 0 else math.inf
+    flat = follows <= FLAT_S and td.contact_order == "flat"
+    return ("flat" if flat else lower), lower, follows
+
+
+def sole_function(body: Body) -> ca.Function:
+    """x -> [z_heel, z_forefoot, vz_heel, vz_forefoot] (m, m/s; hip at 0) of the model's foot."""
+    x = ca.SX.sym("x", len(STATE))
+    marks = landmarks(x, body)
+    return ca.Function("sole", [x], [ca.vertcat(marks["heel"][0][1], marks["forefoot"][0][1],
+                                                marks["heel"][1][1], marks["forefoot"][1][1])])
+
+
+def modelled_state(td: Touchdown, point: str) -> np.ndarray:
+    """The touchdown state the impact takes: a flat step with its sole put on the ground (the
+    ankle turned by the foot angle, within the flat tolerance), the others as measured."""
+    x = td.state()
+    if point == "flat":
+        x[STATE.index("ankle")] -= td.foot_strike_angle
+    return x
+
+
+def dominant(points: list[str]) -> str:
+    """The most frequent impact point (heel first, then forefoot, on a tie)."""
+    return max(STRIKES, key=points.count)
 
 
 def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
             sex: str = "male", friction: float = 0.8, starts: int = 4, seed: int = 0,
-            law: str = "no-slip", bounds_deg: dict | None = None, support: float = SUPPORT,
+            law: str = "coulomb", bounds_deg: dict | None = None, support: float = SUPPORT,
             options: Options = Options(), per_step: bool = True) -> Comparison:
-    """Every touchdown of `trial` through the impact under `law` (each result also carries
-    the other laws, ImpactResult.contact_laws), the gait-anchored optimum under `law` within
-    `bounds_deg` ({joint: (lo, hi)}, deg; missing joints keep BOUNDS_DEG), and with
-    `per_step` the optimum of each valid step of the dominant strike."""
+    """Every touchdown of `trial` through the impact at its model impact point under `law`
+    (each result also carries the other laws, ImpactResult.contact_laws), its T_c's band over
+    the measurement's variants (variants), and per side the gait-anchored optimum under `law`
+    within `bounds_deg` ({joint: (lo, hi)}, deg; missing joints keep BOUNDS_DEG), with
+    `per_step` the optimum of each valid step of that side's impact point as well."""
     m = measure(trial, static, height, options)
     steps = m.steps
     if not steps.valid:
@@ -126,34 +256,90 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
                                f"({'; '.join(steps.left_out[:3])})")
     body = scaled_body(mass, height, sex)
     model = build_model(body, "leg")
-    impacts = {s: Impact(model, s, 0.0, friction, law=law) for s in ("heel", "forefoot")}
-    strikes = [impact_strike(td) for td in steps.touchdowns]
-    results = [impacts[s](td.state()) for s, td in zip(strikes, steps.touchdowns)]
-    patterns = [td.strike for td in steps.valid]  # the runner's pattern decides the optimum's
-    strike = "heel" if patterns.count("heel") > len(patterns) / 2 else "forefoot"
-    chosen = [k for k, (s, td) in enumerate(zip(strikes, steps.touchdowns))
-              if s == strike and td.valid_data] or [k for k, td in enumerate(steps.touchdowns) if td.valid_data]
-    reference = np.mean([steps.touchdowns[k].state() for k in chosen], axis=0)
+    sole = sole_function(body)
+    firsts = [impact_point(sole, td) for td in steps.touchdowns]
+    points = [p for p, _, _ in firsts]
+    impacts = {s: Impact(model, s, 0.0, friction, law=law) for s in STRIKES}
+    results = [impacts[p](modelled_state(td, p)) for td, p in zip(steps.touchdowns, points)]
+    nominal = np.array([r.T_c for r in results])
+    spread = np.array([[impacts[p](modelled_state(v, p)).T_c if v else np.nan
+                        for v, p in zip(variant, points)]
+                       for variant in variants(trial, static, height, options, m)])
     bounds = {**BOUNDS_DEG, **(bounds_deg or {})}
     lower, upper = zip(*(map(math.radians, bounds[v]) for v in VARIABLES))
-    objective = {"T_c": 1.0, "support": support} if support else {"T_c": 1.0}
-    problem = Problem(VARIABLES, lower, upper, objective, starts=starts, seed=seed,
-                      gait=Gait(cadence_spm=steps.cadence_spm))
-    pp = PostureProblem(model, strike, reference, problem, 0.0, friction, law=law)
-    optimum = pp.solve()
+    problem = Problem(VARIABLES, lower, upper,
+                      {"T_c": 1.0, "support": support} if support else {"T_c": 1.0},
+                      starts=starts, seed=seed, gait=Gait(cadence_spm=steps.cadence_spm))
     settings = {"markers": m.calibration.markerset.name, "cutoff_hz": options.cutoff_hz,
                 "effective_cutoff_hz": round(effective_cutoff(m.trial.rate, options.cutoff_hz), 2),
+                "uncertainty": {"cutoff_hz": list(FILTER_BAND_HZ), "touchdown_frames": list(TIME_SHIFTS)},
+                "flat_tolerance_s": FLAT_S,
                 "force_threshold_n": options.force_threshold_n,
                 "foot_speed_fraction": options.foot_speed_fraction, "contact": law,
                 "friction": friction, "bounds_deg": {k: list(v) for k, v in bounds.items()},
                 "support": support, "starts": starts, "seed": seed,
                 "body": {"mass_kg": mass, "height_m": height, "sex": sex}}
-    c = Comparison(m, results, strikes, reference, strike, optimum, body, law, problem, settings,
-                   hip_from_strike=pp.hip_from_strike(reference))
-    if per_step and optimum.success:
-        c.per_step = {k: step_optimum(pp, steps.touchdowns[k].state(), optimum.state, friction)
-                      for k in chosen}
-    return c
+    sides = {}
+    for side in SIDES:
+        own = [k for k, td in enumerate(steps.touchdowns) if td.side == side and td.valid_data]
+        if own:
+            sides[side] = side_optimum(side, own, points, results, nominal, spread, steps,
+                                       impacts, problem, friction, per_step)
+    band = [(float(np.nanmin([a, *col])), float(np.nanmax([a, *col])))
+            for a, col in zip(nominal, spread.T)]
+    t, axes = m.trial, m.calibration.axes
+    plate = [plate_impact(t.force, t.force_rate, axes.forward, axes.up, td.time, mass * G, t.source)
+             if steps.method == "force plate" and t.force_rate is not None else None
+             for td in steps.touchdowns]
+    return Comparison(m, results, points, band, sides, body, law, settings,
+                      [(lower, follows, r.T_c if p != "flat" else impacts[lower](td.state()).T_c)
+                       for (p, lower, follows), r, td in zip(firsts, results, steps.touchdowns)], plate)
+
+
+def variants(trial, static, height: float, options: Options, m: Measurement) -> list[list]:
+    """The touchdowns measured again with each cut-off of FILTER_BAND_HZ (matched by side and
+    time, None where not found within 20 ms) and taken TIME_SHIFTS frames off, aligned with
+    m's touchdowns."""
+    out = []
+    for cutoff in FILTER_BAND_HZ:
+        other = measure(trial, static, height, replace(options, cutoff_hz=cutoff)).steps.touchdowns
+        out.append([min((o for o in other if o.side == td.side and abs(o.time - td.time) < 0.02),
+                        key=lambda o: abs(o.time - td.time), default=None)
+                    for td in m.steps.touchdowns])
+    for frames in TIME_SHIFTS:
+        out.append([shifted(m.kinematics, td, frames, m.steps.belt_speed) for td in m.steps.touchdowns])
+    return out
+
+
+def side_optimum(side: str, own: list[int], points, results, nominal, spread, steps: Steps,
+                 impacts: dict, problem: Problem, friction: float, per_step: bool) -> SideOptimum:
+    """The optimum of one side (SideOptimum): its dominant impact point's steps averaged,
+    the mean checked, the optimum solved (Coulomb's mode followed, PostureProblem.solve), the
+    band from the variants' T_c, and each of those steps' optimum when asked."""
+    point = dominant([points[k] for k in own])
+    chosen = [k for k in own if points[k] == point]
+    shift = np.nanmean(spread[:, chosen], axis=1) - nominal[chosen].mean()
+    reference = np.mean([modelled_state(steps.touchdowns[k], point) for k in chosen], axis=0)
+    checked = impacts[point](reference)
+    law = impacts[point].law
+    if point == "flat" and law == "coulomb":
+        return SideOptimum(side, point, chosen, reference, checked, None, None,
+                           f"{len(chosen)} of {len(own)} steps are flat (both points down within "
+                           f"{FLAT_S * 1e3:.0f} ms, the model and the markers agreeing): a flat "
+                           "strike's Coulomb impact has no smooth optimum (optim.posture.admissible)",
+                           float(np.nanmax(np.abs(shift))), shifts=dict(zip(VARIANTS, map(float, shift))))
+    if point == "flat":
+        problem = replace(problem, variables=VARIABLES[:2], lower=problem.lower[:2],
+                          upper=problem.upper[:2])  # the ankle follows from the sole on the ground
+    pp = PostureProblem(impacts[point].model, point, reference, problem, 0.0, friction, law=law)
+    o = SideOptimum(side, point, chosen, reference, checked, problem, pp.solve(),
+                    uncertainty=float(np.nanmax(np.abs(shift))),
+                    shifts=dict(zip(VARIANTS, map(float, shift))),
+                    hip_from_strike=pp.hip_from_strike(reference))
+    if per_step and o.optimum is not None and o.optimum.success:
+        o.per_step = {k: step_optimum(pp, modelled_state(steps.touchdowns[k], point), o.optimum.state, friction)
+                      for k in chosen if results[k].valid}
+    return o
 
 
 def step_optimum(pp: PostureProblem, state, start, friction: float) -> StepOptimum:
@@ -169,6 +355,18 @@ def step_optimum(pp: PostureProblem, state, start, friction: float) -> StepOptim
                        x, float(pp.objective_function(w, p)), float(pp.objective_function(own, p)))
 
 
+def impulse_ratio(law) -> float | None:
+    """Tangential over normal impulse (forward positive) of one law's impact (LawResult)."""
+    t = sum(v[0] for v in law.impulse.values())
+    n = sum(v[1] for v in law.impulse.values())
+    return t / n if n > 0 else None
+
+
+def _finite(value: float) -> float | None:
+    """JSON has no inf or nan: None."""
+    return value if math.isfinite(value) else None
+
+
 def _deg(values: dict) -> dict:
     return {k: math.degrees(v) for k, v in values.items()}
 
@@ -180,19 +378,30 @@ def _angles_deg(state) -> dict:
 
 def touchdown_row(c: Comparison, k: int) -> dict:
     """One touchdown in the JSON report (README, "Measured touchdowns")."""
-    td, s, r = c.steps.touchdowns[k], c.strikes[k], c.results[k]
+    td, p, r = c.steps.touchdowns[k], c.points[k], c.results[k]
     row = {"time": td.time, "side": td.side, "frame": td.frame, "method": c.steps.method,
            "strike": td.strike, "foot_strike_angle_deg": math.degrees(td.foot_strike_angle),
+           "impact_point": p, "contact_order": td.contact_order,
+           "model_sole": {"first": c.sole[k][0], "other_down_ms": _finite(c.sole[k][1] * 1e3),
+                          "T_c_first_alone": c.sole[k][2]},
+           "reach_ms": {"heel": td.reach_s[0] * 1e3, "forefoot": td.reach_s[1] * 1e3},
            "segment_angles_deg": _deg(td.segments), "angles_deg": _deg(td.angles),
            "rates_dps": _deg(td.rates), "hip_velocity_mps": list(td.hip_velocity),
            "hip_height_m": td.hip_height,
-           "strike_point": {"point": s, "hip_from_point_m": list(td.hip_from_point[s])},
+           "hip_from_point_m": {q: list(v) for q, v in td.hip_from_point.items()},
            "valid_data": td.valid_data, "data_problems": list(td.problems),
-           "T_c": r.T_c, "mu_c": r.mu_c, "valid": r.valid,
-           "contact_laws": {law: {key: getattr(v, key) for key in ("T_c", "valid", "mode", "slip_velocity")}
+           "T_c": r.T_c, "T_c_band_J": list(c.T_c_band[k]), "mu_c": r.mu_c, "valid": r.valid,
+           "contact_laws": {law: {**{key: getattr(v, key) for key in ("T_c", "valid", "mode", "slip_velocity")},
+                                  "impulse_ratio": impulse_ratio(v)}
                             for law, v in r.contact_laws.items()}}
-    if k in c.per_step:
-        o = c.per_step[k]
+    pl = c.plate[k] if c.plate else None
+    if pl is not None:
+        row.update({"plate_impulse_ratio": pl.impulse_ratio, "impact_peak_bw": pl.impact_peak_bw,
+                    "loading_rate_bw_per_s": pl.loading_rate_bw_per_s,
+                    "impact_window_ms": pl.window_s * 1e3, "impact_peak_found": pl.peak})
+    side = c.sides.get(td.side)
+    if side is not None and k in side.per_step:
+        o = side.per_step[k]
         row["optimum"] = {"success": o.success, "status": o.status,
                           "angles_deg": _angles_deg(o.state),
                           "objective": o.objective, "measured_objective": o.measured,
@@ -200,20 +409,14 @@ def touchdown_row(c: Comparison, k: int) -> dict:
     return row
 
 
-def gait(c: Comparison) -> dict:
-    """What the optimum holds from the measured gait: hip placement (m), velocity, cadence."""
-    return {"hip_from_strike_m": list(c.hip_from_strike), "hip_velocity": list(c.reference[4:6]),
-            "cadence_spm": c.steps.cadence_spm}
-
-
-def per_step_summary(c: Comparison) -> dict:
-    """The per-step optima: how many converged, and their angles and savings (mean, sd)."""
-    done = [o for o in c.per_step.values() if o.success]
+def per_step_summary(o: SideOptimum) -> dict:
+    """A side's per-step optima: how many converged, their angles and savings (mean, sd)."""
+    done = [s for s in o.per_step.values() if s.success]
     if not done:
-        return {"steps": len(c.per_step), "converged": 0}
-    angles = np.degrees([[o.state[STATE.index(j)] for j in VARIABLES] for o in done])
-    saving = np.array([o.saving for o in done])
-    return {"steps": len(c.per_step), "converged": len(done),
+        return {"steps": len(o.per_step), "converged": 0}
+    angles = np.degrees([[s.state[STATE.index(j)] for j in VARIABLES] for s in done])
+    saving = np.array([s.saving for s in done])
+    return {"steps": len(o.per_step), "converged": len(done),
             "angles_deg_mean": dict(zip(VARIABLES, angles.mean(axis=0))),
             "angles_deg_sd": dict(zip(VARIABLES, angles.std(axis=0, ddof=1) if len(done) > 1 else np.zeros(3))),
             "saving_J_mean": float(saving.mean()),
@@ -236,19 +439,52 @@ def summary(c: Comparison) -> dict:
         angles = stats([[math.degrees(td.angles[k]) for k in JOINTS] for td, _ in rows])
         segments = stats([[math.degrees(td.segments[k]) for k in SEGMENTS] for td, _ in rows])
         fsa = stats([math.degrees(td.foot_strike_angle) for td, _ in rows])
-        T_c = stats([r.T_c for _, r in rows])
+        point = c.sides[side].point
+        T_c = stats([c.results[k].T_c for k in c.sides[side].steps])
         patterns = [td.strike for td, _ in rows]
+        mine = [c.points[k] for k, td in enumerate(c.steps.touchdowns) if td.side == side and td.valid_data]
+        orders = [td.contact_order for td, _ in rows]
         out[side] = {"steps": len(rows),
                      "left_out": sum(td.side == side and not td.valid_data for td in c.steps.touchdowns),
                      "strike": max(set(patterns), key=patterns.count),
                      "patterns": {p: patterns.count(p) for p in ("heel", "midfoot", "forefoot")},
+                     "impact_points": {p: mine.count(p) for p in STRIKES},
+                     "contact_order": {p: orders.count(p) for p in STRIKES},
                      "angles_deg_mean": dict(zip(JOINTS, angles[0])),
                      "angles_deg_sd": dict(zip(JOINTS, angles[1])),
                      "segment_angles_deg_mean": dict(zip(SEGMENTS, segments[0])),
                      "segment_angles_deg_sd": dict(zip(SEGMENTS, segments[1])),
                      "foot_strike_angle_deg_mean": float(fsa[0]), "foot_strike_angle_deg_sd": float(fsa[1]),
-                     "T_c_mean": float(T_c[0]), "T_c_sd": float(T_c[1]),
+                     "T_c_point": point, "T_c_mean": float(T_c[0]), "T_c_sd": float(T_c[1]),
+                     "plate": plate_summary(c, side),
                      "laws": {law: {"T_c_mean": float(np.mean([r.contact_laws[law].T_c for _, r in rows])),
+                                    "impulse_ratio_median": _median([impulse_ratio(r.contact_laws[law]) for _, r in rows]),
                                     "valid": sum(r.contact_laws[law].valid for _, r in rows)}
                               for law in LAWS}}
     return out
+
+
+def _median(values) -> float | None:
+    values = [v for v in values if v is not None]
+    return float(np.median(values)) if values else None
+
+
+def plate_summary(c: Comparison, side: str) -> dict | None:
+    """A side's plate impacts (valid steps): the median impulse ratio of the plate and of each
+    law (medians: a law's ratio is unbounded where its normal impulse is near zero), mean
+    impact peak and loading rate, how many steps have a distinct impact peak, and the law
+    whose median ratio is nearest the plate's."""
+    rows = [(pl, r) for pl, td, r in zip(c.plate, c.steps.touchdowns, c.results)
+            if pl is not None and td.side == side and td.valid_data]
+    if not rows:
+        return None
+    ratio = float(np.median([pl.impulse_ratio for pl, _ in rows]))
+    laws = {law: _median([impulse_ratio(r.contact_laws[law]) for _, r in rows]) for law in LAWS}
+    known = {law: v for law, v in laws.items() if v is not None}
+    return {"impulse_ratio_median": ratio, "impulse_ratio_sd": float(np.std([pl.impulse_ratio for pl, _ in rows])),
+            "impact_peak_bw_mean": float(np.mean([pl.impact_peak_bw for pl, _ in rows])),
+            "loading_rate_bw_per_s_mean": float(np.mean([pl.loading_rate_bw_per_s for pl, _ in rows])),
+            "window_ms_mean": float(np.mean([pl.window_s for pl, _ in rows]) * 1e3),
+            "impact_peaks": sum(pl.peak for pl, _ in rows), "steps": len(rows),
+            "laws_impulse_ratio": laws,
+            "nearest_law": min(known, key=lambda law: abs(known[law] - ratio), default=None)}

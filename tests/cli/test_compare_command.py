@@ -19,17 +19,22 @@ def test_cli_compare_json_exports_and_bad_input(tmp_path, capsys):
     assert code == 0
     td = data["touchdowns"][0]
     assert {"segment_angles_deg", "foot_strike_angle_deg", "angles_deg", "rates_dps",
-            "hip_velocity_mps", "method", "strike_point", "valid_data", "contact_laws"} <= set(td)
+            "hip_velocity_mps", "method", "impact_point", "contact_order", "T_c_band_J",
+            "valid_data", "contact_laws"} <= set(td)
     assert set(td["segment_angles_deg"]) == {"trunk", "thigh", "shank", "foot"}
     assert set(data["settings"]) >= {"cutoff_hz", "effective_cutoff_hz", "force_threshold_n", "contact",
                                      "friction", "bounds_deg", "body", "markers"}
     # 10 Hz design cut-off run forward and back at 150 Hz: -3 dB at 0.806 of it (test_filters)
     assert data["settings"]["effective_cutoff_hz"] == 8.06
-    # every valid T35 step is a step of the dominant strike (studies.compare.compare: those
-    # whose impact point is the optimum's, else all valid ones), so each gets an optimum,
-    # started from the mean step's: all of them converge
-    valid = [t for t in data["touchdowns"] if t["valid_data"]]
-    assert data["optimum"]["success"] and data["per_step"]["converged"] == data["per_step"]["steps"] == len(valid)
+    assert data["settings"]["contact"] == "coulomb"  # the default law (issue 24)
+    # one optimum per side, of that side's own dominant impact point: every valid step of
+    # that point (valid under the law) gets its optimum, started from the side's, and converges
+    for side, opt in data["optimum"].items():
+        own = [t for t in data["touchdowns"] if t["valid_data"] and t["side"] == side
+               and t["impact_point"] == opt["point"] and t["valid"]]
+        assert opt["success"] and opt["per_step"]["converged"] == opt["per_step"]["steps"] == len(own)
+        lo, hi = opt["saving_band_J"]
+        assert lo <= opt["saving_J_per_step"] <= hi and opt["resolvable"] == (lo > 0 or hi < 0)
     assert len((tmp_path / "touchdowns.csv").read_text().splitlines()) == len(data["touchdowns"]) + 1
     trc = (tmp_path / "markers.trc").read_text().splitlines()
     assert trc[0].startswith("PathFileType\t4") and trc[2].split("\t")[2] == "4500"

@@ -23,6 +23,7 @@ def test_several_trials_with_json_print_only_json(tmp_path, capsys):
     for stem in ("RBDS001runT35", "RBDS001runT25markers"):
         report = json.loads((out / stem / "comparison.json").read_text())
         assert report["figure"] == str(out / stem / "comparison.png")
-        assert {"settings", "touchdowns", "summary", "optimum", "reference", "difference_deg"} <= set(report)
+        assert {"settings", "touchdowns", "summary", "optimum"} <= set(report)
+        assert set(report["optimum"]) == {"R", "L"}  # one per side, never pooled
         rows = [r for r in printed["trials"] if r["trial"].endswith(report["source"].split("/")[-1])]
         assert [r["T_c_J"] for r in rows] == [report["summary"][s]["T_c_mean"] for s in ("R", "L")]

@@ -11,8 +11,11 @@ from trials import HEIGHT
 
 from formopt.measure import measure
 from formopt.measure.touchdowns import (
+    FLAT_S,
     FOREFOOT_DEG,
+    LEVEL_M,
     REARFOOT_DEG,
+    contact_order,
     foot_speed_touchdowns,
     force_plate_touchdowns,
     strike_pattern,
@@ -71,3 +74,61 @@ def test_foot_speed_touchdowns_agree_with_the_force_plate(run25, static, measure
     assert [td.side for td in kinematic.touchdowns[:10]] == \
         [measured[2.5].steps.touchdowns[np.argmin(np.abs(force_times - td.time))].side
          for td in kinematic.touchdowns[:10]]
+
+
+def _landing(down: int, frames: int = 80, level: float = 0.02, speed: float = 0.004):
+    """A point's height (m) falling `speed` m per frame until frame `down`, then at `level`."""
+    k = np.arange(frames)
+    return level + speed * np.clip(down - k, 0, None)
+
+
+@pytest.mark.parametrize("heel_down, fore_down, order", [
+    (20, 26, "heel"),     # 30 ms apart at 200 Hz: heel first
+    (26, 20, "forefoot"),
+    (20, 21, "flat"),     # 5 ms apart: within FLAT_S
+])
+def test_contact_order_from_each_point_reaching_its_own_stance_level(heel_down, fore_down, order):
+    rate = 200.0
+    # different stance levels (the heel marker sits lower on the shoe than the metatarsals')
+    heel, fore = _landing(heel_down, level=0.015), _landing(fore_down, level=0.045)
+    found, (t_heel, t_fore) = contact_order(heel, fore, 18, rate)
+    assert found == order
+    # each reach time: the frame where the point is LEVEL_M above its level (independent count)
+    for t, down in ((t_heel, heel_down), (t_fore, fore_down)):
+        assert t == pytest.approx((down - math.floor(LEVEL_M / 0.004) - 18) / rate)
+    assert (abs(t_heel - t_fore) <= FLAT_S) == (order == "flat")
+
+
+def test_plate_impact_on_a_force_of_known_shape():
+    """A vertical force rising linearly to 1.5 BW in 25 ms (60 BW/s), falling to 1 BW and
+    rising to the active peak; the horizontal force -0.2 times the vertical: the window ends
+    at the impact peak, the impulse ratio is -0.2, the loading rate 60 BW/s (within what the
+    force's 50 Hz low-pass rounds off)."""
+    from formopt.measure.touchdowns import plate_impact
+    rate, weight, t0 = 1000.0, 600.0, 0.1
+    t = np.arange(0, 0.5, 1 / rate)
+    s = t - t0
+    bw = np.interp(s, [0.0, 0.025, 0.045, 0.12, 0.25], [0.0, 1.5, 1.0, 2.5, 0.0], left=0.0, right=0.0)
+    force = np.stack([-0.2 * bw * weight, np.zeros_like(t), bw * weight], axis=1)
+    found = plate_impact(force, rate, np.array([1.0, 0, 0]), np.array([0, 0, 1.0]), t0, weight)
+    assert found.peak and found.window_s == pytest.approx(0.025, abs=0.004)
+    assert found.impulse_ratio == pytest.approx(-0.2, abs=1e-6)
+    assert found.impact_peak_bw == pytest.approx(1.5, rel=0.1)
+    assert found.loading_rate_bw_per_s == pytest.approx(60.0, rel=0.1)
+
+
+def test_a_step_whose_foot_angle_jumps_is_left_out_with_its_reason():
+    """A heel striker's foot cluster that slips for one step: its foot strike angle reads -17
+    deg among steps of 17 +- 1 deg (the rigidity test passes it); only that step is left out."""
+    from formopt.measure.touchdowns import Touchdown, _jumps
+    rng = np.random.default_rng(1)
+    steps = []
+    for k in range(20):
+        foot = math.radians(-17.0 if k == 9 else 17.0 + rng.normal(0, 1))
+        segs = {"trunk": 0.0, "thigh": 0.35 + rng.normal(0, 0.01), "shank": 0.05, "foot": foot}
+        steps.append(Touchdown(k * 0.35, "R" if k % 2 else "L", 10 * k, "heel", foot, segs, {},
+                               {"thigh": -2.0, "shank": 2.0, "foot": 1.0}, (3.3, -0.6), 0.9, {}))
+    out = _jumps(steps)
+    bad = [k for k, td in enumerate(out) if not td.valid_data]
+    assert bad == [9]
+    assert "the foot angle -17 deg is -34 from its neighbours' 17" in out[9].problems[0]
