@@ -40,6 +40,9 @@ from . import contact
 from .compiled import caller
 from .dynamics import FEET, FREE, GRAVITY, Dynamics, Joints
 from .errors import InputError
+from . import limits
+from .impact import check_ground
+from .limits import Range
 from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, grow, locate, shrink
 from .integrators import step as integrator_step
 from .model import STATE, STRIKES, Model, check_state
@@ -568,7 +571,12 @@ def absorbed_function(lm: LandingModel, strike: str, t_guess: float, steps: int 
 
 def simulate_state(lm: LandingModel, strike: str, x, friction: float, dt: float,
                    duration: float) -> Landing:
-    """Simulate the landing from a touchdown state x (model.STATE, SI)."""
+    """Simulate the landing from a touchdown state x (model.STATE, SI) on a ground of
+    `friction`, with steps of `dt` (s) for at most `duration` (s); InputError for arguments
+    outside mechanics.limits (a landing that could not end, or a ground that cannot be)."""
+    check_ground(friction, lm.slope)
+    duration = limits.check("duration", duration, limits.LANDING_DURATION_S)
+    dt = limits.check("dt", dt, Range(limits.LANDING_DT_S.low, min(limits.LANDING_DT_S.high, duration), "s"))
     q, qd = lm.model.state_numeric(check_state(x), STRIKES[strike][0])
     return simulate(lm, strike, q, qd, friction, dt, duration)
 
