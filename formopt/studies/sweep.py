@@ -167,8 +167,12 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
         done = _done(path, existing, names, {_key(g, names) for g in grid})
         todo = [g for g in grid if _key(g, names) not in done]
         if workers > 1 or scheduler:  # every worker busy: chains no longer than a fair share
-            size = max(1, min(size, math.ceil(len(todo) / (4 * (workers if not scheduler else 8)))))
-        chunks = [todo[k:k + size] for k in range(0, len(todo), size)]
+            size = max(1, min(size, math.ceil(len(grid) / (4 * (workers if not scheduler else 8)))))
+        # chunks cut from the whole grid, not from what is left: a resumed optimum map's chains
+        # start where an uninterrupted run's do (a partly done chunk runs whole again, its
+        # missing rows kept), so its rows are that run's (optimum_map's docstring)
+        chunks = [c for c in (grid[k:k + size] for k in range(0, len(grid), size))
+                  if any(_key(g, names) not in done for g in c)]
         bar = None
         if progress:
             from tqdm import tqdm
@@ -177,11 +181,11 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
         written = len(grid) - len(todo)
         try:
             for chunk, rows in _results(work, scene, chunks, workers, scheduler):
-                append_rows(fh, path, ([{**row, **values}[c] for c in header]
-                                       for values, row in zip(chunk, rows)))
-                written += len(chunk)
+                new = [(values, row) for values, row in zip(chunk, rows) if _key(values, names) not in done]
+                append_rows(fh, path, ([{**row, **values}[c] for c in header] for values, row in new))
+                written += len(new)
                 if bar:
-                    bar.update(len(chunk))
+                    bar.update(len(new))
         except KeyboardInterrupt:
             raise KeyboardInterrupt(f"{written} of {len(grid)} rows written to {path}; the same "
                                     "command resumes") from None

@@ -105,3 +105,15 @@ def test_the_problem_cache_follows_the_scene_content_not_its_path(tmp_path, monk
         assert row["success"] is True and cold.success
         assert row["objective"] == pytest.approx(cold.objective, rel=1e-6, abs=1e-9)
         assert row["T_c"] == pytest.approx(cold.impact.T_c, rel=1e-6)
+
+
+def test_a_resumed_map_gives_the_rows_of_an_uninterrupted_run(tmp_path):
+    """Whichever rows were written before an interruption, the resumed map on 2 workers is the
+    uninterrupted one to the last digit, warm and iteration columns included (issue 25)."""
+    scene = load(DEMO)
+    whole = sweep.run(scene, PARAMS, tmp_path / "whole.csv", progress=False, workers=2)
+    lines = (tmp_path / "whole.csv").read_text().splitlines()
+    kept = [line for k, line in enumerate(lines) if k == 0 or k % 3 == 1]  # a chunk's first, middle rows
+    (tmp_path / "resumed.csv").write_text("\n".join(kept) + "\n")
+    resumed = sweep.run(scene, PARAMS, tmp_path / "resumed.csv", progress=False, workers=2)
+    assert resumed == whole

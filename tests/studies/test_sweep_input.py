@@ -8,9 +8,9 @@ from formopt.io.files import OutputError
 from formopt.io.scene import load
 from formopt.mechanics.errors import InputError
 from formopt.studies import sweep
-from helpers import ROOT
+from helpers import SHIPPED
 
-SPRING = ROOT / "problems" / "landing_spring.toml"
+SPRING = SHIPPED / "landing_spring.toml"
 
 
 @pytest.mark.parametrize("text, words", [
