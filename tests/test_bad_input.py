@@ -402,6 +402,10 @@ def call_api(kind, kwargs, context):
 
 @pytest.fixture(scope="module")
 def api_context():
+    return api_setup()
+
+
+def api_setup() -> dict:
     """What the API fuzz calls act on: the demo's problem settings (built, not solved), the
     spring landing's model, the paper's leg at the reference touchdown."""
     import formopt
