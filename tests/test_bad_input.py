@@ -459,3 +459,12 @@ def test_sweep_parameters_are_checked_before_any_work(texts):
         return
     assert math.prod(len(v) for _, v in params) <= sweep.MAX_POINTS
     assert all(np.all(np.isfinite(v)) for _, v in params)
+
+
+@pytest.mark.parametrize("argv", [["simulate", SPRING], ["solve", str(SHIPPED / "demo.toml")],
+                                  ["sweep", SPRING, "--param", "knee_deg=1:2:2"]])
+def test_an_empty_out_is_refused_not_taken_for_the_default(tmp_path, capsys, monkeypatch, argv):
+    """`--out ""` is an empty path (issue 25), not "not given": nothing is written to out/."""
+    monkeypatch.chdir(tmp_path)
+    assert check([*argv, "--out", ""], capsys, json_out=False) == 2
+    assert not (tmp_path / "out").exists()
