@@ -24,15 +24,14 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
-from hypothesis import HealthCheck, given, settings  # noqa: E402
-from hypothesis import strategies as st  # noqa: E402
+import test_bad_input as attack
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
-from formopt.cli import main  # noqa: E402
-from formopt.io import markerset  # noqa: E402
-from formopt.mechanics.errors import InputError  # noqa: E402
-from formopt.studies import sweep  # noqa: E402
-import test_bad_input as attack  # noqa: E402
-
+from formopt.cli import main
+from formopt.io import markerset
+from formopt.mechanics.errors import InputError
+from formopt.studies import sweep
 
 TIMEOUT = 60.0  # s per example: a call that has not answered by then is counted as a hang
 
@@ -66,7 +65,7 @@ def counted(label, count, strategy, run):
             outcome = "refused one line" if "\n" not in str(refusal) else "refused, several lines"
             if w:  # a warning printed before the refusal: not alone on its line
                 outcome = "refused after a warning"
-        except BaseException as crash:  # noqa: BLE001 - counted, the point of the attack
+        except BaseException as crash:
             outcome = f"traceback {type(crash).__name__}"
         finally:
             signal.setitimer(signal.ITIMER_REAL, 0)
@@ -138,7 +137,7 @@ def main_():
     globals()["TIMEOUT"] = args.timeout
     signal.signal(signal.SIGALRM, _alarm)
     folder = Path(tempfile.mkdtemp())
-    n = lambda k: max(1, int(k * args.scale))  # noqa: E731
+    n = lambda k: max(1, int(k * args.scale))
     for name in args.only.split(","):
         CLASSES[name](n, folder)
 

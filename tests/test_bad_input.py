@@ -408,10 +408,10 @@ def api_context():
 def api_setup() -> dict:
     """What the API fuzz calls act on: the demo's problem settings (built, not solved), the
     spring landing's model, the paper's leg at the reference touchdown."""
+    from helpers import touchdown
+
     import formopt
     from formopt.mechanics.landing import LandingModel
-
-    from helpers import touchdown
 
     demo, spring = formopt.load(SHIPPED / "demo.toml"), formopt.load(SHIPPED / "landing_spring.toml")
     return {"problem": lambda **kw: dataclasses.replace(demo.problem, **kw),

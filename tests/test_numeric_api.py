@@ -8,6 +8,7 @@ import re
 
 import numpy as np
 import pytest
+from helpers import SHIPPED
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -15,7 +16,6 @@ from formopt import Impact, InputError, load, solve
 from formopt.mechanics import limits
 from formopt.mechanics.landing import LandingModel, simulate_state
 from formopt.mechanics.model import STATE_LIMITS
-from helpers import SHIPPED
 
 NAN, INF = float("nan"), float("inf")
 

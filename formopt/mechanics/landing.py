@@ -36,15 +36,14 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from . import contact
+from . import contact, limits
 from .compiled import caller
 from .dynamics import FEET, FREE, GRAVITY, Dynamics, Joints
 from .errors import InputError
-from . import limits
 from .impact import check_ground
-from .limits import Range
 from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, grow, locate, shrink
 from .integrators import step as integrator_step
+from .limits import Range
 from .model import STATE, STRIKES, Model, check_state
 
 DIVERGED = 1e-4  # energy-balance drift, relative to the touchdown kinetic energy, that is a divergence
