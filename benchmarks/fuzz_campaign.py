@@ -7,7 +7,8 @@ Impact on any ground).
     python benchmarks/fuzz_campaign.py [--scale 1.0] [--only scenes,compare,maps,params,api]
 
 Counts per class: "exit 2 one line" (a command) or "refused one line" (a function's
-InputError), "success" (exit 0 or a result; exit 1 counted apart), and what must stay zero:
+InputError), "success" (exit 0 or a result; exit 1 counted apart; a landing's Diverged, its
+stated failure, counted apart), and what must stay zero:
 a traceback (any other exception), a refusal whose message spans several lines or comes after
 a (numpy) warning, or no answer within --timeout seconds (a hang).
 """
@@ -31,6 +32,7 @@ from hypothesis import strategies as st
 from formopt.cli import main
 from formopt.io import markerset
 from formopt.mechanics.errors import InputError
+from formopt.mechanics.landing import Diverged
 from formopt.studies import sweep
 
 TIMEOUT = 60.0  # s per example: a call that has not answered by then is counted as a hang
@@ -61,6 +63,8 @@ def counted(label, count, strategy, run):
                 outcome = run(example)
         except Hang:
             outcome = f"no answer in {TIMEOUT:g} s"
+        except Diverged as failure:  # a landing's stated failure: the CLI's exit 1 with its reason
+            outcome = "diverged, one line" if "\n" not in str(failure) else "diverged, several lines"
         except InputError as refusal:
             outcome = "refused one line" if "\n" not in str(refusal) else "refused, several lines"
             if w:  # a warning printed before the refusal: not alone on its line
