@@ -5,6 +5,7 @@ checks a sweep makes before any work) and the numeric API (solve's settings, sim
 Impact on any ground).
 
     python benchmarks/fuzz_campaign.py [--scale 1.0] [--only scenes,compare,maps,params,api]
+    python benchmarks/fuzz_campaign.py --only scenes:solve   # one command's scene mutants
 
 Counts per class: "exit 2 one line" (a command) or "refused one line" (a function's
 InputError), "success" (exit 0 or a result; exit 1 counted apart; a landing's Diverged, its
@@ -20,6 +21,7 @@ import io
 import signal
 import sys
 import tempfile
+import traceback
 import warnings
 from pathlib import Path
 
@@ -69,8 +71,11 @@ def counted(label, count, strategy, run):
             outcome = "refused one line" if "\n" not in str(refusal) else "refused, several lines"
             if w:  # a warning printed before the refusal: not alone on its line
                 outcome = "refused after a warning"
-        except BaseException as crash:
+        except BaseException as crash:  # noqa: BLE001 - counted, the point of the attack
             outcome = f"traceback {type(crash).__name__}"
+            where = traceback.extract_tb(crash.__traceback__)[-1]
+            print(f"  {label}: {type(crash).__name__}: {str(crash)[:200]!r} at {where.filename}:"
+                  f"{where.lineno}; example {str(example)[:300]!r}", file=sys.__stderr__, flush=True)
         finally:
             signal.setitimer(signal.ITIMER_REAL, 0)
         if outcome == "exit 2":
@@ -86,13 +91,15 @@ def command(argv) -> str:
     return f"exit {main(argv)}"
 
 
-def scenes(n, folder):
+def scenes(n, folder, commands=("impact", "simulate", "solve", "sweep")):
     for cmd, needs, count, extra in (
             ("impact", None, n(1500), ["--json"]),
             ("simulate", "joints", n(400), ["--json", "--out", str(folder / "o")]),
             ("solve", "optimize", n(400), ["--json", "--starts", "1", "--out", str(folder / "o")]),
             ("sweep", "joints", n(100), ["--param", "knee_deg=10:12:2", "--out", str(folder / "s.csv"),
                                          "--no-progress", "--workers", "1"])):
+        if cmd not in commands:
+            continue
         counted(f"scene {cmd}", count, attack.scene_mutants(needs=needs),
                 lambda d, cmd=cmd, extra=extra: command([cmd, str(attack.write(folder, d)), *extra]))
 
@@ -142,8 +149,9 @@ def main_():
     signal.signal(signal.SIGALRM, _alarm)
     folder = Path(tempfile.mkdtemp())
     n = lambda k: max(1, int(k * args.scale))
-    for name in args.only.split(","):
-        CLASSES[name](n, folder)
+    for name in args.only.split(","):  # "scenes:solve" runs one command's scene mutants
+        kind, _, one = name.partition(":")
+        CLASSES[kind](n, folder, *([(one,)] if one else []))
 
 
 if __name__ == "__main__":
