@@ -9,10 +9,11 @@ from ..io.files import output_folder, write_json
 
 
 def out_folder(args, default_name: str) -> Path:
-    """--out if given, else out/<default_name> (a scene's or a trial's file stem), created
-    now: a command checks where its output goes before it computes anything."""
-    return output_folder(Path(args.out) if getattr(args, "out", None)
-                         else Path("out") / Path(default_name).stem)
+    """--out if given (an empty --out "" is refused by output_folder, not taken as "not
+    given"), else out/<default_name> (a scene's or a trial's file stem), created now: a
+    command checks where its output goes before it computes anything."""
+    out = getattr(args, "out", None)
+    return output_folder(out if out is not None else Path("out") / Path(default_name).stem)
 
 
 FORMATS = ("png", "svg", "pdf")

@@ -39,9 +39,11 @@ def add_parser(commands):
 def run(args) -> int:
     from pathlib import Path
 
+    from ..io.files import check_target
+
     scene = load(args.scene)
     params = [sweep.parse_param(p) for p in args.param]
-    out = Path(args.out) if args.out else Path("out") / Path(scene.path).stem / "sweep.csv"
+    out = check_target(args.out) if args.out is not None else Path("out") / Path(scene.path).stem / "sweep.csv"
     if args.workers < 1:
         raise InputError("--workers must be at least 1")
     rows = sweep.run(scene, params, out, progress=not args.no_progress, workers=args.workers,

@@ -12,6 +12,7 @@ is a marker the lab removed (dropped, with a note); missing force samples are in
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -46,6 +47,15 @@ class Trial:
     @property
     def frames(self) -> int:
         return len(next(iter(self.markers.values())))
+
+    def check_rates(self) -> None:
+        """Refuse, naming the file, a marker rate (or a force rate, with a force) that is not a
+        finite number > 0 Hz: every time derivative divides by it."""
+        rates = {"marker": self.rate, **({"force": self.force_rate} if self.force is not None else {})}
+        for what, rate in rates.items():
+            if isinstance(rate, bool) or not isinstance(rate, (int, float, np.number)) or not (math.isfinite(rate)
+                                                                                   and rate > 0):
+                raise MocapError(f"{self.source}: the {what} rate {rate!r} Hz must be a finite number > 0")
 
     def require(self, names, what: str) -> None:
         """Refuse, naming the file and `what` needs them, when markers `names` are missing."""

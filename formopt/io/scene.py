@@ -282,9 +282,10 @@ def _landing(data) -> Integration:
     val.keys(data, "landing", {"dt_ms", "duration_ms"}, set())
     default = Integration()
     return Integration(
-        val.number(data, "dt_ms", "landing", default=default.dt * 1e3, low=1e-4, high=5.0) * 1e-3,
-        val.number(data, "duration_ms", "landing", default=default.duration * 1e3, low=1.0,
-                high=2000.0) * 1e-3)
+        val.number(data, "dt_ms", "landing", default=default.dt * 1e3,
+                   limit=limits.LANDING_DT_S.scaled(1e3, "ms")) * 1e-3,
+        val.number(data, "duration_ms", "landing", default=default.duration * 1e3,
+                   limit=limits.LANDING_DURATION_S.scaled(1e3, "ms")) * 1e-3)
 
 
 # -- optimize ---------------------------------------------------------------------------
@@ -305,9 +306,9 @@ def _optimize(data, model, strike, law) -> Problem:
     val.keys(data, "optimize", OPTIMIZE_KEYS, ("variables", "objective"))
     variables, lower, upper = _variables(data, model, strike)
     objective = _objective(data["objective"])
-    starts = val.integer(data, "starts", "optimize", default=8, low=1, high=1000)
-    seed = val.integer(data, "seed", "optimize", default=0, low=0, high=2**32 - 1)
-    tolerance = val.number(data, "tolerance", "optimize", default=1e-8, low=1e-14, high=1e-2)
+    starts = val.integer(data, "starts", "optimize", 8, int(limits.STARTS.low), int(limits.STARTS.high))
+    seed = val.integer(data, "seed", "optimize", 0, int(limits.SEED.low), int(limits.SEED.high))
+    tolerance = val.number(data, "tolerance", "optimize", default=1e-8, limit=limits.TOLERANCE)
     overstride = (val.number(data, "max_overstride_m", "optimize", low=-2.0, high=2.0)
                   if "max_overstride_m" in data else None)
     hip_height = None
@@ -316,7 +317,8 @@ def _optimize(data, model, strike, law) -> Problem:
         if hip_height[0] >= hip_height[1]:
             raise SceneError("optimize.hip_height_m", "the lower height must be below the upper")
     contact_friction = val.flag(data, "contact_friction", "optimize", False)
-    max_iterations = val.integer(data, "max_iterations", "optimize", default=200, low=1, high=100000)
+    max_iterations = val.integer(data, "max_iterations", "optimize", 200,
+                                 int(limits.MAX_ITERATIONS.low), int(limits.MAX_ITERATIONS.high))
     max_slip = None
     if "max_slip_mps" in data:
         max_slip = val.number(data, "max_slip_mps", "optimize", low=0.0, high=100.0)
@@ -483,7 +485,8 @@ def _segment(name, data, base: Segment | None) -> Segment:
             raise SceneError(f"{where}.{key}", "missing")
     if not point_mass and not {"inertia_proximal", "inertia_com"} & set(values):
         raise SceneError(f"{where}.inertia_com", "missing (give inertia_com or inertia_proximal)")
-    mass = val.number(values, "mass", where, low=0.0, low_open=name != "swing_leg")
+    mass = (val.number(values, "mass", where, low=0.0, high=limits.SEGMENT_MASS_KG.high)
+            if name == "swing_leg" else val.number(values, "mass", where, limit=limits.SEGMENT_MASS_KG))
     if name == "swing_leg":
         return bodies.swing_leg(mass)
     if point_mass:
@@ -493,20 +496,24 @@ def _segment(name, data, base: Segment | None) -> Segment:
         heel, forefoot = val.pair(values, "heel", where), val.pair(values, "forefoot", where)
         if not heel[0] < forefoot[0]:
             raise SceneError(f"{where}.heel", "must lie behind the forefoot (smaller x in the foot frame)")
+        if forefoot[0] - heel[0] not in limits.SEGMENT_LENGTH_M:
+            raise SceneError(f"{where}.heel", f"heel to forefoot along the sole must be "
+                                              f"{limits.SEGMENT_LENGTH_M.text()}, not "
+                                              f"{forefoot[0] - heel[0]:g} m")
         proximal = float(np.dot(com_xy, com_xy))
     else:
-        length = val.number(values, "length", where, low=0.0, low_open=True)
+        length = val.number(values, "length", where, limit=limits.SEGMENT_LENGTH_M)
         com = val.number(values, "com", where, low=0.0, high=length)
         proximal = com**2
     if "inertia_proximal" in values:
         inertia = val.number(values, "inertia_proximal", where, low=0.0, low_open=True) - mass * proximal
-        if inertia <= 0:
+        if inertia not in limits.SEGMENT_INERTIA_KGM2:
             raise SceneError(f"{where}.inertia_proximal",
-                             f"must exceed mass * distance^2 to the centre of mass "
-                             f"({mass * proximal:.4g} kg m^2): the inertia about the centre of mass "
-                             f"would be {inertia:.3g}")
+                             f"minus mass * distance^2 to the centre of mass ({mass * proximal:.4g} "
+                             f"kg m^2) gives an inertia about the centre of mass of {inertia:.3g}: "
+                             f"it must be {limits.SEGMENT_INERTIA_KGM2.text()}")
     else:
-        inertia = val.number(values, "inertia_com", where, low=0.0, low_open=True)
+        inertia = val.number(values, "inertia_com", where, limit=limits.SEGMENT_INERTIA_KGM2)
     if name == "foot":
         return bodies.foot(mass, com_xy, inertia, heel, forefoot)
     if name == "trunk":

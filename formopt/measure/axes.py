@@ -87,7 +87,11 @@ def _vertical(trial: Trial, body, stance) -> tuple[np.ndarray, str]:
     """Up (3,) and how it was found: the plate's mean force, else the standing body's up
     `body` pitched normal to the stance foot's velocity `stance`, else `body` itself."""
     if trial.force is not None:
-        mean = np.nanmean(trial.force, axis=0)
+        finite = np.all(np.isfinite(trial.force), axis=1)
+        mean = trial.force[finite].mean(axis=0) if finite.any() else np.zeros(3)
+        if not np.linalg.norm(mean) > 0:
+            raise MocapError(f"{trial.source}: the force plate holds no finite non-zero force to "
+                             f"find up from (an empty or broken plate: remove it)")
         return unit(mean) * (1 if mean @ body > 0 else -1), "the force plate's mean force"
     if stance is not None:  # the stance foot moves level: pitch the body's up to be normal to it
         d = unit(stance)

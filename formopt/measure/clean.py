@@ -71,6 +71,9 @@ def clean(trial: Trial) -> Trial:
         if still.any():
             stuck.append(name)
         missing |= still
+        if missing.all():
+            raise MocapError(f"{trial.source}: marker {name} has no valid frame: frozen (the same "
+                             f"position, or missing) for the whole trial")
         spike = spikes(xyz, missing)
         spiked += int(spike.sum())
         missing |= spike

@@ -3,11 +3,18 @@
 A standing trial holds still. Each running cluster is fitted to its standing shape (Kabsch): a
 permutation of its labels that fits three times better (MT1 and MT5 swapped, say) is swapped
 back, and so is a leg cluster found on the other side of the pelvis; each swap is noted.
+
+The pelvis is checked first, since the sides are judged in its frame, and only by upright
+fits: a near-planar cluster with its left and right labels swapped is the mirror image of its
+standing shape, and a mirror image of a planar shape fits it exactly upside down (turned
+180 deg about the forward axis). A fit whose up is more than 90 deg from the standing body's
+(median over the sampled frames) is no fit; a pelvis that fits only upside down is refused.
 """
 
 from __future__ import annotations
 
 import itertools
+import math
 
 import numpy as np
 
@@ -41,8 +48,12 @@ def check_labels(static: Trial, trial: Trial, ms: msets.MarkerSet) -> None:
     sample = np.linspace(0, trial.frames - 1, min(trial.frames, SAMPLE_FRAMES)).astype(int)
     legs = {seg: {s: [n for n in ms.cluster(s, seg) if not n.startswith("@")] for s in SIDES}
             for seg in msets.SEGMENTS}
+    feet = [n for s in SIDES for n in ms.cluster(s, "foot") if not n.startswith("@")]
+    up = unit(np.mean([ref[n] for n in ms.pelvis], axis=0) - np.mean([ref[n] for n in feet], axis=0))
+    if 3 <= len(ms.pelvis) <= 6:
+        _swap_within(ref, trial, list(ms.pelvis), sample, up)
     _swap_sides(ref, trial, ms, legs, sample)
-    for names in [list(ms.pelvis)] + [n for by_side in legs.values() for n in by_side.values()]:
+    for names in [n for by_side in legs.values() for n in by_side.values()]:
         if 3 <= len(names) <= 6:
             _swap_within(ref, trial, names, sample)
 
@@ -66,18 +77,27 @@ def _swap_sides(ref: dict, trial: Trial, ms: msets.MarkerSet, legs: dict, sample
                                f"the standing trial: swapped back")
 
 
-def _swap_within(ref: dict, trial: Trial, names: list[str], sample) -> None:
-    """The permutation of `names` that fits the standing shape best, if three times better."""
+def _swap_within(ref: dict, trial: Trial, names: list[str], sample, up=None) -> None:
+    """The permutation of `names` that fits the standing shape best, if three times better.
+    `up` (3,), the standing body's up: only upright fits count (module docstring); none
+    upright is a MocapError."""
     reference = np.array([ref[n] for n in names])
 
     def residual(run_names):  # median over the sampled frames of the rms fit residual (m)
         current = _stack(trial, run_names, sample)
-        return float(np.median(fit_residual(reference, current, *kabsch(reference, current))))
+        R, t = kabsch(reference, current)
+        if up is not None and not np.median(np.einsum("fij,j->fi", R, up) @ up) > 0:
+            return math.inf  # upside down
+        return float(np.median(fit_residual(reference, current, R, t)))
 
     base = residual(names)
     if base <= LABEL_TOLERANCE:
         return
     best = min(itertools.permutations(names), key=lambda p: residual(list(p)))
+    if residual(list(best)) == math.inf:
+        raise MocapError(f"{trial.source}: the markers {', '.join(names)} fit the standing trial's "
+                         f"only upside down, whatever their labels: not the same runner's or "
+                         f"mislabelled beyond repair")
     if residual(list(best)) < base / 3:
         moved = {a: b for a, b in zip(names, best) if a != b}
         _relabel(trial, {b: a for a, b in moved.items()})

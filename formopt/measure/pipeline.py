@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 from ..io import markerset as msets
 from ..io.mocap import Trial
+from ..mechanics import limits
 from .clean import clean
 from .filters import CUTOFF_HZ
 from .joints import Calibration, calibrate
@@ -41,7 +42,10 @@ def measure(trial: Trial, static: Trial, height: float, options: Options = Optio
     (`height`: the runner's stature, m), every check on the way; refuses with one line naming
     the file. The trials are taken as read (io.mocap.read) and copied: the Measurement holds
     the processed ones (cleaned, in m, labels as the standing trial's)."""
+    limits.check("height", height, limits.BODY_HEIGHT_M)
     trial, static = copy.deepcopy(trial), copy.deepcopy(static)
+    for t in (static, trial):
+        t.check_rates()
     for t in (static, trial):  # a trial without units is cleaned once they are known
         if t.units:
             clean(t)

@@ -238,7 +238,11 @@ MAX_SLOPE = math.radians(60.0)  # rad: the steepest ground a scene takes (ground
 
 
 def check_ground(friction: float, slope: float) -> None:
-    """Refuse a ground the impact cannot take: friction in (0, inf), |slope| <= 60 deg."""
+    """Refuse a ground the impact cannot take: friction in (0, inf), |slope| <= 60 deg (each
+    a real number: a string or None is refused too)."""
+    for name, value in (("friction", friction), ("slope", slope)):
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
+            raise InputError(f"{name} = {value!r}: must be a number")
     if not (math.isfinite(friction) and friction > 0):
         raise InputError(f"friction = {friction!r}: must be a finite number > 0")
     if not abs(slope) <= MAX_SLOPE:

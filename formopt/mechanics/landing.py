@@ -36,12 +36,14 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from . import contact
+from . import contact, limits
 from .compiled import caller
 from .dynamics import FEET, FREE, GRAVITY, Dynamics, Joints
 from .errors import InputError
+from .impact import check_ground
 from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, grow, locate, shrink
 from .integrators import step as integrator_step
+from .limits import Range
 from .model import STATE, STRIKES, Model, check_state, xy
 
 DIVERGED = 1e-4  # energy-balance drift, relative to the touchdown kinetic energy, that is a divergence
@@ -573,7 +575,12 @@ def absorbed_function(lm: LandingModel, strike: str, t_guess: float, steps: int 
 
 def simulate_state(lm: LandingModel, strike: str, x, friction: float, dt: float,
                    duration: float) -> Landing:
-    """Simulate the landing from a touchdown state x (model.STATE, SI)."""
+    """Simulate the landing from a touchdown state x (model.STATE, SI) on a ground of
+    `friction`, with steps of `dt` (s) for at most `duration` (s); InputError for arguments
+    outside mechanics.limits (a landing that could not end, or a ground that cannot be)."""
+    check_ground(friction, lm.slope)
+    duration = limits.check("duration", duration, limits.LANDING_DURATION_S)
+    dt = limits.check("dt", dt, Range(limits.LANDING_DT_S.low, min(limits.LANDING_DT_S.high, duration), "s"))
     q, qd = lm.model.state_numeric(check_state(x), STRIKES[strike][0])
     return simulate(lm, strike, q, qd, friction, dt, duration)
 

@@ -11,6 +11,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
+from .errors import InputError
+
 
 @dataclass(frozen=True)
 class Range:
@@ -86,3 +90,41 @@ BODY_HEIGHT_M = Range(0.5, 2.5, "m")
 # Cadence 60-300 steps/min: slow jogging is about 140 (RBDS001: 156.5 at 2.5 m/s), elite
 # sprinters reach about 5 steps/s.
 CADENCE_SPM = Range(60.0, 300.0, "steps/min")
+
+# -- the segments (a scene's [body] tables) ----------------------------------------------
+# de Leva (1996)'s ratios (body.DE_LEVA) at the statures of BODY_HEIGHT_M and masses of
+# BODY_MASS_KG give thigh, shank and trunk lengths of 0.11-0.72 m, segment masses of
+# 0.013-250 kg and inertias about the centre of mass of 5e-6-32 kg m^2; the ranges below leave
+# a factor of about two beyond those. Below them the impact map's G is ill conditioned and a
+# solve does not end (a thigh of 0.1 mm ran > 300 s without output, issue 25).
+SEGMENT_LENGTH_M = Range(0.05, 1.5, "m")
+SEGMENT_MASS_KG = Range(0.005, 500.0, "kg")
+SEGMENT_INERTIA_KGM2 = Range(1e-6, 100.0, "kg m^2")
+
+# -- the solver (an [optimize] table, solve()'s overrides) ----------------------------------
+# The multi-start: at least one start; more than 1000 is hours of IPOPT, not a study.
+STARTS = Range(1, 1000)
+SEED = Range(0, 2**32 - 1)  # numpy's default_rng seeds
+# IPOPT's tol: below 1e-14 is beneath the round-off of an objective of order 1 J (double
+# precision, 2.2e-16 relative, times the NLP's scale); above 1e-2 an optimum is not resolved.
+TOLERANCE = Range(1e-14, 1e-2)
+MAX_ITERATIONS = Range(1, 100000)  # IPOPT's max_iter: a solve stays finite
+
+# -- the landing (simulate_state, a scene's [landing] table) -----------------------------
+# A landing lasts 1 ms to 2 s (a stance at the slowest jog is about 0.4 s); its step 0.1 us
+# to 5 ms and at most the duration (the ladder's midpoint integrator diverges at 2 ms;
+# below 0.1 us, 2 s is 2e7 steps of memory).
+LANDING_DURATION_S = Range(1e-3, 2.0, "s")
+LANDING_DT_S = Range(1e-7, 5e-3, "s")
+
+
+def check(name: str, value, allowed: Range, whole: bool = False) -> float:
+    """`value` as a float (an int when `whole`) when it is a finite number within `allowed`;
+    else InputError "name: must be <range>, not <value>" (one line)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise InputError(f"{name}: must be a {'whole ' if whole else ''}number, not {value!r}")
+    if whole and not float(value).is_integer():
+        raise InputError(f"{name}: must be a whole number {allowed.text()}, not {value!r}")
+    if not (math.isfinite(value) and float(value) in allowed):
+        raise InputError(f"{name}: must be a finite number {allowed.text()}, not {value!r}")
+    return int(value) if whole else float(value)

@@ -20,6 +20,7 @@ that placement (foot angle, the knee-ankle split, trunk lean).
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, replace
 from typing import Any
@@ -27,7 +28,7 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from ..mechanics import contact
+from ..mechanics import contact, limits
 from ..mechanics.compiled import cached_nlpsol
 from ..mechanics.errors import InputError
 from ..mechanics.impact import Impact, ImpactResult, check_ground, impact_function
@@ -72,6 +73,16 @@ class Problem:
     gait: Gait | None = None
     radius: float | None = None  # rad: local mode, the best posture within this of the reference
     stance_peak_bw: float = STANCE_PEAK_BW  # the support term's force, body weights
+
+    def __post_init__(self):
+        """The solver's settings within mechanics.limits (a scene's [optimize] table is checked
+        by the loader; this holds for solve()'s overrides and Problems built in code)."""
+        for name, allowed, whole in (("starts", limits.STARTS, True), ("seed", limits.SEED, True),
+                                     ("tolerance", limits.TOLERANCE, False),
+                                     ("max_iterations", limits.MAX_ITERATIONS, True)):
+            limits.check(name, getattr(self, name), allowed, whole)
+        if not all(math.isfinite(v) for v in (*self.lower, *self.upper)):
+            raise InputError(f"bounds of {', '.join(self.variables)}: must be finite numbers")
 
     @property
     def landing(self) -> bool:

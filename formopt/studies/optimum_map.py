@@ -13,13 +13,22 @@ fixed mode, so there the problem is built for each slope). Any other parameter (
 angles, hip_vz) builds the problem for its value (once per value per worker). Each row says
 the friction and slope it was solved on. Rows are written as chunks finish, resumable and on
 a process pool or on Dask, exactly as landing sweeps (studies.sweep).
+
+A row depends on its chunk (a chunk's first point is cold, the others warm): the chunks are
+cut from the whole serpentine (CHUNK points; on a pool or Dask a fair share, which depends on
+the workers), never from what a resumed run has left, and a partly written chunk runs whole
+again. So a resumed map's rows are those of an uninterrupted run with the same --workers (or
+scheduler), to the last digit, warm and iteration columns included; another worker count
+cuts other chunks, and its rows may differ within IPOPT's tolerance and in those columns.
 """
 
 from __future__ import annotations
 
+import hashlib
 import itertools
 import math
-from dataclasses import asdict, dataclass, field, fields
+import pickle
+from dataclasses import asdict, dataclass, field, fields, replace
 
 import numpy as np
 
@@ -82,7 +91,15 @@ def serpentine(params) -> list[dict]:
     return [{n: float(params[k][1][i]) for k, (n, i) in enumerate(zip(names, combo))} for combo in order]
 
 
-_PROBLEMS: dict = {}  # per process: posture problems by the values that change the NLP
+_PROBLEMS: dict = {}  # per process: the posture problem of the last scene content built
+
+
+def content_key(scene) -> str:
+    """A digest of everything a scene's posture problem is built from: its pickled fields
+    (state, body, ground, [optimize], joints, numerics ...), not its path, so that a scene
+    edited in place, or another scene at the same path, builds its own problem. The name,
+    path and notes do not change the NLP and are left out."""
+    return hashlib.sha256(pickle.dumps(replace(scene, name="", path="", notes=()))).hexdigest()
 
 
 def rows(scene, chunk) -> list[dict]:
@@ -95,10 +112,11 @@ def rows(scene, chunk) -> list[dict]:
             built = NLP_PARAMETERS if not _slope_built_in(scene) else {
                 k: v for k, v in NLP_PARAMETERS.items() if k != "slope_deg"}
             other = {k: v for k, v in values.items() if k not in built}
-            key = repr((scene.path, sorted(other.items())))
+            built_scene = apply(scene, other)
+            key = content_key(built_scene)
             if key not in _PROBLEMS:
                 _PROBLEMS.clear()  # one problem at a time: a grid moves through them in order
-                _PROBLEMS[key] = apply(scene, other).posture_problem()
+                _PROBLEMS[key] = built_scene.posture_problem()
             pp = _PROBLEMS[key]
             p = pp.parameters(**{built[k][0]: built[k][1](v) for k, v in values.items() if k in built})
             row, previous = _solve(pp, p, previous if previous and previous[0] is pp else None)

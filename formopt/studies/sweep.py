@@ -91,18 +91,19 @@ def parse_param(text: str) -> tuple[str, np.ndarray]:
     if name not in PARAMETERS:
         raise InputError(f"--param {name!r}: expected one of {', '.join(PARAMETERS)}")
     try:
-        start, stop, count = spec.split(":")
-        values = np.linspace(float(start), float(stop), int(count))
+        first, last, number = spec.split(":")
+        start, stop, count = float(first), float(last), int(number)
     except ValueError:
         raise InputError(f"--param {text!r}: expected NAME=START:STOP:COUNT, e.g. ankle_deg=-20:20:41") from None
-    if not 1 <= len(values) <= MAX_POINTS or not np.all(np.isfinite(values)):
+    if not 1 <= count <= MAX_POINTS or not (math.isfinite(start) and math.isfinite(stop)):
+        # checked before linspace: no memory for a huge COUNT, no numpy warning for inf
         raise InputError(f"--param {text!r}: COUNT must be 1 to {MAX_POINTS} and the range finite")
     allowed = RANGES[name]
-    for value in (values[0], values[-1]):
+    for value in (start, stop) if count > 1 else (start,):
         if value not in allowed:
             raise InputError(f"--param {text!r}: {name} = {value:g} is outside its range, "
                              f"{allowed.text()} (mechanics.limits)")
-    return name, values
+    return name, np.linspace(start, stop, count)
 
 
 def check_grid(params: list[tuple[str, np.ndarray]]) -> None:
@@ -167,8 +168,12 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
         done = _done(path, existing, names, {_key(g, names) for g in grid})
         todo = [g for g in grid if _key(g, names) not in done]
         if workers > 1 or scheduler:  # every worker busy: chains no longer than a fair share
-            size = max(1, min(size, math.ceil(len(todo) / (4 * (workers if not scheduler else 8)))))
-        chunks = [todo[k:k + size] for k in range(0, len(todo), size)]
+            size = max(1, min(size, math.ceil(len(grid) / (4 * (workers if not scheduler else 8)))))
+        # chunks cut from the whole grid, not from what is left: a resumed optimum map's chains
+        # start where an uninterrupted run's do (a partly done chunk runs whole again, its
+        # missing rows kept), so its rows are that run's (optimum_map's docstring)
+        chunks = [c for c in (grid[k:k + size] for k in range(0, len(grid), size))
+                  if any(_key(g, names) not in done for g in c)]
         bar = None
         if progress:
             from tqdm import tqdm
@@ -177,11 +182,11 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
         written = len(grid) - len(todo)
         try:
             for chunk, rows in _results(work, scene, chunks, workers, scheduler):
-                append_rows(fh, path, ([{**row, **values}[c] for c in header]
-                                       for values, row in zip(chunk, rows)))
-                written += len(chunk)
+                new = [(values, row) for values, row in zip(chunk, rows) if _key(values, names) not in done]
+                append_rows(fh, path, ([{**row, **values}[c] for c in header] for values, row in new))
+                written += len(new)
                 if bar:
-                    bar.update(len(chunk))
+                    bar.update(len(new))
         except KeyboardInterrupt:
             raise KeyboardInterrupt(f"{written} of {len(grid)} rows written to {path}; the same "
                                     "command resumes") from None

@@ -7,6 +7,7 @@ undamaged measurement of the same 10 s.
 
 import copy
 import struct
+import warnings
 
 import numpy as np
 import pytest
@@ -90,6 +91,63 @@ def test_left_right_swap_is_swapped_back(short, static, sound):
     m = measure(damaged(short, markers=markers), static, HEIGHT)
     assert any("thigh markers' sides are swapped" in n for n in m.steps.notes)
     assert angles(m) == pytest.approx(angles(sound), abs=1e-9)
+
+
+def swapped(trial, pairs):
+    markers = dict(trial.markers)
+    for a, b in pairs:
+        markers[a], markers[b] = trial.markers[b], trial.markers[a]
+    return damaged(trial, markers=markers)
+
+
+def test_swapped_asis_markers_are_swapped_back_and_said(short, static, sound):
+    """ASIS labels swapped in the run: the pelvis is checked first and only by upright fits
+    (issue 25: the pelvis fitted upside down, the thigh and shank were 'swapped back')."""
+    m = measure(swapped(short, [("R.ASIS", "L.ASIS")]), static, HEIGHT)
+    swaps = [n for n in m.steps.notes if "swapped back" in n]
+    assert any("L.ASIS and R.ASIS are swapped" in n for n in swaps)
+    assert not any("sides are swapped" in n for n in swaps)
+    assert angles(m) == pytest.approx(angles(sound), abs=1e-9)
+
+
+def test_every_left_right_label_swapped_is_swapped_back_and_said(short, static, sound):
+    """Every R/L label swapped in the run: the mirror-image pelvis fits only upside down, so
+    its labels are swapped back, then each leg segment's sides (issue 25: 'repaired' as heel
+    and MT swaps, 10-25 deg off)."""
+    pairs = [(n, "L" + n[1:]) for n in short.markers if n.startswith("R.") and "L" + n[1:] in short.markers]
+    m = measure(swapped(short, pairs), static, HEIGHT)
+    swaps = [n for n in m.steps.notes if "swapped back" in n]
+    assert any("L.ASIS and L.PSIS and R.ASIS and R.PSIS are swapped" in n for n in swaps)
+    for seg in ("thigh", "shank", "foot"):
+        assert any(f"the {seg} markers' sides are swapped" in n for n in swaps)
+    assert not any("Heel" in n for n in swaps)
+    assert angles(m) == pytest.approx(angles(sound), abs=1e-9)
+
+
+@pytest.mark.parametrize("what", ["run", "static"])
+def test_a_marker_frozen_for_the_whole_trial_is_refused(short, static, what):
+    """Issue 25: `ValueError: array of sample points is empty`."""
+    trial = {"run": short, "static": damaged(static, source="static.c3d")}[what]
+    frozen = damaged(trial, markers={**trial.markers, "R.Heel.Top": np.repeat(
+        trial.markers["R.Heel.Top"][:1], trial.frames, axis=0)})
+    run, stand = (frozen, static) if what == "run" else (short, frozen)
+    with pytest.raises(mocap.MocapError, match=f"^{frozen.source}: marker R.Heel.Top has no valid "
+                                               "frame: frozen") as err:
+        measure(run, stand, HEIGHT)
+    assert "\n" not in str(err.value)
+
+
+@pytest.mark.parametrize("changes, needle", [
+    ({"rate": 0.0}, "the marker rate 0.0 Hz must be a finite number > 0"),
+    ({"rate": float("nan")}, "the marker rate nan Hz"),
+    ({"force_rate": -1.0}, "the force rate -1.0 Hz"),
+    ({"force": np.full((3000, 3), np.nan)}, "the force plate holds no finite non-zero force"),
+    ({"force": np.zeros((3000, 3))}, "the force plate holds no finite non-zero force")])
+def test_bad_rates_and_empty_plates_are_refused_in_one_line_without_warnings(short, static, changes,
+                                                                              needle):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a numpy warning before the error fails the test
+        refused(damaged(short, **changes), static, needle)
 
 
 def test_a_mirrored_lab_is_said_and_changes_nothing(short, static, sound):

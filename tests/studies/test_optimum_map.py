@@ -87,3 +87,35 @@ def test_a_slope_axis_reuses_one_problem(tmp_path, monkeypatch):
         assert r["success"] == "True" and cold.success
         assert float(r["T_c"]) == pytest.approx(cold.impact.T_c, rel=1e-6)
         assert r["verdict"] == cold.verdict
+
+
+def test_the_problem_cache_follows_the_scene_content_not_its_path(tmp_path, monkeypatch):
+    """Two scenes, then one scene edited in place (another objective) at the same path, in one
+    process: each map row is the cold optimum of the scene as it is now (issue 25: the edited
+    scene's map reported the first scene's optimum)."""
+    monkeypatch.setattr(optimum_map, "_PROBLEMS", {})
+    path = tmp_path / "scene.toml"
+    text = DEMO.read_text().replace("starts = 8", "starts = 2")
+    edited = text.replace("objective = { T_c = 1.0, support = 0.1 }", 'objective = "support"')
+    assert edited != text
+    bounded = SHIPPED.parent.parent / "tests" / "optim" / "bounded.toml"
+    for source in (text, bounded.read_text(), edited):
+        path.write_text(source)
+        scene = load(path)
+        (row,) = optimum_map.rows(scene, [{"friction": 0.8}])
+        cold = solve(sweep.apply(scene, {"friction": 0.8}))
+        assert row["success"] is True and cold.success
+        assert row["objective"] == pytest.approx(cold.objective, rel=1e-6, abs=1e-9)
+        assert row["T_c"] == pytest.approx(cold.impact.T_c, rel=1e-6)
+
+
+def test_a_resumed_map_gives_the_rows_of_an_uninterrupted_run(tmp_path):
+    """Whichever rows were written before an interruption, the resumed map on 2 workers is the
+    uninterrupted one to the last digit, warm and iteration columns included (issue 25)."""
+    scene = load(DEMO)
+    whole = sweep.run(scene, PARAMS, tmp_path / "whole.csv", progress=False, workers=2)
+    lines = (tmp_path / "whole.csv").read_text().splitlines()
+    kept = [line for k, line in enumerate(lines) if k == 0 or k % 3 == 1]  # a chunk's first, middle rows
+    (tmp_path / "resumed.csv").write_text("\n".join(kept) + "\n")
+    resumed = sweep.run(scene, PARAMS, tmp_path / "resumed.csv", progress=False, workers=2)
+    assert resumed == whole
