@@ -84,12 +84,15 @@ def _closed_forms(W_c, v0, mu, s):
 
 def coulomb(W_c, v0, mu):
     """(impulse (N s), mode, final tangential velocity (m/s)) of the rigid, perfectly plastic
-    impact with Coulomb friction mu, by the closed form of each mode (module docstring)."""
+    impact with Coulomb friction mu, by the closed form of each mode (module docstring). A
+    point that does not approach the ground (v_n >= 0) has no impact: zero impulse, T_c = 0
+    (the closed forms assume v_n < 0 and would give a negative T_c there)."""
     s = ca.if_else(v0[0] >= 0, 1, -1)
     forms = _closed_forms(W_c, v0, mu, s)
     slide_only = ca.logic_and(forms["k_n"] > 0, forms["before_end"] <= 0)
     holds = forms["holds"] >= 0
     impulse = ca.if_else(slide_only, forms[SLIDE], ca.if_else(holds, forms[STICK], forms[REVERSE]))
+    impulse = ca.if_else(v0[1] < 0, impulse, ca.DM.zeros(2))
     mode = ca.if_else(slide_only, SLIDE, ca.if_else(holds, STICK, REVERSE))
     slip = (v0 + W_c @ impulse)[0]
     return impulse, mode, ca.if_else(mode == STICK, 0, slip)
