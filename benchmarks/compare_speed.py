@@ -50,10 +50,10 @@ def main():
     measure(trial, static, 1.81)
     measured = time.perf_counter() - t
     t = time.perf_counter()
-    c = compare(trial, static, 62.0, 1.81, per_step=False)
+    c = compare(trial, static, 62.0, 1.81, friction=0.8, per_step=False)
     mean_only = time.perf_counter() - t
     t = time.perf_counter()
-    c = compare(trial, static, 62.0, 1.81)
+    c = compare(trial, static, 62.0, 1.81, friction=0.8)
     with_steps = time.perf_counter() - t
     n = len(c.per_step)
     print(f"  reading and measuring (checks, axes, kinematics, touchdowns): {measured:.2f} s")

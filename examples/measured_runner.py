@@ -21,7 +21,7 @@ out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/examples")
 
 trial = mocap.read(DATA / "RBDS001runT35.c3d")
 static = mocap.read(DATA / "RBDS001static.c3d")
-result = formopt.compare(trial, static, mass=62.0, height=1.81)
+result = formopt.compare(trial, static, mass=62.0, height=1.81, friction=0.8)
 report = result.to_dict()  # the JSON report, built once: the table and the figure read it
 print(comparison_table(result, report))
 print("wrote", save_figure(comparison_figure(result, report), out / "measured_runner.png"))

@@ -5,7 +5,7 @@
     formopt.simulate(scene)    # Landing: the finite motion from touchdown to both points down
     formopt.solve(scene)       # Optimum: the posture of the [optimize] table
     formopt.sweep(scene, [("ankle_deg", values)], "out/sweep.csv")   # a list of row dicts
-    formopt.compare("run.c3d", "static.c3d", mass=62.0, height=1.81)
+    formopt.compare("run.c3d", "static.c3d", mass=62.0, height=1.81, friction=0.8)
 
 Each goes through the scene's factories (formopt.io.scene.Scene), so every [numerics] option
 reaches it. Results are dataclasses.

@@ -35,7 +35,7 @@ def main():
     measured = None
     for law in LAWS:
         for weight in WEIGHTS:
-            c = compare(trial, static, 62.0, 1.81, law=law, support=weight, per_step=False)
+            c = compare(trial, static, 62.0, 1.81, friction=0.8, law=law, support=weight, per_step=False)
             rep = report(c)
             opt, a = c.optimum, rep["optimum"]["touchdown"]["angles_deg"]
             if measured is None:

@@ -188,8 +188,8 @@ def test_compare_reads_file_paths():
     import formopt
 
     with pytest.raises(formopt.InputError, match=r"run.c3d: no such file"):
-        formopt.compare("run.c3d", "static.c3d", mass=62, height=1.81)
+        formopt.compare("run.c3d", "static.c3d", mass=62, height=1.81, friction=0.8)
     ric = ROOT / "data" / "ric"
     c = formopt.compare(str(ric / "20160226T120637_run.c3d"), ric / "20160226T120637_static.c3d",
-                        mass=79, height=1.77, starts=1, per_step=False)
+                        mass=79, height=1.77, friction=0.8, starts=1, per_step=False)
     assert isinstance(c, formopt.Comparison) and c.strike == "heel" and c.optimum.success

@@ -189,9 +189,11 @@ def run_one(s: dict, args, out: Path, show: bool = True):
     trial = mocap.read(s["trial"], s["forces"])
     static = mocap.read(s["static"])
     options = Options(s["markers"], s["cutoff"], s["force_threshold"], s["foot_speed_fraction"])
-    result = compare(trial, static, s["mass"], s["height"], s["sex"], s["friction"],
+    quiet = args.json or not show or not sys.stderr.isatty()  # progress only to a person
+    result = compare(trial, static, s["mass"], s["height"], s["sex"], friction=s["friction"],
                      starts=s["starts"], seed=s["seed"], law=s["contact"], bounds_deg=s["bounds"],
-                     support=s["support"], options=options, per_step=s["per_step"])
+                     support=s["support"], options=options, per_step=s["per_step"],
+                     progress=None if quiet else lambda text: print(f"  {text}", file=sys.stderr))
     rep = result.to_dict()
     rep["figure"] = str(save_figure(comparison_figure(result, rep), out / f"comparison.{args.format}"))
     rows = [TOUCHDOWN_COLUMNS]

@@ -241,14 +241,18 @@ def dominant(points: list[str]) -> str:
 
 
 def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
-            sex: str = "male", friction: float = 0.8, starts: int = 4, seed: int = 0,
+            sex: str = "male", *, friction: float, starts: int = 4, seed: int = 0,
             law: str = "coulomb", bounds_deg: dict | None = None, support: float = SUPPORT,
-            options: Options = Options(), per_step: bool = True) -> Comparison:
+            options: Options = Options(), per_step: bool = True, progress=None) -> Comparison:
     """Every touchdown of `trial` through the impact at its model impact point under `law`
     (each result also carries the other laws, ImpactResult.contact_laws), its T_c's band over
     the measurement's variants (variants), and per side the gait-anchored optimum under `law`
     within `bounds_deg` ({joint: (lo, hi)}, deg; missing joints keep BOUNDS_DEG), with
-    `per_step` the optimum of each valid step of that side's impact point as well."""
+    `per_step` the optimum of each valid step of that side's impact point as well.
+    `friction`: the ground's coefficient (no default: every report says which was used);
+    `progress(text)`, when given, is told of each stage of a run that takes seconds."""
+    say = progress or (lambda text: None)
+    say(f"measuring {trial.source}")
     m = measure(trial, static, height, options)
     steps = m.steps
     if not steps.valid:
@@ -262,6 +266,7 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
     impacts = {s: Impact(model, s, 0.0, friction, law=law) for s in STRIKES}
     results = [impacts[p](modelled_state(td, p)) for td, p in zip(steps.touchdowns, points)]
     nominal = np.array([r.T_c for r in results])
+    say(f"{len(steps.touchdowns)} touchdowns; T_c's band: the step measured {len(VARIANTS)} more ways")
     spread = np.array([[impacts[p](modelled_state(v, p)).T_c if v else np.nan
                         for v, p in zip(variant, points)]
                        for variant in variants(trial, static, height, options, m)])
@@ -283,6 +288,7 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
     for side in SIDES:
         own = [k for k, td in enumerate(steps.touchdowns) if td.side == side and td.valid_data]
         if own:
+            say(f"side {side}: the optimum" + (" and each step's" if per_step else ""))
             sides[side] = side_optimum(side, own, points, results, nominal, spread, steps,
                                        impacts, problem, friction, per_step)
     band = [(float(np.nanmin([a, *col])), float(np.nanmax([a, *col])))

@@ -95,7 +95,7 @@ def t35():
     from formopt.studies.compare import compare
     rbds = DATA / "rbds"
     return compare(mocap.read(rbds / "RBDS001runT35.c3d"), mocap.read(rbds / "RBDS001static.c3d"),
-                   62.0, 1.81, starts=2, per_step=False)
+                   62.0, 1.81, friction=0.8, starts=2, per_step=False)
 
 
 def test_the_coulomb_mode_is_followed_past_its_boundary(t35):
