@@ -233,15 +233,23 @@ def trial_rows(rep: dict) -> list[list]:
     return rows
 
 
+def trial_folders(trials: list[dict]) -> list[str]:
+    """One output folder name per trial: the trial file's stem, numbered where two trials
+    share it (run.c3d of two runners), so no trial overwrites another's files."""
+    stems = [Path(s["trial"]).stem for s in trials]
+    return [stem if stems.count(stem) == 1 else f"{stem}-{k}" for k, stem in enumerate(stems, 1)]
+
+
 def run(args) -> int:
     trials = settings(args)
     many = len(trials) > 1
     root = out_folder(args, args.scene or trials[0]["trial"])
     table, code = [TRIAL_COLUMNS], 0
-    for k, s in enumerate(trials, 1):
+    for k, (s, folder) in enumerate(zip(trials, trial_folders(trials)), 1):
         if many:
-            print(f"[{k}/{len(trials)}] {s['trial']}", file=sys.stderr, flush=True)
-            rep, result = run_one(s, args, output_folder(root / Path(s["trial"]).stem),
+            if not args.json:
+                print(f"[{k}/{len(trials)}] {s['trial']}", file=sys.stderr, flush=True)
+            rep, result = run_one(s, args, output_folder(root / folder),
                                   show=not args.json)  # --json: only the JSON below on stdout
         else:
             rep, result = run_one(s, args, root)

@@ -27,3 +27,11 @@ def test_several_trials_with_json_print_only_json(tmp_path, capsys):
         assert set(report["optimum"]) == {"R", "L"}  # one per side, never pooled
         rows = [r for r in printed["trials"] if r["trial"].endswith(report["source"].split("/")[-1])]
         assert [r["T_c_J"] for r in rows] == [report["summary"][s]["T_c_mean"] for s in ("R", "L")]
+
+
+def test_two_trials_with_one_file_name_keep_their_own_folders():
+    """run.c3d of two runners: each trial writes into its own folder (issue 25)."""
+    from formopt.cli.compare import trial_folders
+
+    trials = [{"trial": "a/run.c3d"}, {"trial": "b/run.c3d"}, {"trial": "c/other.c3d"}]
+    assert trial_folders(trials) == ["run-1", "run-2", "other"]
