@@ -6,6 +6,7 @@ transcription and the solve; guess.py: initial guesses; result.py: the `Stride` 
 
 from .problem import OBJECTIVES, STRIKE_PHASES, StrideSettings
 from .collocation import StrideNLP
+from .result import Stride, optimum, summarise
 
 
-__all__ = ["OBJECTIVES", "STRIKE_PHASES", "StrideSettings", "StrideNLP"]
+__all__ = ["OBJECTIVES", "STRIKE_PHASES", "StrideSettings", "StrideNLP", "Stride", "optimum", "summarise"]
