@@ -16,8 +16,9 @@ points' rows [t; n] of a ground of slope `slope` (rad); f the ground's force (N)
 
 Passive moments beyond the ranges of motion (`RANGES`): a smooth exponential wall,
 tau_pass = K [exp((phi_min - phi) / w) - exp((phi - phi_max) / w)] on each flexion angle phi
-(K = 1 N m, w = 3 deg: 0.05 N m inside the range 9 deg away from a limit, 20 N m at 9 deg
-beyond it). The form is the exponential limit of Riener & Edrich (1999, J Biomech 32:539) and
+(K = 1 N m, w = 5 deg: 0.14 N m inside the range 10 deg away from a limit, 2.7 N m at 5 deg
+beyond it, where `LIMIT_MARGIN`, the hard bound of a solve, stops it: a stiffer wall makes a
+light swing foot ring at a period near the collocation step). The form is the exponential limit of Riener & Edrich (1999, J Biomech 32:539) and
 of Anderson & Pandy (1999); the values are ours, chosen so the wall matters only beyond the
 range. The ranges are those of running (Novacheck 1998), with a margin.
 """
@@ -45,7 +46,8 @@ RANGES = {"hip": (math.radians(-40.0), math.radians(110.0)),
           "knee": (math.radians(0.0), math.radians(140.0)),
           "ankle": (math.radians(-50.0), math.radians(30.0))}
 PASSIVE_K = 1.0  # N m
-PASSIVE_WIDTH = math.radians(3.0)  # rad
+PASSIVE_WIDTH = math.radians(5.0)  # rad
+LIMIT_MARGIN = math.radians(5.0)  # rad, how far beyond RANGES a solve may go
 
 
 def swap_legs(theta):

@@ -79,6 +79,7 @@ class StrideSettings:
     duration: dict = field(default_factory=lambda: {"heel": (0.005, 0.1), "flat": (0.02, 0.3),
                                                     "forefoot": (0.02, 0.3),
                                                     "flight": (0.02, 0.3)})  # s, per phase
+    scheme: str = "trapezoidal"  # or "hermite-simpson" (collocation.SCHEMES)
     max_iter: int = 1000
     tolerance: float = 1e-6
 
@@ -92,6 +93,8 @@ class StrideSettings:
         if self.law not in ("no-slip", "coulomb"):
             raise InputError(f"law {self.law!r}: expected no-slip or coulomb (frictionless "
                              "impacts leave the foot sliding, a phase the stride does not model)")
+        if self.scheme not in ("trapezoidal", "hermite-simpson"):
+            raise InputError(f"scheme {self.scheme!r}: expected trapezoidal or hermite-simpson")
         if not 0 <= self.impact_weight <= 1e3:
             raise InputError(f"impact_weight = {self.impact_weight}: expected 0 to 1000")
         if not 0.5 <= self.torque_limit <= 20:

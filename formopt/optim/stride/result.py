@@ -1,7 +1,7 @@
 """The solved half stride: the `Stride` result, its energy budget and checks.
 
-Energy budget over the half stride (J), every integral by the trapezoidal rule on the nodes
-(the transcription's own quadrature):
+Energy budget over the half stride (J), every integral by the transcription's own quadrature
+(trapezoidal on the nodes, or Simpson with the Hermite-Simpson midpoints):
 
     W+ = int sum max(P_j, 0) dt,  W- = int sum max(-P_j, 0) dt,  P_j = -tau_j phi_j' (W)
     impacts = sum of T_c (the flat-foot impact, if any, and the touchdown)
@@ -10,7 +10,8 @@ Energy budget over the half stride (J), every integral by the trapezoidal rule o
     balance = W+ - W- - impacts - friction - passive - m g d sin(slope)
 
 Kinetic and potential energy return to their start over a period, so `balance` is zero up to
-the transcription's error (O(h^2)). Cost of transport W+ / (m g d); mechanical power W+ / T
+the transcription's error (O(h^2) trapezoidal, O(h^4) Hermite-Simpson, while the
+motion is smooth). Cost of transport W+ / (m g d); mechanical power W+ / T
 (T the half-period, d = speed T the step length).
 """
 
@@ -101,20 +102,17 @@ def budget(nlp: StrideNLP, blocks: dict, speed: float, slope: float, impacts: fl
     """The energy budget (module docstring), J; also the power-split and metabolic figures."""
     js, m = nlp.js, nlp.mass
     sums = {"positive": 0.0, "negative": 0.0, "friction": 0.0, "passive": 0.0}
-    for phase, n in zip(nlp.phases, nlp.split):
-        X, U = blocks[f"X_{phase.name}"], m * blocks[f"U_{phase.name}"]
-        F = m * GRAVITY * blocks[f"F_{phase.name}"]
+    for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
         h = blocks[f"T_{phase.name}"].item() / n
-        for k in range(n + 1):
-            w = h * (0.5 if k in (0, n) else 1.0)
-            th, thd = X[:NX, k], X[NX:, k]
-            power = -U[:, k] * thd[3:]
+        for w, x, tau, f in nlp.samples(i, h, blocks):
+            th, thd = x[:NX], x[NX:]
+            power = -tau * thd[3:]
             sums["positive"] += w * np.sum(np.maximum(power, 0))
             sums["negative"] += w * np.sum(np.maximum(-power, 0))
             sums["passive"] -= w * float(np.asarray(js.passive(th), float).ravel() @ thd)
             for r, (point, axis) in enumerate(phase.rows):
                 v = np.asarray(js.points[point](th, thd, slope)[1], float).ravel()
-                sums["friction"] -= w * F[r, k] * v[0 if axis == "t" else 1]
+                sums["friction"] -= w * m * GRAVITY * f[r] * v[0 if axis == "t" else 1]
     step = speed * half_period(nlp, blocks)
     climb = m * GRAVITY * step * np.sin(slope)
     balance = sums["positive"] - sums["negative"] - impacts - sums["friction"] - sums["passive"] - climb
