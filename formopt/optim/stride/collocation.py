@@ -8,12 +8,8 @@ row of the phase after it; the touchdown's also its post-impact velocity). Const
 - at every node, the equations of motion (mechanics.joint_space, implicit: theta'' and f are
   variables) and, in stance, J_c theta'' + (dJ_c/dt) theta' = 0; f_n >= 0 and
   mu f_n -+ f_t >= 0; every foot point not held stays at or above the ground;
-- on every interval, the defects of the scheme (`StrideSettings.scheme`) on x = (theta,
-  theta') with x' = (theta', theta''): trapezoidal, x_{k+1} - x_k = h/2 (x'_k + x'_{k+1})
-  (second order), or Hermite-Simpson in separated form with midpoint variables (the equations
-  of motion also hold at the midpoints; the moments there are the nodes' mean, piecewise
-  linear): x_c = (x_k + x_{k+1})/2 + h/8 (x'_k - x'_{k+1}), x_{k+1} - x_k = h/6 (x'_k + 4 x'_c
-  + x'_{k+1}) (fourth order);
+- on every interval, trapezoidal defects on x = (theta, theta') with x' = (theta', theta''):
+  x_{k+1} - x_k = h/2 (x'_k + x'_{k+1}) (second order: the energy balance closes to O(h^2));
 - a phase that adds a point: the point on the ground at the previous phase's end, moving into
   it; the impact M(theta) (theta'+ - theta'-) = J_c^T p with J_c theta'+ = 0 (the projection of
   mechanics.impact in joint coordinates); under no-slip p_n >= 0 and mu sum p_n -+ p_t >= 0;
@@ -22,11 +18,13 @@ row of the phase after it; the touchdown's also its post-impact velocity). Const
   with the legs swapped and moved back by the step `speed * half-period` (along the ground) is
   the start; x_hip = 0 at the start.
 
-Why Hermite-Simpson by default: with the trapezoidal rule the light swing foot's ankle
-oscillates node to node at the acceleration bound (the rule cannot see a sawtooth between
-nodes), and the optimal moments integrated forward leave the trajectory by 0.07 rad within one
-phase at 40 nodes (0.04 at 80); Hermite-Simpson's midpoints see it. The drift of the held
-contact points is measured (`Stride.checks`). Parameters p = [speed (m/s), slope (rad), mu]; the cadence is
+Why trapezoidal: it converges from the generic guess in about a hundred iterations. A
+Hermite-Simpson version (separated form, the equations of motion and contact accelerations
+also at the midpoints) was tried and stalled from the same guess (dual infeasibility 1e14 after
+200 iterations), so it is not shipped. The trapezoidal rule's weak point, a light foot ringing
+node to node against a stiff range-of-motion wall, is closed by the walls' width and hard
+bounds (mechanics.joint_space); the forward simulation (`Stride.checks`) measures what is left.
+The drift of the held contact points is measured too. Parameters p = [speed (m/s), slope (rad), mu]; the cadence is
 imposed, when asked, through the bounds of the half-period's row.
 """
 
@@ -46,7 +44,6 @@ NX = len(THETA)
 NU = len(JOINTS)
 PARAMETERS = ("speed", "slope", "mu")
 ACCELERATION = 1000.0  # rad/s^2 (m/s^2 for the hip): bound on theta''
-SCHEMES = ("trapezoidal", "hermite-simpson")
 TRUNK = (math.radians(-20.0), math.radians(45.0))  # rad, the trunk's lean (forward positive)
 IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive",
                   "nlp_scaling_method": "gradient-based", "linear_solver": "mumps"}
@@ -158,7 +155,6 @@ class StrideNLP:
         hi_th = np.r_[np.inf, 1.4, TRUNK[1], [hi + LIMIT_MARGIN for _, hi in joints]]
         tau = s.torque_limit
         self.T, self.X, self.A, self.U, self.F, self.P = [], [], [], [], [], []
-        self.mid = []  # Hermite-Simpson: (Xc, Ac, Fc) at the interval midpoints
         for phase, n in zip(self.phases, self.split):
             k, rows = phase.name, phase.rows
             x_lo, x_hi = np.r_[lo_th, [-15] * NX][:, None], np.r_[hi_th, [15] * NX][:, None]
@@ -168,10 +164,6 @@ class StrideNLP:
             self.U.append(b.add(f"U_{k}", (NU, n + 1), -tau, tau))  # N m / kg
             self.F.append(b.add(f"F_{k}", (len(rows), n + 1), f_lo, 8.0))
             self.T.append(b.add(f"T_{k}", (1, 1), *s.duration[k]))
-            if s.scheme == "hermite-simpson":
-                self.mid.append((b.add(f"Xc_{k}", (2 * NX, n), x_lo, x_hi),
-                                 b.add(f"Ac_{k}", (NX, n), -ACCELERATION, ACCELERATION),
-                                 b.add(f"Fc_{k}", (len(rows), n), f_lo, 8.0)))
         for i, phase in enumerate(self.phases[1:], 1):
             if self._added(i):
                 self.P.append(b.add(f"P_{phase.name}", (len(phase.rows), 1), *self._impulse_bounds(phase.rows)))
@@ -218,52 +210,29 @@ class StrideNLP:
 
     # -- phases ----------------------------------------------------------------------
     def _phase(self, i):
-        """Node (and midpoint) constraints, interval defects and the objective's integrals."""
+        """Node constraints, interval defects and the objective's integrals of phase i."""
         phase, n = self.phases[i], self.split[i]
         X, A, F, T = self.X[i], self.A[i], self.F[i], self.T[i]
         h = T / n
         for k in range(n + 1):
             self._node(phase, X[:, k], A[:, k], self.U[i][:, k], F[:, k])
-        hermite = bool(self.mid)
-        if hermite:
-            Xc, Ac, Fc = self.mid[i]
-            for k in range(n):
-                self._node(phase, Xc[:, k], Ac[:, k], self._mid_control(i, k), Fc[:, k])
         for k in range(n):
             d0 = ca.vertcat(X[NX:, k], A[:, k])
             d1 = ca.vertcat(X[NX:, k + 1], A[:, k + 1])
-            if hermite:
-                dc = ca.vertcat(Xc[NX:, k], Ac[:, k])
-                self.rows.add(Xc[:, k] - 0.5 * (X[:, k] + X[:, k + 1]) - h / 8 * (d0 - d1))
-                self.rows.add(X[:, k + 1] - X[:, k] - h / 6 * (d0 + 4 * dc + d1))
-            else:
-                self.rows.add(X[:, k + 1] - X[:, k] - 0.5 * h * (d0 + d1))
+            self.rows.add(X[:, k + 1] - X[:, k] - 0.5 * h * (d0 + d1))
         for weight, x, tau, _ in self.samples(i, h):
             power = self.joint_power(x[NX:], tau)
             self.terms["effort"] += weight * ca.sumsqr(tau)
             self.terms["positive"] += weight * ca.sum1(pos(power))
             self.terms["negative"] += weight * ca.sum1(pos(-power))
 
-    def _mid_control(self, i, k):
-        """The joint moments (N m / kg) at an interval's midpoint: piecewise linear."""
-        return 0.5 * (self.U[i][:, k] + self.U[i][:, k + 1])
-
     def samples(self, i, h, blocks=None):
-        """(quadrature weight (s), state, joint moments (N m), contact forces (body weights))
-        of phase i: trapezoidal on the nodes, or Simpson with the midpoints. `blocks`: numeric
-        blocks by name (default: the NLP's symbols)."""
+        """(trapezoidal weight (s), state, joint moments (N m), contact forces (body weights))
+        at each node of phase i. `blocks`: numeric blocks by name (default: the symbols)."""
         name, n = self.phases[i].name, self.split[i]
         get = (lambda key: blocks[f"{key}_{name}"]) if blocks is not None else \
             (lambda key: self.blocks.symbols[self.blocks.names.index(f"{key}_{name}")])
         X, U, F = get("X"), self.mass * get("U"), get("F")
-        out = []
-        if self.mid:
-            Xc, Fc = get("Xc"), get("Fc")
-            for k in range(n):
-                out += [(h / 6, X[:, k], U[:, k], F[:, k]),
-                        (4 * h / 6, Xc[:, k], 0.5 * (U[:, k] + U[:, k + 1]), Fc[:, k]),
-                        (h / 6, X[:, k + 1], U[:, k + 1], F[:, k + 1])]
-            return out
         return [(h * (0.5 if k in (0, n) else 1.0), X[:, k], U[:, k], F[:, k]) for k in range(n + 1)]
 
     def _node(self, phase, x, thdd, u, f):

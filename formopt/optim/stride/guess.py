@@ -99,10 +99,6 @@ def _blocks(nlp, theta, thetad, durations, stance, period, speed) -> dict:
             force[normals] = weight / sum(normals)
         guess[f"F_{name}"] = force
         guess[f"T_{name}"] = durations[i]
-        if nlp.mid:  # Hermite-Simpson midpoints: the neighbours' mean
-            for key in ("X", "A", "F"):
-                v = guess[f"{key}_{name}"]
-                guess[f"{key}c_{name}"] = 0.5 * (v[:, :-1] + v[:, 1:])
         k += n + 1
     for i, phase in enumerate(nlp.phases[1:], 1):
         if nlp.P[i - 1] is not None:

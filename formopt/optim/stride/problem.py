@@ -79,7 +79,6 @@ class StrideSettings:
     duration: dict = field(default_factory=lambda: {"heel": (0.005, 0.1), "flat": (0.02, 0.3),
                                                     "forefoot": (0.02, 0.3),
                                                     "flight": (0.02, 0.3)})  # s, per phase
-    scheme: str = "trapezoidal"  # or "hermite-simpson" (collocation.SCHEMES)
     max_iter: int = 1000
     tolerance: float = 1e-6
 
@@ -88,13 +87,12 @@ class StrideSettings:
             raise InputError(f"strike {self.strike!r}: expected one of {', '.join(STRIKES)}")
         if self.objective not in OBJECTIVES:
             raise InputError(f"objective {self.objective!r}: expected one of {', '.join(OBJECTIVES)}")
-        if not 3 * len(self.phases) <= self.nodes <= 400:
-            raise InputError(f"nodes = {self.nodes}: expected {3 * len(self.phases)} to 400")
+        if not MIN_NODES * len(self.phases) + 2 <= self.nodes <= 400:
+            raise InputError(f"nodes = {self.nodes}: expected {MIN_NODES * len(self.phases) + 2} "
+                             f"to 400 for a {self.strike} strike")
         if self.law not in ("no-slip", "coulomb"):
             raise InputError(f"law {self.law!r}: expected no-slip or coulomb (frictionless "
                              "impacts leave the foot sliding, a phase the stride does not model)")
-        if self.scheme not in ("trapezoidal", "hermite-simpson"):
-            raise InputError(f"scheme {self.scheme!r}: expected trapezoidal or hermite-simpson")
         if not 0 <= self.impact_weight <= 1e3:
             raise InputError(f"impact_weight = {self.impact_weight}: expected 0 to 1000")
         if not 0.5 <= self.torque_limit <= 20:
@@ -108,13 +106,12 @@ class StrideSettings:
         return STRIKE_PHASES[self.strike]
 
     def node_split(self) -> list[int]:
-        """Intervals per phase: `nodes` shared by NODE_SHARE, at least MIN_NODES each."""
+        """Intervals per phase: MIN_NODES each, the rest shared by NODE_SHARE (the flight
+        takes the rounding)."""
         shares = [NODE_SHARE[p.name] for p in self.phases]
-        total = sum(shares)
-        split = [max(MIN_NODES, int(round(self.nodes * s / total))) for s in shares]
-        split[-1] += self.nodes - sum(split)  # the flight takes the rounding
-        if split[-1] < MIN_NODES:
-            raise InputError(f"nodes = {self.nodes} is too few for {len(split)} phases")
+        rest = self.nodes - MIN_NODES * len(shares)
+        split = [MIN_NODES + int(round(rest * s / sum(shares))) for s in shares]
+        split[-1] += self.nodes - sum(split)
         return split
 
 

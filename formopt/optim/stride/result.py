@@ -1,7 +1,7 @@
 """The solved half stride: the `Stride` result, its energy budget and checks.
 
-Energy budget over the half stride (J), every integral by the transcription's own quadrature
-(trapezoidal on the nodes, or Simpson with the Hermite-Simpson midpoints):
+Energy budget over the half stride (J), every integral by the trapezoidal rule on the nodes
+(the transcription's own quadrature):
 
     W+ = int sum max(P_j, 0) dt,  W- = int sum max(-P_j, 0) dt,  P_j = -tau_j phi_j' (W)
     impacts = sum of T_c (the flat-foot impact, if any, and the touchdown)
@@ -10,8 +10,7 @@ Energy budget over the half stride (J), every integral by the transcription's ow
     balance = W+ - W- - impacts - friction - passive - m g d sin(slope)
 
 Kinetic and potential energy return to their start over a period, so `balance` is zero up to
-the transcription's error (O(h^2) trapezoidal, O(h^4) Hermite-Simpson, while the
-motion is smooth). Cost of transport W+ / (m g d); mechanical power W+ / T
+the transcription's error (O(h^2)). Cost of transport W+ / (m g d); mechanical power W+ / T
 (T the half-period, d = speed T the step length).
 """
 
