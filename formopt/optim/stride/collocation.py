@@ -38,7 +38,7 @@ import casadi as ca
 import numpy as np
 
 from ...mechanics.joint_space import JOINTS, LIMIT_MARGIN, RANGES, THETA, JointSpace, swap_legs
-from .problem import WORK_REGULARISATION, StrideSettings, metabolic, other_leg, pos
+from .problem import SMOOTHING, WORK_REGULARISATION, StrideSettings, metabolic, other_leg, pos
 
 NX = len(THETA)
 NU = len(JOINTS)
@@ -131,7 +131,7 @@ class StrideNLP:
         self.p = ca.SX.sym("p", len(PARAMETERS))
         self.speed, self.slope, self.mu = ca.vertsplit(self.p)
         self._variables()
-        self.terms = {"effort": 0, "positive": 0, "negative": 0, "impacts": 0}
+        self.terms = {"effort": 0, "positive": 0, "negative": 0, "impacts": 0, "smoothing": 0}
         for i in range(len(self.phases)):
             self._phase(i)
         for i in range(1, len(self.phases)):
@@ -220,6 +220,7 @@ class StrideNLP:
             d0 = ca.vertcat(X[NX:, k], A[:, k])
             d1 = ca.vertcat(X[NX:, k + 1], A[:, k + 1])
             self.rows.add(X[:, k + 1] - X[:, k] - 0.5 * h * (d0 + d1))
+            self.terms["smoothing"] += h * ca.sumsqr(A[:, k + 1] - A[:, k])
         for weight, x, tau, _ in self.samples(i, h):
             power = self.joint_power(x[NX:], tau)
             self.terms["effort"] += weight * ca.sumsqr(tau)
@@ -303,7 +304,8 @@ class StrideNLP:
 
     def _objective(self):
         """The scene's objective per distance (scaled by 100 / (m g)^2 for effort, 1 / (m g) for
-        the work objectives, so that IPOPT sees values of order one)."""
+        the work objectives, so that IPOPT sees values of order one), and the smoothing term
+        (problem.SMOOTHING)."""
         s, m, terms = self.settings, self.mass, self.terms
         distance = self.speed * self.period
         effort = terms["effort"] / distance * 100.0 / (m * 9.81) ** 2
@@ -313,7 +315,8 @@ class StrideNLP:
             work = terms["positive"] if s.objective == "work" else \
                 metabolic(terms["positive"], terms["negative"])
             f = work / distance / (m * 9.81) + WORK_REGULARISATION * effort
-        return f + s.impact_weight * terms["impacts"] / distance / (m * 9.81)
+        return (f + s.impact_weight * terms["impacts"] / distance / (m * 9.81)
+                + SMOOTHING * terms["smoothing"] / distance)
 
     # -- solve -----------------------------------------------------------------------
     def solve(self, guess: dict, speed: float, slope: float = 0.0, mu: float = 0.8,

@@ -181,8 +181,10 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
               "balance_relative": abs(energy["balance_J"]) / max(energy["positive_work_J"], 1e-9)}
     if simulate:
         sim = forward(nlp, b, speed, slope)
-        checks.update(forward_theta=sim["theta"], forward_thetad=sim["thetad"],
-                      forward_per_phase=sim["per_phase_theta"], forward_periodicity=sim["periodicity"])
+        checks.update(forward_theta=sim["reset_theta"], forward_per_phase=sim["reset_per_phase"],
+                      open_loop_theta=sim["theta"], open_loop_thetad=sim["thetad"],
+                      open_loop_per_phase=sim["per_phase_theta"],
+                      open_loop_periodicity=sim["periodicity"])
     strike_point = "heel_R" if nlp.settings.strike != "forefoot" else "forefoot_R"
     r = np.asarray(nlp.js.points[strike_point](start, np.zeros(NX), slope)[0], float).ravel()
     end_v = b[f"X_{nlp.phases[-1].name}"][NX:, -1]
