@@ -12,7 +12,7 @@ bench), report (tables, figures), cli.
 
 from importlib.metadata import PackageNotFoundError, version
 
-from .api import compare, impact, load, simulate, solve, sweep
+from .api import compare, impact, load, simulate, solve, stride, sweep
 from .io.scene import Scene, SceneError
 from .mechanics.impact import Impact, ImpactResult
 from .mechanics.landing import Landing
@@ -23,5 +23,5 @@ try:
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0+unknown"
 
-__all__ = ["load", "impact", "simulate", "solve", "sweep", "compare", "Scene", "SceneError",
+__all__ = ["load", "impact", "simulate", "solve", "sweep", "compare", "stride", "Scene", "SceneError",
            "Impact", "ImpactResult", "Landing", "Optimum", "__version__"]

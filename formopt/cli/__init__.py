@@ -6,6 +6,7 @@
     formopt sweep SCENE       landings across a grid of parameters (resumable)
     formopt compare ...       measured touchdowns of a motion-capture trial against the optimum
     formopt bench             time and accuracy of each model level and numerical option
+    formopt stride SCENE      the periodic running half stride: cadence, placement, budget
 
 Exit status: 0 success; 1 a run that did not reach its goal (no start converged, a diverged
 landing), with the reason; 2 bad input (scene, data, option or output path), in one line
@@ -22,10 +23,10 @@ from .. import __version__
 from ..io.files import OutputError
 from ..mechanics.errors import InputError, one_line
 from ..mechanics.landing import Diverged
-from . import bench, compare, impact, simulate, solve, sweep
+from . import bench, compare, impact, simulate, solve, stride, sweep
 
 COMMANDS = {"impact": impact, "solve": solve, "simulate": simulate, "sweep": sweep,
-            "compare": compare, "bench": bench}
+            "compare": compare, "bench": bench, "stride": stride}
 
 
 def parser() -> argparse.ArgumentParser:

@@ -169,7 +169,11 @@ def load(path) -> Scene:
 
 
 def parse(data: dict, path: str = "") -> Scene:
-    """Validate a scene given as a dictionary (the parsed TOML)."""
+    """Validate a scene given as a dictionary (the parsed TOML); one with a [stride] table is
+    a stride scene (io/stride_scene.py, imported here: it builds on this module's readers)."""
+    if isinstance(data, dict) and "stride" in data:
+        from .stride_scene import parse as parse_stride
+        return parse_stride(data, path)
     _keys(data, "", {"scene", "body", "touchdown", "ground", "optimize", "joints", "landing",
                      "numerics"}, ("scene", "touchdown", "ground"))
     scene = _table(data, "scene", {"name", "model"}, {"name"})
