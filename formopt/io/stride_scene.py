@@ -45,6 +45,13 @@ class StrideScene:
         """The settings of one strike."""
         return replace(self.settings, strike=strike)
 
+    def _other_command(self, *args, **kwargs):
+        raise SceneError("stride", f"{self.path or self.name} is a stride scene: run "
+                                   "`formopt stride` (impact, simulate and solve need [touchdown])")
+
+    # the touchdown commands' factories (io.scene.Scene): a clear error, not an AttributeError
+    model = impact = landing = posture_problem = _other_command
+
 
 def parse(data: dict, path: str = "") -> StrideScene:
     """Validate a stride scene given as a dictionary (the parsed TOML)."""
