@@ -14,6 +14,8 @@ row of the phase after it; the touchdown's also its post-impact velocity). Const
   it; the impact M(theta) (theta'+ - theta'-) = J_c^T p with J_c theta'+ = 0 (the projection of
   mechanics.impact in joint coordinates); under no-slip p_n >= 0 and mu sum p_n -+ p_t >= 0;
 - a phase that drops a point: that point's normal force zero at the previous phase's end;
+- for the work objectives, each joint's power split P = P+ - P- (W/kg, P+- >= 0) at every node
+  (problem.py says why);
 - the touchdown of L at the flight's end, its impact, and periodicity: the post-impact state
   with the legs swapped and moved back by the step `speed * half-period` (along the ground) is
   the start; x_hip = 0 at the start.
@@ -38,7 +40,7 @@ import casadi as ca
 import numpy as np
 
 from ...mechanics.joint_space import JOINTS, LIMIT_MARGIN, RANGES, THETA, JointSpace, swap_legs
-from .problem import SMOOTHING, WORK_REGULARISATION, StrideSettings, metabolic, other_leg, pos
+from .problem import SMOOTHING, WORK_REGULARISATION, StrideSettings, metabolic, other_leg
 
 NX = len(THETA)
 NU = len(JOINTS)
@@ -154,7 +156,7 @@ class StrideNLP:
         lo_th = np.r_[-np.inf, 0.4, TRUNK[0], [lo - LIMIT_MARGIN for lo, _ in joints]]  # m, rad
         hi_th = np.r_[np.inf, 1.4, TRUNK[1], [hi + LIMIT_MARGIN for _, hi in joints]]
         tau = s.torque_limit
-        self.T, self.X, self.A, self.U, self.F, self.P = [], [], [], [], [], []
+        self.T, self.X, self.A, self.U, self.F, self.P, self.S = [], [], [], [], [], [], []
         for phase, n in zip(self.phases, self.split):
             k, rows = phase.name, phase.rows
             x_lo, x_hi = np.r_[lo_th, [-15] * NX][:, None], np.r_[hi_th, [15] * NX][:, None]
@@ -164,6 +166,8 @@ class StrideNLP:
             self.U.append(b.add(f"U_{k}", (NU, n + 1), -tau, tau))  # N m / kg
             self.F.append(b.add(f"F_{k}", (len(rows), n + 1), f_lo, 8.0))
             self.T.append(b.add(f"T_{k}", (1, 1), *s.duration[k]))
+            if s.objective != "effort":  # joint power split: [positive; negative] parts, W/kg
+                self.S.append(b.add(f"S_{k}", (2 * NU, n + 1), 0.0, np.inf))
         for i, phase in enumerate(self.phases[1:], 1):
             if self._added(i):
                 self.P.append(b.add(f"P_{phase.name}", (len(phase.rows), 1), *self._impulse_bounds(phase.rows)))
@@ -221,11 +225,13 @@ class StrideNLP:
             d1 = ca.vertcat(X[NX:, k + 1], A[:, k + 1])
             self.rows.add(X[:, k + 1] - X[:, k] - 0.5 * h * (d0 + d1))
             self.terms["smoothing"] += h * ca.sumsqr(A[:, k + 1] - A[:, k])
-        for weight, x, tau, _ in self.samples(i, h):
-            power = self.joint_power(x[NX:], tau)
+        for k, (weight, x, tau, _) in enumerate(self.samples(i, h)):
             self.terms["effort"] += weight * ca.sumsqr(tau)
-            self.terms["positive"] += weight * ca.sum1(pos(power))
-            self.terms["negative"] += weight * ca.sum1(pos(-power))
+            if self.S:  # P = P+ - P-, P+- >= 0: minimising them makes them the exact parts
+                S = self.S[i][:, k]
+                self.rows.add(self.joint_power(x[NX:], tau) / self.mass - (S[:NU] - S[NU:]))
+                self.terms["positive"] += weight * self.mass * ca.sum1(S[:NU])
+                self.terms["negative"] += weight * self.mass * ca.sum1(S[NU:])
 
     def samples(self, i, h, blocks=None):
         """(trapezoidal weight (s), state, joint moments (N m), contact forces (body weights))

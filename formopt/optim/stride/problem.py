@@ -52,9 +52,12 @@ OBJECTIVES = ("effort", "work", "metabolic")
 # Margaria R. (1968) Int Z angew Physiol 25:339: efficiencies of positive and negative muscle work
 EFFICIENCY_POSITIVE = 0.25
 EFFICIENCY_NEGATIVE = 1.2
-# smooth split of the joint power, pos(P) = (P + sqrt(P^2 + eps^2)) / 2 (W); its error is at
-# most eps / 2 per joint, 0.5 W: 0.1 % of a 500 W running power
-POWER_EPS = 1.0
+# The work objectives split each joint's power exactly with two slack variables per joint and
+# node, P = P+ - P-, P+ and P- >= 0, their weighted sum minimised (Bryson's split): both parts
+# end exact, no smoothing width to choose. The smooth split the brief proposed,
+# (P + sqrt(P^2 + eps^2)) / 2 with eps = 1 W (and 5 W), left IPOPT short of convergence after
+# 1000 iterations in every work and metabolic solve tried (2026-11-23); with the slacks they
+# converge in about 250.
 # the work objectives leave a joint moment that does no work free: a small effort term (this
 # weight times the effort objective) makes the optimum unique
 WORK_REGULARISATION = 1e-2
@@ -119,11 +122,6 @@ class StrideSettings:
         split = [MIN_NODES + int(round(rest * s / sum(shares))) for s in shares]
         split[-1] += self.nodes - sum(split)
         return split
-
-
-def pos(x, eps=POWER_EPS):
-    """Smooth positive part (x + sqrt(x^2 + eps^2)) / 2 (same unit as x)."""
-    return 0.5 * (x + (x * x + eps * eps) ** 0.5)
 
 
 def metabolic(positive, negative):
