@@ -31,8 +31,7 @@ import casadi as ca
 import numpy as np
 
 from .body import Body
-from .errors import InputError
-from .model import STATE, Model, Swing, build_model, landmarks
+from .model import Model, Swing, build_model, landmarks
 
 GRAVITY = 9.81  # m/s^2
 THETA = ("x_hip", "z_hip", "trunk", "hip_R", "knee_R", "ankle_R", "hip_L", "knee_L", "ankle_L")
@@ -107,7 +106,6 @@ class JointSpace:
         """World positions (SX, m) of every landmark: model.landmarks with the hip at theta[0:2]."""
         s = dict(zip(THETA, ca.vertsplit(theta)))
         x = ca.vertcat(s["trunk"], s["hip_R"], s["knee_R"], s["ankle_R"], *([0] * 6))
-        assert x.shape[0] == len(STATE)
         swing = Swing(s["hip_L"], s["knee_L"], s["ankle_L"], 0, 0, 0)
         hip = ca.vertcat(s["x_hip"], s["z_hip"])
         return {k: p + hip for k, (p, _) in landmarks(x, self.model.body, "hip", swing).items()}
@@ -134,10 +132,3 @@ class JointSpace:
             rates[leg] = (thigh, shank, shank + w[k + 2])
         x = np.array([th[2], th[3], th[4], th[5], w[0], w[1], rates["trunk"], *rates["R"]])
         return x, Swing(th[6], th[7], th[8], *rates["L"])
-
-
-def check_body(body: Body) -> Body:
-    """The body, or an InputError: the stride needs a rigid trunk (length, inertia)."""
-    if "shoulder" not in body["trunk"].landmarks or body["trunk"].inertia_com <= 0:
-        raise InputError("[body]: the stride needs a rigid trunk (a preset or mass_kg and height_m)")
-    return body

@@ -151,7 +151,7 @@ class StrideNLP:
 
     # -- variables -------------------------------------------------------------------
     def _variables(self):
-        b, m, s = self.blocks, self.mass, self.settings
+        b, s = self.blocks, self.settings
         joints = [RANGES[j[:-2]] for j in JOINTS]
         lo_th = np.r_[-np.inf, 0.4, TRUNK[0], [lo - LIMIT_MARGIN for lo, _ in joints]]  # m, rad
         hi_th = np.r_[np.inf, 1.4, TRUNK[1], [hi + LIMIT_MARGIN for _, hi in joints]]
@@ -169,7 +169,7 @@ class StrideNLP:
             if s.objective != "effort":  # joint power split: [positive; negative] parts, W/kg
                 self.S.append(b.add(f"S_{k}", (2 * NU, n + 1), 0.0, np.inf))
         for i, phase in enumerate(self.phases[1:], 1):
-            if self._added(i):
+            if self.added(i):
                 self.P.append(b.add(f"P_{phase.name}", (len(phase.rows), 1), *self._impulse_bounds(phase.rows)))
             else:
                 self.P.append(None)
@@ -185,7 +185,8 @@ class StrideNLP:
         return (np.array([[push if a == "n" else -np.inf] for _, a in rows]),
                 np.array([[np.inf] for _ in rows]))
 
-    def _added(self, i) -> tuple[str, ...]:
+    def added(self, i) -> tuple[str, ...]:
+        """The contact points phase i holds that phase i - 1 did not (an impact adds them)."""
         before = self.phases[i - 1].points
         return tuple(p for p in self.phases[i].points if p not in before)
 
@@ -267,7 +268,7 @@ class StrideNLP:
         X0, X1, rows = self.X[i - 1][:, -1], self.X[i][:, 0], self.rows
         th, v_minus, v_plus = X0[:NX], X0[NX:], X1[NX:]
         rows.add(X1[:NX] - th)
-        added = self._added(i)
+        added = self.added(i)
         if added:
             for p in added:
                 rows.add(self.height(p, th))
@@ -325,6 +326,19 @@ class StrideNLP:
                 + SMOOTHING * terms["smoothing"] / distance)
 
     # -- solve -----------------------------------------------------------------------
+    def _with_power_split(self, guess: dict) -> dict:
+        """The guess with the power split (S_*) of its own moments and rates where it has none
+        (a solution of an objective without the split, as a warm start)."""
+        missing = [i for i, p in enumerate(self.phases) if self.S and f"S_{p.name}" not in guess]
+        if not missing:
+            return guess
+        guess = dict(guess)
+        for i in missing:
+            name = self.phases[i].name
+            power = -np.asarray(guess[f"U_{name}"]) * np.asarray(guess[f"X_{name}"])[NX + 3:]
+            guess[f"S_{name}"] = np.vstack([np.maximum(power, 0), np.maximum(-power, 0)])
+        return guess
+
     def solve(self, guess: dict, speed: float, slope: float = 0.0, mu: float = 0.8,
               cadence: float | None = None) -> Solved:
         """Solve from a guess (blocks by name, or a previous Solved's blocks); `cadence`
@@ -334,6 +348,7 @@ class StrideNLP:
         if cadence is not None:
             lbg[k] = ubg[k] = 60.0 / cadence
         b = self.blocks
+        guess = self._with_power_split(guess)
         p = np.array([speed, slope, mu])
         start = time.perf_counter()
         out = self.solver(x0=b.join(guess), p=p, lbx=np.concatenate(b.lower),

@@ -77,7 +77,7 @@ class Stride:
 
 def histories(nlp: StrideNLP, blocks: dict, slope: float):
     """Node histories (t, phase, theta, theta', tau, force) over the half stride."""
-    js, m = nlp.js, nlp.mass
+    m = nlp.mass
     t, names, X, U, force = [], [], [], [], []
     start = 0.0
     tangent, normal = np.array([np.cos(slope), np.sin(slope)]), np.array([-np.sin(slope), np.cos(slope)])
@@ -131,7 +131,7 @@ def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> list[dict]
         if i + 1 < len(nlp.phases) and nlp.P[i] is not None:
             after = nlp.phases[i + 1]
             transitions.append((after.rows, blocks[f"X_{phase.name}"][:, -1],
-                                blocks[f"X_{after.name}"][NX:, 0], time, nlp._added(i + 1)))
+                                blocks[f"X_{after.name}"][NX:, 0], time, nlp.added(i + 1)))
     end = blocks[f"X_{nlp.phases[-1].name}"][:, -1]
     transitions.append((nlp.touchdown_rows, end, blocks["V_touchdown"].ravel(), time,
                         tuple(dict.fromkeys(p for p, _ in nlp.touchdown_rows))))
