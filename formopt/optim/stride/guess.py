@@ -18,7 +18,7 @@ from ...mechanics.joint_space import JointSpace, swap_legs
 from .collocation import NU, NX, StrideNLP
 
 # guessed phase durations (s): RBDS001 at 3.5 m/s (contact 0.24 s, half period 0.35 s)
-DURATIONS = {"heel": 0.03, "flat": 0.11, "forefoot": 0.09, "flight": 0.12}
+DURATIONS = {"heel": 0.03, "landing": 0.03, "flat": 0.11, "forefoot": 0.09, "flight": 0.12}
 TRAILING_POSE = (math.radians(-15.0), math.radians(70.0), math.radians(-10.0))  # hip, knee, ankle
 SWING_KNEE_BUMP = math.radians(60.0)
 TRUNK_LEAN = math.radians(5.0)
