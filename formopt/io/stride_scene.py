@@ -46,8 +46,8 @@ class StrideScene:
         return replace(self.settings, strike=strike)
 
     def _other_command(self, *args, **kwargs):
-        raise SceneError("stride", f"{self.path or self.name} is a stride scene: run "
-                                   "`formopt stride` (impact, simulate and solve need [touchdown])")
+        raise SceneError("stride", "a stride scene: run `formopt stride` (impact, simulate and "
+                                   "solve need a [touchdown])")
 
     # the touchdown commands' factories (io.scene.Scene): a clear error, not an AttributeError
     model = impact = landing = posture_problem = _other_command
