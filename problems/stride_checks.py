@@ -17,15 +17,7 @@ from formopt.mechanics.body import paper_body
 from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings, optimum
 from formopt.optim.stride.checks import half_period
-from formopt.optim.stride.guess import ballistic
-
-
-def perturbed(guess, rng):
-    out = {k: v.copy() if isinstance(v, np.ndarray) else v for k, v in guess.items()}
-    for key in [k for k in out if k.startswith("X_")]:
-        out[key][3:9] += rng.uniform(-0.17, 0.17, (6, 1))
-        out[key][12:18] += rng.uniform(-1, 1, out[key][12:18].shape)
-    return out
+from formopt.optim.stride.guess import ballistic, perturbed
 
 
 def main(strike):

@@ -5,7 +5,8 @@
     [ground]  friction, slope_deg, contact ("no-slip" or "coulomb": the impacts' law)
     [stride]  speed_mps, strike ("heel", "forefoot", "flat" or "best"), objective ("effort",
               "work", "metabolic"), nodes, impact_weight, torque_limit_nm_per_kg,
-              cadence_spm (imposed; absent: free), max_iterations,
+              cadence_spm (imposed; absent: free), max_iterations, starts (the generic guess
+              and starts - 1 perturbations of it, the best kept; default 4),
               [stride.duration_s] heel/flat/forefoot/flight = [low, high] (s)
 
 Every error names its key (SceneError, one line); degrees at this edge, SI inside.
@@ -23,7 +24,7 @@ from .scene import SceneError, _body, _choice, _integer, _keys, _number, _pair, 
 STRIDE_STRIKES = (*STRIKES, "best")
 STRIDE_LAWS = ("no-slip", "coulomb")
 STRIDE_KEYS = {"speed_mps", "strike", "objective", "nodes", "impact_weight",
-               "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s"}
+               "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts"}
 
 
 @dataclass(frozen=True)
@@ -38,6 +39,7 @@ class StrideScene:
     strike: str  # a strike of optim.stride.STRIKE_PHASES, or "best"
     settings: StrideSettings  # of the first strike ("best": heel), the others by replace()
     cadence: float | None  # steps/min, imposed; None: free
+    starts: int = 4  # the multi-start's solves per strike (optim.stride.optimum)
     path: str = ""
     notes: tuple[str, ...] = ()
 
@@ -74,6 +76,7 @@ def parse(data: dict, path: str = "") -> StrideScene:
     cadence = _number(stride, "cadence_spm", "stride", low=60.0, high=300.0) \
         if "cadence_spm" in stride else None
     max_iter = _integer(stride, "max_iterations", "stride", default=1000, low=1, high=100000)
+    starts = _integer(stride, "starts", "stride", default=4, low=1, high=100)
     duration = dict(StrideSettings().duration)
     if "duration_s" in stride:
         given = _table(stride, "duration_s", set(NODE_SHARE), set(), "stride")
@@ -87,4 +90,4 @@ def parse(data: dict, path: str = "") -> StrideScene:
                               nodes=nodes, law=law, impact_weight=weight, torque_limit=torque,
                               duration=duration, max_iter=max_iter)
     return StrideScene(name, body, speed, math.radians(slope), friction, strike, settings,
-                       cadence, path, notes)
+                       cadence, starts, path, notes)

@@ -49,7 +49,7 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
     for name in strikes:
         nlp = StrideNLP(js, scene.for_strike(name))
         strides.append(optimum(nlp, speed or scene.speed, scene.slope, scene.friction,
-                               scene.cadence, simulate=simulate))
+                               scene.cadence, simulate=simulate, starts=scene.starts))
     strides.sort(key=lambda s: (not s.success, s.objective_value))
     return StrideStudy(scene.name, strides)
 

@@ -11,7 +11,7 @@ from formopt.mechanics.body import paper_body
 from formopt.mechanics.errors import InputError
 from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings, optimum
-from formopt.optim.stride.guess import ballistic
+from formopt.optim.stride.guess import ballistic, perturbed
 from helpers import SEED
 
 NODES = 24
@@ -103,12 +103,7 @@ def test_random_guesses_reach_an_optimum(solved):
     rng = np.random.default_rng(SEED)
     base = ballistic(nlp, SPEED)
     for _ in range(2):
-        guess = {k: v.copy() if isinstance(v, np.ndarray) else v for k, v in base.items()}
-        for key in [k for k in guess if k.startswith("X_")]:
-            X = guess[key]
-            X[3:9] += rng.uniform(-0.17, 0.17, (6, 1))
-            X[12:18] += rng.uniform(-1, 1, X[12:18].shape)
-        out = nlp.solve(guess, SPEED)
+        out = nlp.solve(perturbed(base, rng), SPEED)
         assert out.success, out.status
         assert 0.5 * stride.objective_value < out.objective < 2 * stride.objective_value
 

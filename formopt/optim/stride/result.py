@@ -23,7 +23,7 @@ import numpy as np
 from ...mechanics.joint_space import JOINTS, swap_legs
 from .checks import drift, forward, half_period, impact_check
 from .collocation import NX, Solved, StrideNLP
-from .guess import ballistic
+from .guess import ballistic, perturbed
 from .problem import metabolic
 
 GRAVITY = 9.81
@@ -208,8 +208,16 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
 
 
 def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
-            cadence: float | None = None, guess: dict | None = None, simulate: bool = True) -> Stride:
-    """Solve the NLP from `guess` (default: the generic guess) and summarise."""
-    solved = nlp.solve(guess if guess is not None else ballistic(nlp, speed), speed, slope, mu, cadence)
-    return summarise(nlp, solved, simulate)
-
+            cadence: float | None = None, guess: dict | None = None, simulate: bool = True,
+            starts: int = 1, seed: int = 0) -> Stride:
+    """Solve the NLP from `guess` (default: the generic guess) and, with `starts` > 1, from
+    starts - 1 perturbations of it (guess.perturbed, seeded); summarise the best converged
+    solve (the least objective), or the first if none converged."""
+    first = guess if guess is not None else ballistic(nlp, speed)
+    rng = np.random.default_rng(seed)
+    best = None
+    for k in range(starts):
+        solved = nlp.solve(first if k == 0 else perturbed(first, rng), speed, slope, mu, cadence)
+        if best is None or (solved.success, -solved.objective) > (best.success, -best.objective):
+            best = solved
+    return summarise(nlp, best, simulate)
