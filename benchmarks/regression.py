@@ -4,7 +4,7 @@ one JSON: run it before and after a refactor and diff the two files.
     python benchmarks/regression.py out/before.json
     python benchmarks/regression.py out/after.json --compare out/before.json
 
-Per scene: `formopt impact` (every scene), `formopt simulate` (scenes with [landing]) and
+Per scene: `formopt stride` (stride scenes), `formopt impact` (every other scene), `formopt simulate` (scenes with [landing]) and
 `formopt solve` (scenes with [optimize]) through their --json reports; per trial: the compare
 table's rows (`formopt compare --scene problems/compare/runners.toml --json`). Numbers that
 differ by more than 1e-6 relative are listed with `--compare`.
@@ -54,6 +54,9 @@ def collect() -> dict:
     for scene in sorted((ROOT / "formopt" / "scenes").glob("*.toml")):
         tables = tomllib.loads(scene.read_text())
         rel = str(scene.relative_to(ROOT))
+        if "stride" in tables:  # a stride scene has no touchdown: its own command
+            report[f"stride {rel}"] = run("stride", rel, "--out", str(ROOT / "out/regression"))
+            continue
         report[f"impact {rel}"] = run("impact", rel)
         if "landing" in tables:
             report[f"simulate {rel}"] = run("simulate", rel, "--out", str(ROOT / "out/regression"))

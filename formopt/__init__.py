@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 # that `import formopt` (and the command line, which must answer Ctrl-C from its first
 # instant) does not load CasADi, SciPy and Matplotlib before they are needed.
 _PUBLIC = {"load": "api", "scenes": "api", "scene_path": "api", "impact": "api",
-           "simulate": "api", "solve": "api", "sweep": "api", "compare": "api",
+           "simulate": "api", "solve": "api", "sweep": "api", "compare": "api", "stride": "api",
            "Scene": "io.scene", "SceneError": "io.scene", "InputError": "mechanics.errors",
            "Body": "mechanics.body", "paper_body": "mechanics.body", "scaled_body": "mechanics.body",
            "Model": "mechanics.model", "build_model": "mechanics.model",
@@ -27,7 +27,7 @@ _PUBLIC = {"load": "api", "scenes": "api", "scene_path": "api", "impact": "api",
            "Optimum": "optim.solution", "Comparison": "studies.compare"}
 
 if TYPE_CHECKING:
-    from .api import compare, impact, load, scene_path, scenes, simulate, solve, sweep
+    from .api import compare, impact, load, scene_path, scenes, simulate, solve, stride, sweep
     from .io.scene import Scene, SceneError
     from .mechanics.body import Body, paper_body, scaled_body
     from .mechanics.errors import InputError
@@ -55,7 +55,7 @@ try:
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0+unknown"
 
-__all__ = ["load", "scenes", "scene_path", "impact", "simulate", "solve", "sweep", "compare",
+__all__ = ["load", "scenes", "scene_path", "impact", "simulate", "solve", "sweep", "compare", "stride",
            "Scene", "SceneError", "InputError", "Body", "paper_body", "scaled_body", "Model",
            "build_model", "Impact", "ImpactResult", "impact_function", "Landing", "Optimum",
            "Comparison", "__version__"]

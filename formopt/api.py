@@ -23,9 +23,11 @@ from .mechanics.impact import ImpactResult
 from .mechanics.landing import Landing, simulate_state
 from .optim.solution import Optimum
 from .studies import compare as studies_compare
+from .studies.stride import StrideStudy
+from .studies.stride import run as run_stride
 from .studies.sweep import run as sweep
 
-__all__ = ["load", "scenes", "scene_path", "impact", "simulate", "solve", "sweep", "compare"]
+__all__ = ["load", "scenes", "scene_path", "impact", "simulate", "solve", "sweep", "compare", "stride"]
 
 SCENES = Path(__file__).resolve().parent / "scenes"  # the shipped scenes (package data)
 
@@ -150,3 +152,24 @@ def solve(scene: Scene, progress=None, **overrides) -> Optimum:
         its checked impact, what holds it (active constraints with multipliers).
     """
     return scene.posture_problem(**overrides).solve(progress)
+
+
+def stride(scene, speed: float | None = None, strike: str | None = None) -> StrideStudy:
+    """The periodic running half stride of a stride scene ([stride] table; issue 23).
+
+    Parameters
+    ----------
+    scene : StrideScene
+        A loaded stride scene (`formopt.load` of a file with a [stride] table).
+    speed : float, optional
+        m/s, instead of the scene's `speed_mps`.
+    strike : str, optional
+        "heel", "forefoot", "flat" or "best" (each solved), instead of the scene's.
+
+    Returns
+    -------
+    StrideStudy
+        The strides, the least costly first (`best`), each a `Stride` with cadence, step,
+        phases, ground force, energy budget (J) and checks; `to_dict()` is JSON-ready.
+    """
+    return run_stride(scene, speed, strike)

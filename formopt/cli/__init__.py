@@ -6,6 +6,7 @@
     formopt sweep SCENE       landings across a grid of parameters (resumable)
     formopt compare ...       measured touchdowns of a motion-capture trial against the optimum
     formopt bench             time and accuracy of each model level and numerical option
+    formopt stride SCENE      the periodic running half stride: cadence, placement, budget
     formopt scenes            the shipped scenes; `formopt scenes copy NAME DIR` copies one
 
 SCENE is a scene file (TOML) or the name of a shipped scene (`formopt solve demo`).
@@ -29,8 +30,8 @@ from ..mechanics.errors import one_line
 __all__ = ["COMMANDS", "main", "parser"]  # the command modules are the CLI's own
 
 # One module per command, imported when the command line is parsed (inside main's handlers).
-COMMANDS = ("impact", "solve", "simulate", "sweep", "compare", "bench", "scenes")
-SCENE_COMMANDS = ("impact", "solve", "simulate", "sweep")  # SCENE: a file or a shipped name
+COMMANDS = ("impact", "solve", "simulate", "sweep", "compare", "bench", "stride", "scenes")
+SCENE_COMMANDS = ("impact", "solve", "simulate", "sweep", "stride")  # SCENE: a file or a shipped name
 
 
 def parser() -> argparse.ArgumentParser:

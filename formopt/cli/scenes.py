@@ -38,7 +38,9 @@ def run(args) -> int:
 
 
 def command(path: Path) -> str:
-    """The command a scene is made for: solve with an [optimize] table, simulate with a
-    [landing] one, else impact."""
+    """The command a scene is made for: stride with a [stride] table, solve with an [optimize]
+    one, simulate with a [landing] one, else impact."""
     text = path.read_text()
+    if "\n[stride" in text:
+        return "stride"
     return "solve" if "\n[optimize" in text else "simulate" if "\n[landing" in text else "impact"

@@ -51,12 +51,16 @@ def motion(kin) -> np.ndarray:
     return np.degrees(np.column_stack(cols))
 
 def write_mot(path, kin):
-    angles = motion(kin)
+    return write_storage(path, kin.t, MOT_COLUMNS, motion(kin))
+
+
+def write_storage(path, t, columns, values, degrees: bool = True):
+    """An OpenSim storage file (.mot or .sto): time and named columns (values: rows, cols)."""
     with atomic(path) as fh:
-        fh.write(f"{path}\nversion=1\nnRows={len(kin.t)}\nnColumns={len(MOT_COLUMNS) + 1}\n"
-                 "inDegrees=yes\nendheader\n")
-        fh.write("time\t" + "\t".join(MOT_COLUMNS) + "\n")
-        for t, row in zip(kin.t, angles):
-            fh.write(f"{t:.6f}\t" + "\t".join(f"{v:.5f}" for v in row) + "\n")
+        fh.write(f"{path}\nversion=1\nnRows={len(t)}\nnColumns={len(columns) + 1}\n"
+                 f"inDegrees={'yes' if degrees else 'no'}\nendheader\n")
+        fh.write("time\t" + "\t".join(columns) + "\n")
+        for time, row in zip(t, values):
+            fh.write(f"{time:.6f}\t" + "\t".join(f"{v:.5f}" for v in row) + "\n")
     return Path(path)
 

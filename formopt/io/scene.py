@@ -138,7 +138,13 @@ def load(path) -> Scene:
 
 
 def parse(data: dict, path: str = "") -> Scene:
-    """Validate a scene given as a dictionary (the parsed TOML)."""
+    """Validate a scene given as a dictionary (the parsed TOML); one with a [stride] table is
+    a stride scene (io/stride_scene.py, imported here: it builds on this module's readers)."""
+    if isinstance(data, dict) and "stride" in data:
+        from .stride_scene import parse as parse_stride
+        # a StrideScene stands where a Scene is expected: its touchdown factories raise a
+        # one-line SceneError ("run formopt stride"), so every loader takes both
+        return parse_stride(data, path)  # type: ignore[return-value]
     val.keys(data, "", {"scene", "body", "touchdown", "ground", "optimize", "joints", "landing",
                      "numerics"}, ("scene", "touchdown", "ground"))
     scene = val.table(data, "scene", {"name", "model"}, {"name"})

@@ -1,0 +1,94 @@
+"""Stride scenes: a `[stride]` table instead of a touchdown (issue 23).
+
+    [scene]   name
+    [body]    preset = "paper", or mass (kg) and height (m) (scene.py's [body])
+    [ground]  friction, slope_deg, contact ("no-slip" or "coulomb": the impacts' law)
+    [stride]  speed_mps, strike ("heel", "forefoot", "flat" or "best"), objective ("effort",
+              "work", "metabolic"), nodes, impact_weight, torque_limit_nm_per_kg,
+              cadence_spm (imposed; absent: free), max_iterations, starts (the generic guess
+              and starts - 1 perturbations of it, the best kept; default 4),
+              [stride.duration_s] heel/flat/forefoot/flight = [low, high] (s)
+
+Every error names its key (SceneError, one line); degrees at this edge, SI inside.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+from ..mechanics import limits
+from ..mechanics.body import Body
+from ..optim.stride.problem import NODE_SHARE, OBJECTIVES, STRIKES, StrideSettings
+from . import validate as val
+from .scene import SceneError, _body
+
+STRIDE_STRIKES = (*STRIKES, "best")
+STRIDE_LAWS = ("no-slip", "coulomb")
+STRIDE_KEYS = {"speed_mps", "strike", "objective", "nodes", "impact_weight",
+               "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts"}
+
+
+@dataclass(frozen=True)
+class StrideScene:
+    """A validated stride scene (SI): the body, the ground, the solve's settings."""
+
+    name: str
+    body: Body
+    speed: float  # m/s
+    slope: float  # rad
+    friction: float
+    strike: str  # a strike of optim.stride.STRIKE_PHASES, or "best"
+    settings: StrideSettings  # of the first strike ("best": heel), the others by replace()
+    cadence: float | None  # steps/min, imposed; None: free
+    starts: int = 4  # the multi-start's solves per strike (optim.stride.optimum)
+    path: str = ""
+    notes: tuple[str, ...] = ()
+
+    def for_strike(self, strike: str) -> StrideSettings:
+        """The settings of one strike."""
+        return replace(self.settings, strike=strike)
+
+    def _other_command(self, *args, **kwargs):
+        raise SceneError("stride", "a stride scene: run `formopt stride` (impact, simulate and "
+                                   "solve need a [touchdown])")
+
+    # the touchdown commands' factories (io.scene.Scene): a clear error, not an AttributeError
+    model = impact = landing = posture_problem = _other_command
+
+
+def parse(data: dict, path: str = "") -> StrideScene:
+    """Validate a stride scene given as a dictionary (the parsed TOML)."""
+    val.keys(data, "", {"scene", "body", "ground", "stride"}, ("scene", "ground", "stride"))
+    scene = val.table(data, "scene", {"name", "model"}, {"name"})
+    name = val.string(scene, "name", "scene")
+    body, notes = _body(data.get("body", {"preset": "paper"}), "full-body")
+    ground = val.table(data, "ground", {"friction", "slope_deg", "contact"}, {"friction"})
+    friction = val.number(ground, "friction", "ground", limit=limits.FRICTION)
+    law = val.choice(ground.get("contact", "no-slip"), "ground.contact", STRIDE_LAWS)
+    slope = val.number(ground, "slope_deg", "ground", default=0.0, low=-20.0, high=20.0)
+    stride = val.table(data, "stride", STRIDE_KEYS, {"speed_mps"})
+    speed = val.number(stride, "speed_mps", "stride", low=1.0, high=8.0)
+    strike = val.choice(stride.get("strike", "heel"), "stride.strike", STRIDE_STRIKES)
+    objective = val.choice(stride.get("objective", "effort"), "stride.objective", OBJECTIVES)
+    nodes = val.integer(stride, "nodes", "stride", default=40, low=20, high=400)
+    weight = val.number(stride, "impact_weight", "stride", default=0.0, low=0.0, high=1e3)
+    torque = val.number(stride, "torque_limit_nm_per_kg", "stride", default=4.0, low=0.5, high=20.0)
+    cadence = val.number(stride, "cadence_spm", "stride", limit=limits.CADENCE_SPM) \
+        if "cadence_spm" in stride else None
+    max_iter = val.integer(stride, "max_iterations", "stride", default=1000, low=1, high=100000)
+    starts = val.integer(stride, "starts", "stride", default=4, low=1, high=100)
+    duration = dict(StrideSettings().duration)
+    if "duration_s" in stride:
+        given = val.table(stride, "duration_s", set(NODE_SHARE), set(), "stride")
+        for phase in given:
+            low, high = val.pair(given, phase, "stride.duration_s", limit=2.0)
+            if not 0 < low < high:
+                raise SceneError(f"stride.duration_s.{phase}", f"must be 0 < low < high, not "
+                                                               f"[{low:g}, {high:g}]")
+            duration[phase] = (low, high)
+    settings = StrideSettings(strike="heel" if strike == "best" else strike, objective=objective,
+                              nodes=nodes, law=law, impact_weight=weight, torque_limit=torque,
+                              duration=duration, max_iter=max_iter)
+    return StrideScene(name, body, speed, math.radians(slope), friction, strike, settings,
+                       cadence, starts, path, notes)

@@ -1,0 +1,138 @@
+"""Checks of a solved half stride against independent methods.
+
+- `impact_check`: each impact's T_c by the joint-space projection at the solution's state
+  against formopt's own impact map on the natural-coordinate model (mechanics.impact.projection
+  with q = q(theta), q' = J theta'), and the Coulomb law's mode (mechanics.contact) there.
+- `forward`: the optimal joint moments (piecewise linear) integrated forward phase by phase
+  (scipy's DOP853, rtol 1e-10) through the same contact sequence and phase durations, with the
+  exact impact maps; the largest state difference at the nodes is the transcription's error
+  (each phase from the NLP's state at its start), and what it grows to open loop.
+- `drift`: how far the held contact points moved (m) over each phase.
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from ...mechanics import contact
+from ...mechanics.impact import projection
+from ...mechanics.joint_space import POINTS, JointSpace, swap_legs
+from .collocation import NX, StrideNLP
+
+
+def contact_matrix(js: JointSpace, rows, theta, slope) -> np.ndarray:
+    """J_c (r x 9) of contact rows ((point, "t" | "n"), ...) at a numeric theta."""
+    out = []
+    for point, axis in rows:
+        J = np.asarray(js.points[point](theta, np.zeros(NX), slope)[2], float)
+        out.append(J[0 if axis == "t" else 1])
+    return np.array(out).reshape(len(rows), NX)
+
+
+def joint_impact(js: JointSpace, rows, theta, thetad, slope):
+    """(theta'+, impulse (N s, per row), T_c (J)) of the projection in joint coordinates:
+    p = -(J_c M^-1 J_c^T)^-1 J_c theta'-, theta'+ = theta'- + M^-1 J_c^T p."""
+    M = np.asarray(js.mass(theta), float)
+    Jc = contact_matrix(js, rows, theta, slope)
+    Minv_JT = np.linalg.solve(M, Jc.T)
+    p = -np.linalg.solve(Jc @ Minv_JT, Jc @ thetad)
+    plus = thetad + Minv_JT @ p
+    return plus, p, 0.5 * thetad @ M @ thetad - 0.5 * plus @ M @ plus
+
+
+def impact_check(js: JointSpace, rows, theta, thetad, slope, mu) -> dict:
+    """The joint-space impact against formopt's natural-coordinate impact map, and the
+    Coulomb mode (contact.coulomb for one point, contact.velocity_level for a flat foot)."""
+    model = js.model
+    plus, p, T_c = joint_impact(js, rows, theta, thetad, slope)
+    q = np.asarray(js.q(theta), float).ravel()
+    qd = np.asarray(js.J(theta), float) @ thetad
+    points = tuple(dict.fromkeys(POINTS[pt] for pt, _ in rows))
+    C = model.contact_rows(points, slope, tangential=points[:1])
+    reference = float(projection(model, ca.DM(q), ca.DM(qd), C)["T_c"])
+    W = contact.admissible_inverse_inertia(ca.DM(model.M_inv), model.constraint_jacobian(ca.DM(q)))
+    W_c, v0 = ca.DM(C) @ W @ ca.DM(C).T, ca.DM(C) @ qd
+    law = contact.coulomb if len(points) == 1 else contact.velocity_level
+    p_coulomb, mode, slip = law(W_c, v0, mu)
+    normal = sum(p[k] for k, (_, a) in enumerate(rows) if a == "n")
+    tangential = sum(p[k] for k, (_, a) in enumerate(rows) if a == "t")
+    return {"T_c": T_c, "T_c_formopt": reference, "difference_J": abs(T_c - reference),
+            "impulse_t": float(tangential), "impulse_n": float(normal),
+            "mu_c": abs(tangential) / normal if normal > 0 else None,
+            "coulomb_mode": contact.MODES[int(mode)],
+            "T_c_coulomb": float(contact.absorbed(W_c, v0, p_coulomb)),
+            "coulomb_slip_mps": float(slip), "theta_d_plus": plus}
+
+
+def _accelerations(js, rows, theta, thetad, tau, slope):
+    """theta'' and the contact forces (N) of the constrained equations of motion (numeric)."""
+    M = np.asarray(js.mass(theta), float)
+    rhs = (np.asarray(js.gravity(theta), float).ravel() + np.asarray(js.passive(theta), float).ravel()
+           - np.asarray(js.bias(theta, thetad), float).ravel() - np.r_[0, 0, 0, tau])
+    if not rows:
+        return np.linalg.solve(M, rhs), np.zeros(0)
+    Jc = contact_matrix(js, rows, theta, slope)
+    drift = np.array([float(js.points[pt](theta, thetad, slope)[3][0 if a == "t" else 1])
+                      for pt, a in rows])
+    r = len(rows)
+    K = np.block([[M, -Jc.T], [Jc, np.zeros((r, r))]])
+    sol = np.linalg.solve(K, np.r_[rhs, -drift])
+    return sol[:NX], sol[NX:]
+
+
+def forward(nlp: StrideNLP, blocks: dict, speed: float, slope: float) -> dict:
+    """Integrate the optimal moments forward (module docstring), twice: open loop over the
+    whole half stride (`theta`, `thetad`, `per_phase_theta`: the largest node differences, m
+    or rad and m/s or rad/s), and phase by phase from the NLP's state at each phase's start
+    (`reset_theta`, `reset_per_phase`); `periodicity`: the open-loop post-touchdown state
+    against the start."""
+    js, m = nlp.js, nlp.mass
+    X0 = blocks[f"X_{nlp.phases[0].name}"]
+    state = X0[:, 0].copy()
+    errors: list[np.ndarray] = []
+    reset: list[np.ndarray] = []
+    for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
+        X, U, T = blocks[f"X_{phase.name}"], m * blocks[f"U_{phase.name}"], blocks[f"T_{phase.name}"].item()
+        if i > 0 and nlp.P[i - 1] is not None:  # an impact starts the phase
+            state[NX:] = joint_impact(js, phase.rows, state[:NX], state[NX:], slope)[0]
+        times = np.linspace(0.0, T, n + 1)
+
+        def rhs(t, x, U=U, times=times, rows=phase.rows):
+            tau = np.array([np.interp(t, times, u) for u in U])
+            return np.r_[x[NX:], _accelerations(js, rows, x[:NX], x[NX:], tau, slope)[0]]
+
+        for start, record in ((state, errors), (X[:, 0], reset)):
+            out = solve_ivp(rhs, (0.0, T), start, method="DOP853", t_eval=times, rtol=1e-10, atol=1e-10)
+            record.append(np.abs(out.y - X).max(axis=1))
+            if record is errors:
+                state = out.y[:, -1]
+    plus = joint_impact(js, nlp.touchdown_rows, state[:NX], state[NX:], slope)[0]
+    step = speed * half_period(nlp, blocks)
+    shift = np.r_[step * np.cos(slope), step * np.sin(slope), np.zeros(7)]
+    period_error = max(np.abs(swap_legs(state[:NX]) - shift - X0[:NX, 0]).max(),
+                       np.abs(swap_legs(plus) - X0[NX:, 0]).max())
+    err, res = np.array(errors), np.array(reset)
+    return {"theta": float(err[:, :NX].max()), "thetad": float(err[:, NX:].max()),
+            "per_phase_theta": [float(e) for e in err[:, :NX].max(axis=1)],
+            "reset_theta": float(res[:, :NX].max()),
+            "reset_per_phase": [float(e) for e in res[:, :NX].max(axis=1)],
+            "periodicity": float(period_error)}
+
+
+def half_period(nlp: StrideNLP, blocks: dict) -> float:
+    """The half-period (s): the phases' summed durations."""
+    return sum(blocks[f"T_{p.name}"].item() for p in nlp.phases)
+
+
+def drift(nlp: StrideNLP, blocks: dict, slope: float) -> float:
+    """Largest displacement (m) of a held contact point over a phase (zero if exact)."""
+    worst = 0.0
+    for phase in nlp.phases:
+        X = blocks[f"X_{phase.name}"]
+        for point in phase.points:
+            r0, r1 = (np.asarray(nlp.js.points[point](X[:NX, k], np.zeros(NX), slope)[0], float).ravel()
+                      for k in (0, -1))
+            worst = max(worst, float(np.hypot(*(r1 - r0))))
+    return worst

@@ -1,0 +1,363 @@
+"""Direct collocation of the half stride, built once, solved for any parameters.
+
+Decision variables per phase (nodes k = 0..N): the state theta, theta' (9 + 9), the
+accelerations theta'' (9), the joint moments tau (6, piecewise linear) and the contact forces
+f (one per contact row), and the phase's duration; per impact, the impulse p (one per contact
+row of the phase after it; the touchdown's also its post-impact velocity). Constraints:
+
+- at every node, the equations of motion (mechanics.joint_space, implicit: theta'' and f are
+  variables) and, in stance, J_c theta'' + (dJ_c/dt) theta' = 0; f_n >= 0 and
+  mu f_n -+ f_t >= 0; every foot point not held stays at or above the ground;
+- on every interval, trapezoidal defects on x = (theta, theta') with x' = (theta', theta''):
+  x_{k+1} - x_k = h/2 (x'_k + x'_{k+1}) (second order: the energy balance closes to O(h^2));
+- a phase that adds a point: the point on the ground at the previous phase's end, moving into
+  it; the impact M(theta) (theta'+ - theta'-) = J_c^T p with J_c theta'+ = 0 (the projection of
+  mechanics.impact in joint coordinates); under no-slip p_n >= 0 and mu sum p_n -+ p_t >= 0;
+- a phase that drops a point: that point's normal force zero at the previous phase's end;
+- for the work objectives, each joint's power split P = P+ - P- (W/kg, P+- >= 0) at every node
+  (problem.py says why);
+- the touchdown of L at the flight's end, its impact, and periodicity: the post-impact state
+  with the legs swapped and moved back by the step `speed * half-period` (along the ground) is
+  the start; x_hip = 0 at the start.
+
+Why trapezoidal: it converges from the generic guess in about a hundred iterations. A
+Hermite-Simpson version (separated form, the equations of motion and contact accelerations
+also at the midpoints) was tried and stalled from the same guess (dual infeasibility 1e14 after
+200 iterations), so it is not shipped. The trapezoidal rule's weak point, a light foot ringing
+node to node against a stiff range-of-motion wall, is closed by the walls' width and hard
+bounds (mechanics.joint_space); the forward simulation (`Stride.checks`) measures what is left.
+The drift of the held contact points is measured too. Parameters p = [speed (m/s), slope (rad), mu]; the cadence is
+imposed, when asked, through the bounds of the half-period's row.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import casadi as ca
+import numpy as np
+
+from ...mechanics.joint_space import JOINTS, LIMIT_MARGIN, RANGES, THETA, JointSpace, swap_legs
+from .problem import SMOOTHING, WORK_REGULARISATION, StrideSettings, metabolic, other_leg
+
+NX = len(THETA)
+NU = len(JOINTS)
+PARAMETERS = ("speed", "slope", "mu")
+ACCELERATION = 1000.0  # rad/s^2 (m/s^2 for the hip): bound on theta''
+TRUNK = (math.radians(-20.0), math.radians(45.0))  # rad, the trunk's lean (forward positive)
+IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive",
+                  "nlp_scaling_method": "gradient-based", "linear_solver": "mumps"}
+
+
+class Blocks:
+    """Named blocks of one decision vector: symbols, bounds and a guess, in order."""
+
+    def __init__(self):
+        self.names, self.symbols, self.lower, self.upper = [], [], [], []
+        self.shapes, self.offsets, self.size = {}, {}, 0
+
+    def add(self, name, shape, lower=-np.inf, upper=np.inf):
+        sym = ca.SX.sym(name, *shape)
+        n = shape[0] * shape[1]
+        self.names.append(name)
+        self.symbols.append(sym)
+        self.lower.append(np.broadcast_to(np.asarray(lower, float), shape).ravel(order="F"))
+        self.upper.append(np.broadcast_to(np.asarray(upper, float), shape).ravel(order="F"))
+        self.shapes[name], self.offsets[name] = shape, self.size
+        self.size += n
+        return sym
+
+    def vector(self):
+        return ca.vertcat(*[ca.vec(s) for s in self.symbols])
+
+    def split(self, x) -> dict[str, np.ndarray]:
+        """Numeric blocks of a decision vector (each in its shape)."""
+        x = np.asarray(x, float).ravel()
+        return {k: x[self.offsets[k]:self.offsets[k] + self.shapes[k][0] * self.shapes[k][1]]
+                .reshape(self.shapes[k], order="F") for k in self.names}
+
+    def join(self, values: dict) -> np.ndarray:
+        return np.concatenate([_shaped(values[k], self.shapes[k]).ravel(order="F")
+                               for k in self.names])
+
+
+def _shaped(value, shape) -> np.ndarray:
+    """value broadcast to shape (a column given as a flat vector is taken as one)."""
+    value = np.asarray(value, float)
+    if value.ndim == 1 and shape[1] == 1:
+        value = value[:, None]
+    return np.broadcast_to(value, shape)
+
+
+class Rows:
+    """Constraint rows with their bounds, in order, each group named (for the report)."""
+
+    def __init__(self):
+        self.expr, self.lower, self.upper = [], [], []
+
+    def add(self, expr, lower=0.0, upper=0.0):
+        expr = ca.vec(expr)
+        self.expr.append(expr)
+        self.lower.append(np.full(expr.shape[0], lower, float))
+        self.upper.append(np.full(expr.shape[0], upper, float))
+        return len(self.expr) - 1
+
+
+@dataclass
+class Solved:
+    """The raw solution: blocks, IPOPT's statistics, seconds, the parameters."""
+
+    blocks: dict
+    success: bool
+    status: str
+    iterations: int
+    solve_s: float
+    objective: float
+    x: np.ndarray
+    lam_g: np.ndarray
+    parameters: dict
+
+
+class StrideNLP:
+    """The half stride NLP of one body and settings: build once, solve for any parameters."""
+
+    def __init__(self, js: JointSpace, settings: StrideSettings, ipopt: dict | None = None):
+        start = time.perf_counter()
+        self.js, self.settings = js, settings
+        self.mass = js.mass_total
+        self.phases = settings.phases
+        self.split = settings.node_split()
+        self.blocks, self.rows = Blocks(), Rows()
+        self.p = ca.SX.sym("p", len(PARAMETERS))
+        self.speed, self.slope, self.mu = ca.vertsplit(self.p)
+        self._variables()
+        self.terms = {"effort": 0, "positive": 0, "negative": 0, "impacts": 0, "smoothing": 0}
+        for i in range(len(self.phases)):
+            self._phase(i)
+        for i in range(1, len(self.phases)):
+            self._transition(i)
+        self._touchdown()
+        self.period_row = self.rows.add(self.period, 0.0, np.inf)
+        objective = self._objective()
+        nlp = {"x": self.blocks.vector(), "p": self.p, "f": objective,
+               "g": ca.vertcat(*self.rows.expr)}
+        options = {**IPOPT_DEFAULTS, "max_iter": settings.max_iter, "tol": settings.tolerance,
+                   **(ipopt or {})}
+        self.solver = ca.nlpsol("stride", "ipopt", nlp, {"ipopt": options, "print_time": False})
+        self.lbg, self.ubg = np.concatenate(self.rows.lower), np.concatenate(self.rows.upper)
+        self.build_s = time.perf_counter() - start
+
+    # -- variables -------------------------------------------------------------------
+    def _variables(self):
+        b, s = self.blocks, self.settings
+        joints = [RANGES[j[:-2]] for j in JOINTS]
+        lo_th = np.r_[-np.inf, 0.4, TRUNK[0], [lo - LIMIT_MARGIN for lo, _ in joints]]  # m, rad
+        hi_th = np.r_[np.inf, 1.4, TRUNK[1], [hi + LIMIT_MARGIN for _, hi in joints]]
+        tau = s.torque_limit
+        self.T, self.X, self.A, self.U, self.F, self.P, self.S = [], [], [], [], [], [], []
+        for phase, n in zip(self.phases, self.split):
+            k, rows = phase.name, phase.rows
+            x_lo, x_hi = np.r_[lo_th, [-15] * NX][:, None], np.r_[hi_th, [15] * NX][:, None]
+            f_lo = np.array([0.0 if a == "n" else -5.0 for _, a in rows])[:, None]  # body weights
+            self.X.append(b.add(f"X_{k}", (2 * NX, n + 1), x_lo, x_hi))
+            self.A.append(b.add(f"A_{k}", (NX, n + 1), -ACCELERATION, ACCELERATION))
+            self.U.append(b.add(f"U_{k}", (NU, n + 1), -tau, tau))  # N m / kg
+            self.F.append(b.add(f"F_{k}", (len(rows), n + 1), f_lo, 8.0))
+            self.T.append(b.add(f"T_{k}", (1, 1), *s.duration[k]))
+            if s.objective != "effort":  # joint power split: [positive; negative] parts, W/kg
+                self.S.append(b.add(f"S_{k}", (2 * NU, n + 1), 0.0, np.inf))
+        for i, phase in enumerate(self.phases[1:], 1):
+            if self.added(i):
+                self.P.append(b.add(f"P_{phase.name}", (len(phase.rows), 1), *self._impulse_bounds(phase.rows)))
+            else:
+                self.P.append(None)
+        self.touchdown_rows = tuple((other_leg(p), a) for p, a in self.phases[0].rows)
+        self.P_td = b.add("P_touchdown", (len(self.touchdown_rows), 1),
+                          *self._impulse_bounds(self.touchdown_rows))
+        self.V_td = b.add("V_touchdown", (NX, 1), -15, 15)
+        self.period = ca.sum1(ca.vertcat(*self.T))
+
+    def _impulse_bounds(self, rows):
+        """Impulse bounds (N s per kg): normal >= 0 under no-slip (it must push)."""
+        push = 0.0 if self.settings.law == "no-slip" else -np.inf
+        return (np.array([[push if a == "n" else -np.inf] for _, a in rows]),
+                np.array([[np.inf] for _ in rows]))
+
+    def added(self, i) -> tuple[str, ...]:
+        """The contact points phase i holds that phase i - 1 did not (an impact adds them)."""
+        before = self.phases[i - 1].points
+        return tuple(p for p in self.phases[i].points if p not in before)
+
+    # -- pieces ----------------------------------------------------------------------
+    def contact(self, rows, theta, thetad):
+        """(Jacobian rows (r x 9), their dJ/dt theta' (r), velocities (r)) of contact rows."""
+        jac, drift, vel = [], [], []
+        for point, axis in rows:
+            _, v, J, d = self.js.points[point](theta, thetad, self.slope)
+            a = 0 if axis == "t" else 1
+            jac.append(J[a, :])
+            drift.append(d[a])
+            vel.append(v[a])
+        return ca.vertcat(*jac), ca.vertcat(*drift), ca.vertcat(*vel)
+
+    def height(self, point, theta):
+        r = self.js.points[point](theta, ca.DM.zeros(NX), self.slope)[0]
+        return -ca.sin(self.slope) * r[0] + ca.cos(self.slope) * r[1]
+
+    def normal_velocity(self, point, theta, thetad):
+        return self.js.points[point](theta, thetad, self.slope)[1][1]
+
+    def joint_power(self, theta_d, tau):
+        """Power (W) of each joint moment: tau (extensor positive) times the extension rate."""
+        return -tau * theta_d[3:]
+
+    # -- phases ----------------------------------------------------------------------
+    def _phase(self, i):
+        """Node constraints, interval defects and the objective's integrals of phase i."""
+        phase, n = self.phases[i], self.split[i]
+        X, A, F, T = self.X[i], self.A[i], self.F[i], self.T[i]
+        h = T / n
+        for k in range(n + 1):
+            self._node(phase, X[:, k], A[:, k], self.U[i][:, k], F[:, k])
+        for k in range(n):
+            d0 = ca.vertcat(X[NX:, k], A[:, k])
+            d1 = ca.vertcat(X[NX:, k + 1], A[:, k + 1])
+            self.rows.add(X[:, k + 1] - X[:, k] - 0.5 * h * (d0 + d1))
+            self.terms["smoothing"] += h * ca.sumsqr(A[:, k + 1] - A[:, k])
+        for k, (weight, x, tau, _) in enumerate(self.samples(i, h)):
+            self.terms["effort"] += weight * ca.sumsqr(tau)
+            if self.S:  # P = P+ - P-, P+- >= 0: minimising them makes them the exact parts
+                S = self.S[i][:, k]
+                self.rows.add(self.joint_power(x[NX:], tau) / self.mass - (S[:NU] - S[NU:]))
+                self.terms["positive"] += weight * self.mass * ca.sum1(S[:NU])
+                self.terms["negative"] += weight * self.mass * ca.sum1(S[NU:])
+
+    def samples(self, i, h, blocks=None):
+        """(trapezoidal weight (s), state, joint moments (N m), contact forces (body weights))
+        at each node of phase i. `blocks`: numeric blocks by name (default: the symbols)."""
+        name, n = self.phases[i].name, self.split[i]
+        get = (lambda key: blocks[f"{key}_{name}"]) if blocks is not None else \
+            (lambda key: self.blocks.symbols[self.blocks.names.index(f"{key}_{name}")])
+        X, U, F = get("X"), self.mass * get("U"), get("F")
+        return [(h * (0.5 if k in (0, n) else 1.0), X[:, k], U[:, k], F[:, k]) for k in range(n + 1)]
+
+    def _node(self, phase, x, thdd, u, f):
+        """Equations of motion, contact acceleration, friction cone and ground clearance at
+        one collocation point (state x, accelerations, moments u (N m/kg), forces f (BW))."""
+        rows, m, g = self.rows, self.mass, 9.81
+        th, thd, tau = x[:NX], x[NX:], m * u
+        residual = (self.js.mass(th) @ thdd + self.js.bias(th, thd) - self.js.gravity(th)
+                    - self.js.passive(th) + ca.vertcat(0, 0, 0, tau))
+        if phase.rows:
+            Jc, drift, _ = self.contact(phase.rows, th, thd)
+            residual -= Jc.T @ (m * g * f)
+            rows.add(Jc @ thdd + drift)
+            total_n = ca.sum1(ca.vertcat(*[f[k] for k, (_, a) in enumerate(phase.rows) if a == "n"]))
+            for k, (_, a) in enumerate(phase.rows):
+                if a == "t":
+                    rows.add(ca.vertcat(self.mu * total_n - f[k], self.mu * total_n + f[k]), 0.0, np.inf)
+        rows.add(residual / m)
+        free = [p for p in self.js.points if p not in phase.points]
+        rows.add(ca.vertcat(*[self.height(p, th) for p in free]), 0.0, np.inf)
+
+    def _transition(self, i):
+        """Phase i-1 -> i: an impact where a point is added, else a release (force zero)."""
+        before, after = self.phases[i - 1], self.phases[i]
+        X0, X1, rows = self.X[i - 1][:, -1], self.X[i][:, 0], self.rows
+        th, v_minus, v_plus = X0[:NX], X0[NX:], X1[NX:]
+        rows.add(X1[:NX] - th)
+        added = self.added(i)
+        if added:
+            for p in added:
+                rows.add(self.height(p, th))
+                rows.add(self.normal_velocity(p, th, v_minus), -np.inf, 0.0)
+            self._impact(after.rows, th, v_minus, v_plus, self.P[i - 1])
+        else:
+            rows.add(v_plus - v_minus)
+            dropped = [k for k, (p, a) in enumerate(before.rows)
+                       if a == "n" and p not in after.points]
+            rows.add(self.F[i - 1][dropped, -1])
+
+    def _impact(self, contact_rows, th, v_minus, v_plus, P):
+        """M (theta'+ - theta'-) = J_c^T p, J_c theta'+ = 0, and (no-slip) the friction cone."""
+        m = self.mass
+        Jc, _, _ = self.contact(contact_rows, th, v_plus)
+        M = self.js.mass(th)
+        self.rows.add((M @ (v_plus - v_minus) - Jc.T @ (m * P)) / m)
+        self.rows.add(Jc @ v_plus)
+        if self.settings.law == "no-slip":
+            total_n = ca.sum1(ca.vertcat(*[P[k] for k, (_, a) in enumerate(contact_rows) if a == "n"]))
+            for k, (_, a) in enumerate(contact_rows):
+                if a == "t":
+                    self.rows.add(ca.vertcat(self.mu * total_n - P[k], self.mu * total_n + P[k]),
+                                  0.0, np.inf)
+        self.terms["impacts"] += 0.5 * (ca.bilin(M, v_minus, v_minus) - ca.bilin(M, v_plus, v_plus))
+
+    def _touchdown(self):
+        """L's touchdown at the flight's end, its impact and periodicity with the start."""
+        end, start, rows = self.X[-1][:, -1], self.X[0][:, 0], self.rows
+        th, v_minus = end[:NX], end[NX:]
+        for p in dict.fromkeys(p for p, _ in self.touchdown_rows):
+            rows.add(self.height(p, th))
+            rows.add(self.normal_velocity(p, th, v_minus), -np.inf, 0.0)
+        self._impact(self.touchdown_rows, th, v_minus, self.V_td, self.P_td)
+        step = self.speed * self.period
+        shift = ca.vertcat(step * ca.cos(self.slope), step * ca.sin(self.slope), ca.DM.zeros(7))
+        rows.add(swap_legs(th) - shift - start[:NX])
+        rows.add(swap_legs(self.V_td) - start[NX:])
+        rows.add(start[0])
+
+    def _objective(self):
+        """The scene's objective per distance (scaled by 100 / (m g)^2 for effort, 1 / (m g) for
+        the work objectives, so that IPOPT sees values of order one), and the smoothing term
+        (problem.SMOOTHING)."""
+        s, m, terms = self.settings, self.mass, self.terms
+        distance = self.speed * self.period
+        effort = terms["effort"] / distance * 100.0 / (m * 9.81) ** 2
+        if s.objective == "effort":
+            f = effort
+        else:
+            work = terms["positive"] if s.objective == "work" else \
+                metabolic(terms["positive"], terms["negative"])
+            f = work / distance / (m * 9.81) + WORK_REGULARISATION * effort
+        return (f + s.impact_weight * terms["impacts"] / distance / (m * 9.81)
+                + SMOOTHING * terms["smoothing"] / distance)
+
+    # -- solve -----------------------------------------------------------------------
+    def _with_power_split(self, guess: dict) -> dict:
+        """The guess with the power split (S_*) of its own moments and rates where it has none
+        (a solution of an objective without the split, as a warm start)."""
+        missing = [i for i, p in enumerate(self.phases) if self.S and f"S_{p.name}" not in guess]
+        if not missing:
+            return guess
+        guess = dict(guess)
+        for i in missing:
+            name = self.phases[i].name
+            power = -np.asarray(guess[f"U_{name}"]) * np.asarray(guess[f"X_{name}"])[NX + 3:]
+            guess[f"S_{name}"] = np.vstack([np.maximum(power, 0), np.maximum(-power, 0)])
+        return guess
+
+    def solve(self, guess: dict, speed: float, slope: float = 0.0, mu: float = 0.8,
+              cadence: float | None = None) -> Solved:
+        """Solve from a guess (blocks by name, or a previous Solved's blocks); `cadence`
+        (steps/min) imposes the half-period 60 / cadence."""
+        lbg, ubg = self.lbg.copy(), self.ubg.copy()
+        k = sum(len(e) for e in self.rows.lower[:self.period_row])
+        if cadence is not None:
+            lbg[k] = ubg[k] = 60.0 / cadence
+        b = self.blocks
+        guess = self._with_power_split(guess)
+        p = np.array([speed, slope, mu])
+        start = time.perf_counter()
+        out = self.solver(x0=b.join(guess), p=p, lbx=np.concatenate(b.lower),
+                          ubx=np.concatenate(b.upper), lbg=lbg, ubg=ubg)
+        seconds = time.perf_counter() - start
+        stats = self.solver.stats()
+        x = np.asarray(out["x"], float).ravel()
+        return Solved(blocks=b.split(x), success=bool(stats["success"]),
+                      status=str(stats["return_status"]), iterations=int(stats["iter_count"]),
+                      solve_s=seconds, objective=float(out["f"]), x=x,
+                      lam_g=np.asarray(out["lam_g"], float).ravel(),
+                      parameters={"speed": speed, "slope": slope, "mu": mu, "cadence": cadence})

@@ -1,0 +1,125 @@
+"""Initial guesses of the half stride: generic ("ballistic"), perturbed, or a previous solution.
+
+Measured (problems/stride_checks.py, heel strike, 3.5 m/s, 40 nodes): the generic guess
+reaches a local optimum (objective 0.774, 156 steps/min); three perturbed guesses and a
+continuation from 3.0 m/s all reach a better one (0.739, 176 steps/min). A multi-start
+(result.optimum's `starts`) keeps the best.
+
+The generic guess knows nothing of the optimum: the hip moves forward at the speed at a
+constant height; the stance foot lies flat under the hip's mid-stance position, the stance
+leg following by inverse kinematics; the legs swap their poses over the half stride (the
+swing leg with a knee flexion bump of 60 deg that keeps its foot off the ground); the ground
+carries the body weight over the stance (a half-sine); joint moments are zero. The phases
+last what a runner's do at about 165 steps/min (`DURATIONS`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...mechanics.joint_space import JointSpace, swap_legs
+from .collocation import NU, NX, StrideNLP
+
+# guessed phase durations (s): RBDS001 at 3.5 m/s (contact 0.24 s, half period 0.35 s)
+DURATIONS = {"heel": 0.03, "landing": 0.03, "flat": 0.11, "forefoot": 0.09, "flight": 0.12}
+TRAILING_POSE = (math.radians(-15.0), math.radians(70.0), math.radians(-10.0))  # hip, knee, ankle
+SWING_KNEE_BUMP = math.radians(60.0)
+TRUNK_LEAN = math.radians(5.0)
+
+
+def _leg_ik(js: JointSpace, hip, ankle, trunk):
+    """Hip flexion, knee flexion, ankle (rad) of a leg whose hip and ankle are at the given
+    points (m, 2 x n) with the foot flat, the knee ahead of the hip-ankle line."""
+    body = js.model.body
+    L1, L2 = body["thigh"].length, body["shank"].length
+    d = ankle - hip
+    D = np.clip(np.hypot(*d), abs(L1 - L2) + 1e-3, L1 + L2 - 1e-4)
+    knee = math.pi - np.arccos((L1 ** 2 + L2 ** 2 - D ** 2) / (2 * L1 * L2))
+    thigh = np.arctan2(d[0], -d[1]) + np.arccos((L1 ** 2 + D ** 2 - L2 ** 2) / (2 * L1 * D))
+    shank = thigh - knee
+    return thigh + trunk, knee, -shank
+
+
+def ballistic(nlp: StrideNLP, speed: float) -> dict:
+    """The generic guess (module docstring) for the NLP's phases and nodes, by block name."""
+    js, phases, split = nlp.js, nlp.phases, nlp.split
+    lo_hi = nlp.settings.duration
+    durations = [float(np.clip(DURATIONS[p.name], *lo_hi[p.name])) for p in phases]
+    stance = sum(d for p, d in zip(phases, durations) if p.rows)
+    period = sum(durations)
+    times = [np.linspace(0, d, n + 1) + sum(durations[:i])
+             for i, (d, n) in enumerate(zip(durations, split))]
+    t = np.concatenate(times)
+    body = js.model.body
+    ankle_height = -body["foot"].landmarks["heel"][1]
+    reach = 0.97 * (body["thigh"].length + body["shank"].length)
+    x_ankle = speed * stance / 2
+    z_hip = math.sqrt(max(reach ** 2 - x_ankle ** 2, 0.25 * reach ** 2)) + ankle_height
+    theta = np.zeros((NX, t.size))
+    theta[0], theta[1], theta[2] = speed * t, z_hip, TRUNK_LEAN
+    s = t / period
+    touchdown = np.array(_leg_ik(js, np.array([[0.0], [z_hip]]), np.array([[x_ankle], [ankle_height]]),
+                                 TRUNK_LEAN)).ravel()
+    trailing = np.array(TRAILING_POSE)
+    in_stance = t <= stance
+    hip = np.vstack([theta[0], theta[1]])
+    ankle = np.vstack([np.full(t.size, x_ankle), np.full(t.size, ankle_height)])
+    right = np.array(_leg_ik(js, hip, ankle, TRUNK_LEAN))
+    toe_off = right[:, in_stance][:, -1]
+    r = np.clip((t - stance) / (period - stance), 0, 1)
+    swing_r = toe_off[:, None] + (trailing - toe_off)[:, None] * r
+    theta[3:6] = np.where(in_stance, right, swing_r)
+    theta[6:9] = trailing[:, None] + (touchdown - trailing)[:, None] * s
+    theta[7] += SWING_KNEE_BUMP * np.sin(math.pi * s)
+    thetad = _rates(theta, t)
+    return _blocks(nlp, theta, thetad, durations, stance, period, speed)
+
+
+def _rates(theta, t):
+    """Finite-difference rates of node values (repeated times at phase boundaries allowed)."""
+    out = np.zeros_like(theta)
+    for k in range(t.size):
+        a, b = max(k - 1, 0), min(k + 1, t.size - 1)
+        while t[b] - t[a] <= 0 and b < t.size - 1:
+            b += 1
+        out[:, k] = (theta[:, b] - theta[:, a]) / max(t[b] - t[a], 1e-9)
+    return out
+
+
+def _blocks(nlp, theta, thetad, durations, stance, period, speed) -> dict:
+    """Blocks by name from node histories (stacked over the phases)."""
+    guess, k = {}, 0
+    weight = period / stance
+    for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
+        cols = slice(k, k + n + 1)
+        name = phase.name
+        guess[f"X_{name}"] = np.vstack([theta[:, cols], thetad[:, cols]])
+        guess[f"A_{name}"] = np.zeros((NX, n + 1))
+        guess[f"U_{name}"] = np.zeros((NU, n + 1))
+        normals = [a == "n" for _, a in phase.rows]
+        force = np.zeros((len(phase.rows), n + 1))
+        if any(normals):
+            force[normals] = weight / sum(normals)
+        guess[f"F_{name}"] = force
+        guess[f"T_{name}"] = durations[i]
+        if nlp.S:  # the power split of zero moments
+            guess[f"S_{name}"] = np.zeros((2 * NU, n + 1))
+        k += n + 1
+    for i, phase in enumerate(nlp.phases[1:], 1):
+        if nlp.P[i - 1] is not None:
+            guess[f"P_{phase.name}"] = np.zeros((len(phase.rows), 1))
+    guess["P_touchdown"] = np.zeros((len(nlp.touchdown_rows), 1))
+    guess["V_touchdown"] = swap_legs(thetad[:, 0])
+    return guess
+
+
+def perturbed(guess: dict, rng: np.random.Generator) -> dict:
+    """A guess with its joint angles moved by up to 10 deg (one offset per joint and phase)
+    and its joint rates by up to 1 rad/s at every node (a multi-start's other starts)."""
+    out = {k: v.copy() if isinstance(v, np.ndarray) else v for k, v in guess.items()}
+    for key in [k for k in out if k.startswith("X_")]:
+        out[key][3:NX] += rng.uniform(-0.17, 0.17, (NX - 3, 1))
+        out[key][NX + 3:] += rng.uniform(-1, 1, out[key][NX + 3:].shape)
+    return out

@@ -1,0 +1,136 @@
+"""The half stride as a multiphase problem: phases, transitions, objective, settings.
+
+A half stride starts just after the leading foot's (R) touchdown impact and ends just before the
+other foot's (L) touchdown. Phases per strike (`STRIKE_PHASES`), each with the contact rows it
+holds (point, "t" tangential or "n" normal, on the ground of slope `slope`):
+
+- heel:     heel -> [flat-foot impact] flat -> forefoot -> flight
+- forefoot: landing (forefoot) -> [heel-drop impact] flat -> forefoot -> flight
+- flat:     flat -> forefoot -> flight
+
+A forefoot strike lets the heel come down (as RBDS001's forefoot strikes do): held on the
+forefoot alone, the whole stance hangs on the ankle's moment, and the optimum was a hop of
+0.06 s contact at 340-450 steps/min (2026-11-23, every objective).
+
+A phase that adds a point starts with an impact (its point reaches the ground at the previous
+phase's end, T_c counted); a phase that drops a point starts when that point's normal force
+reaches zero (heel-off, toe-off). The flight ends with L's touchdown in the strike's first
+contact set: the impact, then the legs swapped and moved back by one step must give the start.
+
+On a flat foot, heel [t, n] and forefoot [n]: the foot's rigidity holds the forefoot's
+tangential motion (the rows of mechanics.impact for a flat strike).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ...mechanics.errors import InputError
+
+
+@dataclass(frozen=True)
+class Phase:
+    """One phase: its name and the contact rows it holds ((point, "t" | "n"), ...)."""
+
+    name: str
+    rows: tuple[tuple[str, str], ...]
+
+    @property
+    def points(self) -> tuple[str, ...]:
+        return tuple(dict.fromkeys(p for p, _ in self.rows))
+
+
+HEEL = Phase("heel", (("heel_R", "t"), ("heel_R", "n")))
+FLAT = Phase("flat", (("heel_R", "t"), ("heel_R", "n"), ("forefoot_R", "n")))
+FOREFOOT = Phase("forefoot", (("forefoot_R", "t"), ("forefoot_R", "n")))
+LANDING = Phase("landing", FOREFOOT.rows)  # a forefoot strike's first contact
+FLIGHT = Phase("flight", ())
+STRIKE_PHASES = {"heel": (HEEL, FLAT, FOREFOOT, FLIGHT), "forefoot": (LANDING, FLAT, FOREFOOT, FLIGHT),
+                 "flat": (FLAT, FOREFOOT, FLIGHT)}
+STRIKES = tuple(STRIKE_PHASES)
+# Share of the nodes per phase (normalised over a strike's phases): about RBDS001's durations
+# at 3.5 m/s (heel contact 0.03 s, flat 0.12 s, forefoot 0.09 s, flight 0.11 s), with at least
+# MIN_NODES each, since a short phase still needs its start and end conditions.
+NODE_SHARE = {"heel": 0.12, "landing": 0.12, "flat": 0.3, "forefoot": 0.25, "flight": 0.33}
+MIN_NODES = 4
+OBJECTIVES = ("effort", "work", "metabolic")
+# Margaria R. (1968) Int Z angew Physiol 25:339: efficiencies of positive and negative muscle work
+EFFICIENCY_POSITIVE = 0.25
+EFFICIENCY_NEGATIVE = 1.2
+# The work objectives split each joint's power exactly with two slack variables per joint and
+# node, P = P+ - P-, P+ and P- >= 0, their weighted sum minimised (Bryson's split): both parts
+# end exact, no smoothing width to choose. The smooth split the brief proposed,
+# (P + sqrt(P^2 + eps^2)) / 2 with eps = 1 W (and 5 W), left IPOPT short of convergence after
+# 1000 iterations in every work and metabolic solve tried (2026-11-23); with the slacks they
+# converge in about 250.
+# the work objectives leave a joint moment that does no work free: a small effort term (this
+# weight times the effort objective) makes the optimum unique
+WORK_REGULARISATION = 1e-2
+# The trapezoidal rule cannot see accelerations that alternate node to node (their interval
+# means cancel): the light feet used such a sawtooth at the acceleration bound, which the
+# forward simulation does not reproduce (0.2 rad off in a phase at 24 nodes). A small penalty
+# on the squared change of the accelerations between nodes, SMOOTHING * sum h |A_k+1 - A_k|^2
+# per distance (s^3/m), removes it; it costs under 1 % of the objective of a smooth motion.
+SMOOTHING = 1e-6
+
+
+def other_leg(point: str) -> str:
+    """heel_R <-> heel_L, forefoot_R <-> forefoot_L."""
+    return point[:-1] + ("L" if point.endswith("R") else "R")
+
+
+@dataclass(frozen=True)
+class StrideSettings:
+    """What the stride NLP is built with (SI); the speed, slope, friction and an imposed
+    cadence are parameters of the built NLP (`StrideNLP.solve`)."""
+
+    strike: str = "heel"
+    objective: str = "effort"
+    nodes: int = 40  # collocation intervals over the half stride
+    law: str = "no-slip"  # contact law of the impacts (no-slip; coulomb checked after the solve)
+    impact_weight: float = 0.0  # weight (1/m) of the impacts' summed T_c per distance
+    torque_limit: float = 4.0  # N m per kg of body mass, every joint
+    duration: dict = field(default_factory=lambda: {"heel": (0.005, 0.1), "landing": (0.005, 0.1),
+                                                    "flat": (0.02, 0.3),
+                                                    "forefoot": (0.02, 0.3),
+                                                    "flight": (0.02, 0.3)})  # s, per phase
+    max_iter: int = 1000
+    tolerance: float = 1e-6
+
+    def __post_init__(self):
+        if self.strike not in STRIKE_PHASES:
+            raise InputError(f"strike {self.strike!r}: expected one of {', '.join(STRIKES)}")
+        if self.objective not in OBJECTIVES:
+            raise InputError(f"objective {self.objective!r}: expected one of {', '.join(OBJECTIVES)}")
+        if not MIN_NODES * len(self.phases) + 2 <= self.nodes <= 400:
+            raise InputError(f"nodes = {self.nodes}: expected {MIN_NODES * len(self.phases) + 2} "
+                             f"to 400 for a {self.strike} strike")
+        if self.law not in ("no-slip", "coulomb"):
+            raise InputError(f"law {self.law!r}: expected no-slip or coulomb (frictionless "
+                             "impacts leave the foot sliding, a phase the stride does not model)")
+        if not 0 <= self.impact_weight <= 1e3:
+            raise InputError(f"impact_weight = {self.impact_weight}: expected 0 to 1000")
+        if not 0.5 <= self.torque_limit <= 20:
+            raise InputError(f"torque_limit = {self.torque_limit}: expected 0.5 to 20 N m/kg")
+        for name, (lo, hi) in self.duration.items():
+            if not 0 < lo < hi <= 2.0:
+                raise InputError(f"duration {name} = ({lo}, {hi}): expected 0 < low < high <= 2 s")
+
+    @property
+    def phases(self) -> tuple[Phase, ...]:
+        return STRIKE_PHASES[self.strike]
+
+    def node_split(self) -> list[int]:
+        """Intervals per phase: MIN_NODES each, the rest shared by NODE_SHARE (the flight
+        takes the rounding)."""
+        shares = [NODE_SHARE[p.name] for p in self.phases]
+        rest = self.nodes - MIN_NODES * len(shares)
+        split = [MIN_NODES + round(rest * s / sum(shares)) for s in shares]
+        split[-1] += self.nodes - sum(split)
+        return split
+
+
+def metabolic(positive, negative):
+    """Margaria's metabolic proxy W+/0.25 + W-/1.2 (J)."""
+    return positive / EFFICIENCY_POSITIVE + negative / EFFICIENCY_NEGATIVE
+

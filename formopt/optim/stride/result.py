@@ -1,0 +1,224 @@
+"""The solved half stride: the `Stride` result, its energy budget and checks.
+
+Energy budget over the half stride (J), every integral by the trapezoidal rule on the nodes
+(the transcription's own quadrature):
+
+    W+ = int sum max(P_j, 0) dt,  W- = int sum max(-P_j, 0) dt,  P_j = -tau_j phi_j' (W)
+    impacts = sum of T_c (the flat-foot impact, if any, and the touchdown)
+    friction = -int f . v_c dt (the work the held contacts take: zero if they do not move)
+    passive = -int tau_pass . theta' dt (the work the range-of-motion walls take)
+    balance = W+ - W- - impacts - friction - passive - m g d sin(slope)
+
+Kinetic and potential energy return to their start over a period, so `balance` is zero up to
+the transcription's error (O(h^2)). Cost of transport W+ / (m g d); mechanical power W+ / T
+(T the half-period, d = speed T the step length).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...mechanics.joint_space import JOINTS, swap_legs
+from .checks import drift, forward, half_period, impact_check
+from .collocation import NX, Solved, StrideNLP
+from .guess import ballistic, perturbed
+from .problem import metabolic
+
+GRAVITY = 9.81
+FOOT_POINTS = ("heel_R", "forefoot_R")
+
+
+@dataclass
+class Stride:
+    """A periodic half stride (SI inside; degrees only in `touchdown.angles_deg`)."""
+
+    success: bool
+    status: str
+    iterations: int
+    solve_s: float
+    build_s: float
+    speed_mps: float
+    slope: float  # rad
+    friction: float
+    law: str
+    strike: str
+    objective: str
+    objective_value: float
+    cadence_spm: float
+    step_length_m: float
+    half_period_s: float
+    stance_s: float
+    flight_s: float
+    duty_factor: float  # stance / stride time
+    peak_vertical_grf_bw: float
+    touchdown: dict
+    impacts: list
+    budget: dict
+    cost_of_transport: float  # W+ / (m g d), dimensionless (J/(kg m) divided by g)
+    mechanical_power_W: float
+    checks: dict
+    phases: list  # (name, duration s)
+    mass_kg: float
+    t: np.ndarray = field(repr=False)  # (n,) s, node times (a phase boundary appears twice)
+    phase: list = field(repr=False)  # phase name per node
+    theta: np.ndarray = field(repr=False)  # (n, 9) THETA, m and rad
+    thetad: np.ndarray = field(repr=False)  # (n, 9)
+    tau: np.ndarray = field(repr=False)  # (n, 6) N m, JOINTS, extensor positive
+    force: np.ndarray = field(repr=False)  # (n, 2, 2) N, world (x, z) per FOOT_POINTS
+    solved: Solved | None = field(repr=False, default=None)  # the raw solution (a warm start)
+
+    def to_dict(self) -> dict:
+        """JSON-ready summary (no histories)."""
+        skip = {"t", "phase", "theta", "thetad", "tau", "force", "solved"}
+        return {k: getattr(self, k) for k in self.__dataclass_fields__ if k not in skip}
+
+
+def histories(nlp: StrideNLP, blocks: dict, slope: float):
+    """Node histories (t, phase, theta, theta', tau, force) over the half stride."""
+    m = nlp.mass
+    t, names, X, U, force = [], [], [], [], []
+    start = 0.0
+    tangent, normal = np.array([np.cos(slope), np.sin(slope)]), np.array([-np.sin(slope), np.cos(slope)])
+    for phase, n in zip(nlp.phases, nlp.split):
+        T = blocks[f"T_{phase.name}"].item()
+        t.append(start + np.linspace(0.0, T, n + 1))
+        names += [phase.name] * (n + 1)
+        X.append(blocks[f"X_{phase.name}"])
+        U.append(m * blocks[f"U_{phase.name}"])
+        F = m * GRAVITY * blocks[f"F_{phase.name}"]
+        f = np.zeros((n + 1, len(FOOT_POINTS), 2))
+        for k, (point, axis) in enumerate(phase.rows):
+            f[:, FOOT_POINTS.index(point)] += np.outer(F[k], tangent if axis == "t" else normal)
+        force.append(f)
+        start += T
+    states = np.hstack(X).T
+    return np.concatenate(t), names, states[:, :NX], states[:, NX:], np.hstack(U).T, np.concatenate(force)
+
+
+def budget(nlp: StrideNLP, blocks: dict, speed: float, slope: float, impacts: float) -> dict:
+    """The energy budget (module docstring), J; also the power-split and metabolic figures."""
+    js, m = nlp.js, nlp.mass
+    sums = {"positive": 0.0, "negative": 0.0, "friction": 0.0, "passive": 0.0}
+    for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
+        h = blocks[f"T_{phase.name}"].item() / n
+        for w, x, tau, f in nlp.samples(i, h, blocks):
+            th, thd = x[:NX], x[NX:]
+            power = -tau * thd[3:]
+            sums["positive"] += w * np.sum(np.maximum(power, 0))
+            sums["negative"] += w * np.sum(np.maximum(-power, 0))
+            sums["passive"] -= w * float(np.asarray(js.passive(th), float).ravel() @ thd)
+            for r, (point, axis) in enumerate(phase.rows):
+                v = np.asarray(js.points[point](th, thd, slope)[1], float).ravel()
+                sums["friction"] -= w * m * GRAVITY * f[r] * v[0 if axis == "t" else 1]
+    step = speed * half_period(nlp, blocks)
+    climb = m * GRAVITY * step * np.sin(slope)
+    balance = sums["positive"] - sums["negative"] - impacts - sums["friction"] - sums["passive"] - climb
+    return {"positive_work_J": sums["positive"], "negative_work_J": sums["negative"],
+            "impacts_J": impacts, "friction_J": sums["friction"], "passive_J": sums["passive"],
+            "climb_J": climb, "balance_J": balance,
+            "metabolic_J": metabolic(sums["positive"], sums["negative"])}
+
+
+def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> list[dict]:
+    """Each impact of the half stride: the NLP's T_c and formopt's impact map at its state."""
+    out, time = [], 0.0
+    transitions = []
+    for i, phase in enumerate(nlp.phases):
+        T = blocks[f"T_{phase.name}"].item()
+        time += T
+        if i + 1 < len(nlp.phases) and nlp.P[i] is not None:
+            after = nlp.phases[i + 1]
+            transitions.append((after.rows, blocks[f"X_{phase.name}"][:, -1],
+                                blocks[f"X_{after.name}"][NX:, 0], time, nlp.added(i + 1)))
+    end = blocks[f"X_{nlp.phases[-1].name}"][:, -1]
+    transitions.append((nlp.touchdown_rows, end, blocks["V_touchdown"].ravel(), time,
+                        tuple(dict.fromkeys(p for p, _ in nlp.touchdown_rows))))
+    M = nlp.js.mass
+    for rows, X, plus, t, points in transitions:
+        th, minus = X[:NX], X[NX:]
+        Mk = np.asarray(M(th), float)
+        T_c = 0.5 * minus @ Mk @ minus - 0.5 * plus @ Mk @ plus
+        check = impact_check(nlp.js, rows, th, minus, slope, mu)
+        approach = max(float(nlp.js.points[p](th, minus, slope)[1][1]) for p in points)
+        law = nlp.settings.law
+        valid = check["impulse_n"] > 0 and approach < 0 and (
+            check["mu_c"] is not None and check["mu_c"] <= mu * (1 + 1e-6) if law == "no-slip"
+            else check["coulomb_mode"] == "stick")
+        out.append({"point": "+".join(p.rsplit("_", 1)[0] for p in points),
+                    "leg": points[0][-1], "time_s": t, "T_c": float(T_c), "law": law,
+                    "mode": "stick" if law == "no-slip" else check["coulomb_mode"],
+                    "mu_c": check["mu_c"], "valid": bool(valid),
+                    "T_c_exact": check["T_c"], "T_c_formopt": check["T_c_formopt"],
+                    "impact_map_difference_J": check["difference_J"],
+                    "coulomb_mode": check["coulomb_mode"], "T_c_coulomb": check["T_c_coulomb"],
+                    "impulse_Ns": [check["impulse_t"], check["impulse_n"]],
+                    "approach_mps": approach})
+    return out
+
+
+def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
+    """The Stride of a solution, with its budget and checks (`simulate`: the forward check)."""
+    b, par = solved.blocks, solved.parameters
+    speed, slope, mu = par["speed"], par["slope"], par["mu"]
+    m = nlp.mass
+    T = half_period(nlp, b)
+    step = speed * T
+    durations = [(p.name, b[f"T_{p.name}"].item()) for p in nlp.phases]
+    stance = sum(d for p, (_, d) in zip(nlp.phases, durations) if p.rows)
+    t, names, theta, thetad, tau, force = histories(nlp, b, slope)
+    found = impacts(nlp, b, slope, mu)
+    energy = budget(nlp, b, speed, slope, sum(i["T_c"] for i in found))
+    start, end = theta[0], theta[-1]
+    shift = np.r_[step * np.cos(slope), step * np.sin(slope), np.zeros(7)]
+    periodicity = max(np.abs(swap_legs(end) - shift - start).max(),
+                      np.abs(swap_legs(b["V_touchdown"].ravel()) - thetad[0]).max())
+    checks = {"periodicity": float(periodicity),
+              "impact_map_J": max(i["impact_map_difference_J"] for i in found),
+              "impact_nlp_J": max(abs(i["T_c"] - i["T_c_exact"]) for i in found),
+              "drift_m": drift(nlp, b, slope),
+              "balance_relative": abs(energy["balance_J"]) / max(energy["positive_work_J"], 1e-9)}
+    if simulate:
+        sim = forward(nlp, b, speed, slope)
+        checks.update(forward_theta=sim["reset_theta"], forward_per_phase=sim["reset_per_phase"],
+                      open_loop_theta=sim["theta"], open_loop_thetad=sim["thetad"],
+                      open_loop_per_phase=sim["per_phase_theta"],
+                      open_loop_periodicity=sim["periodicity"])
+    strike_point = "heel_R" if nlp.settings.strike != "forefoot" else "forefoot_R"
+    r = np.asarray(nlp.js.points[strike_point](start, np.zeros(NX), slope)[0], float).ravel()
+    end_v = b[f"X_{nlp.phases[-1].name}"][NX:, -1]
+    touchdown = {"angles_deg": {"trunk": float(np.degrees(start[2])),
+                                **{j[:-2]: float(np.degrees(start[3 + k])) for k, j in enumerate(JOINTS[:3])}},
+                 "swing_angles_deg": {j[:-2]: float(np.degrees(start[6 + k])) for k, j in enumerate(JOINTS[:3])},
+                 "hip_from_strike_m": {"ahead": float(start[0] - r[0]), "above": float(start[1] - r[1])},
+                 "hip_velocity_mps": [float(end_v[0]), float(end_v[1])]}
+    vertical = force[:, :, 1].sum(axis=1)
+    positive = energy["positive_work_J"]
+    return Stride(
+        success=solved.success, status=solved.status, iterations=solved.iterations,
+        solve_s=solved.solve_s, build_s=nlp.build_s, speed_mps=speed, slope=slope, friction=mu,
+        law=nlp.settings.law, strike=nlp.settings.strike, objective=nlp.settings.objective,
+        objective_value=solved.objective, cadence_spm=60.0 / T, step_length_m=step,
+        half_period_s=T, stance_s=stance, flight_s=T - stance, duty_factor=stance / (2 * T),
+        peak_vertical_grf_bw=float(vertical.max() / (m * GRAVITY)), touchdown=touchdown,
+        impacts=found, budget=energy, cost_of_transport=positive / (m * GRAVITY * step),
+        mechanical_power_W=positive / T, checks=checks, phases=durations, mass_kg=m,
+        t=t, phase=names, theta=theta, thetad=thetad, tau=tau, force=force, solved=solved)
+
+
+def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
+            cadence: float | None = None, guess: dict | None = None, simulate: bool = True,
+            starts: int = 1, seed: int = 0) -> Stride:
+    """Solve the NLP from `guess` (default: the generic guess) and, with `starts` > 1, from
+    starts - 1 perturbations of it (guess.perturbed, seeded); summarise the best converged
+    solve (the least objective), or the first if none converged."""
+    first = guess if guess is not None else ballistic(nlp, speed)
+    rng = np.random.default_rng(seed)
+    best = None
+    for k in range(starts):
+        solved = nlp.solve(first if k == 0 else perturbed(first, rng), speed, slope, mu, cadence)
+        if best is None or (solved.success, -solved.objective) > (best.success, -best.objective):
+            best = solved
+    assert best is not None  # starts >= 1 (the scene's check)
+    return summarise(nlp, best, simulate)

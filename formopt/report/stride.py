@@ -1,0 +1,99 @@
+"""Figures and table of a half stride: stick figures, joint angles, moments and ground force
+over the gait cycle (with RBDS001's measured mean beside them when given), the energy budget.
+Each function returns a Matplotlib Figure (matplotlib.figure.Figure, not pyplot)."""
+
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from ..mechanics.joint_space import JointSpace
+from ..studies.stride import CYCLE_JOINTS, StrideStudy, predicted_cycle
+
+BONES = (("shoulder", "hip"), ("hip", "knee"), ("knee", "ankle"), ("ankle", "heel"),
+         ("heel", "forefoot"), ("forefoot", "ankle"), ("hip", "swing_knee"),
+         ("swing_knee", "swing_ankle"), ("swing_ankle", "swing_heel"),
+         ("swing_heel", "swing_forefoot"), ("swing_forefoot", "swing_ankle"))
+
+
+def stick_figures(stride, js: JointSpace, every: int = 3) -> Figure:
+    """The body at every `every`-th node over the half stride (right leg dark, left light)."""
+    fig = Figure(figsize=(10, 3.6))
+    ax = fig.add_subplot()
+    names = js.landmark_names
+    for k in range(0, len(stride.t), every):
+        p = np.asarray(js.landmarks(stride.theta[k]), float)
+        for a, b in BONES:
+            i, j = names.index(a), names.index(b)
+            ax.plot(p[0, [i, j]], p[1, [i, j]], color="0.65" if a.startswith("swing") or
+                    b.startswith("swing") else "C0", lw=1.2)
+    ax.axhline(0.0, color="k", lw=0.8)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("z (m)")
+    ax.set_title(f"{stride.strike} strike, {stride.speed_mps:g} m/s: {stride.cadence_spm:.0f} "
+                 f"steps/min, step {stride.step_length_m:.2f} m")
+    return fig
+
+
+def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
+    """Right-leg joint angles (deg) or moments (N m/kg) over the gait cycle, or the vertical
+    ground force (N/kg); the measured mean beside them (dashed) when given."""
+    predicted = predicted_cycle(stride)
+    fig = Figure(figsize=(10, 3.2))
+    panels = CYCLE_JOINTS if quantity != "vertical" else ("vertical",)
+    unit = {"angles": "deg", "moments": "N m/kg", "vertical": "N/kg"}[quantity]
+    for k, name in enumerate(panels):
+        ax = fig.add_subplot(1, len(panels), k + 1)
+        order = np.argsort(predicted["percent"], kind="stable")
+        values = predicted[quantity] if quantity == "vertical" else predicted[quantity][name]
+        ax.plot(predicted["percent"][order], values[order], "C0", label="predicted")
+        if measured is not None:
+            data = measured[quantity] if quantity == "vertical" else measured[quantity][name]
+            ax.plot(measured["percent"], data, "k--", label="RBDS001 measured")
+        ax.set_xlabel("gait cycle (%)")
+        ax.set_title(f"{name} ({unit})")
+    fig.axes[0].legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def budget_figure(stride) -> Figure:
+    """The energy budget of the half stride (J): positive work against where it goes."""
+    b = stride.budget
+    fig = Figure(figsize=(6, 3.6))
+    ax = fig.add_subplot()
+    sinks = [("negative work", b["negative_work_J"]), ("impacts", b["impacts_J"]),
+             ("friction", b["friction_J"]), ("passive", b["passive_J"]), ("climb", b["climb_J"])]
+    bottom = 0.0
+    for k, (name, value) in enumerate(sinks):
+        ax.bar(1, value, bottom=bottom, color=f"C{k + 1}", label=f"{name} {value:.1f} J")
+        bottom += value
+    ax.bar(0, b["positive_work_J"], color="C0", label=f"positive work {b['positive_work_J']:.1f} J")
+    ax.set_xticks([0, 1], ["in", "out"])
+    ax.set_ylabel("J per half stride")
+    ax.set_title(f"balance {b['balance_J']:.2f} J, CoT {stride.cost_of_transport:.3f}, "
+                 f"{stride.mechanical_power_W:.0f} W")
+    ax.legend(fontsize=8)
+    return fig
+
+
+def stride_figures(stride, js: JointSpace, measured: dict | None) -> dict[str, Figure]:
+    return {"stick": stick_figures(stride, js), "angles": cycle_figure(stride, measured, "angles"),
+            "moments": cycle_figure(stride, measured, "moments"),
+            "grf": cycle_figure(stride, measured, "vertical"), "budget": budget_figure(stride)}
+
+
+def stride_table(study: StrideStudy) -> str:
+    """One line per strike solved, the least costly first."""
+    lines = [f"{study.scene}",
+             f"{'strike':9s} {'ok':>3s} {'cadence':>8s} {'step m':>7s} {'stance s':>9s} "
+             f"{'flight s':>9s} {'duty':>5s} {'GRF BW':>7s} {'T_c J':>7s} {'CoT':>6s} {'W':>6s} "
+             f"{'balance J':>10s} {'iter':>5s} {'s':>6s}"]
+    for s in study.strides:
+        lines.append(f"{s.strike:9s} {'yes' if s.success else 'no':>3s} {s.cadence_spm:8.1f} "
+                     f"{s.step_length_m:7.3f} {s.stance_s:9.3f} {s.flight_s:9.3f} {s.duty_factor:5.2f} "
+                     f"{s.peak_vertical_grf_bw:7.2f} {s.budget['impacts_J']:7.2f} "
+                     f"{s.cost_of_transport:6.3f} {s.mechanical_power_W:6.0f} "
+                     f"{s.budget['balance_J']:10.3f} {s.iterations:5d} {s.solve_s:6.1f}")
+    return "\n".join(lines)

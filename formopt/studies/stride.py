@@ -1,0 +1,104 @@
+"""The stride of a scene: one optimum per strike ("best": each solved, the least costly first).
+
+The NLP of a body and settings is built once (`Strider`) and solved for any speed, slope,
+friction and imposed cadence; a neighbouring solve is warm-started from the last optimum.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..io.stride_scene import StrideScene
+from ..mechanics.joint_space import JointSpace
+from ..optim.stride import Stride, StrideNLP, optimum
+from ..optim.stride.problem import STRIKES
+
+ROW_KEYS = ("strike", "success", "objective_value", "cadence_spm", "step_length_m", "stance_s",
+            "flight_s", "duty_factor", "peak_vertical_grf_bw", "cost_of_transport",
+            "mechanical_power_W", "iterations", "solve_s")
+
+
+@dataclass
+class StrideStudy:
+    """The strides of a scene, the least costly (objective per distance) first."""
+
+    scene: str
+    strides: list = field(default_factory=list)
+
+    @property
+    def best(self) -> Stride:
+        return self.strides[0]
+
+    def to_dict(self) -> dict:
+        """The best stride's JSON, with one row per strike solved (`strides`)."""
+        rows = [{**{k: getattr(s, k) for k in ROW_KEYS},
+                 "impacts_J": s.budget["impacts_J"],
+                 "impacts_valid": all(i["valid"] for i in s.impacts)} for s in self.strides]
+        return {"scene": self.scene, **self.best.to_dict(), "strides": rows}
+
+
+def run(scene: StrideScene, speed: float | None = None, strike: str | None = None,
+        simulate: bool = True) -> StrideStudy:
+    """Solve the scene's strides (`speed`, `strike`: overrides; "best" solves each)."""
+    js = JointSpace(scene.body)
+    choice = strike or scene.strike
+    strikes = STRIKES if choice == "best" else (choice,)
+    strides = []
+    for name in strikes:
+        nlp = StrideNLP(js, scene.for_strike(name))
+        strides.append(optimum(nlp, speed or scene.speed, scene.slope, scene.friction,
+                               scene.cadence, simulate=simulate, starts=scene.starts))
+    strides.sort(key=lambda s: (not s.success, s.objective_value))
+    return StrideStudy(scene.name, strides)
+
+
+# RBDS001's mean gait cycle (Fukuchi et al. 2017; the data set's Visual3D processing): 101
+# rows from right touchdown; Z columns sagittal (hip and knee flexion, ankle dorsiflexion, deg;
+# moments N m/kg, extensor / plantarflexor positive), grfY vertical (N/kg)
+RBDS_SPEEDS = {2.5: "25", 3.5: "35", 4.5: "45"}
+CYCLE_JOINTS = ("hip", "knee", "ankle")
+
+
+def measured_cycle(path, speed: float) -> dict | None:
+    """RBDS001's right-leg mean cycle at `speed` (m/s; None unless 2.5, 3.5 or 4.5): percent
+    (101), angles (deg) and moments (N m/kg) per joint, vertical force (N/kg)."""
+    suffix = RBDS_SPEEDS.get(round(speed, 2))
+    if suffix is None:
+        return None
+    data = np.genfromtxt(path, names=True, delimiter="\t")
+    return {"percent": data["PercGcycle"],
+            "angles": {j: data[f"R{j}AngZ{suffix}"] for j in CYCLE_JOINTS},
+            "moments": {j: data[f"R{j}MomZ{suffix}"] for j in CYCLE_JOINTS},
+            "vertical": np.nan_to_num(data[f"RgrfY{suffix}"], nan=0.0)}
+
+
+def predicted_cycle(stride: Stride) -> dict:
+    """The right leg over a whole gait cycle from the half stride (its left leg gives the second
+    half, by symmetry): percent, angles (deg), moments (N m/kg), vertical force (N/kg)."""
+    T = stride.half_period_s
+    percent = np.r_[stride.t / T * 50.0, 50.0 + stride.t / T * 50.0]
+    m = stride.mass_kg
+    angles = {j: np.degrees(np.r_[stride.theta[:, 3 + k], stride.theta[:, 6 + k]])
+              for k, j in enumerate(CYCLE_JOINTS)}
+    moments = {j: np.r_[stride.tau[:, k], stride.tau[:, 3 + k]] / m for k, j in enumerate(CYCLE_JOINTS)}
+    vertical = np.r_[stride.force[:, :, 1].sum(axis=1), np.zeros(len(stride.t))] / m
+    return {"percent": percent, "angles": angles, "moments": moments, "vertical": vertical}
+
+
+def compare_cycle(stride: Stride, measured: dict) -> dict:
+    """Predicted against measured: joint-angle RMS over the cycle (deg), stance time (s, the
+    measured from the vertical force above 0.5 N/kg over a cycle of 120 / cadence), peak
+    vertical force (N/kg)."""
+    predicted = predicted_cycle(stride)
+    order = np.argsort(predicted["percent"], kind="stable")
+    rms = {}
+    for j in CYCLE_JOINTS:
+        curve = np.interp(measured["percent"], predicted["percent"][order], predicted["angles"][j][order])
+        rms[j] = float(np.sqrt(np.mean((curve - measured["angles"][j]) ** 2)))
+    stance_share = float(np.mean(measured["vertical"][:-1] > 0.5))
+    return {"angle_rms_deg": rms, "stance_share_measured": stance_share,
+            "stance_share_predicted": stride.duty_factor,
+            "peak_vertical_n_per_kg": {"predicted": float(np.max(predicted["vertical"])),
+                                       "measured": float(np.max(measured["vertical"]))}}

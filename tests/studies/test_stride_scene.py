@@ -1,0 +1,65 @@
+"""Stride scenes and `formopt stride`: the shipped scenes load, bad keys are named in one line,
+the touchdown commands refuse a stride scene cleanly, and the command writes its JSON (the keys
+issue 23 lists), CSV, figures and OpenSim files."""
+
+import json
+import tomllib
+
+import pytest
+from helpers import SHIPPED
+
+from formopt import load
+from formopt.cli import main
+from formopt.io.scene import SceneError, parse
+from formopt.io.stride_scene import StrideScene
+from formopt.mechanics.joint_space import JointSpace
+
+STRIDE_SCENES = [p for p in sorted(SHIPPED.glob("*.toml")) if "stride" in tomllib.loads(p.read_text())]
+JSON_KEYS = ("success", "status", "iterations", "solve_s", "speed_mps", "strike", "cadence_spm",
+             "step_length_m", "stance_s", "flight_s", "duty_factor", "peak_vertical_grf_bw",
+             "touchdown", "impacts", "budget", "cost_of_transport", "mechanical_power_W", "checks",
+             "strides")
+
+
+def test_shipped_stride_scenes_load():
+    assert {p.name for p in STRIDE_SCENES} == {"stride.toml", "stride_rbds001.toml"}
+    paper, rbds = (load(p) for p in STRIDE_SCENES)
+    assert isinstance(paper, StrideScene) and paper.speed == 3.5 and paper.strike == "heel"
+    assert JointSpace(rbds.body).mass_total == pytest.approx(62.0)  # both legs and the trunk
+    assert rbds.strike == "best"
+
+
+@pytest.mark.parametrize("edit, key", [({"speed_mps": 40.0}, "stride.speed_mps"),
+                                       ({"strike": "toe"}, "stride.strike"),
+                                       ({"objective": "fun"}, "stride.objective"),
+                                       ({"nodes": 3}, "stride.nodes"),
+                                       ({"duration_s": {"flight": [0.2, 0.1]}}, "stride.duration_s.flight"),
+                                       ({"cadense_spm": 170}, "stride.cadense_spm")])
+def test_bad_stride_keys_are_named(edit, key):
+    data = tomllib.loads(STRIDE_SCENES[0].read_text())
+    data["stride"].update(edit)
+    with pytest.raises(SceneError, match=key.replace(".", r"\.")):
+        parse(data)
+
+
+def test_touchdown_commands_refuse_a_stride_scene(capsys):
+    assert main(["impact", str(STRIDE_SCENES[0]), "--json"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "formopt stride" in err[0]
+
+
+def test_stride_command_writes_its_report(tmp_path, capsys):
+    scene = tmp_path / "small.toml"
+    scene.write_text(STRIDE_SCENES[0].read_text().replace("nodes = 40", "nodes = 24")
+                     .replace('strike = "heel"', 'strike = "forefoot"'))
+    code = main(["stride", str(scene), "--json", "--out", str(tmp_path / "out"), "--speed", "3.3"])
+    report = json.loads(capsys.readouterr().out)
+    assert code == 0
+    assert all(k in report for k in JSON_KEYS)
+    assert report["speed_mps"] == 3.3 and report["strike"] == "forefoot"
+    assert set(report["budget"]) >= {"positive_work_J", "negative_work_J", "impacts_J",
+                                     "friction_J", "passive_J", "balance_J"}
+    assert set(report["impacts"][0]) >= {"point", "time_s", "T_c", "law", "mode", "mu_c", "valid"}
+    names = {p.split("/")[-1] for p in report["files"]}
+    assert {"stride.csv", "stride.mot", "stride_grf.sto", "stride_stick.png",
+            "stride_angles.png", "stride_budget.png"} <= names
