@@ -45,10 +45,12 @@ JOINT_MODELS = ("free", "spring-damper", "locked", "torque")
 JOINTS = (("hip", "trunk", "thigh"), ("knee", "thigh", "shank"), ("ankle", "shank", "foot"),
           ("swing_hip", "trunk", "swing_thigh"), ("swing_knee", "swing_thigh", "swing_shank"),
           ("swing_ankle", "swing_shank", "swing_foot"))
-# d(flexion)/d(hinge angle): hip and knee flex clockwise (x forward, z up), the ankle
-# dorsiflexes counter-clockwise (tests/mechanics/test_joint_moments.py checks it on the model).
+# d(flexion)/d(hinge angle), the hinge angle being the child's direction relative to the
+# parent's, counter-clockwise (x forward, z up): the knee flexes clockwise; the hip (the thigh
+# relative to the trunk) flexes and the ankle dorsiflexes counter-clockwise
+# (tests/mechanics/test_joint_moments.py checks each on the model).
 # A joint moment M (extensor / plantarflexor positive) is the hinge torque -FLEXION M.
-FLEXION = {"hip": -1.0, "knee": -1.0, "ankle": 1.0, "swing_hip": -1.0, "swing_knee": -1.0,
+FLEXION = {"hip": 1.0, "knee": -1.0, "ankle": 1.0, "swing_hip": 1.0, "swing_knee": -1.0,
            "swing_ankle": 1.0}
 FEET = ("heel", "forefoot")  # the contact points, in the order of `heights`
 

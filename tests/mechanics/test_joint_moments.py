@@ -30,11 +30,19 @@ def landing(scene, joints, integrator="adaptive", dt=1e-3, state=None, strike=No
                           scene.friction, dt, 0.2)
 
 
-def test_flexion_signs_follow_the_touchdown_angles(spring):
-    """d(hinge angle)/d(joint angle of model.STATE) is the sign FLEXION says, knee and ankle."""
-    lm = LandingModel(spring.model(), Joints("spring-damper"))
-    model = spring.model()
+@pytest.mark.parametrize("kind", ["leg", "full-body"])
+def test_flexion_signs_follow_the_touchdown_angles(spring, kind):
+    """d(hinge angle)/d(joint angle of model.STATE) is the sign FLEXION says: knee and ankle
+    on the paper's leg, and the hip too where the trunk is a rigid body (full body)."""
+    from formopt.mechanics.model import Swing, build_model
+
+    model = spring.model() if kind == "leg" else build_model(
+        spring.body, "full-body", spring.strike, Swing(0.3, 0.5, 0.0, 0.0, 0.0, 0.0))
+    lm = LandingModel(model, Joints("spring-damper"))
+    assert kind == "leg" or "hip" in [name for name, _, _ in lm.hinges]
     for k, (name, _, _) in enumerate(lm.hinges):
+        if name not in STATE:  # the swing leg's joints are not in the touchdown state
+            continue
         i = STATE.index(name)
         step = np.zeros(len(STATE))
         step[i] = 1e-6

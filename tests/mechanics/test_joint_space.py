@@ -57,12 +57,8 @@ def test_dynamics_match_the_landing_with_torque_joints(js, active):
              "knee_L": "swing_knee", "ankle_L": "swing_ankle"}
     for theta, thetad in zip(*running_states(5)):
         tau = rng.normal(0, 60, 6)
-        # the landing's FLEXION gives the hips -1, but hip flexion turns the thigh
-        # counter-clockwise relative to the trunk (model.segment_kinematics: thigh = hip -
-        # trunk): its hip moments are taken with the opposite sign here (see the report)
-        sign = {j: -1.0 if j.startswith("hip") else 1.0 for j in JOINTS}
         joints = Joints("torque", times=(0.0, 1.0),
-                        moments={names[j]: (sign[j] * t, sign[j] * t) for j, t in zip(JOINTS, tau)})
+                        moments={names[j]: (t, t) for j, t in zip(JOINTS, tau)})
         lm = LandingModel(js.model, joints, compiled=False)
         if active:  # the held point on the ground, at rest (the landing's Baumgarte terms vanish)
             point = f"{active[0]}_R"
@@ -73,7 +69,7 @@ def test_dynamics_match_the_landing_with_torque_joints(js, active):
         J = np.asarray(js.J(theta), float)
         qd = J @ thetad
         anchor = q[js.model.cols(active[0])][0] if active else 0.0
-        out = lm.rhs(active).call({"q": q, "qd": qd, "s_anchor": anchor,
+        out = lm.motion(active).call({"q": q, "qd": qd, "s_anchor": anchor,
                                    "joint": lm.joint_parameters(q), "friction": 0.0, "t": 0.5})
         rows = tuple((f"{p}_R", a) for p in active for a in "tn")
         assert np.max(np.abs(np.asarray(js.passive(theta), float))) < 1.0  # walls far away
