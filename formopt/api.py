@@ -154,7 +154,8 @@ def solve(scene: Scene, progress=None, **overrides) -> Optimum:
     return scene.posture_problem(**overrides).solve(progress)
 
 
-def stride(scene, speed: float | None = None, strike: str | None = None) -> StrideStudy:
+def stride(scene, speed: float | None = None, strike: str | None = None,
+           progress=None) -> StrideStudy:
     """The periodic running half stride of a stride scene ([stride] table; issue 23).
 
     Parameters
@@ -165,6 +166,8 @@ def stride(scene, speed: float | None = None, strike: str | None = None) -> Stri
         m/s, instead of the scene's `speed_mps`.
     strike : str, optional
         "heel", "forefoot", "flat" or "best" (each solved), instead of the scene's.
+    progress : callable, optional
+        `progress(text)` before each strike is solved.
 
     Returns
     -------
@@ -172,4 +175,4 @@ def stride(scene, speed: float | None = None, strike: str | None = None) -> Stri
         The strides, the least costly first (`best`), each a `Stride` with cadence, step,
         phases, ground force, energy budget (J) and checks; `to_dict()` is JSON-ready.
     """
-    return run_stride(scene, speed, strike)
+    return run_stride(scene, speed, strike, progress=progress)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -51,7 +52,8 @@ def run(args) -> int:
     if args.speed is not None and not 1.0 <= args.speed <= 8.0:
         raise InputError(f"--speed {args.speed:g}: must be between 1 and 8 m/s")
     out = out_folder(args, scene.path or scene.name)
-    study = api.stride(scene, args.speed, args.strike)
+    say = None if args.json or not sys.stderr.isatty() else lambda text: print(f"  {text}", file=sys.stderr)
+    study = api.stride(scene, args.speed, args.strike, progress=say)
     best = study.best
     measured = measured_cycle(RBDS, best.speed_mps) if RBDS.exists() else None
     files = [save_figure(fig, out / f"stride_{name}.{args.format}")

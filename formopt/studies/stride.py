@@ -40,13 +40,16 @@ class StrideStudy:
 
 
 def run(scene: StrideScene, speed: float | None = None, strike: str | None = None,
-        simulate: bool = True) -> StrideStudy:
-    """Solve the scene's strides (`speed`, `strike`: overrides; "best" solves each)."""
+        simulate: bool = True, progress=None) -> StrideStudy:
+    """Solve the scene's strides (`speed`, `strike`: overrides; "best" solves each);
+    `progress(text)`, when given, is told of each strike before it is solved."""
     js = JointSpace(scene.body)
     choice = strike or scene.strike
     strikes = STRIKES if choice == "best" else (choice,)
     strides = []
-    for name in strikes:
+    for k, name in enumerate(strikes, 1):
+        if progress:
+            progress(f"[{k}/{len(strikes)}] {name} strike: {scene.starts} start(s)")
         nlp = StrideNLP(js, scene.for_strike(name))
         strides.append(optimum(nlp, speed or scene.speed, scene.slope, scene.friction,
                                scene.cadence, simulate=simulate, starts=scene.starts))
