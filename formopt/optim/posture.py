@@ -164,8 +164,8 @@ class PostureProblem:
         `duration` (s): the longest landing; `graph`, `compiled`, `hessian` ("auto": exact
         for impacts, limited-memory through a landing), `integrator`: scene [numerics];
         `law`: the contact law at the impact (contact.LAWS); `mode`: Coulomb's (mode, sliding
-        direction) to fix (default the reference's). Longer than 60 lines: it assembles the
-        NLP from its parts in order."""
+        direction) to fix (default the reference's). The objective's terms come from `_terms`;
+        this assembles the NLP from them in order (normalised objective, records, solver)."""
         t0 = time.perf_counter()
         admissible(law, strike, problem)
         self.model, self.strike, self.problem = model, strike, problem
@@ -194,23 +194,8 @@ class PostureProblem:
         tau = sym.sym("tau", 1 if self.landing else 0)  # second impact at tau * duration
         w = ca.vertcat(u, tau)
         x = self.posture.function(u, p)
-        impact = self.impact.function if graph == "SX" else impact_function(model, strike, graph=graph)
-        out = self._law(impact(x=x, friction=p[FRICTION], slope=p[SLOPE]), p[FRICTION])
-        terms = {"T_c": out["T_c"], "dv_trunk_x": out["dv_trunk"][0],
-                 "dv_trunk_z": out["dv_trunk"][1], "dv_com_x": out["dv_com"][0],
-                 "dv_com_z": out["dv_com"][1]}
-        if "support" in problem.objective:
-            terms["support"] = support(x, model, STRIKES[strike][0], problem.stance_peak_bw)
-        landing = None
-        if self.landing:
-            t_ref = self.second_impact(self.reference)
-            if t_ref is None:
-                raise InputError("the reference touchdown's landing never brings the other foot point "
-                                 f"down within {duration * 1e3:g} ms: no landing to optimise "
-                                 "(check [joints] and [landing].duration_ms)")
-            self._t_ref: float = t_ref  # s, the reference's second impact
-            landing = landing_function(self.landing, strike, LANDING_STEPS)(x=x, t_e=tau * duration)
-            terms["T_c_total"] = landing["T_c_total"]
+        terms, out, landing = self._terms(x, p, tau, graph)
+        if landing is not None:
             self._T_c_total = ca.Function("T_c_total", [w, p], [landing["T_c_total"]])
         weights, self.weight = normalised(problem.objective)
         f = sum(wt * terms[k] for k, wt in weights.items())  # normalised: scaling-free
@@ -235,6 +220,31 @@ class PostureProblem:
         self._solvers: dict[str, ca.Function] = {}  # other IPOPT options (solve_from(options=...))
         self.constraint_function = ca.Function("g", [w, p], [g])
         self.build_time = time.perf_counter() - t0
+
+    def _terms(self, x, p, tau, graph: str) -> tuple[dict, dict, dict | None]:
+        """The objective's terms at touchdown state x (symbolic) and parameters p: the impact's
+        (T_c, dv_trunk, dv_com) under the law, the stance's support, and through a landing
+        problem T_c_total with the second impact at tau * duration. Returns (terms, the law's
+        impact outputs, the landing's outputs or None)."""
+        model, strike, problem = self.model, self.strike, self.problem
+        impact = self.impact.function if graph == "SX" else impact_function(model, strike, graph=graph)
+        out = self._law(impact(x=x, friction=p[FRICTION], slope=p[SLOPE]), p[FRICTION])
+        terms = {"T_c": out["T_c"], "dv_trunk_x": out["dv_trunk"][0],
+                 "dv_trunk_z": out["dv_trunk"][1], "dv_com_x": out["dv_com"][0],
+                 "dv_com_z": out["dv_com"][1]}
+        if "support" in problem.objective:
+            terms["support"] = support(x, model, STRIKES[strike][0], problem.stance_peak_bw)
+        if not self.landing:
+            return terms, out, None
+        t_ref = self.second_impact(self.reference)
+        if t_ref is None:
+            raise InputError("the reference touchdown's landing never brings the other foot point "
+                             f"down within {self.duration * 1e3:g} ms: no landing to optimise "
+                             "(check [joints] and [landing].duration_ms)")
+        self._t_ref: float = t_ref  # s, the reference's second impact
+        landing = landing_function(self.landing, strike, LANDING_STEPS)(x=x, t_e=tau * self.duration)
+        terms["T_c_total"] = landing["T_c_total"]
+        return terms, out, landing
 
     def _coulomb_mode(self) -> tuple[int, int]:
         """(mode, sliding direction s) of the reference touchdown's Coulomb impact."""
