@@ -226,7 +226,7 @@ def comparison_table(c: Comparison, rep: dict) -> str:
             f"{s['laws'][law]['T_c_mean']:8.2f} {s['laws'][law]['valid']:4d}/{s['steps']:<4d}  "
             for law in LAWS))
     lines += [f"  left out: {x}" for x in st.left_out]
-    lines += [f"note: {n}" for n in st.notes]
+    lines += [f"note: {n}" for n in rep["notes"]]
     return "\n".join(lines)
 
 

@@ -139,6 +139,23 @@ class Comparison:
         return self.measurement.steps
 
     @property
+    def flat_notes(self) -> list[str]:
+        """What a side whose impacts are flat should be read with: the rigid flat impact pins
+        both foot points at once, the foot spreads them over the impact; the first point's
+        impact alone (its T_c, J) brackets it from below."""
+        out = []
+        for side, o in self.sides.items():
+            if o.point != "flat":
+                continue
+            flat = [r.T_c for k, r in enumerate(self.results) if k in o.steps]
+            first = [self.sole[k][2] for k in o.steps]
+            out.append(f"{'right' if side == 'R' else 'left'}: flat steps, T_c {np.mean(flat):.2f} J "
+                       f"as a rigid flat impact (both points pinned at once) against "
+                       f"{np.mean(first):.2f} J at the first point alone: a foot spreads the two "
+                       "contacts over the impact, so read the flat value as an upper bound")
+        return out
+
+    @property
     def main_side(self) -> SideOptimum:
         """The side with the most steps averaged (a shorthand; the sides are never pooled)."""
         return max(self.sides.values(), key=lambda o: len(o.steps))
@@ -164,7 +181,7 @@ class Comparison:
             "speed": st.speed, "touchdown_method": st.method, "axes": cal.axes.describe(),
             "segment_lengths_m": cal.lengths, "body": self.body.source,
             "touchdowns_total": len(st.touchdowns), "touchdowns_valid_data": len(st.valid),
-            "left_out": st.left_out, "notes": st.notes,
+            "left_out": st.left_out, "notes": [*st.notes, *self.flat_notes],
             "touchdowns": [touchdown_row(self, k) for k in range(len(st.touchdowns))],
             "summary": summary(self),
             "optimum": {side: side_dict(self, o) for side, o in self.sides.items()},
