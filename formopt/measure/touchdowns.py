@@ -255,8 +255,9 @@ def _problems(trial: Trial, kin: Kinematics, cal: Calibration, side: str, frame:
 
 
 def _check_cadence(trial: Trial, kin: Kinematics, foot_low: dict, cadence: float, notes: list) -> None:
-    """The touchdowns' cadence against each foot's rhythm (twice its stride frequency): they
-    disagree when the force and marker files do not match."""
+    """The touchdowns' cadence against each foot's rhythm (twice its stride frequency, 60-300
+    steps/min): they disagree when the force and marker files do not match, or without a
+    plate when the rate is wrong (the markers' low-pass then cuts the stride's harmonics)."""
     def peak(signal, rate, lo, hi):
         spectrum = np.abs(np.fft.rfft(signal - signal.mean()))
         freqs = np.fft.rfftfreq(len(signal), 1.0 / rate)
@@ -265,9 +266,10 @@ def _check_cadence(trial: Trial, kin: Kinematics, foot_low: dict, cadence: float
 
     feet = 120.0 * np.mean([peak(foot_low[s], kin.rate, 0.5, 2.5) for s in SIDES])
     if not abs(cadence / feet - 1) < CADENCE_TOLERANCE:
+        why = ("the force and marker data do not cover the same time (lengths or rates)"
+               if trial.force is not None else f"is the rate, {trial.rate:g} Hz, right?")
         raise MocapError(f"{trial.source}: the touchdowns give a cadence of {cadence:.0f} steps/min "
-                         f"but the feet move at {feet:.0f}: the force and marker data do not "
-                         f"cover the same time (lengths or rates)")
+                         f"but the feet move at {feet:.0f}: {why}")
     notes.append(f"cadence {cadence:.1f} steps/min; the feet's rhythm {feet:.1f}")
 
 
