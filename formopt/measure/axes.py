@@ -69,9 +69,10 @@ def find_axes(static: Trial, trial: Trial, ms: msets.MarkerSet) -> tuple[Axes, l
     tilt = math.degrees(math.acos(min(1.0, abs(float(up @ body)))))
     notes = [f"vertical: {vertical}; {tilt:.1f} deg from the standing body's"]
     if tilt > 15:
+        rate = "" if trial.force is not None else f", or the rate ({trial.rate:g} Hz) is wrong"
         raise MocapError(f"{trial.source}: the vertical ({vertical}) is {tilt:.0f} deg from the "
                          f"standing body's: the standing trial is not upright or the files "
-                         f"do not belong together")
+                         f"do not belong together{rate}")
     if paths is None:
         raise MocapError(f"{trial.source}: no stance found: the feet never rest on the ground "
                          f"(is the rate, {trial.rate:g} Hz, right?)")

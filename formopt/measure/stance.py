@@ -7,6 +7,8 @@ in stance alike), so the rule picks the same frames of a run played at any speed
 to 210 steps/min and beyond (tests/measure/test_stance.py plays real runs 1.3 times faster),
 where the absolute rule it replaces (|omega| < 0.5 rad/s, |v_up| < 0.1 m/s, about 5 % of the
 95th percentiles of RBDS001 and the RIC runner at 156-171 steps/min) found no rest at 184.
+(The markers' fixed low-pass does change with the cadence: it smears the heel strike's turn
+into the short flat phase of a fast heel striker; REST_FRACTION's margin covers it.)
 A rate that is wrong by a factor is then refused by the running speed it gives (touchdowns).
 
 On a treadmill the resting foot rides the belt, so its markers move along a level line: the
@@ -25,9 +27,11 @@ import numpy as np
 from .clean import runs
 
 LOW_QUANTILE = 35.0  # percent: a resting foot is in the lowest third of its heights
-REST_FRACTION = 0.05  # of the 95th percentile of the foot's angular and vertical speeds: the
-#   rest frames at 156-222 steps/min number 100-270 per foot in RBDS001 and the RIC runner;
-#   at 0.02 one foot keeps 2 frames (RIC L), so the margin is 2.5 times
+REST_FRACTION = 0.07  # of the 95th percentile of the foot's angular and vertical speeds. The
+#   margin, with the markers' default 10 Hz low-pass: the RIC runner (a heel striker, whose
+#   foot is flat only briefly) played 1.5 times faster (246 steps/min) still rests 5+ frames
+#   a stance; at 0.05 it did not beyond 1.3 times (214). The vertical without a plate moves
+#   0.0-0.1 deg between 0.05 and 0.1 (RBDS001 T35, T25)
 MIN_REST_FRAMES = 5  # frames in a row: a stance, for the paths
 BOOTSTRAP = 200  # resamples of the stances for the direction's spread
 

@@ -334,17 +334,12 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
     impacts = {s: Impact(model, s, 0.0, friction, law=law) for s in STRIKES}
     results = [impacts[p](modelled_state(td, p)) for td, p in zip(steps.touchdowns, points)]
     lm = LandingModel(model, law=law, compiled=False)  # interpreted: ~4 ms a landing, no compile
-
-    def headline(td: Touchdown, p: str) -> tuple[float, FlatSequence | None]:
-        """T_c (J) of a step at its impact point `p`: a flat one's sequence total, landing
-        on the point its own sole puts lower (rigid flat where the landing cannot run)."""
-        seq = flat_sequence(lm, impact_point(sole, td)[1], td.state(), friction) if p == "flat" else None
-        return (seq.total_J if seq is not None else impacts[p](modelled_state(td, p)).T_c), seq
-
-    sequence = [headline(td, p)[1] for td, p in zip(steps.touchdowns, points)]
+    sequence = [flat_sequence(lm, first, td.state(), friction) if p == "flat" else None
+                for td, (p, first, _) in zip(steps.touchdowns, firsts)]
     nominal = np.array([q.total_J if q is not None else r.T_c for q, r in zip(sequence, results)])
     say(f"{len(steps.touchdowns)} touchdowns; T_c's band: the step measured {len(VARIANTS)} more ways")
-    spread = np.array([[headline(v, p)[0] if v else np.nan for v, p in zip(variant, points)]
+    spread = np.array([[headline_T_c(v, p, sole, impacts, lm, friction) if v else np.nan
+                        for v, p in zip(variant, points)]
                        for variant in variants(trial, static, height, options, m)])
     bounds = {**BOUNDS_DEG, **(bounds_deg or {})}
     lower, upper = zip(*(map(math.radians, bounds[v]) for v in VARIABLES))
@@ -369,14 +364,29 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
                                        impacts, problem, friction, per_step)
     band = [(float(np.nanmin([a, *col])), float(np.nanmax([a, *col])))
             for a, col in zip(nominal, spread.T)]
-    t, axes = m.trial, m.calibration.axes
-    plate = [plate_impact(t.force, t.force_rate, axes.forward, axes.up, td.time, mass * G, t.source)
-             if steps.method == "force plate" and t.force_rate is not None else None
-             for td in steps.touchdowns]
+    plate = plate_impacts(m, mass)
     return Comparison(m, results, points, band, sides, body, law, settings,
                       [(lower, follows, r.T_c if p != "flat" else impacts[lower](td.state()).T_c)
                        for (p, lower, follows), r, td in zip(firsts, results, steps.touchdowns)], plate,
                       sequence)
+
+
+def plate_impacts(m: Measurement, mass: float) -> list[PlateImpact | None]:
+    """Each touchdown's impact as the plate measured it (touchdowns.plate_impact; `mass`, kg),
+    None for all without a plate."""
+    t, axes = m.trial, m.calibration.axes
+    return [plate_impact(t.force, t.force_rate, axes.forward, axes.up, td.time, mass * G, t.source)
+            if m.steps.method == "force plate" and t.force_rate is not None else None
+            for td in m.steps.touchdowns]
+
+
+def headline_T_c(td: Touchdown, point: str, sole: ca.Function, impacts: dict, lm: LandingModel,
+                 friction: float) -> float:
+    """T_c (J) of a step at its impact point: a flat one's sequence total (FlatSequence),
+    landing on the point its own sole puts lower, rigid flat where the landing cannot run;
+    the others their impact's."""
+    seq = flat_sequence(lm, impact_point(sole, td)[1], td.state(), friction) if point == "flat" else None
+    return seq.total_J if seq is not None else impacts[point](modelled_state(td, point)).T_c
 
 
 def variants(trial, static, height: float, options: Options, m: Measurement) -> list[list]:
