@@ -9,7 +9,9 @@ where the absolute rule it replaces (|omega| < 0.5 rad/s, |v_up| < 0.1 m/s, abou
 95th percentiles of RBDS001 and the RIC runner at 156-171 steps/min) found no rest at 184.
 (The markers' fixed low-pass does change with the cadence: it smears the heel strike's turn
 into the short flat phase of a fast heel striker; REST_FRACTION's margin covers it.)
-A rate that is wrong by a factor is then refused by the running speed it gives (touchdowns).
+A rate 10 times too high passes this rule but is refused further on, in one line naming the
+rate (no rest: the markers' low-pass then cuts the stride; or a vertical far from the standing
+body's; or a cadence the feet do not show).
 
 On a treadmill the resting foot rides the belt, so its markers move along a level line: the
 first principal direction of their paths over every stance (each marker's path centred on its
@@ -31,7 +33,8 @@ REST_FRACTION = 0.07  # of the 95th percentile of the foot's angular and vertica
 #   margin, with the markers' default 10 Hz low-pass: the RIC runner (a heel striker, whose
 #   foot is flat only briefly) played 1.5 times faster (246 steps/min) still rests 5+ frames
 #   a stance; at 0.05 it did not beyond 1.3 times (214). The vertical without a plate moves
-#   0.0-0.1 deg between 0.05 and 0.1 (RBDS001 T35, T25)
+#   by up to 0.16 deg between 0.05 and 0.1 (0.26-0.28 deg from the plate's on RBDS001 T35,
+#   0.14-0.30 on T25)
 MIN_REST_FRAMES = 5  # frames in a row: a stance, for the paths
 BOOTSTRAP = 200  # resamples of the stances for the direction's spread
 
