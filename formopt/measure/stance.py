@@ -9,7 +9,7 @@ where the absolute rule it replaces (|omega| < 0.5 rad/s, |v_up| < 0.1 m/s, abou
 95th percentiles of RBDS001 and the RIC runner at 156-171 steps/min) found no rest at 184.
 (The markers' fixed low-pass does change with the cadence: it smears the heel strike's turn
 into the short flat phase of a fast heel striker; REST_FRACTION's margin covers it.)
-A rate 10 times too high passes this rule but is refused further on, in one line naming the
+A rate 10 times too high is refused, in one line naming the
 rate (no rest: the markers' low-pass then cuts the stride; or a vertical far from the standing
 body's; or a cadence the feet do not show).
 
