@@ -4,10 +4,12 @@ One module per topic, in the order `measure` runs them (pipeline.py):
 
     clean        missing samples, spikes and frozen stretches marked; short gaps filled
     units        the markers' units checked against the stature, or inferred
+    rigid        Kabsch fits of a cluster, their residual and angular velocity
     labels       the standing trial holds still; swapped labels swapped back
-    axes         lab axes from physics (the force, the standing body, the stance foot)
-    joints       joint centres and foot points in the standing trial (Harrington hip)
     filters      the zero-lag Butterworth low-pass
+    stance       when a foot rests; the resting feet's level paths (the belt's direction)
+    axes         lab axes from physics (the force, the standing body, the resting feet)
+    joints       joint centres and foot points in the standing trial (Harrington hip)
     kinematics   clusters fitted frame by frame (Kabsch), segment angles
     touchdowns   touchdowns from the force plate or the foot's speed; touchdown states
 

@@ -1,7 +1,9 @@
 """Lab axes from physics, never from the lab's names.
 
 Up is the force plate's mean force (body weight) when there is one; else the standing body
-(pelvis above feet), pitched so that the stance foot moves level (a level belt or floor).
+(pelvis above feet), pitched so that the resting feet's marker paths are level (they ride a
+level belt: stance.py), with the bootstrap spread of that pitch and the sides' difference in
+the notes; a foot rests by stance.at_rest (its cluster's angular speed from its rigid fit).
 Forward: the pelvis moves forward relative to the stance foot (treadmill or overground). Left:
 from the L and R markers; a left-handed file frame (a mirrored lab) is said and does no harm.
 """
@@ -16,6 +18,9 @@ import numpy as np
 from ..io import markerset as msets
 from ..io.markerset import SIDES
 from ..io.mocap import MocapError, Trial
+from .filters import CUTOFF_HZ, lowpass
+from .rigid import angular_velocity, kabsch
+from .stance import StancePaths, at_rest, stance_paths
 
 
 @dataclass(frozen=True)
@@ -59,19 +64,22 @@ def find_axes(static: Trial, trial: Trial, ms: msets.MarkerSet) -> tuple[Axes, l
     ref = static.mean_positions()
     feet = [n for s in SIDES for n in ms.cluster(s, "foot") if not n.startswith("@")]
     body = unit(np.mean([ref[n] for n in ms.pelvis], axis=0) - np.mean([ref[n] for n in feet], axis=0))
-    stance = _stance_motion(trial, ms, body)
-    up, vertical = _vertical(trial, body, stance)
+    paths = _stance_paths(trial, ms, ref, body)
+    up, vertical = _vertical(trial, body, paths)
     tilt = math.degrees(math.acos(min(1.0, abs(float(up @ body)))))
     notes = [f"vertical: {vertical}; {tilt:.1f} deg from the standing body's"]
     if tilt > 15:
+        rate = "" if trial.force is not None else f", or the rate ({trial.rate:g} Hz) is wrong"
         raise MocapError(f"{trial.source}: the vertical ({vertical}) is {tilt:.0f} deg from the "
                          f"standing body's: the standing trial is not upright or the files "
-                         f"do not belong together")
-    if stance is None:
+                         f"do not belong together{rate}")
+    if paths is None:
         raise MocapError(f"{trial.source}: no stance found: the feet never rest on the ground "
                          f"(is the rate, {trial.rate:g} Hz, right?)")
+    notes.append(_level_note(paths, up))
     pelvis = np.mean([trial.markers[n] for n in ms.pelvis], axis=0)
-    travel = np.nanmedian(np.gradient(pelvis, 1.0 / trial.rate, axis=0), axis=0) - stance
+    belt = (paths.velocity @ paths.direction) * paths.direction  # the resting feet ride it
+    travel = np.nanmedian(np.gradient(pelvis, 1.0 / trial.rate, axis=0), axis=0) - belt
     travel -= (travel @ up) * up
     forward = unit(travel)
     left = np.cross(up, forward)
@@ -83,9 +91,9 @@ def find_axes(static: Trial, trial: Trial, ms: msets.MarkerSet) -> tuple[Axes, l
     return Axes(forward, left if not mirrored else -left, up, vertical, mirrored), notes
 
 
-def _vertical(trial: Trial, body, stance) -> tuple[np.ndarray, str]:
+def _vertical(trial: Trial, body, paths: StancePaths | None) -> tuple[np.ndarray, str]:
     """Up (3,) and how it was found: the plate's mean force, else the standing body's up
-    `body` pitched normal to the stance foot's velocity `stance`, else `body` itself."""
+    `body` pitched normal to the resting feet's paths, else `body` itself."""
     if trial.force is not None:
         finite = np.all(np.isfinite(trial.force), axis=1)
         mean = trial.force[finite].mean(axis=0) if finite.any() else np.zeros(3)
@@ -93,20 +101,46 @@ def _vertical(trial: Trial, body, stance) -> tuple[np.ndarray, str]:
             raise MocapError(f"{trial.source}: the force plate holds no finite non-zero force to "
                              f"find up from (an empty or broken plate: remove it)")
         return unit(mean) * (1 if mean @ body > 0 else -1), "the force plate's mean force"
-    if stance is not None:  # the stance foot moves level: pitch the body's up to be normal to it
-        d = unit(stance)
-        return unit(body - (body @ d) * d), "the standing body, pitched to the stance foot's level motion"
+    if paths is not None:
+        d = paths.direction
+        return unit(body - (body @ d) * d), "the standing body, pitched to the resting feet's level paths"
     return body, "the standing body (pelvis above feet)"
 
 
-def _stance_motion(trial: Trial, ms: msets.MarkerSet, up) -> np.ndarray | None:
-    """The stance foot's median velocity (3,; m/s, lab) over the frames each foot rests lowest."""
-    velocities = []
+def _level_note(paths: StancePaths, up) -> str:
+    """How level the resting feet's paths are about `up`: pooled, per side, their spread."""
+    sides = paths.side_elevations(up)
+    pooled = math.degrees(math.asin(float(np.clip(paths.direction @ up, -1, 1))))
+    return (f"the resting feet's paths ({len(paths.sides)} stances) rise {pooled:+.2f} deg "
+            f"(bootstrap sd {math.degrees(paths.spread(up)):.2f} deg; "
+            + ", ".join(f"{s} {math.degrees(e):+.2f}" for s, e in sides.items()) + ")")
+
+
+def _stance_paths(trial: Trial, ms: msets.MarkerSet, ref: dict, body) -> StancePaths | None:
+    """Each foot cluster's markers (low-passed at CUTOFF_HZ) over the frames it rests
+    (stance.at_rest: its pitch rate from its rigid fit to its standing shape `ref`, about the
+    axis normal to `body` and to the feet's fore-aft swing, its heights along `body`), as stance.stance_paths; then again with the
+    vertical speed tested along the up those paths give (along `body` the belt's speed leaks
+    into it: 0.1 m/s per 1.6 deg of tilt at 3.5 m/s)."""
+    markers, omega = {}, {}
     for s in SIDES:
         names = [n for n in ms.cluster(s, "foot") if not n.startswith("@")]
-        M = np.stack([trial.markers[n] for n in names], axis=1)
-        low = (M @ up).min(axis=1)
-        rest = low < np.percentile(low, 5) + 0.005
-        if rest.sum() >= 5:
-            velocities.append(np.median(np.gradient(M, 1.0 / trial.rate, axis=0)[rest].reshape(-1, 3), axis=0))
-    return np.mean(velocities, axis=0) if velocities else None
+        markers[s] = np.stack([lowpass(trial.markers[n], trial.rate, min(CUTOFF_HZ, 0.4 * trial.rate),
+                                       trial.source) for n in names], axis=1)
+        R, _ = kabsch(np.array([ref[n] for n in names]), markers[s])
+        omega[s] = angular_velocity(R, trial.rate)
+    feet = np.concatenate([M.mean(axis=1) for M in markers.values()])
+    feet = feet - feet.mean(axis=0)
+    feet -= np.outer(feet @ body, body)  # the feet swing fore and aft: normal to it is lateral
+    lateral = unit(np.cross(body, np.linalg.eigh(feet.T @ feet)[1][:, -1]))
+    pitch_rate = {s: w @ lateral for s, w in omega.items()}
+    paths, up = None, body
+    for test_vertical in (False, True):
+        rest = {s: at_rest((M @ up).min(axis=1), pitch_rate[s],
+                           np.gradient(M.mean(axis=1) @ up, 1.0 / trial.rate) if test_vertical else None)
+                for s, M in markers.items()}
+        paths = stance_paths(markers, rest, trial.rate) or paths
+        if paths is None:
+            return None
+        up = unit(body - (body @ paths.direction) * paths.direction)
+    return paths

@@ -18,32 +18,7 @@ from ..io.mocap import MocapError, Trial
 from .axes import Axes
 from .filters import CUTOFF_HZ, lowpass
 from .joints import Calibration
-
-
-def kabsch(reference, current) -> tuple[np.ndarray, np.ndarray]:
-    """Rotations R and translations t with current ~ reference @ R.T + t (rows are markers),
-    least squares, det R = +1 (Kabsch 1976).
-
-    reference: (k, 3); current: (k, 3) or a stack (..., k, 3), one fit per frame;
-    R: (..., 3, 3), t: (..., 3).
-    """
-    a0, b0 = reference.mean(axis=0), current.mean(axis=-2)
-    H = np.swapaxes(current - b0[..., None, :], -1, -2) @ (reference - a0)  # = ((ref)^T cur)^T
-    u, _, vt = np.linalg.svd(np.swapaxes(H, -1, -2))
-    v, ut = np.swapaxes(vt, -1, -2), np.swapaxes(u, -1, -2)
-    d = np.sign(np.linalg.det(v @ ut))
-    D = np.zeros(d.shape + (3, 3))
-    D[..., 0, 0] = D[..., 1, 1] = 1.0
-    D[..., 2, 2] = d
-    R = v @ D @ ut
-    return R, b0 - a0 @ np.swapaxes(R, -1, -2)
-
-
-def fit_residual(reference, current, R, t) -> np.ndarray:
-    """Rms distance (m) per frame between `current` (frames, k, 3) and the fitted cluster
-    `reference @ R.T + t` (reference (k, 3), R (frames, 3, 3), t (frames, 3))."""
-    fitted = np.einsum("fij,kj->fki", R, reference) + t[:, None, :]
-    return np.sqrt(np.mean(np.sum((fitted - current) ** 2, axis=-1), axis=-1))
+from .rigid import fit_residual, kabsch
 
 
 @dataclass

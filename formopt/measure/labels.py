@@ -22,7 +22,7 @@ from ..io import markerset as msets
 from ..io.markerset import SIDES
 from ..io.mocap import MocapError, Trial
 from .axes import left_of_labels, unit
-from .kinematics import fit_residual, kabsch
+from .rigid import fit_residual, kabsch
 
 STATIC_DRIFT = 0.05  # m: the pelvis of a standing trial moves less
 LABEL_TOLERANCE = 0.010  # m rms: a cluster fitting worse than this has its labels questioned

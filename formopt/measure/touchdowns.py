@@ -31,6 +31,7 @@ from ..mechanics.model import joint_angles, xy
 from .filters import lowpass
 from .joints import Calibration
 from .kinematics import Kinematics
+from .stance import MIN_REST_FRAMES, at_rest
 
 FORCE_THRESHOLD_N = 50.0  # vertical force at touchdown
 FOOT_SPEED_FRACTION = 0.5  # without a plate: the foot's speed over the ground below this
@@ -154,7 +155,8 @@ def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration,
     speed = belt + float(np.median(np.gradient(pelvis, 1.0 / kin.rate)))
     if not SPEED_RANGE[0] <= speed <= SPEED_RANGE[1]:
         raise MocapError(f"{trial.source}: a running speed of {speed:.3g} m/s is outside "
-                         f"{SPEED_RANGE[0]:g}-{SPEED_RANGE[1]:g} m/s: wrong units or rate")
+                         f"{SPEED_RANGE[0]:g}-{SPEED_RANGE[1]:g} m/s: wrong units or rate "
+                         f"(is the rate, {trial.rate:g} Hz, right?)")
     if trial.force is not None:
         assert trial.force_rate is not None  # io.mocap reads the force with its rate
         method = "force plate"
@@ -174,7 +176,7 @@ def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration,
     steps = []
     window = max(1, round(STEP_WINDOW * kin.rate))
     for t, side in times:
-        frame = math.floor(t * kin.rate) - 1
+        frame = math.floor(t * kin.rate + 1e-6) - 1  # t * rate is a whole frame up to rounding
         if 2 <= frame < len(kin.t) - 2:
             problems = _problems(trial, kin, cal, side, frame, window)
             steps.append(_touchdown(kin, side, frame, t, belt, foot_low[side][frame], problems))
@@ -196,13 +198,12 @@ def _foot_motion(kin: Kinematics, cal: Calibration, side: str):
 
 
 def _belt_speed(trial: Trial, motion: dict) -> float:
-    """The ground's backward speed (m/s; 0 overground): the foot cluster's while it rests flat
-    (in the lowest third of its heights, turning under 0.5 rad/s, moving up or down under
-    0.1 m/s)."""
+    """The ground's backward speed (m/s; 0 overground): the foot cluster's median while it
+    rests (stance.at_rest: low, turning and moving up or down slowly for its own motion)."""
     speeds = []
     for v, height, omega in motion.values():
-        rest = (height < np.percentile(height, 35)) & (np.abs(omega) < 0.5) & (np.abs(v[:, 1]) < 0.1)
-        if rest.sum() >= 5:
+        rest = at_rest(height, omega, v[:, 1])
+        if rest.sum() >= MIN_REST_FRAMES:
             speeds.append(-float(np.median(v[rest, 0])))
     if not speeds:
         raise MocapError(f"{trial.source}: no stance found: the feet never rest on the ground "
@@ -254,8 +255,9 @@ def _problems(trial: Trial, kin: Kinematics, cal: Calibration, side: str, frame:
 
 
 def _check_cadence(trial: Trial, kin: Kinematics, foot_low: dict, cadence: float, notes: list) -> None:
-    """The touchdowns' cadence against each foot's rhythm (twice its stride frequency): they
-    disagree when the force and marker files do not match."""
+    """The touchdowns' cadence against each foot's rhythm (twice its stride frequency, 60-300
+    steps/min): they disagree when the force and marker files do not match, or without a
+    plate when the rate is wrong (the markers' low-pass then cuts the stride's harmonics)."""
     def peak(signal, rate, lo, hi):
         spectrum = np.abs(np.fft.rfft(signal - signal.mean()))
         freqs = np.fft.rfftfreq(len(signal), 1.0 / rate)
@@ -264,9 +266,10 @@ def _check_cadence(trial: Trial, kin: Kinematics, foot_low: dict, cadence: float
 
     feet = 120.0 * np.mean([peak(foot_low[s], kin.rate, 0.5, 2.5) for s in SIDES])
     if not abs(cadence / feet - 1) < CADENCE_TOLERANCE:
+        why = ("the force and marker data do not cover the same time (lengths or rates)"
+               if trial.force is not None else f"is the rate, {trial.rate:g} Hz, right?")
         raise MocapError(f"{trial.source}: the touchdowns give a cadence of {cadence:.0f} steps/min "
-                         f"but the feet move at {feet:.0f}: the force and marker data do not "
-                         f"cover the same time (lengths or rates)")
+                         f"but the feet move at {feet:.0f}: {why}")
     notes.append(f"cadence {cadence:.1f} steps/min; the feet's rhythm {feet:.1f}")
 
 

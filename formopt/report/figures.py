@@ -273,7 +273,7 @@ def comparison_figure(c, rep: dict) -> Figure:
         ks = o.steps
         t = [c.steps.touchdowns[k].time for k in ks]
         band = np.array([c.T_c_band[k] for k in ks])
-        values = np.array([c.results[k].T_c for k in ks])
+        values = np.array([c.step_T_c(k) for k in ks])
         ax.errorbar(t, values, yerr=[values - band[:, 0], band[:, 1] - values], fmt="o", ms=3,
                     color="0.4", ecolor="0.7", label=f"measured {o.point} steps (band: filter, frame)")
         if o.optimum is not None:

@@ -28,7 +28,9 @@ from ..measure.filters import effective_cutoff
 from ..measure.touchdowns import FLAT_S, PlateImpact, plate_impact, shifted
 from ..mechanics.body import Body, scaled_body
 from ..mechanics.contact import LAWS
+from ..mechanics.errors import InputError
 from ..mechanics.impact import Impact, ImpactResult
+from ..mechanics.landing import Diverged, LandingModel, simulate_state
 from ..mechanics.model import STATE, STRIKES, build_model, landmarks
 from ..optim.posture import Gait, PostureProblem, Problem
 from ..optim.solution import CONVERGED, Optimum
@@ -120,6 +122,38 @@ class SideOptimum:
         return self.optimum.verdict
 
 
+SEQUENCE_DT_S, SEQUENCE_MAX_S = 1e-3, 0.2  # the flat step's landing: its step and longest span
+#   (the second point comes down 0.4-1.7 ms after the first in RBDS001's flat steps; the
+#   landing locates that event itself, between steps)
+
+
+@dataclass(frozen=True)
+class FlatSequence:
+    """A flat step as the sequence it is (issue 24): the first point's impact (the model's
+    sole puts it lower), then the second point's impact as the landing from the step's
+    measured state simulates it (mechanics.landing.simulate_state, the comparison's law and
+    friction). The rigid flat impact (both points pinned at once) bounds it from above."""
+
+    first: str  # "heel" or "forefoot": the point down first
+    first_J: float  # T_c of the first point's impact
+    total_J: float  # the landing's T_c_total: both impacts and any re-impact of the first
+    second_ms: float | None  # ms after the first: the second point's impact (None: never)
+    violations: tuple[str, ...]  # the landing's own checks it breaks (Landing.violations)
+
+
+def flat_sequence(lm: LandingModel, first: str, x, friction: float) -> FlatSequence | None:
+    """The FlatSequence of a flat step of state `x` (model.STATE, SI) landing on `first`;
+    None when the landing cannot run from it (diverges, or refuses a state with the other
+    point below the ground): the rigid flat impact then stands, said in the notes."""
+    try:
+        landing = simulate_state(lm, first, x, friction, SEQUENCE_DT_S, SEQUENCE_MAX_S)
+    except (Diverged, InputError):
+        return None
+    second = next((e.time for e in landing.impacts if e.contact != first), None)
+    return FlatSequence(first, landing.impacts[0].T_c, landing.T_c_total,
+                        None if second is None else second * 1e3, tuple(landing.violations))
+
+
 @dataclass
 class Comparison:
     measurement: Measurement
@@ -133,6 +167,12 @@ class Comparison:
     sole: list[tuple[str, float, float]]  # per touchdown: the model sole's lower point, the
     #                 other's time down (s), T_c (J) of an impact at the lower point alone
     plate: list[PlateImpact | None] = field(default_factory=list)  # per touchdown, trials with forces
+    sequence: list[FlatSequence | None] = field(default_factory=list)  # per touchdown: flat steps'
+
+    def step_T_c(self, k: int) -> float:
+        """The headline T_c (J) of touchdown k: a flat step's sequence total, else its impact's."""
+        seq = self.sequence[k] if self.sequence else None
+        return seq.total_J if seq is not None else self.results[k].T_c
 
     @property
     def steps(self) -> Steps:
@@ -140,19 +180,30 @@ class Comparison:
 
     @property
     def flat_notes(self) -> list[str]:
-        """What a side whose impacts are flat should be read with: the rigid flat impact pins
-        both foot points at once, the foot spreads them over the impact; the first point's
-        impact alone (its T_c, J) brackets it from below."""
+        """What a side whose impacts are flat should be read with: the sequence's T_c (the
+        headline), the first point's alone, the rigid flat impact's upper bound, and the
+        landings that break their own checks or diverged."""
         out = []
         for side, o in self.sides.items():
             if o.point != "flat":
                 continue
-            flat = [r.T_c for k, r in enumerate(self.results) if k in o.steps]
-            first = [self.sole[k][2] for k in o.steps]
-            out.append(f"{'right' if side == 'R' else 'left'}: flat steps, T_c {np.mean(flat):.2f} J "
-                       f"as a rigid flat impact (both points pinned at once) against "
-                       f"{np.mean(first):.2f} J at the first point alone: a foot spreads the two "
-                       "contacts over the impact, so read the flat value as an upper bound")
+            seqs = [self.sequence[k] for k in o.steps] if self.sequence else []
+            done = [q for q in seqs if q is not None]
+            rigid = np.mean([self.results[k].T_c for k in o.steps])
+            name = "right" if side == "R" else "left"
+            if not done:
+                out.append(f"{name}: flat steps, T_c {rigid:.2f} J as a rigid flat impact (no "
+                           "landing of the sequence could run from the steps' states): an upper bound")
+                continue
+            second = [q.second_ms for q in done if q.second_ms is not None]
+            broken = sum(bool(q.violations) for q in done)
+            out.append(f"{name}: flat steps as their sequence, T_c {np.mean([q.total_J for q in done]):.2f} J "
+                       f"(the first point's impact {np.mean([q.first_J for q in done]):.2f} J, the "
+                       f"second point down {np.median(second) if second else float('nan'):.1f} ms later "
+                       f"as the landing simulates it); the rigid flat impact, {rigid:.2f} J, is its "
+                       f"upper bound"
+                       + (f"; {broken} of {len(done)} landings break their own checks" if broken else "")
+                       + (f"; {len(seqs) - len(done)} could not land (rigid flat kept)" if len(done) < len(seqs) else ""))
         return out
 
     @property
@@ -282,9 +333,12 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
     points = [p for p, _, _ in firsts]
     impacts = {s: Impact(model, s, 0.0, friction, law=law) for s in STRIKES}
     results = [impacts[p](modelled_state(td, p)) for td, p in zip(steps.touchdowns, points)]
-    nominal = np.array([r.T_c for r in results])
+    lm = LandingModel(model, law=law, compiled=False)  # interpreted: ~4 ms a landing, no compile
+    sequence = [flat_sequence(lm, first, td.state(), friction) if p == "flat" else None
+                for td, (p, first, _) in zip(steps.touchdowns, firsts)]
+    nominal = np.array([q.total_J if q is not None else r.T_c for q, r in zip(sequence, results)])
     say(f"{len(steps.touchdowns)} touchdowns; T_c's band: the step measured {len(VARIANTS)} more ways")
-    spread = np.array([[impacts[p](modelled_state(v, p)).T_c if v else np.nan
+    spread = np.array([[headline_T_c(v, p, sole, impacts, lm, friction) if v else np.nan
                         for v, p in zip(variant, points)]
                        for variant in variants(trial, static, height, options, m)])
     bounds = {**BOUNDS_DEG, **(bounds_deg or {})}
@@ -310,13 +364,29 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
                                        impacts, problem, friction, per_step)
     band = [(float(np.nanmin([a, *col])), float(np.nanmax([a, *col])))
             for a, col in zip(nominal, spread.T)]
-    t, axes = m.trial, m.calibration.axes
-    plate = [plate_impact(t.force, t.force_rate, axes.forward, axes.up, td.time, mass * G, t.source)
-             if steps.method == "force plate" and t.force_rate is not None else None
-             for td in steps.touchdowns]
+    plate = plate_impacts(m, mass)
     return Comparison(m, results, points, band, sides, body, law, settings,
                       [(lower, follows, r.T_c if p != "flat" else impacts[lower](td.state()).T_c)
-                       for (p, lower, follows), r, td in zip(firsts, results, steps.touchdowns)], plate)
+                       for (p, lower, follows), r, td in zip(firsts, results, steps.touchdowns)], plate,
+                      sequence)
+
+
+def plate_impacts(m: Measurement, mass: float) -> list[PlateImpact | None]:
+    """Each touchdown's impact as the plate measured it (touchdowns.plate_impact; `mass`, kg),
+    None for all without a plate."""
+    t, axes = m.trial, m.calibration.axes
+    return [plate_impact(t.force, t.force_rate, axes.forward, axes.up, td.time, mass * G, t.source)
+            if m.steps.method == "force plate" and t.force_rate is not None else None
+            for td in m.steps.touchdowns]
+
+
+def headline_T_c(td: Touchdown, point: str, sole: ca.Function, impacts: dict, lm: LandingModel,
+                 friction: float) -> float:
+    """T_c (J) of a step at its impact point: a flat one's sequence total (FlatSequence),
+    landing on the point its own sole puts lower, rigid flat where the landing cannot run;
+    the others their impact's."""
+    seq = flat_sequence(lm, impact_point(sole, td)[1], td.state(), friction) if point == "flat" else None
+    return seq.total_J if seq is not None else impacts[point](modelled_state(td, point)).T_c
 
 
 def variants(trial, static, height: float, options: Options, m: Measurement) -> list[list]:
@@ -413,10 +483,15 @@ def touchdown_row(c: Comparison, k: int) -> dict:
            "hip_height_m": td.hip_height,
            "hip_from_point_m": {q: list(v) for q, v in td.hip_from_point.items()},
            "valid_data": td.valid_data, "data_problems": list(td.problems),
-           "T_c": r.T_c, "T_c_band_J": list(c.T_c_band[k]), "mu_c": r.mu_c, "valid": r.valid,
+           "T_c": c.step_T_c(k), "T_c_band_J": list(c.T_c_band[k]), "mu_c": r.mu_c, "valid": r.valid,
            "contact_laws": {law: {**{key: getattr(v, key) for key in ("T_c", "valid", "mode", "slip_velocity")},
                                   "impulse_ratio": impulse_ratio(v)}
                             for law, v in r.contact_laws.items()}}
+    seq = c.sequence[k] if c.sequence else None
+    if seq is not None:
+        row["flat_sequence"] = {"first": seq.first, "T_c_first_J": seq.first_J, "T_c_total_J": seq.total_J,
+                                "second_down_ms": seq.second_ms, "violations": list(seq.violations),
+                                "T_c_rigid_flat_J": r.T_c}
     pl = c.plate[k] if c.plate else None
     if pl is not None:
         row.update({"plate_impulse_ratio": pl.impulse_ratio, "impact_peak_bw": pl.impact_peak_bw,
@@ -463,7 +538,7 @@ def summary(c: Comparison) -> dict:
         segments = stats([[math.degrees(td.segments[k]) for k in SEGMENTS] for td, _ in rows])
         fsa = stats([math.degrees(td.foot_strike_angle) for td, _ in rows])
         point = c.sides[side].point
-        T_c = stats([c.results[k].T_c for k in c.sides[side].steps])
+        T_c = stats([c.step_T_c(k) for k in c.sides[side].steps])
         patterns = [td.strike for td, _ in rows]
         mine = [c.points[k] for k, td in enumerate(c.steps.touchdowns) if td.side == side and td.valid_data]
         orders = [td.contact_order for td, _ in rows]

@@ -9,7 +9,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from formopt.measure.axes import Axes
-from formopt.measure.kinematics import fit_residual, kabsch, pitch, segment_angles
+from formopt.measure.kinematics import pitch, segment_angles
+from formopt.measure.rigid import fit_residual, kabsch
 
 rng = np.random.default_rng(22)
 

@@ -126,5 +126,35 @@ def test_each_side_is_its_own_and_every_step_has_its_impact_point(t35):
         assert all(t35.steps.touchdowns[k].side == side for k in o.steps)
         assert all(t35.points[k] == o.point for k in o.steps)
         assert o.checked.valid  # the mean touchdown is a valid one (no point below the ground)
-    for (lo, hi), r in zip(t35.T_c_band, t35.results):
-        assert lo <= r.T_c <= hi
+    for k, (lo, hi) in enumerate(t35.T_c_band):
+        assert lo <= t35.step_T_c(k) <= hi
+
+
+def test_a_flat_step_is_its_sequence_below_the_rigid_flat_impact():
+    """RBDS001 T25's flat steps (the model and the markers agree both points are down within
+    FLAT_S): the landing from each step's state puts the first point down (its T_c the impact
+    map's at that point), the second within a few ms, and absorbs in all no more than the
+    rigid flat impact (both points pinned at once) and no less than the first impact."""
+    from helpers import DATA
+
+    from formopt.io import mocap
+    from formopt.measure import measure
+    from formopt.mechanics.body import scaled_body
+    from formopt.mechanics.impact import Impact
+    from formopt.mechanics.landing import LandingModel
+    from formopt.mechanics.model import build_model
+    from formopt.studies.compare import flat_sequence, sole_function
+    rbds = DATA / "rbds"
+    m = measure(mocap.read(rbds / "RBDS001runT25markers.txt", rbds / "RBDS001runT25forces.txt"),
+                mocap.read(rbds / "RBDS001static.c3d"), 1.81)
+    body = scaled_body(62.0, 1.81)
+    model, sole = build_model(body, "leg"), sole_function(body)
+    lm = LandingModel(model, law="coulomb", compiled=False)
+    flats = [(td, first) for td in m.steps.valid for p, first, _ in [impact_point(sole, td)] if p == "flat"][:6]
+    assert len(flats) == 6
+    for td, first in flats:
+        seq = flat_sequence(lm, first, td.state(), 0.8)
+        rigid = Impact(model, "flat", 0.0, 0.8, law="coulomb")(modelled_state(td, "flat")).T_c
+        assert seq.first_J == pytest.approx(Impact(model, first, 0.0, 0.8, law="coulomb")(td.state()).T_c, rel=1e-6)
+        assert 0 < seq.second_ms < 5.0
+        assert seq.first_J < seq.total_J <= rigid * 1.01
