@@ -12,8 +12,14 @@ row of the phase after it; the touchdown's also its post-impact velocity). Const
   x_{k+1} - x_k = h/2 (x'_k + x'_{k+1}) (second order: the energy balance closes to O(h^2));
 - a phase that adds a point: the point on the ground at the previous phase's end, moving into
   it; the impact M(theta) (theta'+ - theta'-) = J_c^T p with J_c theta'+ = 0 (the projection of
-  mechanics.impact in joint coordinates); under no-slip p_n >= 0 and mu sum p_n -+ p_t >= 0;
+  mechanics.impact in joint coordinates), p_n >= 0 and mu sum p_n -+ p_t >= 0 (no-slip, and
+  Coulomb's sticking mode: a sticking impulse lies in the cone);
 - a phase that drops a point: that point's normal force zero at the previous phase's end;
+- a sliding touchdown (settings.touchdown = "slide", Coulomb's sliding mode): the touchdown
+  impulse on the cone's edge, p_t = -s mu p_n, p_n >= 0, the normal velocity zero after it and
+  the slip's sign s held (s v_t >= 0 before and after); in the `slide` phase the point's
+  tangential force is -s mu f_n, s v_t >= 0 at every node, and v_t = 0 at the phase's end
+  (s, +1 or -1, the parameter `slip`);
 - for the work objectives, each joint's power split P = P+ - P- (W/kg, P+- >= 0) at every node
   (problem.py says why);
 - the touchdown of L at the flight's end, its impact, and periodicity: the post-impact state
@@ -26,7 +32,8 @@ also at the midpoints) was tried and stalled from the same guess (dual infeasibi
 200 iterations), so it is not shipped. The trapezoidal rule's weak point, a light foot ringing
 node to node against a stiff range-of-motion wall, is closed by the walls' width and hard
 bounds (mechanics.joint_space); the forward simulation (`Stride.checks`) measures what is left.
-The drift of the held contact points is measured too. Parameters p = [speed (m/s), slope (rad), mu]; the cadence is
+The drift of the held contact points is measured too. Parameters p = [speed (m/s), slope (rad), mu,
+slip (the sliding touchdown's sign s; unused by a sticking one)]; the cadence is
 imposed, when asked, through the bounds of the half-period's row.
 """
 
@@ -34,7 +41,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import casadi as ca
 import numpy as np
@@ -44,7 +51,7 @@ from .problem import SMOOTHING, WORK_REGULARISATION, StrideSettings, metabolic, 
 
 NX = len(THETA)
 NU = len(JOINTS)
-PARAMETERS = ("speed", "slope", "mu")
+PARAMETERS = ("speed", "slope", "mu", "slip")
 ACCELERATION = 1000.0  # rad/s^2 (m/s^2 for the hip): bound on theta''
 TRUNK = (math.radians(-20.0), math.radians(45.0))  # rad, the trunk's lean (forward positive)
 IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive",
@@ -81,6 +88,11 @@ class Blocks:
     def join(self, values: dict) -> np.ndarray:
         return np.concatenate([_shaped(values[k], self.shapes[k]).ravel(order="F")
                                for k in self.names])
+
+
+def held_rows(rows, sliding: str = "") -> list[int]:
+    """Indices of the contact rows held kinematically: all but the sliding point's "t" row."""
+    return [k for k, (p, a) in enumerate(rows) if not (p == sliding and a == "t")]
 
 
 def _shaped(value, shape) -> np.ndarray:
@@ -125,13 +137,13 @@ class StrideNLP:
 
     def __init__(self, js: JointSpace, settings: StrideSettings, ipopt: dict | None = None):
         start = time.perf_counter()
-        self.js, self.settings = js, settings
+        self.js, self.settings, self.ipopt = js, settings, ipopt
         self.mass = js.mass_total
         self.phases = settings.phases
         self.split = settings.node_split()
         self.blocks, self.rows = Blocks(), Rows()
         self.p = ca.SX.sym("p", len(PARAMETERS))
-        self.speed, self.slope, self.mu = ca.vertsplit(self.p)
+        self.speed, self.slope, self.mu, self.slip = ca.vertsplit(self.p)
         self._variables()
         self.terms = {"effort": 0, "positive": 0, "negative": 0, "impacts": 0, "smoothing": 0}
         for i in range(len(self.phases)):
@@ -180,9 +192,8 @@ class StrideNLP:
         self.period = ca.sum1(ca.vertcat(*self.T))
 
     def _impulse_bounds(self, rows):
-        """Impulse bounds (N s per kg): normal >= 0 under no-slip (it must push)."""
-        push = 0.0 if self.settings.law == "no-slip" else -np.inf
-        return (np.array([[push if a == "n" else -np.inf] for _, a in rows]),
+        """Impulse bounds (N s per kg): normal >= 0 (the ground can only push)."""
+        return (np.array([[0.0 if a == "n" else -np.inf] for _, a in rows]),
                 np.array([[np.inf] for _ in rows]))
 
     def added(self, i) -> tuple[str, ...]:
@@ -251,13 +262,17 @@ class StrideNLP:
         residual = (self.js.mass(th) @ thdd + self.js.bias(th, thd) - self.js.gravity(th)
                     - self.js.passive(th) + ca.vertcat(0, 0, 0, tau))
         if phase.rows:
-            Jc, drift, _ = self.contact(phase.rows, th, thd)
+            Jc, drift, vel = self.contact(phase.rows, th, thd)
             residual -= Jc.T @ (m * g * f)
-            rows.add(Jc @ thdd + drift)
+            held = held_rows(phase.rows, phase.sliding)
+            rows.add((Jc @ thdd + drift)[held])
             total_n = ca.sum1(ca.vertcat(*[f[k] for k, (_, a) in enumerate(phase.rows) if a == "n"]))
             for k, (_, a) in enumerate(phase.rows):
-                if a == "t":
+                if a == "t" and k in held:
                     rows.add(ca.vertcat(self.mu * total_n - f[k], self.mu * total_n + f[k]), 0.0, np.inf)
+                elif a == "t":  # kinetic friction against the slip, whose sign s holds
+                    rows.add(f[k] + self.slip * self.mu * total_n)
+                    rows.add(self.slip * vel[k], 0.0, np.inf)
         rows.add(residual / m)
         free = [p for p in self.js.points if p not in phase.points]
         rows.add(ca.vertcat(*[self.height(p, th) for p in free]), 0.0, np.inf)
@@ -276,24 +291,37 @@ class StrideNLP:
             self._impact(after.rows, th, v_minus, v_plus, self.P[i - 1])
         else:
             rows.add(v_plus - v_minus)
+            if before.sliding:  # the slide ends when the point's slip reaches zero
+                rows.add(self.contact(((before.sliding, "t"),), th, v_minus)[2])
             dropped = [k for k, (p, a) in enumerate(before.rows)
                        if a == "n" and p not in after.points]
             rows.add(self.F[i - 1][dropped, -1])
 
-    def _impact(self, contact_rows, th, v_minus, v_plus, P):
-        """M (theta'+ - theta'-) = J_c^T p, J_c theta'+ = 0, and (no-slip) the friction cone."""
+    def _impact(self, contact_rows, th, v_minus, v_plus, P, sliding=""):
+        """M (theta'+ - theta'-) = J_c^T p, J_c theta'+ = 0 on the held rows, and the friction
+        cone (sticking), or the sliding mode's rows (`sliding`: the point that slides)."""
         m = self.mass
         Jc, _, _ = self.contact(contact_rows, th, v_plus)
         M = self.js.mass(th)
         self.rows.add((M @ (v_plus - v_minus) - Jc.T @ (m * P)) / m)
-        self.rows.add(Jc @ v_plus)
-        if self.settings.law == "no-slip":
+        self.rows.add((Jc @ v_plus)[held_rows(contact_rows, sliding)])
+        if sliding:
+            self._sliding_impulse(contact_rows.index((sliding, "t")), contact_rows.index((sliding, "n")),
+                                  self.contact(((sliding, "t"),), th, v_minus)[2],
+                                  self.contact(((sliding, "t"),), th, v_plus)[2], P)
+        else:  # sticking, under either law: the impulse inside the friction cone
             total_n = ca.sum1(ca.vertcat(*[P[k] for k, (_, a) in enumerate(contact_rows) if a == "n"]))
             for k, (_, a) in enumerate(contact_rows):
                 if a == "t":
                     self.rows.add(ca.vertcat(self.mu * total_n - P[k], self.mu * total_n + P[k]),
                                   0.0, np.inf)
         self.terms["impacts"] += 0.5 * (ca.bilin(M, v_minus, v_minus) - ca.bilin(M, v_plus, v_plus))
+
+    def _sliding_impulse(self, t, n, slip_minus, slip_plus, P):
+        """Coulomb's sliding mode: p_t = -s mu p_n, p_n >= 0, s v_t >= 0 before and after (the
+        slip keeps its sign through the impact, so the Darboux-Keller process never sticks)."""
+        self.rows.add(P[t] + self.slip * self.mu * P[n])
+        self.rows.add(ca.vertcat(P[n], self.slip * slip_minus, self.slip * slip_plus), 0.0, np.inf)
 
     def _touchdown(self):
         """L's touchdown at the flight's end, its impact and periodicity with the start."""
@@ -302,7 +330,8 @@ class StrideNLP:
         for p in dict.fromkeys(p for p, _ in self.touchdown_rows):
             rows.add(self.height(p, th))
             rows.add(self.normal_velocity(p, th, v_minus), -np.inf, 0.0)
-        self._impact(self.touchdown_rows, th, v_minus, self.V_td, self.P_td)
+        sliding = self.phases[0].sliding and other_leg(self.phases[0].sliding)
+        self._impact(self.touchdown_rows, th, v_minus, self.V_td, self.P_td, sliding)
         step = self.speed * self.period
         shift = ca.vertcat(step * ca.cos(self.slope), step * ca.sin(self.slope), ca.DM.zeros(7))
         rows.add(swap_legs(th) - shift - start[:NX])
@@ -325,6 +354,16 @@ class StrideNLP:
         return (f + s.impact_weight * terms["impacts"] / distance / (m * 9.81)
                 + SMOOTHING * terms["smoothing"] / distance)
 
+    def variant(self, **changes) -> StrideNLP:
+        """The NLP of the same body and IPOPT options with settings changed (e.g. touchdown=
+        "slide"), built once and kept."""
+        key = tuple(sorted(changes.items()))
+        if not hasattr(self, "_variants"):
+            self._variants: dict = {}
+        if key not in self._variants:
+            self._variants[key] = StrideNLP(self.js, replace(self.settings, **changes), self.ipopt)
+        return self._variants[key]
+
     # -- solve -----------------------------------------------------------------------
     def _with_power_split(self, guess: dict) -> dict:
         """The guess with the power split (S_*) of its own moments and rates where it has none
@@ -340,16 +379,17 @@ class StrideNLP:
         return guess
 
     def solve(self, guess: dict, speed: float, slope: float = 0.0, mu: float = 0.8,
-              cadence: float | None = None) -> Solved:
+              cadence: float | None = None, slip: int = 1) -> Solved:
         """Solve from a guess (blocks by name, or a previous Solved's blocks); `cadence`
-        (steps/min) imposes the half-period 60 / cadence."""
+        (steps/min) imposes the half-period 60 / cadence; `slip`: the sign s of a sliding
+        touchdown's slip along the ground (+1 forward, -1 back; a sticking NLP ignores it)."""
         lbg, ubg = self.lbg.copy(), self.ubg.copy()
         k = sum(len(e) for e in self.rows.lower[:self.period_row])
         if cadence is not None:
             lbg[k] = ubg[k] = 60.0 / cadence
         b = self.blocks
         guess = self._with_power_split(guess)
-        p = np.array([speed, slope, mu])
+        p = np.array([speed, slope, mu, slip])
         start = time.perf_counter()
         out = self.solver(x0=b.join(guess), p=p, lbx=np.concatenate(b.lower),
                           ubx=np.concatenate(b.upper), lbg=lbg, ubg=ubg)
@@ -360,4 +400,5 @@ class StrideNLP:
                       status=str(stats["return_status"]), iterations=int(stats["iter_count"]),
                       solve_s=seconds, objective=float(out["f"]), x=x,
                       lam_g=np.asarray(out["lam_g"], float).ravel(),
-                      parameters={"speed": speed, "slope": slope, "mu": mu, "cadence": cadence})
+                      parameters={"speed": speed, "slope": slope, "mu": mu, "cadence": cadence,
+                                  "slip": slip})
