@@ -158,12 +158,16 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
 
 
 def _slip(js: JointSpace, point: str, path, T: float, slope: float, slip: int) -> dict:
-    """s v_t (m/s) of a sliding point along a simulated phase (`path`: the dense solution):
-    its least and largest on 200 steps, and v_t at the end."""
-    v = np.array([float(js.points[point](x[:NX], x[NX:], slope)[1][0])
-                  for x in path(np.linspace(0.0, T, 201)).T])
-    return {"slip_min_mps": float((slip * v).min()), "slip_max_mps": float((slip * v).max()),
-            "slip_end_mps": float(v[-1])}
+    """s v_t (m/s) of a sliding point along a simulated phase (`path`: the dense solution) on
+    400 steps: its least and largest before it first stops, v_t at the phase's end, and when
+    it first stops (`slip_stop_s`, s; T if it slides through; the NLP's slide stops at T)."""
+    times = np.linspace(0.0, T, 401)
+    v = slip * np.array([float(js.points[point](x[:NX], x[NX:], slope)[1][0]) for x in path(times).T])
+    stopped = np.flatnonzero(v <= 0.0)
+    k = stopped[0] if stopped.size else len(v)
+    stop = T if k == len(v) else float(np.interp(0.0, [v[k], v[k - 1]], [times[k], times[k - 1]])) if k else 0.0
+    return {"slip_min_mps": float(v[:k].min()) if k else 0.0, "slip_max_mps": float(v.max()),
+            "slip_end_mps": float(slip * v[-1]), "slip_stop_s": stop, "slip_duration_s": T}
 
 
 def half_period(nlp: StrideNLP, blocks: dict) -> float:

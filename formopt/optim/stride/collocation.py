@@ -19,7 +19,8 @@ row of the phase after it; the touchdown's also its post-impact velocity). Const
   impulse on the cone's edge, p_t = -s mu p_n, p_n >= 0, the normal velocity zero after it and
   the slip's sign s held (s v_t >= 0 before and after); in the `slide` phase the point's
   tangential force is -s mu f_n, s v_t >= 0 at every node, and v_t = 0 at the phase's end
-  (s, +1 or -1, the parameter `slip`);
+  (s, +1 or -1, the parameter `slip`); the slide's friction work counts with its impact's
+  T_c in the objective's impact term (the two are one Coulomb contact's loss);
 - for the work objectives, each joint's power split P = P+ - P- (W/kg, P+- >= 0) at every node
   (problem.py says why);
 - the touchdown of L at the flight's end, its impact, and periodicity: the post-impact state
@@ -237,8 +238,12 @@ class StrideNLP:
             d1 = ca.vertcat(X[NX:, k + 1], A[:, k + 1])
             self.rows.add(X[:, k + 1] - X[:, k] - 0.5 * h * (d0 + d1))
             self.terms["smoothing"] += h * ca.sumsqr(A[:, k + 1] - A[:, k])
-        for k, (weight, x, tau, _) in enumerate(self.samples(i, h)):
+        for k, (weight, x, tau, f) in enumerate(self.samples(i, h)):
             self.terms["effort"] += weight * ca.sumsqr(tau)
+            if phase.sliding:  # the slide's friction work: the rest of its impact's loss
+                t = phase.rows.index((phase.sliding, "t"))
+                v_t = self.contact(((phase.sliding, "t"),), x[:NX], x[NX:])[2]
+                self.terms["impacts"] -= weight * self.mass * 9.81 * f[t] * v_t
             if self.S:  # P = P+ - P-, P+- >= 0: minimising them makes them the exact parts
                 S = self.S[i][:, k]
                 self.rows.add(self.joint_power(x[NX:], tau) / self.mass - (S[:NU] - S[NU:]))

@@ -64,7 +64,7 @@ TOUCHDOWN_MODES = ("stick", "slide")
 # Share of the nodes per phase (normalised over a strike's phases): about RBDS001's durations
 # at 3.5 m/s (heel contact 0.03 s, flat 0.12 s, forefoot 0.09 s, flight 0.11 s), with at least
 # MIN_NODES each, since a short phase still needs its start and end conditions.
-NODE_SHARE = {"slide": 0.06, "heel": 0.12, "landing": 0.12, "flat": 0.3, "forefoot": 0.25, "flight": 0.33}
+NODE_SHARE = {"slide": 0.12, "heel": 0.12, "landing": 0.12, "flat": 0.3, "forefoot": 0.25, "flight": 0.33}
 MIN_NODES = 4
 OBJECTIVES = ("effort", "work", "metabolic")
 # Margaria R. (1968) Int Z angew Physiol 25:339: efficiencies of positive and negative muscle work
@@ -102,7 +102,7 @@ class StrideSettings:
     nodes: int = 40  # collocation intervals over the half stride
     law: str = "no-slip"  # contact law of the impacts (no-slip; coulomb: the mode checked, result.optimum)
     touchdown: str = "stick"  # the touchdown impact's mode: "slide" (coulomb) adds the slide phase
-    impact_weight: float = 0.0  # weight (1/m) of the impacts' summed T_c per distance
+    impact_weight: float = 0.0  # weight (1/m) of the impacts' summed T_c (and slide friction) per distance
     torque_limit: float = 4.0  # N m per kg of body mass, every joint
     duration: dict = field(default_factory=lambda: {"slide": (0.0005, 0.1), "heel": (0.005, 0.1), "landing": (0.005, 0.1),
                                                     "flat": (0.02, 0.3),
@@ -116,17 +116,17 @@ class StrideSettings:
             raise InputError(f"strike {self.strike!r}: expected one of {', '.join(STRIKES)}")
         if self.objective not in OBJECTIVES:
             raise InputError(f"objective {self.objective!r}: expected one of {', '.join(OBJECTIVES)}")
+        if self.touchdown not in TOUCHDOWN_MODES:
+            raise InputError(f"touchdown {self.touchdown!r}: expected stick or slide")
+        if self.touchdown == "slide" and (self.law != "coulomb" or self.strike not in SLIDING_PHASES):
+            raise InputError(f"touchdown 'slide': expected law coulomb and strike "
+                             f"{' or '.join(SLIDING_PHASES)}, not {self.law} and {self.strike}")
         if not MIN_NODES * len(self.phases) + 2 <= self.nodes <= 400:
             raise InputError(f"nodes = {self.nodes}: expected {MIN_NODES * len(self.phases) + 2} "
                              f"to 400 for a {self.strike} strike")
         if self.law not in ("no-slip", "coulomb"):
             raise InputError(f"law {self.law!r}: expected no-slip or coulomb (frictionless "
                              "impacts leave the foot sliding, a phase the stride does not model)")
-        if self.touchdown not in TOUCHDOWN_MODES:
-            raise InputError(f"touchdown {self.touchdown!r}: expected stick or slide")
-        if self.touchdown == "slide" and (self.law != "coulomb" or self.strike not in SLIDING_PHASES):
-            raise InputError(f"touchdown 'slide': expected law coulomb and strike "
-                             f"{' or '.join(SLIDING_PHASES)}, not {self.law} and {self.strike}")
         if not 0 <= self.impact_weight <= 1e3:
             raise InputError(f"impact_weight = {self.impact_weight}: expected 0 to 1000")
         if not 0.5 <= self.torque_limit <= 20:

@@ -266,34 +266,42 @@ def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
         if best is None or (solved.success, -solved.objective) > (best.success, -best.objective):
             best = solved
     assert best is not None  # starts >= 1 (the scene's check)
-    stride = summarise(nlp, best, simulate)
-    return touchdown_mode(nlp, stride, simulate) if nlp.settings.law == "coulomb" else stride
+    if nlp.settings.law != "coulomb":
+        return summarise(nlp, best, simulate)
+    kept, kept_nlp = touchdown_mode(nlp, summarise(nlp, best, simulate=False))
+    if not simulate:
+        return kept
+    stride = summarise(kept_nlp, kept.solved, simulate)  # the forward check of the kept mode only
+    stride.checks.update({k: v for k, v in kept.checks.items() if k == "touchdown_modes"})
+    return stride
 
 
-def touchdown_mode(nlp: StrideNLP, stick: Stride, simulate: bool = True) -> Stride:
+def touchdown_mode(nlp: StrideNLP, stick: Stride) -> tuple[Stride, StrideNLP]:
     """The Coulomb touchdown's mode, as the landing decides it: the sticking solve `stick`
     is checked with formopt's Coulomb map at its touchdown state; where the map says it does
     not stick, or the impulse sits on the friction cone's edge (the sticking mode's boundary),
     the sliding variant (problem.SLIDING_PHASES) is solved, warm-started from it, with the
     slip's sign s from the map (or against the tangential impulse); the better valid result
     is kept (valid first, then converged, then the least objective). `checks["touchdown_modes"]`
-    lists each mode tried: objective, success, validity."""
+    lists each mode tried: objective, success, validity, cost of transport, cadence.
+    Returns the kept stride and its NLP."""
     touchdown = stick.impacts[-1]
     edge = touchdown["mu_c"] is not None and touchdown["mu_c"] >= stick.friction * (1 - 1e-4)
     if nlp.settings.strike not in SLIDING_PHASES or not (touchdown["coulomb_mode"] != "stick" or edge):
-        return stick
+        return stick, nlp
     par = stick.solved.parameters
     slip = _slip_sign(nlp, stick)
     sliding = nlp.variant(touchdown="slide")
     solved = sliding.solve(slide_guess(sliding, stick.solved.blocks, par["mu"], slip), par["speed"],
                            par["slope"], par["mu"], par["cadence"], slip=slip)
-    slide = summarise(sliding, solved, simulate)
+    slide = summarise(sliding, solved, simulate=False)
     tried = [{"mode": s.impacts[-1]["mode"], "objective": s.objective_value, "success": s.success,
-              "valid": all(i["valid"] for i in s.impacts)} for s in (stick, slide)]
-    best = max((stick, slide), key=lambda s: (all(i["valid"] for i in s.impacts), s.success,
-                                              -s.objective_value))
+              "valid": all(i["valid"] for i in s.impacts), "cost_of_transport": s.cost_of_transport,
+              "cadence_spm": s.cadence_spm} for s in (stick, slide)]
+    best, best_nlp = max(((stick, nlp), (slide, sliding)), key=lambda c: (
+        all(i["valid"] for i in c[0].impacts), c[0].success, -c[0].objective_value))
     best.checks["touchdown_modes"] = tried
-    return best
+    return best, best_nlp
 
 
 def _slip_sign(nlp: StrideNLP, stick: Stride) -> int:
