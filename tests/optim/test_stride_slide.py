@@ -48,6 +48,8 @@ def test_sliding_phase_lists():
     for bad in ({"law": "no-slip"}, {"law": "coulomb", "strike": "flat"}):
         with pytest.raises(InputError, match="touchdown 'slide'"):
             StrideSettings(touchdown="slide", **bad)
+    with pytest.raises(InputError, match="slip"):
+        StrideSettings(law="coulomb", touchdown="slide", slip=0)
 
 
 def test_sliding_impact_against_the_coulomb_map(js):
@@ -71,7 +73,7 @@ def test_sliding_impact_against_the_coulomb_map(js):
         if float(v0[1]) >= 0 or contact.MODES[int(mode)] != "slide":
             continue
         s = 1 if float(v0[0]) >= 0 else -1
-        plus, _, T_c = joint_impact(js, rows, theta, thetad, 0.0, "heel_R", s, MU)
+        plus, _, T_c = joint_impact(js, rows, theta, thetad, 0.0, ("heel_R", s, MU))
         v_plus = np.asarray(js.points["heel_R"](theta, plus, 0.0)[1], float).ravel()
         assert T_c == pytest.approx(float(contact.absorbed(W_c, v0, p)), abs=1e-9)
         assert v_plus[0] == pytest.approx(float(slip), abs=1e-9)

@@ -33,45 +33,44 @@ def contact_matrix(js: JointSpace, rows, theta, slope) -> np.ndarray:
     return np.array(out).reshape(len(rows), NX)
 
 
-def force_directions(js: JointSpace, rows, theta, slope, sliding: str = "", slip: int = 0,
-                     mu: float = 0.0):
+def force_directions(js: JointSpace, rows, theta, slope, sliding: tuple | None = None):
     """(G, D): the held rows of J_c (rows x 9, `held_rows`) and the directions of their
-    forces, D = G with the sliding point's normal row replaced by J_n - s mu J_t (its force
-    on the cone's edge, against the slip s). Without `sliding`, G = D = J_c."""
+    forces. `sliding` = (point, s, mu): that point's "t" row is not held and its normal row's
+    force acts along J_n - s mu J_t (on the cone's edge, against the slip s); without it
+    G = D = J_c."""
     Jc = contact_matrix(js, rows, theta, slope)
-    held = held_rows(rows, sliding)
+    point, slip, mu = sliding or ("", 0, 0.0)
+    held = held_rows(rows, point)
     G, D = Jc[held], Jc[held].copy()
     if sliding:
-        k = held.index(rows.index((sliding, "n")))
-        D[k] -= slip * mu * Jc[rows.index((sliding, "t"))]
+        D[held.index(rows.index((point, "n")))] -= slip * mu * Jc[rows.index((point, "t"))]
     return G, D
 
 
-def joint_impact(js: JointSpace, rows, theta, thetad, slope, sliding: str = "", slip: int = 0,
-                 mu: float = 0.0):
-    """(theta'+, impulse (N s, per held row), T_c (J)) in joint coordinates: the projection
+def joint_impact(js: JointSpace, rows, theta, thetad, slope, sliding: tuple | None = None):
+    """(theta'+, impulse (N s, per held row), T_c (J)) in joint coordinates:
     p = -(G M^-1 D^T)^-1 G theta'-, theta'+ = theta'- + M^-1 D^T p (`force_directions`: the
-    sticking impact, or Coulomb's sliding mode of the point `sliding`)."""
+    sticking projection, or Coulomb's sliding mode with `sliding` = (point, s, mu))."""
     M = np.asarray(js.mass(theta), float)
-    G, D = force_directions(js, rows, theta, slope, sliding, slip, mu)
+    G, D = force_directions(js, rows, theta, slope, sliding)
     Minv_DT = np.linalg.solve(M, D.T)
     p = -np.linalg.solve(G @ Minv_DT, G @ thetad)
     plus = thetad + Minv_DT @ p
     return plus, p, 0.5 * thetad @ M @ thetad - 0.5 * plus @ M @ plus
 
 
-def impact_check(js: JointSpace, rows, theta, thetad, slope, mu, sliding: str = "",
-                 slip: int = 0) -> dict:
+def impact_check(js: JointSpace, rows, theta, thetad, slope, mu, sliding: tuple | None = None) -> dict:
     """The joint-space impact against formopt's natural-coordinate impact map, and the
     Coulomb mode (contact.coulomb for one point, contact.velocity_level for a flat foot).
-    Sticking: against the projection (mechanics.impact); `sliding` (Coulomb's sliding mode of
-    that point, slip sign `slip`): against contact.coulomb's T_c at the same state."""
+    Sticking: against the projection (mechanics.impact); `sliding` = (point, s, mu)
+    (Coulomb's sliding mode): against contact.coulomb's T_c at the same state."""
     model = js.model
-    plus, p_held, T_c = joint_impact(js, rows, theta, thetad, slope, sliding, slip, mu)
+    plus, p_held, T_c = joint_impact(js, rows, theta, thetad, slope, sliding)
     p = np.zeros(len(rows))
-    p[held_rows(rows, sliding)] = p_held
+    p[held_rows(rows, sliding[0] if sliding else "")] = p_held
     if sliding:
-        p[rows.index((sliding, "t"))] = -slip * mu * p[rows.index((sliding, "n"))]
+        point, slip, _ = sliding
+        p[rows.index((point, "t"))] = -slip * mu * p[rows.index((point, "n"))]
     q = np.asarray(js.q(theta), float).ravel()
     qd = np.asarray(js.J(theta), float) @ thetad
     points = tuple(dict.fromkeys(POINTS[pt] for pt, _ in rows))
@@ -91,17 +90,18 @@ def impact_check(js: JointSpace, rows, theta, thetad, slope, mu, sliding: str = 
             "coulomb_slip_mps": float(slip_after), "theta_d_plus": plus}
 
 
-def _accelerations(js, rows, theta, thetad, tau, slope, sliding="", slip=0, mu=0.0):
+def _accelerations(js, rows, theta, thetad, tau, slope, sliding: tuple | None = None):
     """theta'' and the contact forces (N, per held row) of the constrained equations of
-    motion (numeric); a `sliding` point's force on the cone's edge (`force_directions`)."""
+    motion (numeric); `sliding` = (point, s, mu): its force on the cone's edge
+    (`force_directions`)."""
     M = np.asarray(js.mass(theta), float)
     rhs = (np.asarray(js.gravity(theta), float).ravel() + np.asarray(js.passive(theta), float).ravel()
            - np.asarray(js.bias(theta, thetad), float).ravel() - np.r_[0, 0, 0, tau])
     if not rows:
         return np.linalg.solve(M, rhs), np.zeros(0)
-    G, D = force_directions(js, rows, theta, slope, sliding, slip, mu)
+    G, D = force_directions(js, rows, theta, slope, sliding)
     drift = np.array([float(js.points[pt](theta, thetad, slope)[3][0 if a == "t" else 1])
-                      for pt, a in rows])[held_rows(rows, sliding)]
+                      for pt, a in rows])[held_rows(rows, sliding[0] if sliding else "")]
     r = len(drift)
     K = np.block([[M, -D.T], [G, np.zeros((r, r))]])
     sol = np.linalg.solve(K, np.r_[rhs, -drift])
@@ -116,9 +116,9 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
     against the start; `slip_mps`: over a sliding phase (from its NLP start), the least and
     the largest s v_t of the sliding point on a fine grid (the slip held if the least is not
     below zero beyond the integration's error), and its v_t at the phase's end.
-    `parameters`: speed, slope, mu, slip (Solved.parameters)."""
+    `parameters`: speed, slope, mu (Solved.parameters)."""
     js, m = nlp.js, nlp.mass
-    slope, mu, slip = parameters["slope"], parameters["mu"], parameters.get("slip", 0)
+    slope, mu, slip = parameters["slope"], parameters["mu"], nlp.settings.slip
     X0 = blocks[f"X_{nlp.phases[0].name}"]
     state = X0[:, 0].copy()
     errors: list[np.ndarray] = []
@@ -132,8 +132,8 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
 
         def rhs(t, x, U=U, times=times, phase=phase):
             tau = np.array([np.interp(t, times, u) for u in U])
-            return np.r_[x[NX:], _accelerations(js, phase.rows, x[:NX], x[NX:], tau, slope,
-                                                phase.sliding, slip, mu)[0]]
+            sliding = (phase.sliding, slip, mu) if phase.sliding else None
+            return np.r_[x[NX:], _accelerations(js, phase.rows, x[:NX], x[NX:], tau, slope, sliding)[0]]
 
         for start, record in ((state, errors), (X[:, 0], reset)):
             out = solve_ivp(rhs, (0.0, T), start, method="DOP853", t_eval=times, rtol=1e-10,
@@ -143,8 +143,8 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
                 state = out.y[:, -1]
             elif phase.sliding:
                 slips = _slip(js, phase.sliding, out.sol, T, slope, slip)
-    touchdown = nlp.phases[0].sliding and other_leg(nlp.phases[0].sliding)
-    plus = joint_impact(js, nlp.touchdown_rows, state[:NX], state[NX:], slope, touchdown, slip, mu)[0]
+    touchdown = (other_leg(nlp.phases[0].sliding), slip, mu) if nlp.phases[0].sliding else None
+    plus = joint_impact(js, nlp.touchdown_rows, state[:NX], state[NX:], slope, touchdown)[0]
     step = parameters["speed"] * half_period(nlp, blocks)
     shift = np.r_[step * np.cos(slope), step * np.sin(slope), np.zeros(7)]
     period_error = max(np.abs(swap_legs(state[:NX]) - shift - X0[:NX, 0]).max(),

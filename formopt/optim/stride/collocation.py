@@ -19,7 +19,7 @@ row of the phase after it; the touchdown's also its post-impact velocity). Const
   impulse on the cone's edge, p_t = -s mu p_n, p_n >= 0, the normal velocity zero after it and
   the slip's sign s held (s v_t >= 0 before and after); in the `slide` phase the point's
   tangential force is -s mu f_n, s v_t >= 0 at every node, and v_t = 0 at the phase's end
-  (s, +1 or -1, the parameter `slip`); the slide's friction work counts with its impact's
+  (s, +1 or -1: settings.slip); the slide's friction work counts with its impact's
   T_c in the objective's impact term (the two are one Coulomb contact's loss);
 - for the work objectives, each joint's power split P = P+ - P- (W/kg, P+- >= 0) at every node
   (problem.py says why);
@@ -33,8 +33,7 @@ also at the midpoints) was tried and stalled from the same guess (dual infeasibi
 200 iterations), so it is not shipped. The trapezoidal rule's weak point, a light foot ringing
 node to node against a stiff range-of-motion wall, is closed by the walls' width and hard
 bounds (mechanics.joint_space); the forward simulation (`Stride.checks`) measures what is left.
-The drift of the held contact points is measured too. Parameters p = [speed (m/s), slope (rad), mu,
-slip (the sliding touchdown's sign s; unused by a sticking one)]; the cadence is
+The drift of the held contact points is measured too. Parameters p = [speed (m/s), slope (rad), mu]; the cadence is
 imposed, when asked, through the bounds of the half-period's row.
 """
 
@@ -52,7 +51,7 @@ from .problem import SMOOTHING, WORK_REGULARISATION, StrideSettings, metabolic, 
 
 NX = len(THETA)
 NU = len(JOINTS)
-PARAMETERS = ("speed", "slope", "mu", "slip")
+PARAMETERS = ("speed", "slope", "mu")
 ACCELERATION = 1000.0  # rad/s^2 (m/s^2 for the hip): bound on theta''
 TRUNK = (math.radians(-20.0), math.radians(45.0))  # rad, the trunk's lean (forward positive)
 IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive",
@@ -144,7 +143,8 @@ class StrideNLP:
         self.split = settings.node_split()
         self.blocks, self.rows = Blocks(), Rows()
         self.p = ca.SX.sym("p", len(PARAMETERS))
-        self.speed, self.slope, self.mu, self.slip = ca.vertsplit(self.p)
+        self.speed, self.slope, self.mu = ca.vertsplit(self.p)
+        self.slip = settings.slip
         self._variables()
         self.terms = {"effort": 0, "positive": 0, "negative": 0, "impacts": 0, "smoothing": 0}
         for i in range(len(self.phases)):
@@ -384,17 +384,16 @@ class StrideNLP:
         return guess
 
     def solve(self, guess: dict, speed: float, slope: float = 0.0, mu: float = 0.8,
-              cadence: float | None = None, slip: int = 1) -> Solved:
+              cadence: float | None = None) -> Solved:
         """Solve from a guess (blocks by name, or a previous Solved's blocks); `cadence`
-        (steps/min) imposes the half-period 60 / cadence; `slip`: the sign s of a sliding
-        touchdown's slip along the ground (+1 forward, -1 back; a sticking NLP ignores it)."""
+        (steps/min) imposes the half-period 60 / cadence."""
         lbg, ubg = self.lbg.copy(), self.ubg.copy()
         k = sum(len(e) for e in self.rows.lower[:self.period_row])
         if cadence is not None:
             lbg[k] = ubg[k] = 60.0 / cadence
         b = self.blocks
         guess = self._with_power_split(guess)
-        p = np.array([speed, slope, mu, slip])
+        p = np.array([speed, slope, mu])
         start = time.perf_counter()
         out = self.solver(x0=b.join(guess), p=p, lbx=np.concatenate(b.lower),
                           ubx=np.concatenate(b.upper), lbg=lbg, ubg=ubg)
@@ -405,5 +404,4 @@ class StrideNLP:
                       status=str(stats["return_status"]), iterations=int(stats["iter_count"]),
                       solve_s=seconds, objective=float(out["f"]), x=x,
                       lam_g=np.asarray(out["lam_g"], float).ravel(),
-                      parameters={"speed": speed, "slope": slope, "mu": mu, "cadence": cadence,
-                                  "slip": slip})
+                      parameters={"speed": speed, "slope": slope, "mu": mu, "cadence": cadence})

@@ -125,13 +125,13 @@ def perturbed(guess: dict, rng: np.random.Generator) -> dict:
     return out
 
 
-def slide_guess(nlp: StrideNLP, stick: dict, mu: float, slip: int) -> dict:
+def slide_guess(nlp: StrideNLP, stick: dict, mu: float) -> dict:
     """A sliding NLP's guess from a sticking solution's blocks: the slide phase held at the
     sticking start (state, moments and forces of its first node, the tangential force and the
     touchdown's tangential impulse on the cone's edge, -s mu times the normal), lasting
     DURATIONS["slide"]; every other block as solved (node histories resampled linearly where
     the phase has fewer nodes)."""
-    phase, n = nlp.phases[0], nlp.split[0]
+    phase, n, slip = nlp.phases[0], nlp.split[0], nlp.settings.slip
     first = nlp.phases[1].name
     guess = {k: np.array(v, float) for k, v in stick.items() if not k.startswith("S_")}
     for other, m in zip(nlp.phases[1:], nlp.split[1:]):  # the sticking phases on their nodes

@@ -23,7 +23,7 @@ tangential motion (the rows of mechanics.impact for a flat strike).
 Under Coulomb a touchdown may slide (`SLIDING_PHASES`, `StrideSettings.touchdown = "slide"`):
 the impact in its sliding mode (p_t = -s mu p_n, the point's normal velocity zero after it,
 the tangential free with the sign s of the slip), then a `slide` phase (the point on the
-ground, tangential force -s mu f_n, s v_t >= 0, s fixed) that ends when v_t reaches zero; the
+ground, tangential force -s mu f_n, s v_t >= 0, s = `StrideSettings.slip` fixed) that ends when v_t reaches zero; the
 strike's sticking sequence follows. A flat touchdown has no sliding variant (two points share
 the slip: velocity_level's law, checked after the solve).
 """
@@ -102,6 +102,7 @@ class StrideSettings:
     nodes: int = 40  # collocation intervals over the half stride
     law: str = "no-slip"  # contact law of the impacts (no-slip; coulomb: the mode checked, result.optimum)
     touchdown: str = "stick"  # the touchdown impact's mode: "slide" (coulomb) adds the slide phase
+    slip: int = 1  # a sliding touchdown's slip sign s along the ground (+1 forward, -1 back)
     impact_weight: float = 0.0  # weight (1/m) of the impacts' summed T_c (and slide friction) per distance
     torque_limit: float = 4.0  # N m per kg of body mass, every joint
     duration: dict = field(default_factory=lambda: {"slide": (0.0005, 0.1), "heel": (0.005, 0.1), "landing": (0.005, 0.1),
@@ -121,6 +122,8 @@ class StrideSettings:
         if self.touchdown == "slide" and (self.law != "coulomb" or self.strike not in SLIDING_PHASES):
             raise InputError(f"touchdown 'slide': expected law coulomb and strike "
                              f"{' or '.join(SLIDING_PHASES)}, not {self.law} and {self.strike}")
+        if self.slip not in (1, -1):
+            raise InputError(f"slip = {self.slip}: expected 1 (forward) or -1 (back)")
         if not MIN_NODES * len(self.phases) + 2 <= self.nodes <= 400:
             raise InputError(f"nodes = {self.nodes}: expected {MIN_NODES * len(self.phases) + 2} "
                              f"to 400 for a {self.strike} strike")

@@ -121,9 +121,9 @@ def budget(nlp: StrideNLP, blocks: dict, speed: float, slope: float, impacts: fl
             "metabolic_J": metabolic(sums["positive"], sums["negative"])}
 
 
-def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float, slip: int = 0) -> list[dict]:
+def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> list[dict]:
     """Each impact of the half stride: the NLP's T_c and formopt's impact map at its state;
-    `mode` the NLP's (stick, or slide for a sliding touchdown, `slip` its sign), `valid` when
+    `mode` the NLP's (stick, or slide for a sliding touchdown), `valid` when
     the point approaches, the ground pushes and the law agrees (no-slip: within the friction
     cone; Coulomb: formopt's Coulomb map gives the same mode)."""
     out, time = [], 0.0
@@ -134,9 +134,10 @@ def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float, slip: int = 0
         if i + 1 < len(nlp.phases) and nlp.P[i] is not None:
             after = nlp.phases[i + 1]
             transitions.append((after.rows, blocks[f"X_{phase.name}"][:, -1],
-                                blocks[f"X_{after.name}"][NX:, 0], time, nlp.added(i + 1), ""))
+                                blocks[f"X_{after.name}"][NX:, 0], time, nlp.added(i + 1), None))
     end = blocks[f"X_{nlp.phases[-1].name}"][:, -1]
-    sliding = nlp.phases[0].sliding and other_leg(nlp.phases[0].sliding)
+    slip = nlp.settings.slip
+    sliding = (other_leg(nlp.phases[0].sliding), slip, mu) if nlp.phases[0].sliding else None
     transitions.append((nlp.touchdown_rows, end, blocks["V_touchdown"].ravel(), time,
                         tuple(dict.fromkeys(p for p, _ in nlp.touchdown_rows)), sliding))
     M = nlp.js.mass
@@ -145,7 +146,7 @@ def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float, slip: int = 0
         th, minus = X[:NX], X[NX:]
         Mk = np.asarray(M(th), float)
         T_c = 0.5 * minus @ Mk @ minus - 0.5 * plus @ Mk @ plus
-        check = impact_check(nlp.js, rows, th, minus, slope, mu, slides, slip)
+        check = impact_check(nlp.js, rows, th, minus, slope, mu, slides)
         approach = max(float(nlp.js.points[p](th, minus, slope)[1][1]) for p in points)
         mode = "slide" if slides else "stick"
         valid = check["impulse_n"] > 0 and approach < 0 and (
@@ -161,17 +162,17 @@ def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float, slip: int = 0
                  "impulse_Ns": [check["impulse_t"], check["impulse_n"]],
                  "approach_mps": approach}
         if slides:
-            entry.update(slide(nlp, blocks, slope, mu, slip))
+            entry.update(slide(nlp, blocks, slope, mu))
         out.append(entry)
     return out
 
 
-def slide(nlp: StrideNLP, blocks: dict, slope: float, mu: float, slip: int) -> dict:
+def slide(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> dict:
     """The slide after a sliding touchdown (phase 0): its duration `slide_s` (s), the distance
     the point slid along the ground `slide_m` (m, signed), its slip sign `slip`, the least
     s v_t at its nodes (m/s), the friction work `slide_friction_J` (J, trapezoidal:
     mu f_n |v_t| integrated) and `stick_friction_ratio` of the sticking phases after it."""
-    phase, n = nlp.phases[0], nlp.split[0]
+    phase, n, slip = nlp.phases[0], nlp.split[0], nlp.settings.slip
     X, T = blocks[f"X_{phase.name}"], blocks[f"T_{phase.name}"].item()
     point = nlp.js.points[phase.sliding]
     tangent = np.array([np.cos(slope), np.sin(slope)])
@@ -211,7 +212,7 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
     durations = [(p.name, b[f"T_{p.name}"].item()) for p in nlp.phases]
     stance = sum(d for p, (_, d) in zip(nlp.phases, durations) if p.rows)
     t, names, theta, thetad, tau, force = histories(nlp, b, slope)
-    found = impacts(nlp, b, slope, mu, par.get("slip", 0))
+    found = impacts(nlp, b, slope, mu)
     energy = budget(nlp, b, speed, slope, sum(i["T_c"] for i in found))
     start, end = theta[0], theta[-1]
     shift = np.r_[step * np.cos(slope), step * np.sin(slope), np.zeros(7)]
@@ -291,9 +292,9 @@ def touchdown_mode(nlp: StrideNLP, stick: Stride) -> tuple[Stride, StrideNLP]:
         return stick, nlp
     par = stick.solved.parameters
     slip = _slip_sign(nlp, stick)
-    sliding = nlp.variant(touchdown="slide")
-    solved = sliding.solve(slide_guess(sliding, stick.solved.blocks, par["mu"], slip), par["speed"],
-                           par["slope"], par["mu"], par["cadence"], slip=slip)
+    sliding = nlp.variant(touchdown="slide", slip=slip)
+    solved = sliding.solve(slide_guess(sliding, stick.solved.blocks, par["mu"]), par["speed"],
+                           par["slope"], par["mu"], par["cadence"])
     slide = summarise(sliding, solved, simulate=False)
     tried = [{"mode": s.impacts[-1]["mode"], "objective": s.objective_value, "success": s.success,
               "valid": all(i["valid"] for i in s.impacts), "cost_of_transport": s.cost_of_transport,
