@@ -20,6 +20,7 @@ from formopt.mechanics.errors import InputError
 from formopt.mechanics.joint_space import POINTS, JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings, optimum
 from formopt.optim.stride.checks import joint_impact
+from formopt.optim.stride.guess import fitted
 from formopt.optim.stride.problem import SLIDING_PHASES
 
 NODES = 24
@@ -90,7 +91,7 @@ def test_mode_decision_keeps_the_valid_slide(slid):
     tried = {t["mode"]: t for t in stride.checks["touchdown_modes"]}
     assert not tried["stick"]["valid"]
     assert tried["slide"]["valid"] and tried["slide"]["success"]
-    assert stride.success and [p for p, _ in stride.phases][0] == "slide"
+    assert stride.success and stride.phases[0][0] == "slide"
     touchdown = stride.impacts[-1]
     assert touchdown["mode"] == touchdown["coulomb_mode"] == "slide"
     assert touchdown["slide_s"] > 0 and touchdown["slip"] * touchdown["slide_m"] > 0
@@ -145,3 +146,17 @@ def test_energy_budget_closes_with_the_slide(slid):
     assert slide > 0
     assert abs(b["balance_J"]) < 0.02 * b["positive_work_J"]
     assert abs(b["balance_J"] + slide) > 3 * abs(b["balance_J"])
+
+
+def test_a_sliding_solution_warm_starts_the_sticking_nlp(slid):
+    """A sliding solution fitted to the sticking NLP (one phase fewer, more nodes per phase):
+    every block the sticking NLP has, in its shape, with the end states of each phase kept."""
+    nlp, stride = slid
+    guess = fitted(nlp, stride.solved.blocks)
+    assert set(guess) == set(nlp.blocks.names) - {n for n in nlp.blocks.names if n.startswith("S_")}
+    for name, value in guess.items():
+        assert value.shape == nlp.blocks.shapes[name]
+    for phase in nlp.phases:
+        X, solved = guess[f"X_{phase.name}"], stride.solved.blocks[f"X_{phase.name}"]
+        assert np.allclose(X[:, [0, -1]], solved[:, [0, -1]])
+    nlp.blocks.join(guess)  # the solver's initial point

@@ -129,14 +129,10 @@ def slide_guess(nlp: StrideNLP, stick: dict, mu: float) -> dict:
     """A sliding NLP's guess from a sticking solution's blocks: the slide phase held at the
     sticking start (state, moments and forces of its first node, the tangential force and the
     touchdown's tangential impulse on the cone's edge, -s mu times the normal), lasting
-    DURATIONS["slide"]; every other block as solved (node histories resampled linearly where
-    the phase has fewer nodes)."""
+    DURATIONS["slide"]; every other block as solved (`fitted` onto this NLP's nodes)."""
     phase, n, slip = nlp.phases[0], nlp.split[0], nlp.settings.slip
     first = nlp.phases[1].name
-    guess = {k: np.array(v, float) for k, v in stick.items() if not k.startswith("S_")}
-    for other, m in zip(nlp.phases[1:], nlp.split[1:]):  # the sticking phases on their nodes
-        for key in ("X", "A", "U", "F"):
-            guess[f"{key}_{other.name}"] = _resampled(guess[f"{key}_{other.name}"], m + 1)
+    guess = fitted(nlp, {k: v for k, v in stick.items() if not k.startswith("S_")})
     t, normal = phase.rows.index((phase.sliding, "t")), phase.rows.index((phase.sliding, "n"))
     force = np.repeat(guess[f"F_{first}"][:, :1], n + 1, axis=1)
     force[t] = -slip * mu * force[normal]
@@ -147,6 +143,22 @@ def slide_guess(nlp: StrideNLP, stick: dict, mu: float) -> dict:
                   f"T_{phase.name}": float(np.clip(DURATIONS["slide"], *nlp.settings.duration["slide"]))})
     guess["P_touchdown"][t] = -slip * mu * guess["P_touchdown"][normal]
     return guess
+
+
+def fitted(nlp: StrideNLP, guess: dict) -> dict:
+    """A guess (blocks by name, e.g. another NLP's solution: a sliding one warm-starting a
+    sticking one, or the reverse) with each phase's node histories resampled linearly onto
+    this NLP's nodes where their counts differ; blocks it does not name are left out."""
+    out: dict = {}
+    for name in nlp.blocks.names:
+        if name not in guess:
+            continue
+        value = np.array(guess[name], float)
+        cols = nlp.blocks.shapes[name][1]
+        if value.ndim == 2 and cols > 1 and value.shape[1] != cols:
+            value = _resampled(value, cols)
+        out[name] = value
+    return out
 
 
 def _resampled(values: np.ndarray, count: int) -> np.ndarray:

@@ -23,7 +23,7 @@ import numpy as np
 from ...mechanics.joint_space import JOINTS, swap_legs
 from .checks import drift, forward, half_period, impact_check
 from .collocation import NX, Solved, StrideNLP
-from .guess import ballistic, perturbed, slide_guess
+from .guess import ballistic, fitted, perturbed, slide_guess
 from .problem import SLIDING_PHASES, metabolic, other_leg
 
 GRAVITY = 9.81
@@ -127,7 +127,7 @@ def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> list[dict]
     the point approaches, the ground pushes and the law agrees (no-slip: within the friction
     cone; Coulomb: formopt's Coulomb map gives the same mode)."""
     out, time = [], 0.0
-    transitions = []
+    transitions: list[tuple] = []
     for i, phase in enumerate(nlp.phases):
         T = blocks[f"T_{phase.name}"].item()
         time += T
@@ -255,11 +255,12 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
 def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
             cadence: float | None = None, guess: dict | None = None, simulate: bool = True,
             starts: int = 1, seed: int = 0) -> Stride:
-    """Solve the NLP from `guess` (default: the generic guess) and, with `starts` > 1, from
+    """Solve the NLP from `guess` (default: the generic guess; a solution of another phase
+    list is `fitted` to this one's nodes) and, with `starts` > 1, from
     starts - 1 perturbations of it (guess.perturbed, seeded); summarise the best converged
     solve (the least objective), or the first if none converged. Under Coulomb the touchdown's
     mode is then decided (`touchdown_mode`)."""
-    first = guess if guess is not None else ballistic(nlp, speed)
+    first = fitted(nlp, guess) if guess is not None else ballistic(nlp, speed)
     rng = np.random.default_rng(seed)
     best = None
     for k in range(starts):
@@ -267,49 +268,47 @@ def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
         if best is None or (solved.success, -solved.objective) > (best.success, -best.objective):
             best = solved
     assert best is not None  # starts >= 1 (the scene's check)
-    if nlp.settings.law != "coulomb":
-        return summarise(nlp, best, simulate)
-    kept, kept_nlp = touchdown_mode(nlp, summarise(nlp, best, simulate=False))
-    if not simulate:
-        return kept
-    stride = summarise(kept_nlp, kept.solved, simulate)  # the forward check of the kept mode only
-    stride.checks.update({k: v for k, v in kept.checks.items() if k == "touchdown_modes"})
+    tried: list = []
+    if nlp.settings.law == "coulomb":
+        nlp, best, tried = touchdown_mode(nlp, best)
+    stride = summarise(nlp, best, simulate)
+    if tried:
+        stride.checks["touchdown_modes"] = tried
     return stride
 
 
-def touchdown_mode(nlp: StrideNLP, stick: Stride) -> tuple[Stride, StrideNLP]:
+def touchdown_mode(nlp: StrideNLP, stick: Solved) -> tuple[StrideNLP, Solved, list]:
     """The Coulomb touchdown's mode, as the landing decides it: the sticking solve `stick`
     is checked with formopt's Coulomb map at its touchdown state; where the map says it does
     not stick, or the impulse sits on the friction cone's edge (the sticking mode's boundary),
     the sliding variant (problem.SLIDING_PHASES) is solved, warm-started from it, with the
     slip's sign s from the map (or against the tangential impulse); the better valid result
-    is kept (valid first, then converged, then the least objective). `checks["touchdown_modes"]`
-    lists each mode tried: objective, success, validity, cost of transport, cadence.
-    Returns the kept stride and its NLP."""
-    touchdown = stick.impacts[-1]
-    edge = touchdown["mu_c"] is not None and touchdown["mu_c"] >= stick.friction * (1 - 1e-4)
+    is kept (valid first, then converged, then the least objective). Returns the kept NLP and
+    solve, and each mode tried (`checks["touchdown_modes"]`: objective, success, validity,
+    cost of transport, cadence; empty when only the sticking one was)."""
+    first = summarise(nlp, stick, simulate=False)
+    touchdown = first.impacts[-1]
+    edge = touchdown["mu_c"] is not None and touchdown["mu_c"] >= first.friction * (1 - 1e-4)
     if nlp.settings.strike not in SLIDING_PHASES or not (touchdown["coulomb_mode"] != "stick" or edge):
-        return stick, nlp
-    par = stick.solved.parameters
-    slip = _slip_sign(nlp, stick)
-    sliding = nlp.variant(touchdown="slide", slip=slip)
-    solved = sliding.solve(slide_guess(sliding, stick.solved.blocks, par["mu"]), par["speed"],
+        return nlp, stick, []
+    par = stick.parameters
+    sliding = nlp.variant(touchdown="slide", slip=_slip_sign(nlp, stick))
+    solved = sliding.solve(slide_guess(sliding, stick.blocks, par["mu"]), par["speed"],
                            par["slope"], par["mu"], par["cadence"])
-    slide = summarise(sliding, solved, simulate=False)
+    candidates = [(first, nlp, stick), (summarise(sliding, solved, simulate=False), sliding, solved)]
     tried = [{"mode": s.impacts[-1]["mode"], "objective": s.objective_value, "success": s.success,
               "valid": all(i["valid"] for i in s.impacts), "cost_of_transport": s.cost_of_transport,
-              "cadence_spm": s.cadence_spm} for s in (stick, slide)]
-    best, best_nlp = max(((stick, nlp), (slide, sliding)), key=lambda c: (
+              "cadence_spm": s.cadence_spm} for s, _, _ in candidates]
+    _, kept_nlp, kept = max(candidates, key=lambda c: (
         all(i["valid"] for i in c[0].impacts), c[0].success, -c[0].objective_value))
-    best.checks["touchdown_modes"] = tried
-    return best, best_nlp
+    return kept_nlp, kept, tried
 
 
-def _slip_sign(nlp: StrideNLP, stick: Stride) -> int:
+def _slip_sign(nlp: StrideNLP, stick: Solved) -> int:
     """s (+1 or -1): the sign of the touchdown point's slip after formopt's Coulomb impact at the
     sticking solution's touchdown state, or (where that does not slide) against its tangential
     impulse, the side of the cone it leans on."""
-    b, par = stick.solved.blocks, stick.solved.parameters
+    b, par = stick.blocks, stick.parameters
     end = b[f"X_{nlp.phases[-1].name}"][:, -1]
     check = impact_check(nlp.js, nlp.touchdown_rows, end[:NX], end[NX:], par["slope"], par["mu"])
     slip = check["coulomb_slip_mps"] if check["coulomb_mode"] != "stick" else -check["impulse_t"]
