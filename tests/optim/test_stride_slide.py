@@ -41,7 +41,8 @@ def slid(js):
 
 def test_sliding_phase_lists():
     """A sliding touchdown adds a slide of the strike's first point before its sticking
-    sequence; a flat touchdown (two points) has none."""
+    sequence; a flat touchdown (two points) has none; under Coulomb the nodes must suffice
+    for the sliding variant."""
     for strike, phases in SLIDING_PHASES.items():
         assert phases[0].name == "slide" and phases[0].sliding == phases[1].rows[0][0]
         assert StrideSettings(strike=strike, law="coulomb", touchdown="slide").phases == phases
@@ -51,6 +52,9 @@ def test_sliding_phase_lists():
             StrideSettings(touchdown="slide", **bad)
     with pytest.raises(InputError, match="slip"):
         StrideSettings(law="coulomb", touchdown="slide", slip=0)
+    StrideSettings(strike="forefoot", nodes=20)  # 4 phases: 18 nodes at least
+    with pytest.raises(InputError, match="nodes = 20: expected 22"):  # the sliding variant's 5
+        StrideSettings(strike="forefoot", nodes=20, law="coulomb")
 
 
 def test_sliding_impact_against_the_coulomb_map(js):

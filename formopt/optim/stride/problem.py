@@ -23,8 +23,8 @@ tangential motion (the rows of mechanics.impact for a flat strike).
 Under Coulomb a touchdown may slide (`SLIDING_PHASES`, `StrideSettings.touchdown = "slide"`):
 the impact in its sliding mode (p_t = -s mu p_n, the point's normal velocity zero after it,
 the tangential free with the sign s of the slip), then a `slide` phase (the point on the
-ground, tangential force -s mu f_n, s v_t >= 0, s = `StrideSettings.slip` fixed) that ends when v_t reaches zero; the
-strike's sticking sequence follows. A flat touchdown has no sliding variant (two points share
+ground, tangential force -s mu f_n, s v_t >= 0, s = `StrideSettings.slip` fixed) that ends
+when v_t reaches zero; the strike's sticking sequence follows. A flat touchdown has no sliding variant (two points share
 the slip: velocity_level's law, checked after the solve).
 """
 
@@ -124,9 +124,11 @@ class StrideSettings:
                              f"{' or '.join(SLIDING_PHASES)}, not {self.law} and {self.strike}")
         if self.slip not in (1, -1):
             raise InputError(f"slip = {self.slip}: expected 1 (forward) or -1 (back)")
-        if not MIN_NODES * len(self.phases) + 2 <= self.nodes <= 400:
-            raise InputError(f"nodes = {self.nodes}: expected {MIN_NODES * len(self.phases) + 2} "
-                             f"to 400 for a {self.strike} strike")
+        # under Coulomb the touchdown may need its sliding variant, one phase more
+        phases = SLIDING_PHASES.get(self.strike, self.phases) if self.law == "coulomb" else self.phases
+        if not MIN_NODES * len(phases) + 2 <= self.nodes <= 400:
+            raise InputError(f"nodes = {self.nodes}: expected {MIN_NODES * len(phases) + 2} "
+                             f"to 400 for a {self.strike} strike under {self.law}")
         if self.law not in ("no-slip", "coulomb"):
             raise InputError(f"law {self.law!r}: expected no-slip or coulomb (frictionless "
                              "impacts leave the foot sliding, a phase the stride does not model)")
