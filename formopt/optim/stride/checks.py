@@ -6,8 +6,10 @@
   sliding touchdown's against contact.coulomb's T_c (its sliding mode).
 - `forward`: the optimal joint moments (piecewise linear) integrated forward phase by phase
   (scipy's DOP853, rtol 1e-10) through the same contact sequence and phase durations, with the
-  exact impact maps (a slide with its force on the cone's edge); the largest state difference at the nodes is the transcription's error
-  (each phase from the NLP's state at its start), and what it grows to open loop.
+  exact impact maps (a slide with its force on the cone's edge); the largest state difference
+  at the nodes is the transcription's error (each phase from the NLP's state at its start),
+  and what it grows to open loop; over a slide, whether the slip keeps its sign and when it
+  stops.
 - `drift`: how far the held contact points moved (m) over each phase.
 """
 
