@@ -2,11 +2,14 @@
 
 - `impact_check`: each impact's T_c by the joint-space projection at the solution's state
   against formopt's own impact map on the natural-coordinate model (mechanics.impact.projection
-  with q = q(theta), q' = J theta'), and the Coulomb law's mode (mechanics.contact) there.
+  with q = q(theta), q' = J theta'), and the Coulomb law's mode (mechanics.contact) there; a
+  sliding touchdown's against contact.coulomb's T_c (its sliding mode).
 - `forward`: the optimal joint moments (piecewise linear) integrated forward phase by phase
   (scipy's DOP853, rtol 1e-10) through the same contact sequence and phase durations, with the
-  exact impact maps; the largest state difference at the nodes is the transcription's error
-  (each phase from the NLP's state at its start), and what it grows to open loop.
+  exact impact maps (a slide with its force on the cone's edge); the largest state difference
+  at the nodes is the transcription's error (each phase from the NLP's state at its start),
+  and what it grows to open loop; over a slide, whether the slip keeps its sign and when it
+  stops.
 - `drift`: how far the held contact points moved (m) over each phase.
 """
 
@@ -19,7 +22,8 @@ from scipy.integrate import solve_ivp
 from ...mechanics import contact
 from ...mechanics.impact import projection
 from ...mechanics.joint_space import POINTS, JointSpace, swap_legs
-from .collocation import NX, StrideNLP
+from .collocation import NX, StrideNLP, held_rows
+from .problem import other_leg
 
 
 def contact_matrix(js: JointSpace, rows, theta, slope) -> np.ndarray:
@@ -31,85 +35,119 @@ def contact_matrix(js: JointSpace, rows, theta, slope) -> np.ndarray:
     return np.array(out).reshape(len(rows), NX)
 
 
-def joint_impact(js: JointSpace, rows, theta, thetad, slope):
-    """(theta'+, impulse (N s, per row), T_c (J)) of the projection in joint coordinates:
-    p = -(J_c M^-1 J_c^T)^-1 J_c theta'-, theta'+ = theta'- + M^-1 J_c^T p."""
-    M = np.asarray(js.mass(theta), float)
+def force_directions(js: JointSpace, rows, theta, slope, sliding: tuple | None = None):
+    """(G, D): the held rows of J_c (rows x 9, `held_rows`) and the directions of their
+    forces. `sliding` = (point, s, mu): that point's "t" row is not held and its normal row's
+    force acts along J_n - s mu J_t (on the cone's edge, against the slip s); without it
+    G = D = J_c."""
     Jc = contact_matrix(js, rows, theta, slope)
-    Minv_JT = np.linalg.solve(M, Jc.T)
-    p = -np.linalg.solve(Jc @ Minv_JT, Jc @ thetad)
-    plus = thetad + Minv_JT @ p
+    point, slip, mu = sliding or ("", 0, 0.0)
+    held = held_rows(rows, point)
+    G, D = Jc[held], Jc[held].copy()
+    if sliding:
+        D[held.index(rows.index((point, "n")))] -= slip * mu * Jc[rows.index((point, "t"))]
+    return G, D
+
+
+def joint_impact(js: JointSpace, rows, theta, thetad, slope, sliding: tuple | None = None):
+    """(theta'+, impulse (N s, per held row), T_c (J)) in joint coordinates:
+    p = -(G M^-1 D^T)^-1 G theta'-, theta'+ = theta'- + M^-1 D^T p (`force_directions`: the
+    sticking projection, or Coulomb's sliding mode with `sliding` = (point, s, mu))."""
+    M = np.asarray(js.mass(theta), float)
+    G, D = force_directions(js, rows, theta, slope, sliding)
+    Minv_DT = np.linalg.solve(M, D.T)
+    p = -np.linalg.solve(G @ Minv_DT, G @ thetad)
+    plus = thetad + Minv_DT @ p
     return plus, p, 0.5 * thetad @ M @ thetad - 0.5 * plus @ M @ plus
 
 
-def impact_check(js: JointSpace, rows, theta, thetad, slope, mu) -> dict:
+def impact_check(js: JointSpace, rows, theta, thetad, slope, mu, sliding: tuple | None = None) -> dict:
     """The joint-space impact against formopt's natural-coordinate impact map, and the
-    Coulomb mode (contact.coulomb for one point, contact.velocity_level for a flat foot)."""
+    Coulomb mode (contact.coulomb for one point, contact.velocity_level for a flat foot).
+    Sticking: against the projection (mechanics.impact); `sliding` = (point, s, mu)
+    (Coulomb's sliding mode): against contact.coulomb's T_c at the same state."""
     model = js.model
-    plus, p, T_c = joint_impact(js, rows, theta, thetad, slope)
+    plus, p_held, T_c = joint_impact(js, rows, theta, thetad, slope, sliding)
+    p = np.zeros(len(rows))
+    p[held_rows(rows, sliding[0] if sliding else "")] = p_held
+    if sliding:
+        point, slip, _ = sliding
+        p[rows.index((point, "t"))] = -slip * mu * p[rows.index((point, "n"))]
     q = np.asarray(js.q(theta), float).ravel()
     qd = np.asarray(js.J(theta), float) @ thetad
     points = tuple(dict.fromkeys(POINTS[pt] for pt, _ in rows))
     C = model.contact_rows(points, slope, tangential=points[:1])
-    reference = float(projection(model, ca.DM(q), ca.DM(qd), C)["T_c"])
     W = contact.admissible_inverse_inertia(ca.DM(model.M_inv), model.constraint_jacobian(ca.DM(q)))
     W_c, v0 = ca.DM(C) @ W @ ca.DM(C).T, ca.DM(C) @ qd
     law = contact.coulomb if len(points) == 1 else contact.velocity_level
-    p_coulomb, mode, slip = law(W_c, v0, mu)
+    p_coulomb, mode, slip_after = law(W_c, v0, mu)
+    T_c_coulomb = float(contact.absorbed(W_c, v0, p_coulomb))
+    reference = T_c_coulomb if sliding else float(projection(model, ca.DM(q), ca.DM(qd), C)["T_c"])
     normal = sum(p[k] for k, (_, a) in enumerate(rows) if a == "n")
     tangential = sum(p[k] for k, (_, a) in enumerate(rows) if a == "t")
     return {"T_c": T_c, "T_c_formopt": reference, "difference_J": abs(T_c - reference),
             "impulse_t": float(tangential), "impulse_n": float(normal),
             "mu_c": abs(tangential) / normal if normal > 0 else None,
-            "coulomb_mode": contact.MODES[int(mode)],
-            "T_c_coulomb": float(contact.absorbed(W_c, v0, p_coulomb)),
-            "coulomb_slip_mps": float(slip), "theta_d_plus": plus}
+            "coulomb_mode": contact.MODES[int(mode)], "T_c_coulomb": T_c_coulomb,
+            "coulomb_slip_mps": float(slip_after), "theta_d_plus": plus}
 
 
-def _accelerations(js, rows, theta, thetad, tau, slope):
-    """theta'' and the contact forces (N) of the constrained equations of motion (numeric)."""
+def _accelerations(js, rows, theta, thetad, tau, slope, sliding: tuple | None = None):
+    """theta'' and the contact forces (N, per held row) of the constrained equations of
+    motion (numeric); `sliding` = (point, s, mu): its force on the cone's edge
+    (`force_directions`)."""
     M = np.asarray(js.mass(theta), float)
     rhs = (np.asarray(js.gravity(theta), float).ravel() + np.asarray(js.passive(theta), float).ravel()
            - np.asarray(js.bias(theta, thetad), float).ravel() - np.r_[0, 0, 0, tau])
     if not rows:
         return np.linalg.solve(M, rhs), np.zeros(0)
-    Jc = contact_matrix(js, rows, theta, slope)
+    G, D = force_directions(js, rows, theta, slope, sliding)
     drift = np.array([float(js.points[pt](theta, thetad, slope)[3][0 if a == "t" else 1])
-                      for pt, a in rows])
-    r = len(rows)
-    K = np.block([[M, -Jc.T], [Jc, np.zeros((r, r))]])
+                      for pt, a in rows])[held_rows(rows, sliding[0] if sliding else "")]
+    r = len(drift)
+    K = np.block([[M, -D.T], [G, np.zeros((r, r))]])
     sol = np.linalg.solve(K, np.r_[rhs, -drift])
     return sol[:NX], sol[NX:]
 
 
-def forward(nlp: StrideNLP, blocks: dict, speed: float, slope: float) -> dict:
+def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
     """Integrate the optimal moments forward (module docstring), twice: open loop over the
     whole half stride (`theta`, `thetad`, `per_phase_theta`: the largest node differences, m
     or rad and m/s or rad/s), and phase by phase from the NLP's state at each phase's start
     (`reset_theta`, `reset_per_phase`); `periodicity`: the open-loop post-touchdown state
-    against the start."""
+    against the start; `slip_mps`: over a sliding phase (from its NLP start), the least and
+    the largest s v_t of the sliding point on a fine grid (the slip held if the least is not
+    below zero beyond the integration's error), and its v_t at the phase's end.
+    `parameters`: speed, slope, mu (Solved.parameters)."""
     js, m = nlp.js, nlp.mass
+    slope, mu, slip = parameters["slope"], parameters["mu"], nlp.settings.slip
     X0 = blocks[f"X_{nlp.phases[0].name}"]
     state = X0[:, 0].copy()
     errors: list[np.ndarray] = []
     reset: list[np.ndarray] = []
+    slips: dict = {}
     for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
         X, U, T = blocks[f"X_{phase.name}"], m * blocks[f"U_{phase.name}"], blocks[f"T_{phase.name}"].item()
         if i > 0 and nlp.P[i - 1] is not None:  # an impact starts the phase
             state[NX:] = joint_impact(js, phase.rows, state[:NX], state[NX:], slope)[0]
         times = np.linspace(0.0, T, n + 1)
 
-        def rhs(t, x, U=U, times=times, rows=phase.rows):
+        def rhs(t, x, U=U, times=times, phase=phase):
             tau = np.array([np.interp(t, times, u) for u in U])
-            return np.r_[x[NX:], _accelerations(js, rows, x[:NX], x[NX:], tau, slope)[0]]
+            sliding = (phase.sliding, slip, mu) if phase.sliding else None
+            return np.r_[x[NX:], _accelerations(js, phase.rows, x[:NX], x[NX:], tau, slope, sliding)[0]]
 
         for start, record in ((state, errors), (X[:, 0], reset)):
-            out = solve_ivp(rhs, (0.0, T), start, method="DOP853", t_eval=times, rtol=1e-10, atol=1e-10)
+            out = solve_ivp(rhs, (0.0, T), start, method="DOP853", t_eval=times, rtol=1e-10,
+                            atol=1e-10, dense_output=True)
             record.append(np.abs(out.y - X).max(axis=1))
             if record is errors:
                 state = out.y[:, -1]
-    plus = joint_impact(js, nlp.touchdown_rows, state[:NX], state[NX:], slope)[0]
-    step = speed * half_period(nlp, blocks)
+            elif phase.sliding:
+                slips = _slip(js, phase.sliding, out.sol, T, slope, slip)
+    touchdown = (other_leg(nlp.phases[0].sliding), slip, mu) if nlp.phases[0].sliding else None
+    plus = joint_impact(js, nlp.touchdown_rows, state[:NX], state[NX:], slope, touchdown)[0]
+    step = parameters["speed"] * half_period(nlp, blocks)
     shift = np.r_[step * np.cos(slope), step * np.sin(slope), np.zeros(7)]
     period_error = max(np.abs(swap_legs(state[:NX]) - shift - X0[:NX, 0]).max(),
                        np.abs(swap_legs(plus) - X0[NX:, 0]).max())
@@ -118,7 +156,20 @@ def forward(nlp: StrideNLP, blocks: dict, speed: float, slope: float) -> dict:
             "per_phase_theta": [float(e) for e in err[:, :NX].max(axis=1)],
             "reset_theta": float(res[:, :NX].max()),
             "reset_per_phase": [float(e) for e in res[:, :NX].max(axis=1)],
-            "periodicity": float(period_error)}
+            "periodicity": float(period_error), **slips}
+
+
+def _slip(js: JointSpace, point: str, path, T: float, slope: float, slip: int) -> dict:
+    """s v_t (m/s) of a sliding point along a simulated phase (`path`: the dense solution) on
+    400 steps: its least and largest before it first stops, v_t at the phase's end, and when
+    it first stops (`slip_stop_s`, s; T if it slides through; the NLP's slide stops at T)."""
+    times = np.linspace(0.0, T, 401)
+    v = slip * np.array([float(js.points[point](x[:NX], x[NX:], slope)[1][0]) for x in path(times).T])
+    stopped = np.flatnonzero(v <= 0.0)
+    k = stopped[0] if stopped.size else len(v)
+    stop = T if k == len(v) else float(np.interp(0.0, [v[k], v[k - 1]], [times[k], times[k - 1]])) if k else 0.0
+    return {"slip_min_mps": float(v[:k].min()) if k else 0.0, "slip_max_mps": float(v.max()),
+            "slip_end_mps": float(slip * v[-1]), "slip_stop_s": stop, "slip_duration_s": T}
 
 
 def half_period(nlp: StrideNLP, blocks: dict) -> float:
@@ -127,12 +178,16 @@ def half_period(nlp: StrideNLP, blocks: dict) -> float:
 
 
 def drift(nlp: StrideNLP, blocks: dict, slope: float) -> float:
-    """Largest displacement (m) of a held contact point over a phase (zero if exact)."""
+    """Largest displacement (m) of a held contact point over a phase (zero if exact; a
+    sliding point's normal displacement)."""
     worst = 0.0
     for phase in nlp.phases:
         X = blocks[f"X_{phase.name}"]
         for point in phase.points:
             r0, r1 = (np.asarray(nlp.js.points[point](X[:NX, k], np.zeros(NX), slope)[0], float).ravel()
                       for k in (0, -1))
-            worst = max(worst, float(np.hypot(*(r1 - r0))))
+            if point == phase.sliding:  # it slides along the ground: its normal drift only
+                worst = max(worst, abs((r1 - r0) @ np.array([-np.sin(slope), np.cos(slope)])))
+            else:
+                worst = max(worst, float(np.hypot(*(r1 - r0))))
     return worst

@@ -12,8 +12,15 @@ row of the phase after it; the touchdown's also its post-impact velocity). Const
   x_{k+1} - x_k = h/2 (x'_k + x'_{k+1}) (second order: the energy balance closes to O(h^2));
 - a phase that adds a point: the point on the ground at the previous phase's end, moving into
   it; the impact M(theta) (theta'+ - theta'-) = J_c^T p with J_c theta'+ = 0 (the projection of
-  mechanics.impact in joint coordinates); under no-slip p_n >= 0 and mu sum p_n -+ p_t >= 0;
+  mechanics.impact in joint coordinates), p_n >= 0 and mu sum p_n -+ p_t >= 0 (no-slip, and
+  Coulomb's sticking mode: a sticking impulse lies in the cone);
 - a phase that drops a point: that point's normal force zero at the previous phase's end;
+- a sliding touchdown (settings.touchdown = "slide", Coulomb's sliding mode): the touchdown
+  impulse on the cone's edge, p_t = -s mu p_n, p_n >= 0, the normal velocity zero after it and
+  the slip's sign s held (s v_t >= 0 before and after); in the `slide` phase the point's
+  tangential force is -s mu f_n, s v_t >= 0 at every node, and v_t = 0 at the phase's end
+  (s, +1 or -1: settings.slip); the slide's friction work counts with its impact's
+  T_c in the objective's impact term (the two are one Coulomb contact's loss);
 - for the work objectives, each joint's power split P = P+ - P- (W/kg, P+- >= 0) at every node
   (problem.py says why);
 - the touchdown of L at the flight's end, its impact, and periodicity: the post-impact state
@@ -34,7 +41,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import casadi as ca
 import numpy as np
@@ -83,6 +90,11 @@ class Blocks:
                                for k in self.names])
 
 
+def held_rows(rows, sliding: str = "") -> list[int]:
+    """Indices of the contact rows held kinematically: all but the sliding point's "t" row."""
+    return [k for k, (p, a) in enumerate(rows) if not (p == sliding and a == "t")]
+
+
 def _shaped(value, shape) -> np.ndarray:
     """value broadcast to shape (a column given as a flat vector is taken as one)."""
     value = np.asarray(value, float)
@@ -125,13 +137,14 @@ class StrideNLP:
 
     def __init__(self, js: JointSpace, settings: StrideSettings, ipopt: dict | None = None):
         start = time.perf_counter()
-        self.js, self.settings = js, settings
+        self.js, self.settings, self.ipopt = js, settings, ipopt
         self.mass = js.mass_total
         self.phases = settings.phases
         self.split = settings.node_split()
         self.blocks, self.rows = Blocks(), Rows()
         self.p = ca.SX.sym("p", len(PARAMETERS))
         self.speed, self.slope, self.mu = ca.vertsplit(self.p)
+        self.slip = settings.slip
         self._variables()
         self.terms = {"effort": 0, "positive": 0, "negative": 0, "impacts": 0, "smoothing": 0}
         for i in range(len(self.phases)):
@@ -180,9 +193,8 @@ class StrideNLP:
         self.period = ca.sum1(ca.vertcat(*self.T))
 
     def _impulse_bounds(self, rows):
-        """Impulse bounds (N s per kg): normal >= 0 under no-slip (it must push)."""
-        push = 0.0 if self.settings.law == "no-slip" else -np.inf
-        return (np.array([[push if a == "n" else -np.inf] for _, a in rows]),
+        """Impulse bounds (N s per kg): normal >= 0 (the ground can only push)."""
+        return (np.array([[0.0 if a == "n" else -np.inf] for _, a in rows]),
                 np.array([[np.inf] for _ in rows]))
 
     def added(self, i) -> tuple[str, ...]:
@@ -226,8 +238,12 @@ class StrideNLP:
             d1 = ca.vertcat(X[NX:, k + 1], A[:, k + 1])
             self.rows.add(X[:, k + 1] - X[:, k] - 0.5 * h * (d0 + d1))
             self.terms["smoothing"] += h * ca.sumsqr(A[:, k + 1] - A[:, k])
-        for k, (weight, x, tau, _) in enumerate(self.samples(i, h)):
+        for k, (weight, x, tau, f) in enumerate(self.samples(i, h)):
             self.terms["effort"] += weight * ca.sumsqr(tau)
+            if phase.sliding:  # the slide's friction work: the rest of its impact's loss
+                t = phase.rows.index((phase.sliding, "t"))
+                v_t = self.contact(((phase.sliding, "t"),), x[:NX], x[NX:])[2]
+                self.terms["impacts"] -= weight * self.mass * 9.81 * f[t] * v_t
             if self.S:  # P = P+ - P-, P+- >= 0: minimising them makes them the exact parts
                 S = self.S[i][:, k]
                 self.rows.add(self.joint_power(x[NX:], tau) / self.mass - (S[:NU] - S[NU:]))
@@ -251,13 +267,17 @@ class StrideNLP:
         residual = (self.js.mass(th) @ thdd + self.js.bias(th, thd) - self.js.gravity(th)
                     - self.js.passive(th) + ca.vertcat(0, 0, 0, tau))
         if phase.rows:
-            Jc, drift, _ = self.contact(phase.rows, th, thd)
+            Jc, drift, vel = self.contact(phase.rows, th, thd)
             residual -= Jc.T @ (m * g * f)
-            rows.add(Jc @ thdd + drift)
+            held = held_rows(phase.rows, phase.sliding)
+            rows.add((Jc @ thdd + drift)[held])
             total_n = ca.sum1(ca.vertcat(*[f[k] for k, (_, a) in enumerate(phase.rows) if a == "n"]))
             for k, (_, a) in enumerate(phase.rows):
-                if a == "t":
+                if a == "t" and k in held:
                     rows.add(ca.vertcat(self.mu * total_n - f[k], self.mu * total_n + f[k]), 0.0, np.inf)
+                elif a == "t":  # kinetic friction against the slip, whose sign s holds
+                    rows.add(f[k] + self.slip * self.mu * total_n)
+                    rows.add(self.slip * vel[k], 0.0, np.inf)
         rows.add(residual / m)
         free = [p for p in self.js.points if p not in phase.points]
         rows.add(ca.vertcat(*[self.height(p, th) for p in free]), 0.0, np.inf)
@@ -276,24 +296,37 @@ class StrideNLP:
             self._impact(after.rows, th, v_minus, v_plus, self.P[i - 1])
         else:
             rows.add(v_plus - v_minus)
+            if before.sliding:  # the slide ends when the point's slip reaches zero
+                rows.add(self.contact(((before.sliding, "t"),), th, v_minus)[2])
             dropped = [k for k, (p, a) in enumerate(before.rows)
                        if a == "n" and p not in after.points]
             rows.add(self.F[i - 1][dropped, -1])
 
-    def _impact(self, contact_rows, th, v_minus, v_plus, P):
-        """M (theta'+ - theta'-) = J_c^T p, J_c theta'+ = 0, and (no-slip) the friction cone."""
+    def _impact(self, contact_rows, th, v_minus, v_plus, P, sliding=""):
+        """M (theta'+ - theta'-) = J_c^T p, J_c theta'+ = 0 on the held rows, and the friction
+        cone (sticking), or the sliding mode's rows (`sliding`: the point that slides)."""
         m = self.mass
         Jc, _, _ = self.contact(contact_rows, th, v_plus)
         M = self.js.mass(th)
         self.rows.add((M @ (v_plus - v_minus) - Jc.T @ (m * P)) / m)
-        self.rows.add(Jc @ v_plus)
-        if self.settings.law == "no-slip":
+        self.rows.add((Jc @ v_plus)[held_rows(contact_rows, sliding)])
+        if sliding:
+            self._sliding_impulse(contact_rows.index((sliding, "t")), contact_rows.index((sliding, "n")),
+                                  self.contact(((sliding, "t"),), th, v_minus)[2],
+                                  self.contact(((sliding, "t"),), th, v_plus)[2], P)
+        else:  # sticking, under either law: the impulse inside the friction cone
             total_n = ca.sum1(ca.vertcat(*[P[k] for k, (_, a) in enumerate(contact_rows) if a == "n"]))
             for k, (_, a) in enumerate(contact_rows):
                 if a == "t":
                     self.rows.add(ca.vertcat(self.mu * total_n - P[k], self.mu * total_n + P[k]),
                                   0.0, np.inf)
         self.terms["impacts"] += 0.5 * (ca.bilin(M, v_minus, v_minus) - ca.bilin(M, v_plus, v_plus))
+
+    def _sliding_impulse(self, t, n, slip_minus, slip_plus, P):
+        """Coulomb's sliding mode: p_t = -s mu p_n, p_n >= 0, s v_t >= 0 before and after (the
+        slip keeps its sign through the impact, so the Darboux-Keller process never sticks)."""
+        self.rows.add(P[t] + self.slip * self.mu * P[n])
+        self.rows.add(ca.vertcat(P[n], self.slip * slip_minus, self.slip * slip_plus), 0.0, np.inf)
 
     def _touchdown(self):
         """L's touchdown at the flight's end, its impact and periodicity with the start."""
@@ -302,7 +335,8 @@ class StrideNLP:
         for p in dict.fromkeys(p for p, _ in self.touchdown_rows):
             rows.add(self.height(p, th))
             rows.add(self.normal_velocity(p, th, v_minus), -np.inf, 0.0)
-        self._impact(self.touchdown_rows, th, v_minus, self.V_td, self.P_td)
+        sliding = self.phases[0].sliding and other_leg(self.phases[0].sliding)
+        self._impact(self.touchdown_rows, th, v_minus, self.V_td, self.P_td, sliding)
         step = self.speed * self.period
         shift = ca.vertcat(step * ca.cos(self.slope), step * ca.sin(self.slope), ca.DM.zeros(7))
         rows.add(swap_legs(th) - shift - start[:NX])
@@ -324,6 +358,16 @@ class StrideNLP:
             f = work / distance / (m * 9.81) + WORK_REGULARISATION * effort
         return (f + s.impact_weight * terms["impacts"] / distance / (m * 9.81)
                 + SMOOTHING * terms["smoothing"] / distance)
+
+    def variant(self, **changes) -> StrideNLP:
+        """The NLP of the same body and IPOPT options with settings changed (e.g. touchdown=
+        "slide"), built once and kept."""
+        key = tuple(sorted(changes.items()))
+        if not hasattr(self, "_variants"):
+            self._variants: dict = {}
+        if key not in self._variants:
+            self._variants[key] = StrideNLP(self.js, replace(self.settings, **changes), self.ipopt)
+        return self._variants[key]
 
     # -- solve -----------------------------------------------------------------------
     def _with_power_split(self, guess: dict) -> dict:

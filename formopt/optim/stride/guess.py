@@ -23,7 +23,7 @@ from ...mechanics.joint_space import JointSpace, swap_legs
 from .collocation import NU, NX, StrideNLP
 
 # guessed phase durations (s): RBDS001 at 3.5 m/s (contact 0.24 s, half period 0.35 s)
-DURATIONS = {"heel": 0.03, "landing": 0.03, "flat": 0.11, "forefoot": 0.09, "flight": 0.12}
+DURATIONS = {"slide": 0.01, "heel": 0.03, "landing": 0.03, "flat": 0.11, "forefoot": 0.09, "flight": 0.12}
 TRAILING_POSE = (math.radians(-15.0), math.radians(70.0), math.radians(-10.0))  # hip, knee, ankle
 SWING_KNEE_BUMP = math.radians(60.0)
 TRUNK_LEAN = math.radians(5.0)
@@ -123,3 +123,45 @@ def perturbed(guess: dict, rng: np.random.Generator) -> dict:
         out[key][3:NX] += rng.uniform(-0.17, 0.17, (NX - 3, 1))
         out[key][NX + 3:] += rng.uniform(-1, 1, out[key][NX + 3:].shape)
     return out
+
+
+def slide_guess(nlp: StrideNLP, stick: dict, mu: float) -> dict:
+    """A sliding NLP's guess from a sticking solution's blocks: the slide phase held at the
+    sticking start (state, moments and forces of its first node, the tangential force and the
+    touchdown's tangential impulse on the cone's edge, -s mu times the normal), lasting
+    DURATIONS["slide"]; every other block as solved (`fitted` onto this NLP's nodes)."""
+    phase, n, slip = nlp.phases[0], nlp.split[0], nlp.settings.slip
+    first = nlp.phases[1].name
+    guess = fitted(nlp, {k: v for k, v in stick.items() if not k.startswith("S_")})
+    t, normal = phase.rows.index((phase.sliding, "t")), phase.rows.index((phase.sliding, "n"))
+    force = np.repeat(guess[f"F_{first}"][:, :1], n + 1, axis=1)
+    force[t] = -slip * mu * force[normal]
+    guess.update({f"X_{phase.name}": np.repeat(guess[f"X_{first}"][:, :1], n + 1, axis=1),
+                  f"A_{phase.name}": np.zeros((NX, n + 1)),
+                  f"U_{phase.name}": np.repeat(guess[f"U_{first}"][:, :1], n + 1, axis=1),
+                  f"F_{phase.name}": force,
+                  f"T_{phase.name}": float(np.clip(DURATIONS["slide"], *nlp.settings.duration["slide"]))})
+    guess["P_touchdown"][t] = -slip * mu * guess["P_touchdown"][normal]
+    return guess
+
+
+def fitted(nlp: StrideNLP, guess: dict) -> dict:
+    """A guess (blocks by name, e.g. another NLP's solution: a sliding one warm-starting a
+    sticking one, or the reverse) with each phase's node histories resampled linearly onto
+    this NLP's nodes where their counts differ; blocks it does not name are left out."""
+    out: dict = {}
+    for name in nlp.blocks.names:
+        if name not in guess:
+            continue
+        value = np.array(guess[name], float)
+        cols = nlp.blocks.shapes[name][1]
+        if value.ndim == 2 and cols > 1 and value.shape[1] != cols:
+            value = _resampled(value, cols)
+        out[name] = value
+    return out
+
+
+def _resampled(values: np.ndarray, count: int) -> np.ndarray:
+    """Node histories (rows x k) linearly interpolated onto `count` evenly spaced nodes."""
+    old, new = np.linspace(0, 1, values.shape[1]), np.linspace(0, 1, count)
+    return np.array([np.interp(new, old, row) for row in values]).reshape(values.shape[0], count)

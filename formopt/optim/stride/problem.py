@@ -19,6 +19,13 @@ contact set: the impact, then the legs swapped and moved back by one step must g
 
 On a flat foot, heel [t, n] and forefoot [n]: the foot's rigidity holds the forefoot's
 tangential motion (the rows of mechanics.impact for a flat strike).
+
+Under Coulomb a touchdown may slide (`SLIDING_PHASES`, `StrideSettings.touchdown = "slide"`):
+the impact in its sliding mode (p_t = -s mu p_n, the point's normal velocity zero after it,
+the tangential free with the sign s of the slip), then a `slide` phase (the point on the
+ground, tangential force -s mu f_n, s v_t >= 0, s = `StrideSettings.slip` fixed) that ends
+when v_t reaches zero; the strike's sticking sequence follows. A flat touchdown has no sliding variant (two points share
+the slip: velocity_level's law, checked after the solve).
 """
 
 from __future__ import annotations
@@ -34,6 +41,7 @@ class Phase:
 
     name: str
     rows: tuple[tuple[str, str], ...]
+    sliding: str = ""  # the point that slides (its "t" row carries -s mu f_n, not a constraint)
 
     @property
     def points(self) -> tuple[str, ...]:
@@ -48,10 +56,15 @@ FLIGHT = Phase("flight", ())
 STRIKE_PHASES = {"heel": (HEEL, FLAT, FOREFOOT, FLIGHT), "forefoot": (LANDING, FLAT, FOREFOOT, FLIGHT),
                  "flat": (FLAT, FOREFOOT, FLIGHT)}
 STRIKES = tuple(STRIKE_PHASES)
+# the phase lists of a touchdown that slides: the slide of the strike's first point, then its
+# sticking sequence
+SLIDING_PHASES = {strike: (Phase("slide", phases[0].rows, sliding=phases[0].rows[0][0]), *phases)
+                  for strike, phases in STRIKE_PHASES.items() if len(phases[0].points) == 1}
+TOUCHDOWN_MODES = ("stick", "slide")
 # Share of the nodes per phase (normalised over a strike's phases): about RBDS001's durations
 # at 3.5 m/s (heel contact 0.03 s, flat 0.12 s, forefoot 0.09 s, flight 0.11 s), with at least
 # MIN_NODES each, since a short phase still needs its start and end conditions.
-NODE_SHARE = {"heel": 0.12, "landing": 0.12, "flat": 0.3, "forefoot": 0.25, "flight": 0.33}
+NODE_SHARE = {"slide": 0.12, "heel": 0.12, "landing": 0.12, "flat": 0.3, "forefoot": 0.25, "flight": 0.33}
 MIN_NODES = 4
 OBJECTIVES = ("effort", "work", "metabolic")
 # Margaria R. (1968) Int Z angew Physiol 25:339: efficiencies of positive and negative muscle work
@@ -87,10 +100,12 @@ class StrideSettings:
     strike: str = "heel"
     objective: str = "effort"
     nodes: int = 40  # collocation intervals over the half stride
-    law: str = "no-slip"  # contact law of the impacts (no-slip; coulomb checked after the solve)
-    impact_weight: float = 0.0  # weight (1/m) of the impacts' summed T_c per distance
+    law: str = "no-slip"  # contact law of the impacts (no-slip; coulomb: the mode checked, result.optimum)
+    touchdown: str = "stick"  # the touchdown impact's mode: "slide" (coulomb) adds the slide phase
+    slip: int = 1  # a sliding touchdown's slip sign s along the ground (+1 forward, -1 back)
+    impact_weight: float = 0.0  # weight (1/m) of the impacts' summed T_c (and slide friction) per distance
     torque_limit: float = 4.0  # N m per kg of body mass, every joint
-    duration: dict = field(default_factory=lambda: {"heel": (0.005, 0.1), "landing": (0.005, 0.1),
+    duration: dict = field(default_factory=lambda: {"slide": (0.0005, 0.1), "heel": (0.005, 0.1), "landing": (0.005, 0.1),
                                                     "flat": (0.02, 0.3),
                                                     "forefoot": (0.02, 0.3),
                                                     "flight": (0.02, 0.3)})  # s, per phase
@@ -102,9 +117,18 @@ class StrideSettings:
             raise InputError(f"strike {self.strike!r}: expected one of {', '.join(STRIKES)}")
         if self.objective not in OBJECTIVES:
             raise InputError(f"objective {self.objective!r}: expected one of {', '.join(OBJECTIVES)}")
-        if not MIN_NODES * len(self.phases) + 2 <= self.nodes <= 400:
-            raise InputError(f"nodes = {self.nodes}: expected {MIN_NODES * len(self.phases) + 2} "
-                             f"to 400 for a {self.strike} strike")
+        if self.touchdown not in TOUCHDOWN_MODES:
+            raise InputError(f"touchdown {self.touchdown!r}: expected stick or slide")
+        if self.touchdown == "slide" and (self.law != "coulomb" or self.strike not in SLIDING_PHASES):
+            raise InputError(f"touchdown 'slide': expected law coulomb and strike "
+                             f"{' or '.join(SLIDING_PHASES)}, not {self.law} and {self.strike}")
+        if self.slip not in (1, -1):
+            raise InputError(f"slip = {self.slip}: expected 1 (forward) or -1 (back)")
+        # under Coulomb the touchdown may need its sliding variant, one phase more
+        phases = SLIDING_PHASES.get(self.strike, self.phases) if self.law == "coulomb" else self.phases
+        if not MIN_NODES * len(phases) + 2 <= self.nodes <= 400:
+            raise InputError(f"nodes = {self.nodes}: expected {MIN_NODES * len(phases) + 2} "
+                             f"to 400 for a {self.strike} strike under {self.law}")
         if self.law not in ("no-slip", "coulomb"):
             raise InputError(f"law {self.law!r}: expected no-slip or coulomb (frictionless "
                              "impacts leave the foot sliding, a phase the stride does not model)")
@@ -118,7 +142,7 @@ class StrideSettings:
 
     @property
     def phases(self) -> tuple[Phase, ...]:
-        return STRIKE_PHASES[self.strike]
+        return (SLIDING_PHASES if self.touchdown == "slide" else STRIKE_PHASES)[self.strike]
 
     def node_split(self) -> list[int]:
         """Intervals per phase: MIN_NODES each, the rest shared by NODE_SHARE (the flight

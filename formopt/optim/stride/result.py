@@ -23,8 +23,8 @@ import numpy as np
 from ...mechanics.joint_space import JOINTS, swap_legs
 from .checks import drift, forward, half_period, impact_check
 from .collocation import NX, Solved, StrideNLP
-from .guess import ballistic, perturbed
-from .problem import metabolic
+from .guess import ballistic, fitted, perturbed, slide_guess
+from .problem import SLIDING_PHASES, metabolic, other_leg
 
 GRAVITY = 9.81
 FOOT_POINTS = ("heel_R", "forefoot_R")
@@ -122,40 +122,84 @@ def budget(nlp: StrideNLP, blocks: dict, speed: float, slope: float, impacts: fl
 
 
 def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> list[dict]:
-    """Each impact of the half stride: the NLP's T_c and formopt's impact map at its state."""
+    """Each impact of the half stride: the NLP's T_c and formopt's impact map at its state;
+    `mode` the NLP's (stick, or slide for a sliding touchdown), `valid` when
+    the point approaches, the ground pushes and the law agrees (no-slip: within the friction
+    cone; Coulomb: formopt's Coulomb map gives the same mode)."""
     out, time = [], 0.0
-    transitions = []
+    transitions: list[tuple] = []
     for i, phase in enumerate(nlp.phases):
         T = blocks[f"T_{phase.name}"].item()
         time += T
         if i + 1 < len(nlp.phases) and nlp.P[i] is not None:
             after = nlp.phases[i + 1]
             transitions.append((after.rows, blocks[f"X_{phase.name}"][:, -1],
-                                blocks[f"X_{after.name}"][NX:, 0], time, nlp.added(i + 1)))
+                                blocks[f"X_{after.name}"][NX:, 0], time, nlp.added(i + 1), None))
     end = blocks[f"X_{nlp.phases[-1].name}"][:, -1]
+    slip = nlp.settings.slip
+    sliding = (other_leg(nlp.phases[0].sliding), slip, mu) if nlp.phases[0].sliding else None
     transitions.append((nlp.touchdown_rows, end, blocks["V_touchdown"].ravel(), time,
-                        tuple(dict.fromkeys(p for p, _ in nlp.touchdown_rows))))
+                        tuple(dict.fromkeys(p for p, _ in nlp.touchdown_rows)), sliding))
     M = nlp.js.mass
-    for rows, X, plus, t, points in transitions:
+    law = nlp.settings.law
+    for rows, X, plus, t, points, slides in transitions:
         th, minus = X[:NX], X[NX:]
         Mk = np.asarray(M(th), float)
         T_c = 0.5 * minus @ Mk @ minus - 0.5 * plus @ Mk @ plus
-        check = impact_check(nlp.js, rows, th, minus, slope, mu)
+        check = impact_check(nlp.js, rows, th, minus, slope, mu, slides)
         approach = max(float(nlp.js.points[p](th, minus, slope)[1][1]) for p in points)
-        law = nlp.settings.law
+        mode = "slide" if slides else "stick"
         valid = check["impulse_n"] > 0 and approach < 0 and (
             check["mu_c"] is not None and check["mu_c"] <= mu * (1 + 1e-6) if law == "no-slip"
-            else check["coulomb_mode"] == "stick")
-        out.append({"point": "+".join(p.rsplit("_", 1)[0] for p in points),
-                    "leg": points[0][-1], "time_s": t, "T_c": float(T_c), "law": law,
-                    "mode": "stick" if law == "no-slip" else check["coulomb_mode"],
-                    "mu_c": check["mu_c"], "valid": bool(valid),
-                    "T_c_exact": check["T_c"], "T_c_formopt": check["T_c_formopt"],
-                    "impact_map_difference_J": check["difference_J"],
-                    "coulomb_mode": check["coulomb_mode"], "T_c_coulomb": check["T_c_coulomb"],
-                    "impulse_Ns": [check["impulse_t"], check["impulse_n"]],
-                    "approach_mps": approach})
+            else check["coulomb_mode"] == mode)
+        entry = {"point": "+".join(p.rsplit("_", 1)[0] for p in points),
+                 "leg": points[0][-1], "time_s": t, "T_c": float(T_c), "law": law,
+                 "mode": mode,
+                 "mu_c": check["mu_c"], "valid": bool(valid),
+                 "T_c_exact": check["T_c"], "T_c_formopt": check["T_c_formopt"],
+                 "impact_map_difference_J": check["difference_J"],
+                 "coulomb_mode": check["coulomb_mode"], "T_c_coulomb": check["T_c_coulomb"],
+                 "impulse_Ns": [check["impulse_t"], check["impulse_n"]],
+                 "approach_mps": approach}
+        if slides:
+            entry.update(slide(nlp, blocks, slope, mu))
+        out.append(entry)
     return out
+
+
+def slide(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> dict:
+    """The slide after a sliding touchdown (phase 0): its duration `slide_s` (s), the distance
+    the point slid along the ground `slide_m` (m, signed), its slip sign `slip`, the least
+    s v_t at its nodes (m/s), the friction work `slide_friction_J` (J, trapezoidal:
+    mu f_n |v_t| integrated) and `stick_friction_ratio` of the sticking phases after it."""
+    phase, n, slip = nlp.phases[0], nlp.split[0], nlp.settings.slip
+    X, T = blocks[f"X_{phase.name}"], blocks[f"T_{phase.name}"].item()
+    point = nlp.js.points[phase.sliding]
+    tangent = np.array([np.cos(slope), np.sin(slope)])
+    r0, r1 = (np.asarray(point(X[:NX, k], np.zeros(NX), slope)[0], float).ravel() for k in (0, -1))
+    v_t = np.array([float(point(X[:NX, k], X[NX:, k], slope)[1][0]) for k in range(n + 1)])
+    f = blocks[f"F_{phase.name}"][phase.rows.index((phase.sliding, "t"))] * nlp.mass * GRAVITY
+    w = np.full(n + 1, T / n)
+    w[[0, -1]] *= 0.5
+    return {"slide_s": T, "slide_m": float((r1 - r0) @ tangent), "slip": int(slip),
+            "slip_min_mps": float((slip * v_t).min()),
+            "slide_friction_J": float(-np.sum(w * f * v_t)),
+            "stick_friction_ratio": stick_friction_ratio(nlp, blocks, mu)}
+
+
+def stick_friction_ratio(nlp: StrideNLP, blocks: dict, mu: float) -> float:
+    """The largest |f_t| / (mu sum f_n) over the sticking stance nodes (<= 1: the cone holds;
+    nodes with sum f_n under 1e-6 body weights left out)."""
+    worst = 0.0
+    for phase in nlp.phases:
+        F = blocks[f"F_{phase.name}"]
+        for k, (point, axis) in enumerate(phase.rows):
+            if axis == "t" and point != phase.sliding:
+                normal = sum(F[j] for j, (_, a) in enumerate(phase.rows) if a == "n")
+                pushed = normal > 1e-6
+                if pushed.any():
+                    worst = max(worst, float((np.abs(F[k][pushed]) / (mu * normal[pushed])).max()))
+    return worst
 
 
 def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
@@ -180,11 +224,12 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
               "drift_m": drift(nlp, b, slope),
               "balance_relative": abs(energy["balance_J"]) / max(energy["positive_work_J"], 1e-9)}
     if simulate:
-        sim = forward(nlp, b, speed, slope)
+        sim = forward(nlp, b, par)
         checks.update(forward_theta=sim["reset_theta"], forward_per_phase=sim["reset_per_phase"],
                       open_loop_theta=sim["theta"], open_loop_thetad=sim["thetad"],
                       open_loop_per_phase=sim["per_phase_theta"],
-                      open_loop_periodicity=sim["periodicity"])
+                      open_loop_periodicity=sim["periodicity"],
+                      **{f"forward_{k}": v for k, v in sim.items() if k.startswith("slip_")})
     strike_point = "heel_R" if nlp.settings.strike != "forefoot" else "forefoot_R"
     r = np.asarray(nlp.js.points[strike_point](start, np.zeros(NX), slope)[0], float).ravel()
     end_v = b[f"X_{nlp.phases[-1].name}"][NX:, -1]
@@ -210,10 +255,12 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
 def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
             cadence: float | None = None, guess: dict | None = None, simulate: bool = True,
             starts: int = 1, seed: int = 0) -> Stride:
-    """Solve the NLP from `guess` (default: the generic guess) and, with `starts` > 1, from
+    """Solve the NLP from `guess` (default: the generic guess; a solution of another phase
+    list is `fitted` to this one's nodes) and, with `starts` > 1, from
     starts - 1 perturbations of it (guess.perturbed, seeded); summarise the best converged
-    solve (the least objective), or the first if none converged."""
-    first = guess if guess is not None else ballistic(nlp, speed)
+    solve (the least objective), or the first if none converged. Under Coulomb the touchdown's
+    mode is then decided (`touchdown_mode`)."""
+    first = fitted(nlp, guess) if guess is not None else ballistic(nlp, speed)
     rng = np.random.default_rng(seed)
     best = None
     for k in range(starts):
@@ -221,4 +268,48 @@ def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
         if best is None or (solved.success, -solved.objective) > (best.success, -best.objective):
             best = solved
     assert best is not None  # starts >= 1 (the scene's check)
-    return summarise(nlp, best, simulate)
+    tried: list = []
+    if nlp.settings.law == "coulomb":
+        nlp, best, tried = touchdown_mode(nlp, best)
+    stride = summarise(nlp, best, simulate)
+    if tried:
+        stride.checks["touchdown_modes"] = tried
+    return stride
+
+
+def touchdown_mode(nlp: StrideNLP, stick: Solved) -> tuple[StrideNLP, Solved, list]:
+    """The Coulomb touchdown's mode, as the landing decides it: the sticking solve `stick`
+    is checked with formopt's Coulomb map at its touchdown state; where the map says it does
+    not stick, or the impulse sits on the friction cone's edge (the sticking mode's boundary),
+    the sliding variant (problem.SLIDING_PHASES) is solved, warm-started from it, with the
+    slip's sign s from the map (or against the tangential impulse); the better valid result
+    is kept (valid first, then converged, then the least objective). Returns the kept NLP and
+    solve, and each mode tried (`checks["touchdown_modes"]`: objective, success, validity,
+    cost of transport, cadence; empty when only the sticking one was)."""
+    first = summarise(nlp, stick, simulate=False)
+    touchdown = first.impacts[-1]
+    edge = touchdown["mu_c"] is not None and touchdown["mu_c"] >= first.friction * (1 - 1e-4)
+    if nlp.settings.strike not in SLIDING_PHASES or not (touchdown["coulomb_mode"] != "stick" or edge):
+        return nlp, stick, []
+    par = stick.parameters
+    sliding = nlp.variant(touchdown="slide", slip=_slip_sign(nlp, stick))
+    solved = sliding.solve(slide_guess(sliding, stick.blocks, par["mu"]), par["speed"],
+                           par["slope"], par["mu"], par["cadence"])
+    candidates = [(first, nlp, stick), (summarise(sliding, solved, simulate=False), sliding, solved)]
+    tried = [{"mode": s.impacts[-1]["mode"], "objective": s.objective_value, "success": s.success,
+              "valid": all(i["valid"] for i in s.impacts), "cost_of_transport": s.cost_of_transport,
+              "cadence_spm": s.cadence_spm} for s, _, _ in candidates]
+    _, kept_nlp, kept = max(candidates, key=lambda c: (
+        all(i["valid"] for i in c[0].impacts), c[0].success, -c[0].objective_value))
+    return kept_nlp, kept, tried
+
+
+def _slip_sign(nlp: StrideNLP, stick: Solved) -> int:
+    """s (+1 or -1): the sign of the touchdown point's slip after formopt's Coulomb impact at the
+    sticking solution's touchdown state, or (where that does not slide) against its tangential
+    impulse, the side of the cone it leans on."""
+    b, par = stick.blocks, stick.parameters
+    end = b[f"X_{nlp.phases[-1].name}"][:, -1]
+    check = impact_check(nlp.js, nlp.touchdown_rows, end[:NX], end[NX:], par["slope"], par["mu"])
+    slip = check["coulomb_slip_mps"] if check["coulomb_mode"] != "stick" else -check["impulse_t"]
+    return 1 if slip >= 0 else -1
