@@ -58,8 +58,10 @@ def compile_cache(tmp_path_factory):
 
 
 @pytest.fixture(scope="session")
-def dask_scheduler():
-    """The address of a local Dask cluster (two worker processes), started once per session."""
+def dask_scheduler(request):
+    """The address of a local Dask cluster (two worker processes), started once per session;
+    the tests that take it say "dask" in their names, so that ByFile runs them on one worker."""
+    assert "dask" in request.node.name, f"{request.node.name}: a Dask test says 'dask' in its name"
     from dask.distributed import LocalCluster
 
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
@@ -67,15 +69,21 @@ def dask_scheduler():
         yield cluster.scheduler_address
 
 
-@pytest.hookimpl(tryfirst=True)  # before xdist's own hook, which reads the groups
-def pytest_collection_modifyitems(items):
-    """Groups for `pytest -n 2 --dist loadgroup` (the Makefile): the tests of a module that
-    share a module- or class-scoped fixture run on one worker, so it is built once; the Dask
-    tests share one worker and so one cluster; every other test goes where there is room."""
-    for item in items:
-        info = getattr(item, "_fixtureinfo", None)
-        scopes = {d[-1].scope for d in info.name2fixturedefs.values()} if info else set()
-        if "dask_scheduler" in getattr(item, "fixturenames", ()):
-            item.add_marker(pytest.mark.xdist_group("dask"))
-        elif scopes & {"module", "class", "package"}:
-            item.add_marker(pytest.mark.xdist_group(item.nodeid.split("::")[0]))
+try:
+    from xdist.scheduler import LoadFileScheduling
+except ImportError:  # pytest-xdist comes with the test extra; without it the suite runs in one process
+    LoadFileScheduling = None
+
+if LoadFileScheduling is not None:
+
+    class ByFile(LoadFileScheduling):
+        """`pytest -n 2 --dist loadfile` (the Makefile): each file's tests on one worker, so its
+        module fixtures are built once, and the Dask tests (named "...dask...") together on one
+        worker, so one cluster starts. (xdist's loadgroup marks do not reach its scheduler under
+        pytest 9, which no longer reads the node id xdist rewrites.)"""
+
+        def _split_scope(self, nodeid: str) -> str:
+            return "dask" if "dask" in nodeid.rsplit("::", 1)[-1] else super()._split_scope(nodeid)
+
+    def pytest_xdist_make_scheduler(config, log):
+        return ByFile(config, log) if config.getvalue("dist") == "loadfile" else None
