@@ -58,15 +58,22 @@ def compile_cache(tmp_path_factory):
 
 
 @pytest.fixture(scope="session")
-def dask_scheduler(request):
+def dask_scheduler():
     """The address of a local Dask cluster (two worker processes), started once per session;
-    the tests that take it say "dask" in their names, so that ByFile runs them on one worker."""
-    assert "dask" in request.node.name, f"{request.node.name}: a Dask test says 'dask' in its name"
+    the tests that take it say "dask" in their names, so that ByFile runs them on one worker
+    (pytest_collection_modifyitems checks)."""
     from dask.distributed import LocalCluster
 
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                       dashboard_address=None) as cluster:
         yield cluster.scheduler_address
+
+
+def pytest_collection_modifyitems(items):
+    """A test that takes the Dask cluster says "dask" in its name (ByFile groups by the name)."""
+    for item in items:
+        if "dask_scheduler" in getattr(item, "fixturenames", ()) and "dask" not in item.name:
+            raise pytest.UsageError(f"{item.nodeid}: a test that takes dask_scheduler says 'dask' in its name")
 
 
 try:
