@@ -8,8 +8,8 @@ from collections import Counter
 
 from ..io.files import save_figure
 from ..io.scene import load
-from ..mechanics.errors import InputError
 from ..io.stride_scene import StrideScene
+from ..mechanics.errors import InputError
 from ..report.figures import optimum_map_figure, sweep_figure
 from ..report.stride_sweep import stride_sweep_figures
 from ..studies import stride_map, sweep

@@ -141,6 +141,13 @@ def nlp_of(scene: StrideScene) -> StrideNLP:
     return _NLPS[key]
 
 
+def solution(stride: Stride) -> dict:
+    """The decision variables (blocks by name) of a stride solved here (summarise keeps them)."""
+    if stride.solved is None:
+        raise RuntimeError("a stride without its solution (Stride.solved) cannot seed a solve")
+    return stride.solved.blocks
+
+
 def objective_values(nlp: StrideNLP, stride: Stride) -> dict[str, float]:
     """The three objectives (problem.OBJECTIVES) of a solved stride, each per distance d and
     scaled as the NLP scales it (collocation's `_objective`), without the smoothing and
@@ -150,7 +157,7 @@ def objective_values(nlp: StrideNLP, stride: Stride) -> dict[str, float]:
         work = W+ / (m g d),   metabolic = (W+/0.25 + W-/1.2) / (m g d)
 
     The integrals by the transcription's trapezoidal rule on the nodes (nlp.samples)."""
-    blocks, mg = stride.solved.blocks, nlp.mass * GRAVITY
+    blocks, mg = solution(stride), nlp.mass * GRAVITY
     effort = 0.0
     for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
         h = blocks[f"T_{phase.name}"].item() / n
@@ -165,11 +172,12 @@ def row_of(nlp: StrideNLP, stride: Stride, start: str) -> StrideRow:
     """The map's row of a solved stride (`start`: how its solve was started)."""
     td, b = stride.touchdown, stride.budget
     angles, hip = td["angles_deg"], td["hip_from_strike_m"]
-    T = stride.half_period_s
+    T, objective = stride.half_period_s, objective_values(nlp, stride)
     return StrideRow(
         speed_mps=stride.speed_mps, slope_deg=math.degrees(stride.slope), friction=stride.friction,
         cadence_spm=stride.cadence_spm, step_length_m=stride.step_length_m, strike=stride.strike,
-        objective_value=stride.objective_value, **objective_values(nlp, stride),
+        objective_value=stride.objective_value, effort_value=objective["effort_value"],
+        work_value=objective["work_value"], metabolic_value=objective["metabolic_value"],
         mechanical_power_W=stride.mechanical_power_W, cost_of_transport=stride.cost_of_transport,
         impact_loss_W=b["impacts_J"] / T, impacts_J=b["impacts_J"],
         positive_work_J=b["positive_work_J"], negative_work_J=b["negative_work_J"],
@@ -195,13 +203,13 @@ def solve_point(scene: StrideScene, values: dict, previous: Stride | None) -> tu
     nlp = nlp_of(scene)
     speed, slope, mu, cadence = point(scene, values)
     if previous is not None:
-        stride = summarise(nlp, nlp.solve(previous.solved.blocks, speed, slope, mu, cadence), False)
+        stride = summarise(nlp, nlp.solve(solution(previous), speed, slope, mu, cadence), False)
         if stride.success:
             return stride, "neighbour"
     seed = free(scene, speed, slope, mu)
     if cadence is None:
         return seed, "free" if seed.success else "cold"
-    guess = seed.solved.blocks if seed.success else ballistic(nlp, speed)
+    guess = solution(seed) if seed.success else ballistic(nlp, speed)
     stride = summarise(nlp, nlp.solve(guess, speed, slope, mu, cadence), False)
     return stride, "free" if seed.success else "cold"
 
@@ -244,15 +252,17 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
     scene's when None. Strides are returned in the order of `cadences`."""
     slope = scene.slope if slope is None else slope
     mu = scene.friction if friction is None else friction
-    base = free(scene, speed, slope, mu)
-    if not base.success:
-        raise RuntimeError(f"no free stride optimum at {speed:g} m/s ({base.status})")
+    if speed not in RANGES["speed_mps"]:
+        raise InputError(f"speed = {speed:g}: outside its range, {RANGES['speed_mps'].text()}")
     values = [float(c) for c in cadences]
     for c in values:
         if c not in RANGES["cadence_spm"]:
-            raise InputError(f"cadences: {c:g} is outside {RANGES['cadence_spm'].text()}")
+            raise InputError(f"cadences: {c:g} is outside its range, {RANGES['cadence_spm'].text()}")
+    base = free(scene, speed, slope, mu)
+    if not base.success:
+        raise RuntimeError(f"no free stride optimum at {speed:g} m/s ({base.status})")
     f0 = base.cadence_spm
-    up = sorted((c for c in values if c >= f0))
+    up = sorted(c for c in values if c >= f0)
     down = sorted((c for c in values if c < f0), reverse=True)
     solved: dict[float, tuple[Stride, str]] = {}
     ground = {"speed_mps": speed, "slope_deg": math.degrees(slope), "friction": mu}

@@ -90,7 +90,7 @@ def test_bad_parameters_are_refused_in_one_line_naming_them(scene):
     with pytest.raises(InputError, match="step_length_m"):
         sweep.run(scene, three, "unused.csv", progress=False)
     best = dataclasses.replace(scene, strike="best")
-    with pytest.raises(InputError, match="stride.strike"):
+    with pytest.raises(InputError, match=r"stride\.strike"):
         sweep.run(best, PARAMS, "unused.csv", progress=False)
 
 
