@@ -15,6 +15,7 @@ hollow, strides without an optimum as red crosses (and left out of lines and con
 
 from __future__ import annotations
 
+import matplotlib
 import numpy as np
 from matplotlib.figure import Figure
 
@@ -65,7 +66,9 @@ def cadence_figure(rows: list[dict], x: str, by: str | None) -> Figure:
     least-objective row of each line marked with a star."""
     fig, axes = _subplots(1, len(PANELS), figsize=(4.2 * len(PANELS), 3.8))
     groups = _groups(_converged(rows), by)
-    colors = [f"C{k % 10}" for k in range(len(groups))]
+    many = len(groups) > 10  # a colour scale (and a colour bar) instead of a legend
+    colors = ([matplotlib.colormaps["viridis"](k / max(len(groups) - 1, 1)) for k in range(len(groups))]
+              if many else [f"C{k % 10}" for k in range(len(groups))])
     for (value, line), color in zip(groups.items(), colors):
         line = sorted(line, key=lambda r: float(r[x]))
         xs = np.array([float(r[x]) for r in line])
@@ -85,8 +88,12 @@ def cadence_figure(rows: list[dict], x: str, by: str | None) -> Figure:
                     np.full(len(failed), np.nanmin(ax.get_ylim())), "x", color="red", ms=6)
         ax.set_xlabel(_label(x))
         ax.set_ylabel(_label(key))
-    if by and len(groups) <= 12:
+    if by and not many:
         axes[0].legend(fontsize=7)
+    elif by:
+        values = list(groups)
+        scale = matplotlib.cm.ScalarMappable(matplotlib.colors.Normalize(min(values), max(values)), "viridis")
+        fig.colorbar(scale, ax=axes[-1], label=_label(by))
     fig.suptitle(_counts(rows) + "; star: each line's least objective (the free optimum as the "
                  "grid resolves it)", fontsize=8)
     fig.tight_layout()

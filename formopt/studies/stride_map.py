@@ -9,8 +9,9 @@ slope, friction and cadence are parameters of the built NLP, so one build serves
 
 The grid is walked as a serpentine and cut into chains (studies.sweep runs them, as it runs
 optimum maps): in a chain each point starts from the solved point before it; the chain's first
-point, and any point whose warm start fails, starts from the free optimum at its speed, slope
-and friction (itself solved from the generic guess with the scene's `starts`). A point that
+point, and any point whose warm start fails, is the better of a solve from the free optimum at
+its speed, slope and friction (itself solved from the generic guess with the scene's `starts`)
+and one from the generic guess. A point that
 fails says so (`status`, `success`) and seeds nothing: the next starts as a chain's first.
 
 `cadence_curve(scene, speed, cadences)` is the one home of "the stride at these cadences,
@@ -198,8 +199,11 @@ def free(scene: StrideScene, speed: float, slope: float, mu: float) -> Stride:
 
 def solve_point(scene: StrideScene, values: dict, previous: Stride | None) -> tuple[Stride, str]:
     """One grid point: warm from `previous` (a solved neighbour) when given; else, or when that
-    fails, from the free optimum at the point's speed, slope and friction (the free optimum
-    itself when no cadence is imposed). (the stride, how it was started)."""
+    fails, the better of two solves, from the free optimum at the point's speed, slope and
+    friction and from the generic guess (the free optimum itself when no cadence is imposed):
+    from the free optimum alone, a chain's first stride at 4 m/s and 203 steps/min fell into a
+    local optimum 19 % costlier than the generic guess's (0.971 against 0.815, 40 nodes,
+    2026-11-23), and its chain followed it. (the stride, how it was started)."""
     nlp = nlp_of(scene)
     speed, slope, mu, cadence = point(scene, values)
     if previous is not None:
@@ -209,9 +213,10 @@ def solve_point(scene: StrideScene, values: dict, previous: Stride | None) -> tu
     seed = free(scene, speed, slope, mu)
     if cadence is None:
         return seed, "free" if seed.success else "cold"
-    guess = solution(seed) if seed.success else ballistic(nlp, speed)
-    stride = summarise(nlp, nlp.solve(guess, speed, slope, mu, cadence), False)
-    return stride, "free" if seed.success else "cold"
+    tries = [(summarise(nlp, nlp.solve(ballistic(nlp, speed), speed, slope, mu, cadence), False), "cold")]
+    if seed.success:
+        tries.insert(0, (summarise(nlp, nlp.solve(solution(seed), speed, slope, mu, cadence), False), "free"))
+    return min(tries, key=lambda t: (not t[0].success, t[0].objective_value))
 
 
 def rows(scene: StrideScene, chunk) -> list[dict]:
