@@ -133,6 +133,7 @@ class Comparison:
     sole: list[tuple[str, float, float]]  # per touchdown: the model sole's lower point, the
     #                 other's time down (s), T_c (J) of an impact at the lower point alone
     plate: list[PlateImpact | None] = field(default_factory=list)  # per touchdown, trials with forces
+    stride: object = None  # compare_stride.StrideAnswer, when asked (compare_stride.answer)
 
     @property
     def steps(self) -> Steps:
@@ -185,6 +186,7 @@ class Comparison:
             "touchdowns": [touchdown_row(self, k) for k in range(len(st.touchdowns))],
             "summary": summary(self),
             "optimum": {side: side_dict(self, o) for side, o in self.sides.items()},
+            **({"stride": self.stride.to_dict()} if self.stride is not None else {}),
         }
 
 
