@@ -20,7 +20,7 @@ from ..mechanics import limits
 from ..mechanics.body import DE_LEVA
 from ..mechanics.contact import LAWS
 from ..mechanics.errors import InputError
-from ..report.figures import comparison_figure
+from ..report.figures import comparison_figure, stride_cadence_figure
 from ..report.tables import comparison_table, trials_table
 from ..studies.compare import BOUNDS_DEG, JOINTS, SUPPORT, compare
 from ..studies.compare_stride import answer
@@ -214,7 +214,11 @@ def run_one(s: dict, args, out: Path, show: bool = True):
                      *[o["angles_deg"][k] if o.get("success") else "" for k in ("hip", "knee", "ankle")],
                      o.get("saving_J", "") if o.get("success") else "", "; ".join(t["data_problems"])])
     m = result.measurement
-    files = [rep["figure"], write_csv(out / "touchdowns.csv", rows),
+    if "stride" in rep:
+        rep["stride"]["figure"] = str(save_figure(stride_cadence_figure(rep["stride"]),
+                                                  out / f"stride_cadence.{args.format}"))
+    files = [rep["figure"], *([rep["stride"]["figure"]] if "stride" in rep else []),
+             write_csv(out / "touchdowns.csv", rows),
              write_trc(out / "markers.trc", m.kinematics, m.calibration),
              write_mot(out / "angles.mot", m.kinematics)]
     emit(args, rep, comparison_table(result, rep), out / "comparison.json", files, show)

@@ -28,7 +28,7 @@ import numpy as np
 from ..mechanics.body import scaled_body
 from ..optim.stride import Stride
 from ..optim.stride.problem import STRIKES
-from .stride_form import joint_work, placement_m, stride_scene, with_body
+from .stride_form import NODES, joint_work, placement_m, stride_scene, with_body
 from .stride_map import cadence_curve, free
 
 WHAT_IF_PCT = (-10.0, -5.0, 5.0, 10.0)  # cadence changes asked (% of the runner's cadence)
@@ -190,9 +190,11 @@ def what_ifs(curves: list[Curve], cadences: list[float]) -> list[WhatIf]:
             for k, pct in enumerate(WHAT_IF_PCT, 1)]
 
 
-def answer(c, progress=None) -> StrideAnswer:
+def answer(c, progress=None, nodes: int = NODES, band: bool = True) -> StrideAnswer:
     """compare's stride section for a Comparison `c` (its speed, main side, body settings,
-    friction and law); `progress(text)` is told of each variant."""
+    friction and law); `progress(text)` is told of each variant; `band` False: the nominal
+    variant and strike only (every band then the nominal value, no other strike: a cheap check,
+    not a report)."""
     say = progress or (lambda text: None)
     start = time.perf_counter()
     measured = measured_form(c)
@@ -202,12 +204,13 @@ def answer(c, progress=None) -> StrideAnswer:
     runner = measured["cadence_spm"]
     cadences = [runner] + [runner * (1 + p / 100) for p in WHAT_IF_PCT]
     nominal = stride_scene(scaled_body(body["mass_kg"], body["height_m"], body["sex"]), speed,
-                           measured["strike"], "effort", c.settings["friction"], law)
+                           measured["strike"], "effort", c.settings["friction"], law, nodes)
     variants = [("effort (nominal)", nominal)]
     variants += [(f"friction {mu:g}", _with(nominal, friction=mu)) for mu in FRICTION_BAND]
     variants += [(o, _with(nominal, objective=o)) for o in OBJECTIVE_BAND]
     variants += [(f"mass {f * 100 - 100:+.0f} %", with_body(nominal, scaled_body(
         body["mass_kg"] * f, body["height_m"], body["sex"]))) for f in MASS_BAND]
+    variants = variants if band else variants[:1]
     curves = []
     for k, (name, scene) in enumerate(variants, 1):
         say(f"stride [{k}/{len(variants)}] {name}: {len(cadences)} cadences")
@@ -216,8 +219,8 @@ def answer(c, progress=None) -> StrideAnswer:
         notes.append(f"the nominal stride did not converge ({curves[0].why_not}): no what-if")
     notes += [f"{cv.name} left out of the band: {cv.why_not}" for cv in curves[1:] if not cv.ok]
     say("stride: the free optimum of each strike")
-    best = {s: curves[0].free if s == measured["strike"] else _free_or_none(_with(nominal, strike=s), speed)
-            for s in STRIKES}
+    best = {s: curves[0].free if s == measured["strike"] else
+            _free_or_none(_with(nominal, strike=s), speed) if band else None for s in STRIKES}
     return StrideAnswer(speed, law, measured, curves, best,
                         what_ifs(curves, cadences) if curves[0].ok else [], notes,
                         time.perf_counter() - start, nominal.settings.nodes)

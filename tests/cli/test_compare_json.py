@@ -17,7 +17,7 @@ def test_several_trials_with_json_print_only_json(tmp_path, capsys):
                      f'[[trial]]\ntrial = "{RBDS / "RBDS001runT25markers.txt"}"\n'
                      f'forces = "{RBDS / "RBDS001runT25forces.txt"}"\n')
     out = tmp_path / "out"
-    assert main(["compare", "--scene", str(scene), "--json", "--starts", "1", "--out", str(out)]) == 0
+    assert main(["compare", "--no-stride", "--scene", str(scene), "--json", "--starts", "1", "--out", str(out)]) == 0
     printed = json.loads(capsys.readouterr().out)  # the whole of stdout is one JSON object
     assert [row["side"] for row in printed["trials"]] == ["R", "L", "R", "L"]
     for stem in ("RBDS001runT35", "RBDS001runT25markers"):
