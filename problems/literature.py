@@ -37,6 +37,7 @@ import argparse
 import numpy as np
 
 from formopt.mechanics.body import paper_body
+from formopt.mechanics.limits import CADENCE_SPM
 from formopt.optim.stride.problem import OBJECTIVES
 from formopt.studies.stride_form import NODES, joint_work, placement_m, stride_scene
 from formopt.studies.stride_map import cadence_curve
@@ -64,8 +65,9 @@ class Curves:
 
     def get(self, speed: float, objective: str, factors=None, steps=None):
         """(free optimum, {factor: stride}) at `speed`; factors of the free cadence, or step
-        lengths `steps` given as multiples of leg length added to the free step (m). None when
-        the free optimum does not converge."""
+        lengths `steps` given as multiples of leg length added to the free step (m); a stride
+        None where its cadence is beyond the stride's range. RuntimeError when the free optimum
+        does not converge."""
         key = (speed, objective, factors, steps)
         if key not in self.cache:
             scene = stride_scene(self.body, speed, self.strike, objective, nodes=self.nodes,
@@ -77,8 +79,11 @@ class Curves:
                 names = steps
             else:
                 cadences, names = [f0 * f for f in factors], factors
-            got = cadence_curve(scene, speed, cadences)
-            self.cache[key] = (got.free, dict(zip(names, got.strides)))
+            inside = [k for k, c in enumerate(cadences) if c in CADENCE_SPM]
+            got = cadence_curve(scene, speed, [cadences[k] for k in inside])
+            at = dict.fromkeys(names)  # None: a cadence beyond the stride's range (60-300)
+            at.update({names[k]: s for k, s in zip(inside, got.strides)})
+            self.cache[key] = (got.free, at)
         return self.cache[key]
 
 
@@ -107,13 +112,15 @@ def cadence_section(curves: Curves, objectives) -> None:
                 print(f"  {objective:9s} {speed:.1f} m/s: {err}")
                 verdicts[objective] = "no verdict"
                 continue
-            costs = {f: s.objective_value for f, s in at.items()}
-            line = "  ".join(f"{f:4.2f}:{c:.4f}{'' if at[f].success else '!'}" for f, c in costs.items())
+            costs = {f: s.objective_value for f, s in at.items() if s is not None}
+            line = "  ".join(f"{f:4.2f}:" + (f"{s.objective_value:.4f}{'' if s.success else '!'}"
+                                              if s is not None else "beyond range") for f, s in at.items())
             print(f"  {objective:9s} {speed:.1f} m/s: free {f0.cadence_spm:6.1f} steps/min, cost "
                   f"{f0.objective_value:.4f}; at factor x free: {line}")
             if speed != 3.0:
                 continue
             if not solved(at[0.8], at[1.2]):
+                print("    an end of the +-20 % curve is missing or did not converge")
                 verdicts[objective] = "no verdict"
                 continue
             u = costs[0.8] > f0.objective_value and costs[1.2] > f0.objective_value
@@ -137,11 +144,12 @@ def step_section(curves: Curves, objectives) -> None:
             verdicts[objective] = "no verdict"
             continue
         c0 = f0.objective_value
-        rise = {d: (s.objective_value - c0) / c0 * 100 for d, s in at.items()}
+        rise = {d: (s.objective_value - c0) / c0 * 100 for d, s in at.items() if s is not None}
         print(f"  {objective:9s}: free step {f0.step_length_m:.3f} m ({f0.cadence_spm:.1f} steps/min); "
               "cost change % at +-leg fraction: " + "  ".join(
-                  f"{d:+.1f}:{r:+.2f}{'' if at[d].success else '!'}" for d, r in rise.items()))
+                  f"{d:+.1f}:{rise[d]:+.2f}{'' if at[d].success else '!'}" for d in rise))
         if not solved(at[-0.2], at[0.2]):
+            print("    an end of the +-20 % curve is missing or did not converge")
             verdicts[objective] = "no verdict"
             continue
         u = rise[-0.2] > 0 and rise[0.2] > 0
@@ -163,7 +171,7 @@ def impacts_section(curves: Curves, objectives) -> None:
             print(f"  {objective:9s}: {err}")
             derrick[objective] = lieberman[objective] = "no verdict"
             continue
-        strides = [s for s in [f0, *at.values()] if s.success]
+        strides = [s for s in [f0, *at.values()] if s is not None and s.success]
         step = np.array([s.step_length_m for s in strides])
         T_c = np.array([s.budget["impacts_J"] for s in strides])
         cadence = np.array([s.cadence_spm for s in strides])
@@ -194,15 +202,15 @@ def heiderscheit_section(curves: Curves, objectives) -> None:
             verdicts[objective] = "no verdict"
             continue
         rows = {1.0: f0, **{f: at[f] for f in (0.9, 0.95, 1.05, 1.1)}}
+        if not solved(*rows.values()):
+            print(f"  {objective:9s}: a stride at 0.9-1.1 x free is missing or did not converge")
+            verdicts[objective] = "no verdict"
+            continue
         neg = {f: {j: joint_work(s)[f"stance_{j}"]["negative_J"] for j in ("hip", "knee", "ankle")}
                for f, s in sorted(rows.items())}
         for f, w in neg.items():
-            print(f"  {objective:9s} x{f:4.2f} ({rows[f].cadence_spm:5.1f} steps/min"
-                  f"{'' if rows[f].success else ', NOT CONVERGED'}): negative work hip {w['hip']:6.2f}, "
-                  f"knee {w['knee']:6.2f}, ankle {w['ankle']:6.2f} J")
-        if not solved(*rows.values()):
-            verdicts[objective] = "no verdict"
-            continue
+            print(f"  {objective:9s} x{f:4.2f} ({rows[f].cadence_spm:5.1f} steps/min): negative work "
+                  f"hip {w['hip']:6.2f}, knee {w['knee']:6.2f}, ankle {w['ankle']:6.2f} J")
         knee_lower = neg[1.05]["knee"] < neg[1.0]["knee"] and neg[1.1]["knee"] < neg[1.0]["knee"]
         all_higher = all(neg[0.9][j] > neg[1.0][j] for j in ("hip", "knee", "ankle"))
         verdicts[objective] = "reproduced" if knee_lower and all_higher else "not reproduced"
