@@ -83,7 +83,7 @@ class Curves:
             got = cadence_curve(scene, speed, [cadences[k] for k in inside])
             at = dict.fromkeys(names)  # None: a cadence beyond the stride's range (60-300)
             at.update({names[k]: s for k, s in zip(inside, got.strides)})
-            self.cache[key] = (got.free, at)
+            self.cache[key] = (probe.free, at)  # the free optimum the cadences were set from
         return self.cache[key]
 
 
@@ -113,7 +113,7 @@ def cadence_section(curves: Curves, objectives) -> None:
                 verdicts[objective] = "no verdict"
                 continue
             costs = {f: s.objective_value for f, s in at.items() if s is not None}
-            line = "  ".join(f"{f:4.2f}:" + (f"{s.objective_value:.4f}{'' if s.success else '!'}"
+            line = "  ".join(f"{f:4.2f}:" + (f"{s.objective_value:.4f}{'' if s.success else '!'} ({s.cadence_spm:.0f})"
                                               if s is not None else "beyond range") for f, s in at.items())
             print(f"  {objective:9s} {speed:.1f} m/s: free {f0.cadence_spm:6.1f} steps/min, cost "
                   f"{f0.objective_value:.4f}; at factor x free: {line}")
