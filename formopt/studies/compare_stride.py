@@ -44,6 +44,9 @@ WHAT_IF_PCT = (-10.0, -5.0, 5.0, 10.0)  # cadence changes asked (% of the runner
 FRICTION_BAND = (0.6, 1.0)
 OBJECTIVE_BAND = ("metabolic",)
 MASS_BAND = (0.95, 1.05)
+# a free optimum this far from the runner's cadence (fraction) is beyond the cadences runners
+# choose around their own (de Ruiter 2020: optimal 171 +- 8 against preferred 165 +- 8)
+FAR = 0.2
 STRIDE_LAWS = ("no-slip", "coulomb")  # the stride's impact laws; compare's others map to coulomb
 
 
@@ -241,6 +244,10 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True) -> StrideAns
     if not curves[0].ok:
         notes.append(f"the nominal stride did not converge ({curves[0].why_not}): no what-if")
     notes += [f"{cv.name} left out of the band: {cv.why_not}" for cv in curves[1:] if not cv.ok]
+    if curves[0].free is not None and abs(curves[0].free.cadence_spm / runner - 1) > FAR:
+        notes.append(f"the model's free optimum ({curves[0].free.cadence_spm:.0f} steps/min) is "
+                     f"{(curves[0].free.cadence_spm / runner - 1) * 100:+.0f} % from the runner's cadence: "
+                     "read the what-if as the slope of the cost at the runner's cadence, not as a target")
     say("stride: the free optimum of each strike")
     best = {s: curves[0].free if s == measured["strike"] else
             _free_or_none(_with(nominal, strike=s), speed) if band else None for s in STRIKES}
