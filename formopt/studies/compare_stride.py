@@ -162,21 +162,29 @@ class StrideAnswer:
 
 def measured_form(c) -> dict:
     """The runner's cadence (steps/min), step length (m), placement of the striking point
-    ahead of the hip (m, main side's mean touchdown) and strike (its impact point)."""
+    ahead of the hip (m: the mean over the main side's steps of the hip's forward distance from
+    the point the stride strikes with, the forefoot for a forefoot strike, else the heel, as
+    optim.stride) and strike (the main side's impact point)."""
     st, side = c.steps, c.main_side
+    point = "forefoot" if side.point == "forefoot" else "heel"
+    ahead = [-st.touchdowns[k].hip_from_point[point][0] for k in side.steps]
     return {"cadence_spm": st.cadence_spm, "step_length_m": st.speed * 60.0 / st.cadence_spm,
-            "placement_m": -side.hip_from_strike[0], "strike": side.point}
+            "placement_m": float(np.mean(ahead)), "strike": side.point}
 
 
 def run_curve(name: str, scene, speed: float, cadences: list[float]) -> Curve:
-    """The variant's strides at `cadences`, warm-started from its free optimum."""
+    """The variant's strides at `cadences`, warm-started along them from its free optimum
+    (stride_map.cadence_curve), each solved again from the free optimum itself and the lower
+    objective kept: a chain can pass to another local optimum, and the change against the
+    runner's cadence compares two strides of the chain."""
     curve = Curve(name, cadences)
     try:
         got = cadence_curve(scene, speed, cadences)
     except RuntimeError as err:
         curve.why_not = str(err)
         return curve
-    curve.free, curve.strides = got.free, got.strides
+    curve.free, curve.strides = got.free, [_better(s, _at(scene, got.free, c))
+                                           for s, c in zip(got.strides, cadences)]
     failed = [f"{s.cadence_spm:.0f}" for s in got.strides if not s.success]
     if failed:
         curve.why_not = f"no convergence at {', '.join(failed)} steps/min"
@@ -189,14 +197,9 @@ def variant_curve(name: str, scene, nominal: Curve) -> Curve:
     family of strides. (Warm-started along its own cadences instead, the mass -5 % variant
     of RBDS001 at 3.58 m/s jumped at -10 % to another local optimum, 565 W against the
     nominal's 463 W, and made the band 10 times wider, 2026-11-23.)"""
-    nlp, curve = nlp_of(scene), Curve(name, nominal.cadences)
-
-    def solve(stride: Stride, cadence: float | None) -> Stride:
-        got = nlp.solve(stride.solved.blocks, scene.speed, scene.slope, scene.friction, cadence)
-        return summarise(nlp, got, False)
-
-    curve.free = solve(nominal.free, None)
-    curve.strides = [solve(s, c) for s, c in zip(nominal.strides, nominal.cadences)]
+    curve = Curve(name, nominal.cadences)
+    curve.free = _at(scene, nominal.free, None)
+    curve.strides = [_at(scene, s, c) for s, c in zip(nominal.strides, nominal.cadences)]
     failed = [f"{s.cadence_spm:.0f} steps/min" for s in curve.strides if not s.success]
     failed += [] if curve.free.success else ["the free optimum"]
     if failed:
@@ -262,6 +265,18 @@ def _with(scene, **changes):
         return replace(scene, friction=changes["friction"])
     settings = replace(scene.settings, **changes)
     return replace(scene, settings=settings, strike=settings.strike)
+
+
+def _at(scene, start: Stride, cadence: float | None) -> Stride:
+    """The scene's stride at `cadence`, warm-started from `start`."""
+    nlp = nlp_of(scene)
+    got = nlp.solve(start.solved.blocks, scene.speed, scene.slope, scene.friction, cadence)
+    return summarise(nlp, got, False)
+
+
+def _better(a: Stride, b: Stride) -> Stride:
+    """The converged stride of lower objective (a when neither converged)."""
+    return min((s for s in (a, b) if s.success), key=lambda s: s.objective_value, default=a)
 
 
 def _free_or_none(scene, speed: float) -> Stride | None:

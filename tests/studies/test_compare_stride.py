@@ -41,8 +41,9 @@ def test_what_ifs_span_every_converged_variant():
 @pytest.fixture(scope="module")
 def section():
     """The section for a runner like RBDS001 at 3.5 m/s (heel), nominal variant, 24 nodes."""
-    side = SimpleNamespace(point="heel", hip_from_strike=(-0.17, 0.9))
-    c = SimpleNamespace(steps=SimpleNamespace(speed=3.5, cadence_spm=171.4), main_side=side,
+    side = SimpleNamespace(point="heel", steps=[0, 1])
+    tds = [SimpleNamespace(hip_from_point={"heel": (x, 0.9), "forefoot": (x - 0.2, 0.9)}) for x in (-0.16, -0.18)]
+    c = SimpleNamespace(steps=SimpleNamespace(speed=3.5, cadence_spm=171.4, touchdowns=tds), main_side=side,
                         settings={"body": {"mass_kg": 62.0, "height_m": 1.81, "sex": "male"},
                                   "friction": 0.8}, law="coulomb")
     return answer(c, nodes=24, band=False)
