@@ -13,7 +13,8 @@ distance to its own optimum):
     sum T_c / T (W).
 
 Its band [low_W, high_W] spans dP over the variants, each solved warm from the nominal's
-stride at the same cadence (variant_curve): the objective (effort, the nominal;
+stride at the same cadence (variant_curve): the local optima (each cadence solved from the
+free optimum instead of its neighbour: from_free_curve), the objective (effort, the nominal;
 metabolic: OBJECTIVE_BAND), the friction (FRICTION_BAND) and the body's scaling (MASS_BAND). A
 variant that fails to converge at any cadence is left out of the band and named in `notes`.
 A change whose band holds zero is "no change the model can resolve".
@@ -47,6 +48,7 @@ MASS_BAND = (0.95, 1.05)
 # a free optimum this far from the runner's cadence (fraction) is beyond the cadences runners
 # choose around their own (de Ruiter 2020: optimal 171 +- 8 against preferred 165 +- 8)
 FAR = 0.2
+FROM_FREE = "effort, each cadence from the free optimum"  # the band's local-optima variant
 STRIDE_LAWS = ("no-slip", "coulomb")  # the stride's impact laws; compare's others map to coulomb
 
 
@@ -174,17 +176,14 @@ def measured_form(c) -> dict:
 
 def run_curve(name: str, scene, speed: float, cadences: list[float]) -> Curve:
     """The variant's strides at `cadences`, warm-started along them from its free optimum
-    (stride_map.cadence_curve), each solved again from the free optimum itself and the lower
-    objective kept: a chain can pass to another local optimum, and the change against the
-    runner's cadence compares two strides of the chain."""
+    (stride_map.cadence_curve)."""
     curve = Curve(name, cadences)
     try:
         got = cadence_curve(scene, speed, cadences)
     except RuntimeError as err:
         curve.why_not = str(err)
         return curve
-    curve.free, curve.strides = got.free, [_better(s, _at(scene, got.free, c))
-                                           for s, c in zip(got.strides, cadences)]
+    curve.free, curve.strides = got.free, got.strides
     failed = [f"{s.cadence_spm:.0f}" for s in got.strides if not s.success]
     if failed:
         curve.why_not = f"no convergence at {', '.join(failed)} steps/min"
@@ -202,6 +201,19 @@ def variant_curve(name: str, scene, nominal: Curve) -> Curve:
     curve.strides = [_at(scene, s, c) for s, c in zip(nominal.strides, nominal.cadences)]
     failed = [f"{s.cadence_spm:.0f} steps/min" for s in curve.strides if not s.success]
     failed += [] if curve.free.success else ["the free optimum"]
+    if failed:
+        curve.why_not = f"no convergence at {', '.join(failed)}"
+    return curve
+
+
+def from_free_curve(name: str, scene, nominal: Curve) -> Curve:
+    """The nominal's strides solved again, each from the free optimum rather than from its
+    neighbour: another local optimum where the effort's landscape has several (RBDS001 T35:
+    578 W against the chain's 447 W at the runner's cadence, 2026-11-23), so the band also
+    spans the local optima the model finds."""
+    curve = Curve(name, nominal.cadences, nominal.free)
+    curve.strides = [_at(scene, nominal.free, c) for c in nominal.cadences]
+    failed = [f"{s.cadence_spm:.0f} steps/min" for s in curve.strides if not s.success]
     if failed:
         curve.why_not = f"no convergence at {', '.join(failed)}"
     return curve
@@ -233,7 +245,7 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True) -> StrideAns
     cadences = [runner] + [runner * (1 + p / 100) for p in WHAT_IF_PCT]
     nominal = stride_scene(scaled_body(body["mass_kg"], body["height_m"], body["sex"]), speed,
                            measured["strike"], "effort", c.settings["friction"], law, nodes)
-    variants = [("effort (nominal)", nominal)]
+    variants = [("effort (nominal)", nominal), (FROM_FREE, nominal)]
     variants += [(f"friction {mu:g}", _with(nominal, friction=mu)) for mu in FRICTION_BAND]
     variants += [(o, _with(nominal, objective=o)) for o in OBJECTIVE_BAND]
     variants += [(f"mass {f * 100 - 100:+.0f} %", with_body(nominal, scaled_body(
@@ -243,7 +255,8 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True) -> StrideAns
     curves = [run_curve(variants[0][0], nominal, speed, cadences)]
     for k, (name, scene) in enumerate(variants[1:], 2):
         say(f"stride [{k}/{len(variants)}] {name}: warm from the nominal")
-        curves.append(variant_curve(name, scene, curves[0]) if curves[0].ok else Curve(name, cadences, why_not="no nominal"))
+        build = from_free_curve if name == FROM_FREE else variant_curve
+        curves.append(build(name, scene, curves[0]) if curves[0].ok else Curve(name, cadences, why_not="no nominal"))
     if not curves[0].ok:
         notes.append(f"the nominal stride did not converge ({curves[0].why_not}): no what-if")
     notes += [f"{cv.name} left out of the band: {cv.why_not}" for cv in curves[1:] if not cv.ok]
@@ -272,11 +285,6 @@ def _at(scene, start: Stride, cadence: float | None) -> Stride:
     nlp = nlp_of(scene)
     got = nlp.solve(start.solved.blocks, scene.speed, scene.slope, scene.friction, cadence)
     return summarise(nlp, got, False)
-
-
-def _better(a: Stride, b: Stride) -> Stride:
-    """The converged stride of lower objective (a when neither converged)."""
-    return min((s for s in (a, b) if s.success), key=lambda s: s.objective_value, default=a)
 
 
 def _free_or_none(scene, speed: float) -> Stride | None:
