@@ -13,7 +13,7 @@ RUN25, FORCES25 = RBDS / "RBDS001runT25markers.txt", RBDS / "RBDS001runT25forces
 
 
 def test_cli_compare_json_exports_and_bad_input(tmp_path, capsys):
-    code = main(["compare", "--trial", str(RUN35), "--static", str(STATIC), "--mass", "62",
+    code = main(["compare", "--no-stride", "--trial", str(RUN35), "--static", str(STATIC), "--mass", "62",
                  "--height", "1.81", "--json", "--out", str(tmp_path)])
     data = json.loads(capsys.readouterr().out)
     assert code == 0
@@ -55,7 +55,7 @@ def test_scene_file_gives_one_table_across_trials(tmp_path, capsys):
                      f'bounds = {{ knee = [0, 90] }}\n[[trial]]\ntrial = "{RUN35}"\n'
                      f'[[trial]]\ntrial = "{RUN25}"\nforces = "{FORCES25}"\n')
     out = tmp_path / "out"
-    assert main(["compare", "--scene", str(scene), "--json", "--out", str(out), "--starts", "1"]) == 0
+    assert main(["compare", "--no-stride", "--scene", str(scene), "--json", "--out", str(out), "--starts", "1"]) == 0
     rows = (out / "trials.csv").read_text().splitlines()
     assert len(rows) == 1 + 4 and "RBDS001runT25markers.txt" in rows[-1]
     printed = json.loads(capsys.readouterr().out)  # the whole of stdout is one JSON object
