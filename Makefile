@@ -1,6 +1,7 @@
 # make demo: set up .venv when missing, install formopt, optimise the demo scene's posture
 # (prints the result, writes figures and JSON to out/demo).
-# make test: the same set-up, then the whole test suite.
+# make test: the same set-up, then the whole test suite on 2 workers (pytest-xdist; tests/conftest.py
+# keeps each file on one worker and the Dask tests together).
 # make docs: the documentation site (docs/_build/html), warnings as errors; runs the examples.
 # make gallery: the figures in docs/gallery, redrawn by the examples, and their manifest.
 PYTHON ?= python3.11
@@ -22,7 +23,7 @@ demo: $(STAMP)
 	$(BIN)/formopt solve demo --out out/demo
 
 test: $(STAMP)
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n 2 --dist loadfile
 
 bench: $(STAMP)
 	$(BIN)/formopt bench

@@ -24,7 +24,8 @@ from pathlib import Path
 import casadi as ca
 
 from formopt import load
-from formopt.mechanics.landing import LandingModel, absorbed_function, simulate_state
+from formopt.mechanics.landing import LandingModel, simulate_state
+from formopt.mechanics.landing_function import absorbed_function
 from formopt.studies import sweep
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -1,9 +1,12 @@
 """Fixtures: the paper's body and its models, one compile cache and one Dask cluster per
 session (helpers.py holds the shared functions)."""
 
+import os
+
 import pytest
 
 from formopt.mechanics.body import paper_body
+from formopt.mechanics.compiled import compiler
 from formopt.mechanics.model import build_model
 
 
@@ -22,22 +25,72 @@ def shank_foot(body):
     return build_model(body, "shank-foot")
 
 
+# The compiler the tests compile with: the system's cc at -O0 (its flags come last, so they win
+# over compiled.FUNCTION_OPT). The tests check numbers, not speed; without -ffast-math both levels
+# give the same IEEE results (the full-body landing: the same T_c_total to the last bit), and -O0
+# compiles the large step functions about six times faster (full-body landing: 17 s -> 2.7 s CPU).
+FAST_CC = '#!/bin/sh\nexec "${FORMOPT_TEST_CC:-cc}" "$@" -O0\n'
+
+
 @pytest.fixture(scope="session", autouse=True)
 def compile_cache(tmp_path_factory):
-    """One cache of compiled functions for the whole session (FORMOPT_CACHE): every test that
-    compiles the same graph reuses the library, and no test reads the user's own cache."""
+    """One cache of compiled functions for the whole session (FORMOPT_CACHE), shared by the
+    pytest-xdist workers (each library is written by an atomic rename, compiled._compile), so
+    a graph compiles once per run and no test reads the user's own cache; CC compiles at -O0
+    (FAST_CC). Subprocesses (the CLI, examples, notebooks) inherit both."""
     mp = pytest.MonkeyPatch()
-    path = tmp_path_factory.mktemp("formopt-cache")
+    root = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):  # the workers' temp folders share one parent
+        root = root.parent
+    path = root / "formopt-cache"
+    path.mkdir(exist_ok=True)
+    cc = root / "cc-O0"
+    if not cc.exists():
+        tmp = root / f"cc-O0.{os.getpid()}"
+        tmp.write_text(FAST_CC)
+        tmp.chmod(0o755)
+        os.replace(tmp, cc)
     mp.setenv("FORMOPT_CACHE", str(path))
+    mp.setenv("FORMOPT_TEST_CC", compiler())
+    mp.setenv("CC", str(cc))
     yield path
     mp.undo()
 
 
 @pytest.fixture(scope="session")
 def dask_scheduler():
-    """The address of a local Dask cluster (two worker processes), started once per session."""
+    """The address of a local Dask cluster (two worker processes), started once per session;
+    the tests that take it say "dask" in their names, so that ByFile runs them on one worker
+    (pytest_collection_modifyitems checks)."""
     from dask.distributed import LocalCluster
 
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                       dashboard_address=None) as cluster:
         yield cluster.scheduler_address
+
+
+def pytest_collection_modifyitems(items):
+    """A test that takes the Dask cluster says "dask" in its name (ByFile groups by the name)."""
+    for item in items:
+        if "dask_scheduler" in getattr(item, "fixturenames", ()) and "dask" not in item.name:
+            raise pytest.UsageError(f"{item.nodeid}: a test that takes dask_scheduler says 'dask' in its name")
+
+
+try:
+    from xdist.scheduler import LoadFileScheduling
+except ImportError:  # pytest-xdist comes with the test extra; without it the suite runs in one process
+    LoadFileScheduling = None
+
+if LoadFileScheduling is not None:
+
+    class ByFile(LoadFileScheduling):
+        """`pytest -n 2 --dist loadfile` (the Makefile): each file's tests on one worker, so its
+        module fixtures are built once, and the Dask tests (named "...dask...") together on one
+        worker, so one cluster starts. (xdist's loadgroup marks do not reach its scheduler under
+        pytest 9, which no longer reads the node id xdist rewrites.)"""
+
+        def _split_scope(self, nodeid: str) -> str:
+            return "dask" if "dask" in nodeid.rsplit("::", 1)[-1] else super()._split_scope(nodeid)
+
+    def pytest_xdist_make_scheduler(config, log):
+        return ByFile(config, log) if config.getvalue("dist") == "loadfile" else None

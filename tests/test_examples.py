@@ -11,7 +11,9 @@ EXAMPLES = sorted((ROOT / "examples").glob("*.py"))
 
 @pytest.mark.parametrize("example", EXAMPLES, ids=[e.stem for e in EXAMPLES])
 def test_example_runs_and_writes_its_figure(example, tmp_path):
-    out = subprocess.run([sys.executable, str(example), str(tmp_path)], capture_output=True,
+    """An example with a quick mode runs in it (`make docs` runs every example in full)."""
+    quick = ["--quick"] if "--quick" in example.read_text() else []
+    out = subprocess.run([sys.executable, str(example), str(tmp_path), *quick], capture_output=True,
                          text=True, timeout=600)
     assert out.returncode == 0, out.stderr[-2000:]
     assert list(tmp_path.rglob("*.png")), "the example's figure"

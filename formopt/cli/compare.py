@@ -20,9 +20,10 @@ from ..mechanics import limits
 from ..mechanics.body import DE_LEVA
 from ..mechanics.contact import LAWS
 from ..mechanics.errors import InputError
-from ..report.figures import comparison_figure
+from ..report.figures import comparison_figure, stride_cadence_figure
 from ..report.tables import comparison_table, trials_table
 from ..studies.compare import BOUNDS_DEG, JOINTS, SUPPORT, compare
+from ..studies.compare_stride import answer
 from .common import add_format, emit, out_folder
 
 # every setting: its default and what it is (the option's help)
@@ -48,6 +49,8 @@ SETTINGS: dict[str, tuple[Any, str]] = {
     "starts": (4, "starts of the optimum"),
     "seed": (0, "seed of the random starts"),
     "per_step": (True, "an optimum for every step as well (--no-per-step: the mean step's only)"),
+    "stride": (True, "the stride optimum of the runner's body and what-if cadences -10 to +10 %% "
+                     "(about a minute per trial; --no-stride: the touchdowns only)"),
 }
 
 
@@ -59,8 +62,9 @@ def add_parser(commands):
     for key, (default, text) in SETTINGS.items():
         flag = "--" + key.replace("_", "-")
         shown = f" (default {default})" if default not in (None, {}, True) else ""
-        if key == "per_step":
-            cmd.add_argument("--no-per-step", dest="per_step", action="store_false", default=None, help=text)
+        if key in ("per_step", "stride"):
+            cmd.add_argument("--no-" + key.replace("_", "-"), dest=key, action="store_false",
+                             default=None, help=text)
         elif key in ("trial", "bounds"):
             cmd.add_argument(flag, action="append", default=None, help=text + shown)
         else:
@@ -111,7 +115,7 @@ def check(table: dict, where: str, folder: Path | None = None) -> dict:
             name = val.string(table, key, where)
             relative = key != "markers" or name.endswith(".toml")
             out[key] = str(folder / name) if folder is not None and relative else name
-        elif key == "per_step":
+        elif key in ("per_step", "stride"):
             out[key] = val.flag(table, key, where, True)
         elif key == "bounds":
             full = f"{where}.bounds" if where else "bounds"
@@ -194,6 +198,9 @@ def run_one(s: dict, args, out: Path, show: bool = True):
                      starts=s["starts"], seed=s["seed"], law=s["contact"], bounds_deg=s["bounds"],
                      support=s["support"], options=options, per_step=s["per_step"],
                      progress=None if quiet else lambda text: print(f"  {text}", file=sys.stderr))
+    if s["stride"]:
+        result.stride = answer(result, progress=None if quiet else
+                               lambda text: print(f"  {text}", file=sys.stderr))
     rep = result.to_dict()
     rep["figure"] = str(save_figure(comparison_figure(result, rep), out / f"comparison.{args.format}"))
     rows = [TOUCHDOWN_COLUMNS]
@@ -207,7 +214,11 @@ def run_one(s: dict, args, out: Path, show: bool = True):
                      *[o["angles_deg"][k] if o.get("success") else "" for k in ("hip", "knee", "ankle")],
                      o.get("saving_J", "") if o.get("success") else "", "; ".join(t["data_problems"])])
     m = result.measurement
-    files = [rep["figure"], write_csv(out / "touchdowns.csv", rows),
+    if "stride" in rep:
+        rep["stride"]["figure"] = str(save_figure(stride_cadence_figure(rep["stride"]),
+                                                  out / f"stride_cadence.{args.format}"))
+    files = [rep["figure"], *([rep["stride"]["figure"]] if "stride" in rep else []),
+             write_csv(out / "touchdowns.csv", rows),
              write_trc(out / "markers.trc", m.kinematics, m.calibration),
              write_mot(out / "angles.mot", m.kinematics)]
     emit(args, rep, comparison_table(result, rep), out / "comparison.json", files, show)

@@ -1,4 +1,4 @@
-"""formopt sweep SCENE --param NAME=START:STOP:COUNT: landings across a grid (resumable)."""
+"""formopt sweep SCENE --param NAME=START:STOP:COUNT: landings, posture optima or strides across a grid (resumable)."""
 
 from __future__ import annotations
 
@@ -8,9 +8,11 @@ from collections import Counter
 
 from ..io.files import save_figure
 from ..io.scene import load
+from ..io.stride_scene import StrideScene
 from ..mechanics.errors import InputError
 from ..report.figures import optimum_map_figure, sweep_figure
-from ..studies import sweep
+from ..report.stride_sweep import stride_sweep_figures
+from ..studies import stride_map, sweep
 from .common import add_format
 
 
@@ -24,7 +26,8 @@ def add_parser(commands):
                      help="NAME=START:STOP:COUNT (repeat for a grid); NAME one of "
                           + ", ".join(f"{n} ({u})" for n, u in sweep.UNITS.items())
                           + ". Choose a range the scene can take: a forefoot strike needs the "
-                          "heel above the ground at touchdown")
+                          "heel above the ground at touchdown. On a [stride] scene NAME one of "
+                          + ", ".join(f"{n} ({u})" for n, u in stride_map.PARAMETERS.items()))
     cmd.add_argument("--out", help="CSV file (default out/<scene>/sweep.csv); an existing one is resumed")
     cmd.add_argument("--no-progress", action="store_true", help="no progress bar")
     cmd.add_argument("--landings", action="store_true",
@@ -42,13 +45,15 @@ def run(args) -> int:
     from ..io.files import check_target
 
     scene = load(args.scene)
-    params = [sweep.parse_param(p) for p in args.param]
+    params = [sweep.parse_param(p, scene) for p in args.param]
     out = check_target(args.out) if args.out is not None else Path("out") / Path(scene.path).stem / "sweep.csv"
     if args.workers < 1:
         raise InputError("--workers must be at least 1")
     rows = sweep.run(scene, params, out, progress=not args.no_progress, workers=args.workers,
                      scheduler=args.scheduler, note=lambda text: print(f"note: {text}", file=sys.stderr),
                      landings=args.landings)
+    if isinstance(scene, StrideScene):
+        return _stride_summary(rows, params, out, args.format)
     if scene.problem is not None and not args.landings:
         return _optimum_summary(scene, rows, params, out, args.format)
     failed = [r for r in rows if r["error"]]
@@ -89,4 +94,26 @@ def _optimum_summary(scene, rows, params, out, fmt) -> int:
         print(f"  T_c at the optima from {min(T_c):.4f} to {max(T_c):.4f} J")
         figure = optimum_map_figure(rows, [name for name, _ in params], scene.problem.variables)
         print(f"wrote {save_figure(figure, out.with_suffix(f'.{fmt}'))}")
+    return 0 if good else 1
+
+
+def _stride_summary(rows, params, out, fmt) -> int:
+    """What a stride map found: converged, valid, how each was started, the cost's range."""
+    good = [r for r in rows if not r["error"] and r["success"] == "True"]
+    valid = [r for r in good if r["valid"] == "True"]
+    starts = Counter(r["start"] for r in good)
+    print(f"{len(rows)} strides in {out}, in parameter order: {len(good)} converged "
+          f"({len(valid)} with valid impacts), {len(rows) - len(good)} without an optimum; started "
+          + ", ".join(f"{n} from {how}" for how, n in starts.most_common()))
+    failed = Counter(r["error"] or r["status"] for r in rows if r not in good)
+    if failed:
+        print("  failed: " + "; ".join(f"{n} x {why}" for why, n in failed.most_common(3)))
+    if good:
+        its = sorted(int(r["iterations"]) for r in good)
+        print(f"  IPOPT iterations per stride: median {its[len(its) // 2]}, max {its[-1]}")
+        for key, unit in (("mechanical_power_W", "W"), ("impact_loss_W", "W"), ("cadence_spm", "steps/min")):
+            values = [float(r[key]) for r in good]
+            print(f"  {key} from {min(values):.4g} to {max(values):.4g} {unit}")
+        for name, figure in stride_sweep_figures(rows, [n for n, _ in params]).items():
+            print(f"wrote {save_figure(figure, out.with_name(f'{out.stem}_{name}.{fmt}'))}")
     return 0 if good else 1

@@ -33,7 +33,8 @@ from ..mechanics.compiled import cached_nlpsol
 from ..mechanics.errors import InputError
 from ..mechanics.impact import Impact, ImpactResult, check_ground, impact_function
 from ..mechanics.integrators import DEFAULT_INTEGRATOR
-from ..mechanics.landing import Joints, LandingModel, landing_function, simulate_state
+from ..mechanics.landing import Joints, LandingModel, simulate_state
+from ..mechanics.landing_function import landing_function
 from ..mechanics.model import STRIKES, Model, ground_axes, positions
 from . import multistart
 from .constraints import posture_constraints, stack

@@ -227,7 +227,39 @@ def comparison_table(c: Comparison, rep: dict) -> str:
             for law in LAWS))
     lines += [f"  left out: {x}" for x in st.left_out]
     lines += [f"note: {n}" for n in rep["notes"]]
+    if "stride" in rep:
+        lines += stride_lines(rep["stride"])
     return "\n".join(lines)
+
+
+def stride_lines(s: dict) -> list[str]:
+    """compare's stride section (compare_stride.StrideAnswer.to_dict) in words: the runner
+    against the stride optimum, then each what-if cadence with its band; a change whose band
+    holds zero is said to be unresolved, never advised."""
+    lines = ["", f"  the stride: the half-stride optimum of this body at {s['speed_mps']:.2f} m/s "
+                 f"({s['nodes']} nodes, {s['law']} impacts, objective effort)",
+             f"    the runner:  cadence {s['measured_cadence_spm']:6.1f} steps/min, step "
+             f"{s['measured_step_length_m']:.3f} m, strike point {s['measured_placement_m']:.3f} m "
+             f"ahead of the hip, {s['measured_strike']} strike"]
+    if s["optimum_cadence_spm"] is None:
+        return lines + [f"    no stride optimum: {'; '.join(s['notes'])}"]
+    lines.append(f"    the optimum: cadence {s['optimum_cadence_spm']:6.1f} steps/min, step "
+                 f"{s['optimum_step_length_m']:.3f} m, strike point {s['optimum_placement_m']:.3f} m "
+                 f"ahead of the hip, {s['measured_strike']} strike; mechanical power "
+                 f"{s['optimum_mechanical_power_W']:.0f} W, impact loss {s['optimum_impact_loss_W']:.0f} W")
+    strikes = ", ".join(f"{k} {v['objective_value']:.3f}" + ("" if v["impacts_valid"] else " (an impact invalid)")
+                        for k, v in s["strikes"].items() if v is not None)
+    lines.append(f"    each strike's free optimum (objective per distance): {strikes}; least: {s['best_strike']}")
+    if s["what_if"]:
+        lines.append("    what if the cadence changed (against the stride at the runner's own cadence; band over the "
+                     "local optima found, friction 0.6-1.0, the objective and the mass +-5 %):")
+    for w in s["what_if"]:
+        lo, hi = w["impact_loss_band_W"]
+        lines.append(f"      {w['cadence_change_pct']:+5.0f} % ({w['cadence_spm']:5.1f} steps/min): mechanical "
+                     f"power {w['mechanical_power_change_W']:+6.1f} W [{w['low_W']:+.1f}, {w['high_W']:+.1f}], "
+                     f"impact loss {w['impact_loss_change_W']:+6.1f} W [{lo:+.1f}, {hi:+.1f}]: {w['words']}")
+    lines += [f"    note: {n}" for n in s["notes"]]
+    return lines
 
 
 def _side_lines(c: Comparison, side: str, o: dict, cadence: float) -> list[str]:

@@ -168,6 +168,7 @@ class Comparison:
     #                 other's time down (s), T_c (J) of an impact at the lower point alone
     plate: list[PlateImpact | None] = field(default_factory=list)  # per touchdown, trials with forces
     sequence: list[FlatSequence | None] = field(default_factory=list)  # per touchdown: flat steps'
+    stride: object = None  # compare_stride.StrideAnswer, when asked (compare_stride.answer)
 
     def step_T_c(self, k: int) -> float:
         """The headline T_c (J) of touchdown k: a flat step's sequence total, else its impact's."""
@@ -236,6 +237,7 @@ class Comparison:
             "touchdowns": [touchdown_row(self, k) for k in range(len(st.touchdowns))],
             "summary": summary(self),
             "optimum": {side: side_dict(self, o) for side, o in self.sides.items()},
+            **({"stride": self.stride.to_dict()} if self.stride is not None else {}),
         }
 
 

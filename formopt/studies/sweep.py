@@ -12,6 +12,10 @@ it resumes, and on Ctrl-C stops its workers and says how many rows are written.
 The landings run in chunks on a local process pool (`workers`), or on a Dask distributed
 cluster when given its scheduler's address; each worker builds its landing model once
 (compiled functions come from the on-disk cache) and the rows are written as chunks return.
+
+One runner for every kind of row (`Kind`, chosen by the scene): landings (here), posture
+optima of a scene's [optimize] table (studies.optimum_map) and stride optima of a [stride]
+scene (studies.stride_map); the last two are warm-started chains along a serpentine.
 """
 
 from __future__ import annotations
@@ -23,17 +27,19 @@ import os
 import signal
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, fields, replace
 from pathlib import Path
 
 import numpy as np
 
 from ..io.files import OutputError, append_csv, append_rows, write_csv
+from ..io.stride_scene import StrideScene
 from ..mechanics import limits
 from ..mechanics.errors import InputError
 from ..mechanics.landing import simulate_state
 from ..mechanics.model import STATE, joint_angles
-from . import optimum_map
+from . import optimum_map, stride_map
 
 PARAMETERS = {"speed_mps": "hip_vx", "trunk_deg": "trunk", "hip_deg": "hip", "knee_deg": "knee", "ankle_deg": "ankle",
               "hip_vx": "hip_vx", "hip_vz": "hip_vz", "friction": None, "slope_deg": None}
@@ -85,11 +91,13 @@ RANGES = {"speed_mps": SPEED, "hip_vx": SPEED, "hip_vz": SPEED, "friction": limi
 MAX_POINTS = 1_000_000
 
 
-def parse_param(text: str) -> tuple[str, np.ndarray]:
-    """'ankle_deg=-20:20:41' -> ('ankle_deg', 41 values from -20 to 20)."""
+def parse_param(text: str, scene=None) -> tuple[str, np.ndarray]:
+    """'ankle_deg=-20:20:41' -> ('ankle_deg', 41 values from -20 to 20); the names and ranges
+    of `scene`'s kind of sweep (a landing's when None, a stride's for a [stride] scene)."""
+    names, ranges = (stride_map.PARAMETERS, stride_map.RANGES) if _is_stride(scene) else (PARAMETERS, RANGES)
     name, _, spec = text.partition("=")
-    if name not in PARAMETERS:
-        raise InputError(f"--param {name!r}: expected one of {', '.join(PARAMETERS)}")
+    if name not in names:
+        raise InputError(f"--param {name!r}: expected one of {', '.join(names)}")
     try:
         first, last, number = spec.split(":")
         start, stop, count = float(first), float(last), int(number)
@@ -98,7 +106,7 @@ def parse_param(text: str) -> tuple[str, np.ndarray]:
     if not 1 <= count <= MAX_POINTS or not (math.isfinite(start) and math.isfinite(stop)):
         # checked before linspace: no memory for a huge COUNT, no numpy warning for inf
         raise InputError(f"--param {text!r}: COUNT must be 1 to {MAX_POINTS} and the range finite")
-    allowed = RANGES[name]
+    allowed = ranges[name]
     for value in (start, stop) if count > 1 else (start,):
         if value not in allowed:
             raise InputError(f"--param {text!r}: {name} = {value:g} is outside its range, "
@@ -111,7 +119,7 @@ def check_grid(params: list[tuple[str, np.ndarray]]) -> None:
     forward velocity) or has more than MAX_POINTS points, before any work."""
     seen: dict[str, str] = {}
     for name, _ in params:
-        quantity = PARAMETERS[name] or name
+        quantity = PARAMETERS.get(name) or name
         if quantity in seen:
             raise InputError(f"--param {name}: sets the same quantity as --param {seen[quantity]}; "
                              "give each quantity once")
@@ -140,11 +148,41 @@ def apply(scene, values: dict):
 CHUNK = 8  # landings per task: enough to pay for a worker's model, small enough to balance
 
 
+@dataclass(frozen=True)
+class Kind:
+    """What a sweep computes at each grid point: `work(scene, chunk)` -> one row ({column:
+    CSV value}) per point, `chunk` points per task; `chained`: the points of a chunk are
+    warm-started one from the next, so the grid is walked as a serpentine."""
+
+    unit: str  # what a row is, for the progress bar
+    columns: list[str]
+    work: Callable
+    chunk: int
+    chained: bool
+
+
+def kind_of(scene, params, landings: bool = False) -> Kind:
+    """The sweep a scene asks for (its grid checked, InputError naming a parameter it cannot
+    take): a stride map for a [stride] scene, an optimum map for an [optimize] table (unless
+    `landings`), else landings."""
+    if _is_stride(scene):
+        stride_map.check(scene, params)
+        return Kind("stride", stride_map.COLUMNS, stride_map.rows, stride_map.CHUNK, True)
+    if scene.problem is not None and not landings:
+        optimum_map.check(scene, params)
+        return Kind("optimum", optimum_map.columns(scene), optimum_map.rows, optimum_map.CHUNK, True)
+    return Kind("landing", COLUMNS, landing_rows, CHUNK, False)
+
+
+def _is_stride(scene) -> bool:
+    return isinstance(scene, StrideScene)
+
+
 def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True,
         workers: int = 1, scheduler: str | None = None, note=None,
         landings: bool = False) -> list[dict]:
-    """Sweep the landing of `scene` (or, when it has an [optimize] table and not `landings`,
-    its optimum) over the grid of `params`, appending rows to `path` (CSV).
+    """Sweep `scene` over the grid of `params` (its landing, or the optimum of its [optimize]
+    table unless `landings`, or its stride: `kind_of`), appending rows to `path` (CSV).
 
     workers > 1: a local process pool; scheduler: a Dask distributed scheduler's address;
     note(text): told of a repaired file. Ctrl-C raises KeyboardInterrupt("N rows written ...").
@@ -152,15 +190,11 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
     path = Path(path)
     check_grid(params)
     names = [n for n, _ in params]
-    optima = scene.problem is not None and not landings
-    if optima:  # an optimum map: warm-started chains along a serpentine
-        optimum_map.check(scene, params)
-        columns, work, size = optimum_map.columns(scene), optimum_map.rows, optimum_map.CHUNK
-        grid = optimum_map.serpentine(params)
-    else:
-        columns, work, size = COLUMNS, landing_rows, CHUNK
-        grid = [dict(zip(names, combo)) for combo in itertools.product(*[v for _, v in params])]
-    header = names + [c for c in columns if c not in names]  # a swept ground column once
+    kind = kind_of(scene, params, landings)
+    work, size = kind.work, kind.chunk
+    grid = optimum_map.serpentine(params) if kind.chained else \
+        [dict(zip(names, combo)) for combo in itertools.product(*[v for _, v in params])]
+    header = names + [c for c in kind.columns if c not in names]  # a swept ground column once
     fh, existing, torn = append_csv(path, header)
     with fh:
         if torn and note:
@@ -177,8 +211,7 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
         bar = None
         if progress:
             from tqdm import tqdm
-            unit = "optimum" if optima else "landing"
-            bar = tqdm(total=len(grid), initial=len(grid) - len(todo), unit=unit, desc="sweep")
+            bar = tqdm(total=len(grid), initial=len(grid) - len(todo), unit=kind.unit, desc="sweep")
         written = len(grid) - len(todo)
         try:
             for chunk, rows in _results(work, scene, chunks, workers, scheduler):
@@ -207,7 +240,8 @@ def _sort(path: Path, header, names, grid) -> None:
 
 def valid(row: dict) -> bool:
     """A computed landing that holds its own assumptions (Landing.valid); for an optimum map,
-    a converged optimum whose impact is valid."""
+    a converged optimum whose impact is valid; for a stride map, a converged stride whose
+    impacts are valid."""
     return not row["error"] and row["valid"] == "True"
 
 

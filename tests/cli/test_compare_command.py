@@ -13,7 +13,7 @@ RUN25, FORCES25 = RBDS / "RBDS001runT25markers.txt", RBDS / "RBDS001runT25forces
 
 
 def test_cli_compare_json_exports_and_bad_input(tmp_path, capsys):
-    code = main(["compare", "--trial", str(RUN35), "--static", str(STATIC), "--mass", "62",
+    code = main(["compare", "--no-stride", "--trial", str(RUN35), "--static", str(STATIC), "--mass", "62",
                  "--height", "1.81", "--json", "--out", str(tmp_path)])
     data = json.loads(capsys.readouterr().out)
     assert code == 0
@@ -46,13 +46,27 @@ def test_cli_compare_json_exports_and_bad_input(tmp_path, capsys):
 
 
 def test_scene_file_gives_one_table_across_trials(tmp_path, capsys):
+    """A scene of two trials (its bounds beyond the default range of motion accepted): one
+    table across them, and with --json only JSON on stdout (issue 25), each trial's report
+    built once (Comparison.to_dict) and written whole beside its figure. (The JSON checks were
+    test_compare_json's own run of the same two trials.)"""
     scene = tmp_path / "runners.toml"
     scene.write_text(f'[compare]\nmass = 62\nheight = 1.81\nstatic = "{STATIC}"\nper_step = false\n'
                      f'bounds = {{ knee = [0, 90] }}\n[[trial]]\ntrial = "{RUN35}"\n'
                      f'[[trial]]\ntrial = "{RUN25}"\nforces = "{FORCES25}"\n')
-    assert main(["compare", "--scene", str(scene), "--out", str(tmp_path / "out"), "--starts", "1"]) == 0
-    rows = (tmp_path / "out" / "trials.csv").read_text().splitlines()
+    out = tmp_path / "out"
+    assert main(["compare", "--no-stride", "--scene", str(scene), "--json", "--out", str(out), "--starts", "1"]) == 0
+    rows = (out / "trials.csv").read_text().splitlines()
     assert len(rows) == 1 + 4 and "RBDS001runT25markers.txt" in rows[-1]
+    printed = json.loads(capsys.readouterr().out)  # the whole of stdout is one JSON object
+    assert [row["side"] for row in printed["trials"]] == ["R", "L", "R", "L"]
+    for stem in ("RBDS001runT35", "RBDS001runT25markers"):
+        report = json.loads((out / stem / "comparison.json").read_text())
+        assert report["figure"] == str(out / stem / "comparison.png")
+        assert {"settings", "touchdowns", "summary", "optimum"} <= set(report)
+        assert set(report["optimum"]) == {"R", "L"}  # one per side, never pooled
+        rows = [r for r in printed["trials"] if r["trial"].endswith(report["source"].split("/")[-1])]
+        assert [r["T_c_J"] for r in rows] == [report["summary"][s]["T_c_mean"] for s in ("R", "L")]
     bad = tmp_path / "bad.toml"
     bad.write_text('[compare]\nmas = 62\n')
     assert main(["compare", "--scene", str(bad)]) == 2

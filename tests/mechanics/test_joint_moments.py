@@ -124,11 +124,13 @@ def test_a_diverged_landing_exits_1_with_its_reason(tmp_path, capsys):
 
 @pytest.mark.parametrize("strike", ["heel", "forefoot"])
 def test_no_foot_point_below_the_ground_in_random_landings(spring, strike):
-    """>= 500 landings in all (3 joint models x 2 strikes x 84 random touchdowns): no
-    recorded sample has a foot point below -1e-6 m, and each ends for a named reason."""
+    """252 landings in all (3 joint models x 2 strikes x 42 random touchdowns, seeded): no
+    recorded sample has a foot point below -1e-6 m, and each ends for a named reason. The
+    functions are interpreted: the compiled ones give the same numbers (io/test_numerics.py),
+    and compiling them would cost more than these landings."""
     model = spring.model()
     joints = (Joints("free"), spring.joints, Joints("locked", locked=("knee", "ankle")))
-    models = [LandingModel(model, j, 0.0, True, "adaptive", "no-slip") for j in joints]
+    models = [LandingModel(model, j, 0.0, False, "adaptive", "no-slip") for j in joints]
     other = "heel" if strike == "forefoot" else "forefoot"
     count = 0
     for x in random_states(400, seed=SEED + (strike == "heel"), strike=strike):
@@ -141,6 +143,6 @@ def test_no_foot_point_below_the_ground_in_random_landings(spring, strike):
             assert low > -1e-6, f"{lm.joints.model}: {low:.2e} m ({L.ended})"
             assert L.ended.startswith(ENDS)
             count += 1
-        if count >= 252:
+        if count >= 126:
             break
-    assert count >= 252
+    assert count >= 126

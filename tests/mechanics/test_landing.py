@@ -13,12 +13,8 @@ from helpers import SHIPPED, land
 from formopt import SceneError, impact, load
 from formopt.cli import main
 from formopt.io.scene import parse
-from formopt.mechanics.landing import (
-    Ended,
-    LandingModel,
-    absorbed_function,
-    landing_function,
-)
+from formopt.mechanics.landing import Ended, LandingModel
+from formopt.mechanics.landing_function import absorbed_function, landing_function
 
 SPRING = SHIPPED / "landing_spring.toml"
 

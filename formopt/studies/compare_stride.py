@@ -1,0 +1,292 @@
+"""compare's stride section: the measured runner against the stride optimum of their body.
+
+At the measured speed, for the body scaled from the runner's mass and height (de Leva), the
+free half-stride optimum (optim.stride) with the runner's own impact point (compare's main side)
+and with each strike ("best": the least costly that converged); the runner's cadence, step
+length, placement of the striking point ahead of the hip and strike beside it; and what-if
+strides with the cadence imposed at WHAT_IF_PCT of the runner's, warm-started along the
+cadences from the free optimum (stride_map.cadence_curve). A change is measured against the
+stride at the runner's own cadence (imposed too, so the model's answer is a change and not the
+distance to its own optimum):
+
+    dP(c) = P(c) - P(c_runner),  P = W+ / T (mechanical power, W), likewise the impact loss
+    sum T_c / T (W).
+
+Its band [low_W, high_W] spans dP over the variants, each solved warm from the nominal's
+stride at the same cadence (variant_curve): the local optima (each cadence solved from the
+free optimum instead of its neighbour: from_free_curve), the objective (effort, the nominal;
+metabolic: OBJECTIVE_BAND), the friction (FRICTION_BAND) and the body's scaling (MASS_BAND). A
+variant that fails to converge at any cadence is left out of the band and named in `notes`.
+A change whose band holds zero is "no change the model can resolve".
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from ..mechanics.body import scaled_body
+from ..optim.stride import Stride, summarise
+from ..optim.stride.problem import STRIKES
+from .stride_form import NODES, joint_work, placement_m, stride_scene, with_body
+from .stride_map import cadence_curve, free, nlp_of
+
+WHAT_IF_PCT = (-10.0, -5.0, 5.0, 10.0)  # cadence changes asked (% of the runner's cadence)
+# the band: friction over the range of shod running on track and treadmill belts (0.6-1.0,
+# the coefficient's usual span in the stride and compare scenes); the objective: what a runner
+# minimises is not known: effort and metabolic (the `work` objective, W+ alone, converged at no
+# imposed cadence within 500 iterations on RBDS001 at 3.58 m/s, 24 nodes, and cost 3 solves per
+# failure: metabolic, which weighs W+ and W-, stands for the work objectives); the body: de Leva's segment masses are
+# a population's regression, an individual's segment masses differ from it by about 5 %, and
+# the runner's own mass (clothes, shoes, hydration) by 1-2 %: total mass +- 5 % (the segments
+# scaled with it)
+FRICTION_BAND = (0.6, 1.0)
+OBJECTIVE_BAND = ("metabolic",)
+MASS_BAND = (0.95, 1.05)
+# a free optimum this far from the runner's cadence (fraction) is beyond the cadences runners
+# choose around their own (de Ruiter 2020: optimal 171 +- 8 against preferred 165 +- 8)
+FAR = 0.2
+FROM_FREE = "effort, each cadence from the free optimum"  # the band's local-optima variant
+STRIDE_LAWS = ("no-slip", "coulomb")  # the stride's impact laws; compare's others map to coulomb
+
+
+@dataclass
+class Curve:
+    """One variant's strides at the runner's cadence and the what-if cadences."""
+
+    name: str
+    cadences: list[float]  # steps/min: the runner's first, then WHAT_IF_PCT's
+    free: Stride | None = None
+    strides: list[Stride] = field(default_factory=list)
+    why_not: str = ""  # empty when every stride converged
+
+    @property
+    def ok(self) -> bool:
+        return not self.why_not
+
+    def power(self) -> np.ndarray:
+        return np.array([s.mechanical_power_W for s in self.strides])
+
+    def impact_loss(self) -> np.ndarray:
+        return np.array([s.budget["impacts_J"] / s.half_period_s for s in self.strides])
+
+    def to_dict(self) -> dict:
+        out = {"name": self.name, "converged": self.ok, "why_not": self.why_not,
+               "cadence_spm": self.cadences}
+        if self.ok:
+            out.update(mechanical_power_W=self.power().tolist(), impact_loss_W=self.impact_loss().tolist(),
+                       free_cadence_spm=self.free.cadence_spm,
+                       free_mechanical_power_W=self.free.mechanical_power_W)
+        return out
+
+
+@dataclass(frozen=True)
+class WhatIf:
+    """The predicted change at one imposed cadence (W) and its band over the variants."""
+
+    cadence_change_pct: float
+    cadence_spm: float
+    mechanical_power_change_W: float
+    impact_loss_change_W: float
+    low_W: float  # band of the mechanical power's change
+    high_W: float
+    impact_low_W: float  # band of the impact loss's change
+    impact_high_W: float
+
+    @property
+    def resolvable(self) -> bool:
+        return self.low_W > 0 or self.high_W < 0
+
+    def words(self) -> str:
+        """The change in words: its sign when the band excludes zero, else that it is not
+        resolved."""
+        if not self.resolvable:
+            return "no change the model can resolve"
+        return "costs more" if self.low_W > 0 else "saves power"
+
+    def to_dict(self) -> dict:
+        return {"cadence_change_pct": self.cadence_change_pct, "cadence_spm": self.cadence_spm,
+                "mechanical_power_change_W": self.mechanical_power_change_W,
+                "impact_loss_change_W": self.impact_loss_change_W, "low_W": self.low_W,
+                "high_W": self.high_W, "impact_loss_band_W": [self.impact_low_W, self.impact_high_W],
+                "resolvable": self.resolvable, "words": self.words()}
+
+
+@dataclass
+class StrideAnswer:
+    """The runner's form against the stride optimum of their body (module docstring)."""
+
+    speed_mps: float
+    law: str
+    measured: dict  # cadence_spm, step_length_m, placement_m (ahead of the hip), strike
+    curves: list[Curve]  # the nominal first
+    best: dict[str, Stride | None]  # the free optimum per strike (nominal variant)
+    what_if: list[WhatIf]
+    notes: list[str]
+    seconds: float
+    nominal_nodes: int  # collocation intervals of every stride solved
+
+    @property
+    def nominal(self) -> Curve:
+        return self.curves[0]
+
+    @property
+    def best_strike(self) -> str | None:
+        ok = {k: s for k, s in self.best.items() if s is not None and s.success}
+        return min(ok, key=lambda k: ok[k].objective_value) if ok else None
+
+    def to_dict(self) -> dict:
+        own = self.nominal.free
+        best = self.best_strike
+        return {"speed_mps": self.speed_mps, "law": self.law, "nodes": self.nominal_nodes,
+                "measured_cadence_spm": self.measured["cadence_spm"],
+                "measured_step_length_m": self.measured["step_length_m"],
+                "measured_placement_m": self.measured["placement_m"],
+                "measured_strike": self.measured["strike"],
+                "optimum_cadence_spm": own.cadence_spm if own else None,
+                "optimum_step_length_m": own.step_length_m if own else None,
+                "optimum_placement_m": placement_m(own) if own else None,
+                "optimum_mechanical_power_W": own.mechanical_power_W if own else None,
+                "optimum_impact_loss_W": own.budget["impacts_J"] / own.half_period_s if own else None,
+                "optimum_joint_work_J": joint_work(own) if own else None,
+                "best_strike": best,
+                "strikes": {k: None if s is None else
+                            {"success": s.success, "objective_value": s.objective_value,
+                             "cadence_spm": s.cadence_spm, "mechanical_power_W": s.mechanical_power_W,
+                             "impacts_valid": all(i["valid"] for i in s.impacts)}
+                            for k, s in self.best.items()},
+                "what_if": [w.to_dict() for w in self.what_if],
+                "curves": [c.to_dict() for c in self.curves], "notes": self.notes,
+                "seconds": self.seconds}
+
+
+def measured_form(c) -> dict:
+    """The runner's cadence (steps/min), step length (m), placement of the striking point
+    ahead of the hip (m: the mean over the main side's steps of the hip's forward distance from
+    the point the stride strikes with, the forefoot for a forefoot strike, else the heel, as
+    optim.stride) and strike (the main side's impact point)."""
+    st, side = c.steps, c.main_side
+    point = "forefoot" if side.point == "forefoot" else "heel"
+    ahead = [-st.touchdowns[k].hip_from_point[point][0] for k in side.steps]
+    return {"cadence_spm": st.cadence_spm, "step_length_m": st.speed * 60.0 / st.cadence_spm,
+            "placement_m": float(np.mean(ahead)), "strike": side.point}
+
+
+def run_curve(name: str, scene, speed: float, cadences: list[float]) -> Curve:
+    """The variant's strides at `cadences`, warm-started along them from its free optimum
+    (stride_map.cadence_curve)."""
+    curve = Curve(name, cadences)
+    try:
+        got = cadence_curve(scene, speed, cadences)
+    except RuntimeError as err:
+        curve.why_not = str(err)
+        return curve
+    curve.free, curve.strides = got.free, got.strides
+    failed = [f"{s.cadence_spm:.0f}" for s in got.strides if not s.success]
+    if failed:
+        curve.why_not = f"no convergence at {', '.join(failed)} steps/min"
+    return curve
+
+
+def variant_curve(name: str, scene, nominal: Curve) -> Curve:
+    """A variant's strides, each warm-started from the nominal's at the same cadence (and its
+    free optimum from the nominal's): the band then measures the variant's effect on the same
+    family of strides. (Warm-started along its own cadences instead, the mass -5 % variant
+    of RBDS001 at 3.58 m/s jumped at -10 % to another local optimum, 565 W against the
+    nominal's 463 W, and made the band 10 times wider, 2026-11-23.)"""
+    curve = Curve(name, nominal.cadences)
+    curve.free = _at(scene, nominal.free, None)
+    curve.strides = [_at(scene, s, c) for s, c in zip(nominal.strides, nominal.cadences)]
+    failed = [f"{s.cadence_spm:.0f} steps/min" for s in curve.strides if not s.success]
+    failed += [] if curve.free.success else ["the free optimum"]
+    if failed:
+        curve.why_not = f"no convergence at {', '.join(failed)}"
+    return curve
+
+
+def from_free_curve(name: str, scene, nominal: Curve) -> Curve:
+    """The nominal's strides solved again, each from the free optimum rather than from its
+    neighbour: another local optimum where the effort's landscape has several (RBDS001 T35:
+    578 W against the chain's 447 W at the runner's cadence, 2026-11-23), so the band also
+    spans the local optima the model finds."""
+    curve = Curve(name, nominal.cadences, nominal.free)
+    curve.strides = [_at(scene, nominal.free, c) for c in nominal.cadences]
+    failed = [f"{s.cadence_spm:.0f} steps/min" for s in curve.strides if not s.success]
+    if failed:
+        curve.why_not = f"no convergence at {', '.join(failed)}"
+    return curve
+
+
+def what_ifs(curves: list[Curve], cadences: list[float]) -> list[WhatIf]:
+    """Each cadence change against the runner's cadence, nominal and banded (module doc)."""
+    ok = [c for c in curves if c.ok]
+    power = np.array([c.power() - c.power()[0] for c in ok])
+    impact = np.array([c.impact_loss() - c.impact_loss()[0] for c in ok])
+    return [WhatIf(pct, cadences[k], float(power[0, k]), float(impact[0, k]),
+                   float(power[:, k].min()), float(power[:, k].max()),
+                   float(impact[:, k].min()), float(impact[:, k].max()))
+            for k, pct in enumerate(WHAT_IF_PCT, 1)]
+
+
+def answer(c, progress=None, nodes: int = NODES, band: bool = True) -> StrideAnswer:
+    """compare's stride section for a Comparison `c` (its speed, main side, body settings,
+    friction and law); `progress(text)` is told of each variant; `band` False: the nominal
+    variant and strike only (every band then the nominal value, no other strike: a cheap check,
+    not a report)."""
+    say = progress or (lambda text: None)
+    start = time.perf_counter()
+    measured = measured_form(c)
+    speed, body = c.steps.speed, c.settings["body"]
+    law = c.law if c.law in STRIDE_LAWS else "coulomb"
+    notes = [] if law == c.law else [f"the stride's impacts under coulomb (it has no {c.law} impacts)"]
+    runner = measured["cadence_spm"]
+    cadences = [runner] + [runner * (1 + p / 100) for p in WHAT_IF_PCT]
+    nominal = stride_scene(scaled_body(body["mass_kg"], body["height_m"], body["sex"]), speed,
+                           measured["strike"], "effort", c.settings["friction"], law, nodes)
+    variants = [("effort (nominal)", nominal), (FROM_FREE, nominal)]
+    variants += [(f"friction {mu:g}", _with(nominal, friction=mu)) for mu in FRICTION_BAND]
+    variants += [(o, _with(nominal, objective=o)) for o in OBJECTIVE_BAND]
+    variants += [(f"mass {f * 100 - 100:+.0f} %", with_body(nominal, scaled_body(
+        body["mass_kg"] * f, body["height_m"], body["sex"]))) for f in MASS_BAND]
+    variants = variants if band else variants[:1]
+    say(f"stride [1/{len(variants)}] {variants[0][0]}: {len(cadences)} cadences")
+    curves = [run_curve(variants[0][0], nominal, speed, cadences)]
+    for k, (name, scene) in enumerate(variants[1:], 2):
+        say(f"stride [{k}/{len(variants)}] {name}: warm from the nominal")
+        build = from_free_curve if name == FROM_FREE else variant_curve
+        curves.append(build(name, scene, curves[0]) if curves[0].ok else Curve(name, cadences, why_not="no nominal"))
+    if not curves[0].ok:
+        notes.append(f"the nominal stride did not converge ({curves[0].why_not}): no what-if")
+    notes += [f"{cv.name} left out of the band: {cv.why_not}" for cv in curves[1:] if not cv.ok]
+    if curves[0].free is not None and abs(curves[0].free.cadence_spm / runner - 1) > FAR:
+        notes.append(f"the model's free optimum ({curves[0].free.cadence_spm:.0f} steps/min) is "
+                     f"{(curves[0].free.cadence_spm / runner - 1) * 100:+.0f} % from the runner's cadence: "
+                     "read the what-if as the slope of the cost at the runner's cadence, not as a target")
+    say("stride: the free optimum of each strike")
+    best = {s: curves[0].free if s == measured["strike"] else
+            _free_or_none(_with(nominal, strike=s), speed) if band else None for s in STRIKES}
+    return StrideAnswer(speed, law, measured, curves, best,
+                        what_ifs(curves, cadences) if curves[0].ok else [], notes,
+                        time.perf_counter() - start, nominal.settings.nodes)
+
+
+def _with(scene, **changes):
+    """The scene with its friction, or its settings' objective or strike, changed."""
+    if "friction" in changes:
+        return replace(scene, friction=changes["friction"])
+    settings = replace(scene.settings, **changes)
+    return replace(scene, settings=settings, strike=settings.strike)
+
+
+def _at(scene, start: Stride, cadence: float | None) -> Stride:
+    """The scene's stride at `cadence`, warm-started from `start`."""
+    nlp = nlp_of(scene)
+    got = nlp.solve(start.solved.blocks, scene.speed, scene.slope, scene.friction, cadence)
+    return summarise(nlp, got, False)
+
+
+def _free_or_none(scene, speed: float) -> Stride | None:
+    stride = free(scene, speed, scene.slope, scene.friction)
+    return stride if stride.success else None

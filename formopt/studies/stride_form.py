@@ -1,0 +1,66 @@
+"""Running form from a solved stride: the scene of a body, per-joint work, the touchdown placement.
+
+Shared by compare's stride section (studies.compare_stride) and the literature checks
+(problems/literature.py); strides at imposed cadences come from studies.stride_map.cadence_curve.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ..io.stride_scene import StrideScene
+from ..mechanics.body import Body
+from ..mechanics.joint_space import JOINTS
+from ..optim.stride import Stride, StrideSettings
+
+# collocation intervals of compare's strides and the literature checks: at 24 the free optimum
+# of RBDS001's body (heel, effort) jumped between local optima, 266 steps/min at 3.584 m/s and
+# 142.5 at 3.58 (2 starts); at 30 it is 175.7 steps/min (objective 0.780, lower than both) with
+# 1 or 2 starts, 2-3 s of CPU (2026-11-23)
+NODES = 30
+MAX_ITER = 500  # IPOPT iterations: a converging stride takes 30-300 (2026-11-23, 24 nodes)
+
+
+def stride_scene(body: Body, speed: float, strike: str, objective: str = "effort",
+                 friction: float = 0.8, law: str = "no-slip", nodes: int = NODES,
+                 starts: int = 1, name: str = "stride") -> StrideScene:
+    """A level-ground stride scene of `body` at `speed` (m/s), one strike and objective, the
+    cadence free (stride_map.cadence_curve imposes it)."""
+    settings = StrideSettings(strike=strike, objective=objective, nodes=nodes, law=law,
+                              max_iter=MAX_ITER)
+    return StrideScene(name, body, speed, 0.0, friction, strike, settings, None, starts)
+
+
+def with_body(scene: StrideScene, body: Body) -> StrideScene:
+    """The scene with another body."""
+    return replace(scene, body=body)
+
+
+def joint_work(stride: Stride) -> dict[str, dict[str, float]]:
+    """Positive and negative work (J) of each joint moment over the half stride, from the
+    solution's moments tau_j (N m, extensor positive) and extension rates:
+
+        P_j = -tau_j theta_j'  (W),  W+_j = int max(P_j, 0) dt,  W-_j = int max(-P_j, 0) dt
+
+    by the trapezoidal rule on the nodes (the transcription's quadrature; a phase boundary's
+    repeated time adds nothing). Keys: JOINTS (hip_R ... ankle_L), and per joint name the
+    stance leg R during the stance phases ("stance_knee" ...), Heiderscheit's absorption."""
+    power = -stride.tau * stride.thetad[:, 3:]
+    stance = np.array([p != "flight" for p in stride.phase])
+
+    def work(p, where=None):
+        p = p if where is None else np.where(where, p, 0.0)
+        return {"positive_J": float(np.trapezoid(np.maximum(p, 0), stride.t)),
+                "negative_J": float(np.trapezoid(np.maximum(-p, 0), stride.t))}
+
+    out = {j: work(power[:, k]) for k, j in enumerate(JOINTS)}
+    for k, j in enumerate(JOINTS[:3]):
+        out["stance_" + j[:-2]] = work(power[:, k], stance)
+    return out
+
+
+def placement_m(stride: Stride) -> float:
+    """How far ahead of the hip the striking point lands at touchdown (m, along the ground)."""
+    return -stride.touchdown["hip_from_strike_m"]["ahead"]

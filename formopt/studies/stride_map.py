@@ -1,0 +1,286 @@
+"""Maps of stride optima: the half stride of a `[stride]` scene across a parameter grid.
+
+`formopt sweep stride --param speed_mps=2.5:4.5:41 --param cadence_spm=140:210:21` solves the
+scene's half stride (optim.stride) at every grid point. Parameters (PARAMETERS): the speed, the
+cadence (imposed: the half-period fixed to 60 / cadence), the step length (imposed: at speed v
+the step length L fixes the cadence, 60 v / L steps/min, since a step is a half stride,
+L = v T with T the half-period and the cadence 60 / T), the slope and the friction. Speed,
+slope, friction and cadence are parameters of the built NLP, so one build serves the grid.
+
+The grid is walked as a serpentine and cut into chains (studies.sweep runs them, as it runs
+optimum maps): in a chain each point starts from the solved point before it; the chain's first
+point, and any point whose warm start fails, is the better of a solve from the free optimum at
+its speed, slope and friction (itself solved from the generic guess with the scene's `starts`)
+and one from the generic guess. A point that
+fails says so (`status`, `success`) and seeds nothing: the next starts as a chain's first.
+
+`cadence_curve(scene, speed, cadences)` is the one home of "the stride at these cadences,
+warm-started from the free one" (the literature scripts and compare's what-if call it).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import pickle
+from dataclasses import asdict, dataclass, field, fields, replace
+
+import numpy as np
+
+from ..io.stride_scene import StrideScene
+from ..mechanics import limits
+from ..mechanics.errors import InputError
+from ..mechanics.joint_space import JointSpace
+from ..optim.stride import Stride, StrideNLP, summarise
+from ..optim.stride.guess import ballistic
+from ..optim.stride.problem import metabolic
+from ..optim.stride.result import GRAVITY, optimum
+
+PARAMETERS = {"speed_mps": "running speed, m/s", "cadence_spm": "imposed cadence, steps/min",
+              "step_length_m": "imposed step length (a half stride), m",
+              "slope_deg": "ground slope, deg uphill", "friction": "coefficient"}
+# The stride scene's own ranges (io.stride_scene) and the step lengths between them: 60 v / L
+# must be a cadence of limits.CADENCE_SPM at a speed of 1-8 m/s, so 0.2 m to 8 m; 4 m (a
+# 240 steps/min sprint at 16 m/s) is beyond any runner, and a longer step is a typing error.
+RANGES = {"speed_mps": limits.Range(1.0, 8.0, "m/s"), "cadence_spm": limits.CADENCE_SPM,
+          "step_length_m": limits.Range(0.2, 4.0, "m"), "slope_deg": limits.Range(-20.0, 20.0, "deg"),
+          "friction": limits.FRICTION}
+# speed, cadence and step length are one relation (cadence = 60 v / L): a grid gives two at most
+CADENCE_GROUP = ("speed_mps", "cadence_spm", "step_length_m")
+# Points per warm-started chain. A chain's first stride costs about 15-20 warm ones (the free
+# optimum's starts from the generic guess, then the imposed solve: 40 nodes, 2026-11-23, about
+# 10 CPU s against 0.6), so chains are long: on a pool the fair share (studies.sweep) cuts them
+# shorter (861 strides on 2 workers: 8 chains of 108).
+CHUNK = 120
+
+
+@dataclass(frozen=True)
+class StrideRow:
+    """One point of a stride map (SI; names as in the stride's JSON). None: not computed
+    (`error` says why). The objectives' values are per distance and scaled as the NLP's
+    (`objective_values`); `objective_value` is the scene's objective as IPOPT saw it (with its
+    smoothing and regularisation terms)."""
+
+    speed_mps: float
+    slope_deg: float
+    friction: float
+    cadence_spm: float | None = None  # imposed, or the optimum's when free
+    step_length_m: float | None = None
+    strike: str | None = None
+    objective_value: float | None = None
+    effort_value: float | None = None
+    work_value: float | None = None
+    metabolic_value: float | None = None
+    mechanical_power_W: float | None = None  # W+ / T
+    cost_of_transport: float | None = None  # W+ / (m g d)
+    impact_loss_W: float | None = None  # sum of the impacts' T_c / T
+    impacts_J: float | None = None
+    positive_work_J: float | None = None
+    negative_work_J: float | None = None
+    stance_s: float | None = None
+    duty_factor: float | None = None
+    peak_vertical_grf_bw: float | None = None
+    trunk_deg: float | None = None  # touchdown angles
+    hip_deg: float | None = None
+    knee_deg: float | None = None
+    ankle_deg: float | None = None
+    hip_from_strike_ahead_m: float | None = None  # the hip ahead of the striking point
+    hip_from_strike_above_m: float | None = None
+    valid: bool | None = None  # success and every impact valid under the scene's law
+    success: bool | None = None
+    status: str | None = None  # IPOPT's return status
+    iterations: int | None = None
+    solve_s: float | None = None
+    start: str | None = None  # neighbour (warm), free (from the free optimum) or cold
+    error: str = ""
+
+    def to_dict(self) -> dict:
+        """{column: CSV value} ("" where None)."""
+        return {k: "" if v is None else v for k, v in asdict(self).items()}
+
+
+COLUMNS = [f.name for f in fields(StrideRow)]
+
+
+def check(scene, params) -> None:
+    """Refuse a grid a stride map cannot take, in one line naming the parameter: a stride
+    scene's `best` strike (a map solves one strike), or speed, cadence and step length all
+    swept (one follows from the other two)."""
+    if scene.strike == "best":
+        raise InputError("stride.strike = 'best': a stride map solves one strike; set heel, "
+                         "forefoot or flat in the scene")
+    group = [n for n, _ in params if n in CADENCE_GROUP]
+    if len(group) > 2:
+        raise InputError(f"--param {group[2]}: speed, cadence and step length are one relation "
+                         "(cadence = 60 speed / step length): sweep two of them at most")
+
+
+def point(scene: StrideScene, values: dict) -> tuple[float, float, float, float | None]:
+    """(speed m/s, slope rad, friction, imposed cadence steps/min or None) of a grid point."""
+    speed = values.get("speed_mps", scene.speed)
+    cadence = values.get("cadence_spm", scene.cadence)
+    if "step_length_m" in values:
+        if "cadence_spm" in values and "speed_mps" not in values:
+            speed = values["cadence_spm"] * values["step_length_m"] / 60.0
+        else:
+            cadence = 60.0 * speed / values["step_length_m"]
+    slope = math.radians(values.get("slope_deg", math.degrees(scene.slope)))
+    return speed, slope, values.get("friction", scene.friction), cadence
+
+
+_NLPS: dict = {}  # per process: the stride NLP of the last body and settings built
+
+
+def nlp_of(scene: StrideScene) -> StrideNLP:
+    """The scene's stride NLP, built once per process for its body and settings."""
+    if scene.strike == "best":
+        raise InputError("stride.strike = 'best': solve one strike (heel, forefoot or flat)")
+    key = hashlib.sha256(pickle.dumps((scene.body, scene.settings))).hexdigest()
+    if key not in _NLPS:
+        _NLPS.clear()
+        _NLPS[key] = StrideNLP(JointSpace(scene.body), scene.settings)
+    return _NLPS[key]
+
+
+def solution(stride: Stride) -> dict:
+    """The decision variables (blocks by name) of a stride solved here (summarise keeps them)."""
+    if stride.solved is None:
+        raise RuntimeError("a stride without its solution (Stride.solved) cannot seed a solve")
+    return stride.solved.blocks
+
+
+def objective_values(nlp: StrideNLP, stride: Stride) -> dict[str, float]:
+    """The three objectives (problem.OBJECTIVES) of a solved stride, each per distance d and
+    scaled as the NLP scales it (collocation's `_objective`), without the smoothing and
+    regularisation terms:
+
+        effort = 100 / (m g)^2 / d * int sum tau_j^2 dt   (m s, of order one)
+        work = W+ / (m g d),   metabolic = (W+/0.25 + W-/1.2) / (m g d)
+
+    The integrals by the transcription's trapezoidal rule on the nodes (nlp.samples)."""
+    blocks, mg = solution(stride), nlp.mass * GRAVITY
+    effort = 0.0
+    for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
+        h = blocks[f"T_{phase.name}"].item() / n
+        effort += sum(w * float(np.sum(np.square(tau))) for w, _, tau, _ in nlp.samples(i, h, blocks))
+    d, b = stride.step_length_m, stride.budget
+    return {"effort_value": effort / d * 100.0 / mg ** 2,
+            "work_value": b["positive_work_J"] / (mg * d),
+            "metabolic_value": metabolic(b["positive_work_J"], b["negative_work_J"]) / (mg * d)}
+
+
+def row_of(nlp: StrideNLP, stride: Stride, start: str) -> StrideRow:
+    """The map's row of a solved stride (`start`: how its solve was started)."""
+    td, b = stride.touchdown, stride.budget
+    angles, hip = td["angles_deg"], td["hip_from_strike_m"]
+    T, objective = stride.half_period_s, objective_values(nlp, stride)
+    return StrideRow(
+        speed_mps=stride.speed_mps, slope_deg=math.degrees(stride.slope), friction=stride.friction,
+        cadence_spm=stride.cadence_spm, step_length_m=stride.step_length_m, strike=stride.strike,
+        objective_value=stride.objective_value, effort_value=objective["effort_value"],
+        work_value=objective["work_value"], metabolic_value=objective["metabolic_value"],
+        mechanical_power_W=stride.mechanical_power_W, cost_of_transport=stride.cost_of_transport,
+        impact_loss_W=b["impacts_J"] / T, impacts_J=b["impacts_J"],
+        positive_work_J=b["positive_work_J"], negative_work_J=b["negative_work_J"],
+        stance_s=stride.stance_s, duty_factor=stride.duty_factor,
+        peak_vertical_grf_bw=stride.peak_vertical_grf_bw,
+        trunk_deg=angles["trunk"], hip_deg=angles["hip"], knee_deg=angles["knee"],
+        ankle_deg=angles["ankle"], hip_from_strike_ahead_m=hip["ahead"],
+        hip_from_strike_above_m=hip["above"],
+        valid=stride.success and all(i["valid"] for i in stride.impacts), success=stride.success,
+        status=stride.status, iterations=stride.iterations, solve_s=stride.solve_s, start=start)
+
+
+def free(scene: StrideScene, speed: float, slope: float, mu: float) -> Stride:
+    """The free optimum (cadence not imposed) at these parameters: the generic guess and
+    scene.starts - 1 perturbations of it, the best kept (optim.stride.optimum)."""
+    return optimum(nlp_of(scene), speed, slope, mu, None, simulate=False, starts=scene.starts)
+
+
+def solve_point(scene: StrideScene, values: dict, previous: Stride | None) -> tuple[Stride, str]:
+    """One grid point: warm from `previous` (a solved neighbour) when given; else, or when that
+    fails, the better of two solves, from the free optimum at the point's speed, slope and
+    friction and from the generic guess (the free optimum itself when no cadence is imposed):
+    from the free optimum alone, a chain's first stride at 4 m/s and 203 steps/min fell into a
+    local optimum 19 % costlier than the generic guess's (0.971 against 0.815, 40 nodes,
+    2026-11-23), and its chain followed it. (the stride, how it was started)."""
+    nlp = nlp_of(scene)
+    speed, slope, mu, cadence = point(scene, values)
+    if previous is not None:
+        stride = summarise(nlp, nlp.solve(solution(previous), speed, slope, mu, cadence), False)
+        if stride.success:
+            return stride, "neighbour"
+    seed = free(scene, speed, slope, mu)
+    if cadence is None:
+        return seed, "free" if seed.success else "cold"
+    tries = [(summarise(nlp, nlp.solve(ballistic(nlp, speed), speed, slope, mu, cadence), False), "cold")]
+    if seed.success:
+        tries.insert(0, (summarise(nlp, nlp.solve(solution(seed), speed, slope, mu, cadence), False), "free"))
+    return min(tries, key=lambda t: (not t[0].success, t[0].objective_value))
+
+
+def rows(scene: StrideScene, chunk) -> list[dict]:
+    """The rows ({column: CSV value}, StrideRow) of a chain of neighbouring points; a point
+    that fails seeds nothing."""
+    out, previous = [], None
+    for values in chunk:
+        try:
+            stride, start = solve_point(scene, values, previous)
+            row, previous = row_of(nlp_of(scene), stride, start), stride if stride.success else None
+        except (InputError, RuntimeError) as err:
+            speed, slope, mu, cadence = point(scene, values)
+            row, previous = StrideRow(speed, math.degrees(slope), mu, cadence,
+                                      error=str(err).replace("\n", " ")), None
+        out.append(row.to_dict())
+    return out
+
+
+@dataclass
+class CadenceCurve:
+    """The stride at imposed cadences around the free optimum of one speed."""
+
+    free: Stride  # the free optimum (cadence not imposed)
+    strides: list[Stride] = field(default_factory=list)  # one per cadence, in the order asked
+    starts: list[str] = field(default_factory=list)  # how each was started (rows' `start`)
+
+    def rows(self, nlp: StrideNLP) -> list[StrideRow]:
+        """The map rows of the free optimum (first) and of each cadence."""
+        return [row_of(nlp, self.free, "free")] + [row_of(nlp, s, k) for s, k in zip(self.strides, self.starts)]
+
+
+def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | None = None,
+                  friction: float | None = None) -> CadenceCurve:
+    """The scene's stride at `speed` (m/s) with each cadence of `cadences` (steps/min)
+    imposed, warm-started: the free optimum first (scene.starts starts), then the cadences
+    above it in rising order and those below in falling order, each from the one before
+    (from the free optimum again where a warm start fails). `slope` (rad), `friction`: the
+    scene's when None. Strides are returned in the order of `cadences`."""
+    slope = scene.slope if slope is None else slope
+    mu = scene.friction if friction is None else friction
+    if speed not in RANGES["speed_mps"]:
+        raise InputError(f"speed = {speed:g}: outside its range, {RANGES['speed_mps'].text()}")
+    values = [float(c) for c in cadences]
+    for c in values:
+        if c not in RANGES["cadence_spm"]:
+            raise InputError(f"cadences: {c:g} is outside its range, {RANGES['cadence_spm'].text()}")
+    base = free(scene, speed, slope, mu)
+    if not base.success:
+        raise RuntimeError(f"no free stride optimum at {speed:g} m/s ({base.status})")
+    f0 = base.cadence_spm
+    up = sorted(c for c in values if c >= f0)
+    down = sorted((c for c in values if c < f0), reverse=True)
+    solved: dict[float, tuple[Stride, str]] = {}
+    ground = {"speed_mps": speed, "slope_deg": math.degrees(slope), "friction": mu}
+    for branch in (up, down):
+        previous = base
+        for c in branch:
+            stride, start = solve_point(scene, {**ground, "cadence_spm": c}, previous)
+            solved[c] = (stride, start)
+            previous = stride if stride.success else base
+    return CadenceCurve(base, [solved[c][0] for c in values], [solved[c][1] for c in values])
+
+
+def for_nodes(scene: StrideScene, nodes: int, starts: int | None = None) -> StrideScene:
+    """The scene with another node count (and number of starts): a cheaper map or test."""
+    return replace(scene, settings=replace(scene.settings, nodes=nodes),
+                   starts=scene.starts if starts is None else starts)

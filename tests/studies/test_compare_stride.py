@@ -1,0 +1,87 @@
+"""compare's stride section (studies.compare_stride, issue 27 item 3): the band's words, the
+what-if arithmetic, and one cheap run (20 nodes, the nominal variant only) checked against
+independent readings: the imposed cadence against 60 / half-period, per-joint work against the
+budget's W+ and W-, the JSON and the table's words."""
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from formopt.report.tables import stride_lines
+from formopt.studies.compare_stride import WHAT_IF_PCT, Curve, WhatIf, answer, what_ifs
+from formopt.studies.stride_form import joint_work
+
+
+def test_a_change_inside_its_band_is_not_advised():
+    inside = WhatIf(5.0, 180.0, -2.0, 1.0, -4.0, 1.5, -1.0, 2.0)
+    assert not inside.resolvable and inside.words() == "no change the model can resolve"
+    assert WhatIf(5.0, 180.0, -2.0, 1.0, -4.0, -0.5, 0, 2).words() == "saves power"
+    assert WhatIf(-5.0, 160.0, 3.0, 1.0, 0.5, 4.0, 0, 2).words() == "costs more"
+
+
+def test_what_ifs_span_every_converged_variant():
+    """Changes against the first cadence (the runner's); the band the least and most change."""
+    def curve(name, power, impact, ok=True):
+        strides = [SimpleNamespace(mechanical_power_W=p, budget={"impacts_J": i}, half_period_s=1.0)
+                   for p, i in zip(power, impact)]
+        return Curve(name, [170.0, 153.0, 161.5, 178.5, 187.0], None, strides, "" if ok else "failed")
+
+    cadences = [170.0, 153.0, 161.5, 178.5, 187.0]
+    got = what_ifs([curve("nominal", [100, 110, 104, 98, 97], [20, 15, 18, 22, 24]),
+                    curve("other", [200, 205, 203, 199, 201], [30, 29, 30, 31, 31]),
+                    curve("broken", [0, 1e6, 0, 0, 0], [0, 0, 0, 0, 0], ok=False)], cadences)
+    assert [w.cadence_change_pct for w in got] == list(WHAT_IF_PCT)
+    plus10 = got[-1]
+    assert plus10.mechanical_power_change_W == -3 and (plus10.low_W, plus10.high_W) == (-3, 1)
+    assert plus10.impact_loss_change_W == 4 and (plus10.impact_low_W, plus10.impact_high_W) == (1, 4)
+    assert got[0].low_W == 5 and got[0].resolvable  # -10 %: +10 W and +5 W, the broken one out
+
+
+@pytest.fixture(scope="module")
+def section():
+    """The section for a runner like RBDS001 at 3.5 m/s (heel), nominal variant, 20 nodes."""
+    side = SimpleNamespace(point="heel", steps=[0, 1])
+    tds = [SimpleNamespace(hip_from_point={"heel": (x, 0.9), "forefoot": (x - 0.2, 0.9)}) for x in (-0.16, -0.18)]
+    c = SimpleNamespace(steps=SimpleNamespace(speed=3.5, cadence_spm=171.4, touchdowns=tds), main_side=side,
+                        settings={"body": {"mass_kg": 62.0, "height_m": 1.81, "sex": "male"},
+                                  "friction": 0.8}, law="coulomb")
+    return answer(c, nodes=20, band=False)
+
+
+def test_the_section_against_its_own_strides(section):
+    s = section
+    nominal = s.nominal
+    assert nominal.ok, nominal.why_not
+    runner = 171.4
+    for stride, cadence in zip(nominal.strides, nominal.cadences):
+        assert stride.success and stride.cadence_spm == pytest.approx(cadence, rel=1e-6)
+        assert 60.0 / stride.half_period_s == pytest.approx(cadence, rel=1e-6)
+    assert nominal.cadences == pytest.approx([runner * (1 + p / 100) for p in (0, *WHAT_IF_PCT)])
+    work = joint_work(nominal.free)
+    joints = [k for k in work if not k.startswith("stance_")]
+    budget = nominal.free.budget  # the same trapezoidal rule, summed joint by joint
+    assert sum(work[j]["positive_J"] for j in joints) == pytest.approx(budget["positive_work_J"], rel=1e-9)
+    assert sum(work[j]["negative_J"] for j in joints) == pytest.approx(budget["negative_work_J"], rel=1e-9)
+    for j in ("hip", "knee", "ankle"):
+        assert 0 <= work[f"stance_{j}"]["negative_J"] <= work[f"{j}_R"]["negative_J"] + 1e-12
+    # without the band, every band is the nominal change itself
+    for w in s.what_if:
+        assert w.low_W == w.high_W == w.mechanical_power_change_W
+
+
+def test_the_section_json_and_words(section):
+    d = section.to_dict()
+    assert d["measured_cadence_spm"] == 171.4 and d["measured_strike"] == "heel"
+    assert d["measured_placement_m"] == pytest.approx(0.17)
+    assert d["measured_step_length_m"] == pytest.approx(3.5 * 60 / 171.4)
+    assert d["optimum_cadence_spm"] == pytest.approx(section.nominal.free.cadence_spm)
+    assert [w["cadence_change_pct"] for w in d["what_if"]] == list(WHAT_IF_PCT)
+    for w in d["what_if"]:
+        assert set(w) >= {"cadence_change_pct", "mechanical_power_change_W", "impact_loss_change_W",
+                          "low_W", "high_W"}
+        assert np.isfinite([w["low_W"], w["high_W"]]).all()
+    assert d["best_strike"] == "heel" and d["strikes"]["forefoot"] is None  # band=False: one strike
+    text = "\n".join(stride_lines(d))
+    assert "the runner:  cadence  171.4" in text
+    assert all(f"{p:+5.0f} %" in text for p in WHAT_IF_PCT)

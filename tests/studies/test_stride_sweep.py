@@ -1,0 +1,116 @@
+"""Stride maps (formopt sweep on a [stride] scene): warm-started rows are no worse than fresh
+solves, a finished map repeats nothing, the objectives' values agree with the NLP's own graph,
+bad parameters are refused in one line. Cheap: 24 nodes, 1 start, a 2 x 2 grid."""
+
+import dataclasses
+
+import casadi as ca
+import numpy as np
+import pytest
+from helpers import SHIPPED
+
+from formopt import load
+from formopt.cli import main
+from formopt.mechanics.errors import InputError
+from formopt.optim.stride import summarise
+from formopt.optim.stride.guess import ballistic
+from formopt.report.stride_sweep import stride_sweep_figures
+from formopt.studies import stride_map, sweep
+
+PARAMS = [("speed_mps", np.array([3.0, 3.5])), ("cadence_spm", np.array([165.0, 185.0]))]
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return stride_map.for_nodes(load(SHIPPED / "stride.toml"), 24, starts=1)
+
+
+@pytest.fixture(scope="module")
+def grid(scene, tmp_path_factory):
+    path = tmp_path_factory.mktemp("stride-map") / "map.csv"
+    return path, sweep.run(scene, PARAMS, path, progress=False)
+
+
+def test_rows_are_no_worse_than_a_fresh_solve(scene, grid):
+    _, rows = grid
+    assert [r["start"] for r in rows].count("neighbour") == 3  # one chain, its first from the free optimum
+    nlp = stride_map.nlp_of(scene)
+    for r in rows:
+        assert r["success"] == "True" and r["valid"] == "True"
+        speed, cadence = float(r["speed_mps"]), float(r["cadence_spm"])
+        fresh = nlp.solve(ballistic(nlp, speed), speed, 0.0, scene.friction, cadence)
+        assert fresh.success
+        # the warm start may find a better local optimum than the generic guess, never a worse one
+        assert float(r["objective_value"]) <= fresh.objective * (1 + 1e-6)
+        assert 60.0 / cadence == pytest.approx(float(r["step_length_m"]) / speed, rel=1e-9)  # imposed
+
+
+def test_the_objectives_and_impact_loss_are_the_nlps(scene, grid):
+    """effort_value by numpy on the nodes against the NLP's CasADi graph of the same integral;
+    the impact loss is the impacts' T_c times the step rate; the work objective is W+/(m g d)."""
+    _, rows = grid
+    nlp = stride_map.nlp_of(scene)
+    r = rows[0]
+    speed, cadence = float(r["speed_mps"]), float(r["cadence_spm"])
+    stride = summarise(nlp, nlp.solve(ballistic(nlp, speed), speed, 0.0, scene.friction, cadence), False)
+    graph = ca.Function("effort", [nlp.blocks.vector(), nlp.p], [nlp.terms["effort"]])
+    effort = float(graph(stride.solved.x, [speed, 0.0, scene.friction]))
+    values = stride_map.objective_values(nlp, stride)
+    assert values["effort_value"] == pytest.approx(
+        effort / stride.step_length_m * 100 / (nlp.mass * 9.81) ** 2, rel=1e-9)
+    assert values["work_value"] == pytest.approx(stride.cost_of_transport, rel=1e-12)
+    for row in rows:
+        assert float(row["impact_loss_W"]) == pytest.approx(
+            float(row["impacts_J"]) * float(row["cadence_spm"]) / 60.0, rel=1e-9)
+
+
+def test_a_finished_map_repeats_nothing_and_a_torn_one_resumes_to_the_same_rows(scene, grid, monkeypatch):
+    path, rows = grid
+    calls = []
+    monkeypatch.setattr(stride_map, "rows", lambda s, chunk: calls.append(chunk) or [])
+    assert sweep.run(scene, PARAMS, path, progress=False) == rows and calls == []
+    monkeypatch.undo()
+    text = path.read_text().splitlines(keepends=True)
+    torn = path.with_name("torn.csv")
+    torn.write_text("".join(text[:-1]))  # the last row lost: its chain runs again, whole
+    again = sweep.run(scene, PARAMS, torn, progress=False)
+    assert len(again) == len(rows)
+    for a, b in zip(again, rows):
+        assert {k: v for k, v in a.items() if k != "solve_s"} == {k: v for k, v in b.items() if k != "solve_s"}
+
+
+def test_bad_parameters_are_refused_in_one_line_naming_them(scene):
+    for text, name in (("cadence_spm=40:200:3", "cadence_spm"), ("ankle_deg=-5:5:3", "ankle_deg"),
+                       ("step_length_m=0.1:1:3", "step_length_m"), ("speed_mps=2:9:3", "speed_mps")):
+        with pytest.raises(InputError, match=name) as err:
+            sweep.parse_param(text, scene)
+        assert "\n" not in str(err.value)
+    three = [sweep.parse_param(t, scene) for t in
+             ("speed_mps=3:4:2", "cadence_spm=160:180:2", "step_length_m=1:1.2:2")]
+    with pytest.raises(InputError, match="step_length_m"):
+        sweep.run(scene, three, "unused.csv", progress=False)
+    best = dataclasses.replace(scene, strike="best")
+    with pytest.raises(InputError, match=r"stride\.strike"):
+        sweep.run(best, PARAMS, "unused.csv", progress=False)
+
+
+def test_a_step_length_imposes_its_cadence(scene):
+    """A step is a half stride: L = v T, cadence 60 / T = 60 v / L."""
+    assert stride_map.point(scene, {"speed_mps": 3.0, "step_length_m": 1.2})[3] == pytest.approx(150.0)
+    assert stride_map.point(scene, {"cadence_spm": 150.0, "step_length_m": 1.2})[0] == pytest.approx(3.0)
+
+
+def test_the_cadence_curve_lies_above_its_free_optimum(scene):
+    curve = stride_map.cadence_curve(scene, 3.5, [160.0, 190.0])
+    assert curve.free.success and curve.starts == ["neighbour", "neighbour"]
+    for cadence, stride in zip((160.0, 190.0), curve.strides):
+        assert stride.success and stride.cadence_spm == pytest.approx(cadence, rel=1e-9)
+        assert stride.objective_value >= curve.free.objective_value * (1 - 1e-6)
+
+
+def test_figures_and_cli(scene, grid, tmp_path, capsys):
+    _, rows = grid
+    assert set(stride_sweep_figures(rows, [n for n, _ in PARAMS])) == {"cadence", "speed", "map"}
+    assert main(["sweep", str(SHIPPED / "stride.toml"), "--param", "speed_mps=3:3:1",
+                 "--param", "cadence_spm=40:50:2", "--out", str(tmp_path / "x.csv")]) == 2
+    assert "cadence_spm" in capsys.readouterr().err
