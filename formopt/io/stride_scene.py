@@ -7,7 +7,9 @@
               "work", "metabolic"), nodes, impact_weight, torque_limit_nm_per_kg,
               cadence_spm (imposed; absent: free), max_iterations, starts (the generic guess
               and starts - 1 perturbations of it, the best kept; default 4),
-              [stride.duration_s] heel/flat/forefoot/flight = [low, high] (s)
+              [stride.duration_s] heel/flat/forefoot/flight = [low, high] (s),
+              [stride.tendons] hip/knee/ankle = stiffness (N m/rad per kg; the stance leg's
+              springs, optim.stride.problem.TENDON_JOINTS)
 
 Every error names its key (SceneError, one line); degrees at this edge, SI inside.
 """
@@ -19,14 +21,14 @@ from dataclasses import dataclass, replace
 
 from ..mechanics import limits
 from ..mechanics.body import Body
-from ..optim.stride.problem import NODE_SHARE, OBJECTIVES, STRIKES, StrideSettings
+from ..optim.stride.problem import NODE_SHARE, OBJECTIVES, STRIKES, TENDON_JOINTS, StrideSettings
 from . import validate as val
 from .scene import SceneError, _body
 
 STRIDE_STRIKES = (*STRIKES, "best")
 STRIDE_LAWS = ("no-slip", "coulomb")
 STRIDE_KEYS = {"speed_mps", "strike", "objective", "nodes", "impact_weight",
-               "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts"}
+               "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts", "tendons"}
 
 
 @dataclass(frozen=True)
@@ -87,8 +89,10 @@ def parse(data: dict, path: str = "") -> StrideScene:
                 raise SceneError(f"stride.duration_s.{phase}", f"must be 0 < low < high, not "
                                                                f"[{low:g}, {high:g}]")
             duration[phase] = (low, high)
+    given = val.table(stride, "tendons", set(TENDON_JOINTS), set(), "stride") if "tendons" in stride else {}
+    tendons = {j: val.number(given, j, "stride.tendons", low=0.0, high=20.0) for j in given}
     settings = StrideSettings(strike="heel" if strike == "best" else strike, objective=objective,
                               nodes=nodes, law=law, impact_weight=weight, torque_limit=torque,
-                              duration=duration, max_iter=max_iter)
+                              duration=duration, max_iter=max_iter, tendons=tendons)
     return StrideScene(name, body, speed, math.radians(slope), friction, strike, settings,
                        cadence, starts, path, notes)

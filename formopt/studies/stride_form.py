@@ -14,6 +14,7 @@ from ..io.stride_scene import StrideScene
 from ..mechanics.body import Body
 from ..mechanics.joint_space import JOINTS
 from ..optim.stride import Stride, StrideSettings
+from ..optim.stride.problem import RUNNER_TENDONS
 
 # collocation intervals of compare's strides and the literature checks: at 24 the free optimum
 # of RBDS001's body (heel, effort) jumped between local optima, 266 steps/min at 3.584 m/s and
@@ -25,11 +26,14 @@ MAX_ITER = 500  # IPOPT iterations: a converging stride takes 30-300 (2026-11-23
 
 def stride_scene(body: Body, speed: float, strike: str, objective: str = "effort",
                  friction: float = 0.8, law: str = "no-slip", nodes: int = NODES,
-                 starts: int = 1, name: str = "stride") -> StrideScene:
+                 starts: int = 1, name: str = "stride",
+                 tendons: dict | None = None) -> StrideScene:
     """A level-ground stride scene of `body` at `speed` (m/s), one strike and objective, the
-    cadence free (stride_map.cadence_curve imposes it)."""
+    cadence free (stride_map.cadence_curve imposes it); the stance leg's tendons
+    (problem.RUNNER_TENDONS unless given; {} for none)."""
     settings = StrideSettings(strike=strike, objective=objective, nodes=nodes, law=law,
-                              max_iter=MAX_ITER)
+                              max_iter=MAX_ITER,
+                              tendons=dict(RUNNER_TENDONS if tendons is None else tendons))
     return StrideScene(name, body, speed, 0.0, friction, strike, settings, None, starts)
 
 

@@ -32,7 +32,7 @@ from ..mechanics import limits
 from ..mechanics.errors import InputError
 from ..mechanics.joint_space import JointSpace
 from ..optim.stride import Stride, StrideNLP, summarise
-from ..optim.stride.guess import ballistic
+from ..optim.stride.guess import ballistic, fitted
 from ..optim.stride.problem import metabolic
 from ..optim.stride.result import GRAVITY, optimum
 
@@ -142,11 +142,12 @@ def nlp_of(scene: StrideScene) -> StrideNLP:
     return _NLPS[key]
 
 
-def solution(stride: Stride) -> dict:
-    """The decision variables (blocks by name) of a stride solved here (summarise keeps them)."""
+def solution(stride: Stride, nlp: StrideNLP) -> dict:
+    """The decision variables (blocks by name) of a stride solved here (summarise keeps them),
+    fitted to `nlp`'s nodes (a Coulomb stride that slid has one phase more)."""
     if stride.solved is None:
         raise RuntimeError("a stride without its solution (Stride.solved) cannot seed a solve")
-    return stride.solved.blocks
+    return fitted(nlp, stride.solved.blocks)
 
 
 def objective_values(nlp: StrideNLP, stride: Stride) -> dict[str, float]:
@@ -158,7 +159,7 @@ def objective_values(nlp: StrideNLP, stride: Stride) -> dict[str, float]:
         work = W+ / (m g d),   metabolic = (W+/0.25 + W-/1.2) / (m g d)
 
     The integrals by the transcription's trapezoidal rule on the nodes (nlp.samples)."""
-    blocks, mg = solution(stride), nlp.mass * GRAVITY
+    blocks, mg = solution(stride, nlp), nlp.mass * GRAVITY  # the same nodes unless it slid
     effort = 0.0
     for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
         h = blocks[f"T_{phase.name}"].item() / n
@@ -207,7 +208,7 @@ def solve_point(scene: StrideScene, values: dict, previous: Stride | None) -> tu
     nlp = nlp_of(scene)
     speed, slope, mu, cadence = point(scene, values)
     if previous is not None:
-        stride = summarise(nlp, nlp.solve(solution(previous), speed, slope, mu, cadence), False)
+        stride = summarise(nlp, nlp.solve(solution(previous, nlp), speed, slope, mu, cadence), False)
         if stride.success:
             return stride, "neighbour"
     seed = free(scene, speed, slope, mu)
@@ -215,7 +216,7 @@ def solve_point(scene: StrideScene, values: dict, previous: Stride | None) -> tu
         return seed, "free" if seed.success else "cold"
     tries = [(summarise(nlp, nlp.solve(ballistic(nlp, speed), speed, slope, mu, cadence), False), "cold")]
     if seed.success:
-        tries.insert(0, (summarise(nlp, nlp.solve(solution(seed), speed, slope, mu, cadence), False), "free"))
+        tries.insert(0, (summarise(nlp, nlp.solve(solution(seed, nlp), speed, slope, mu, cadence), False), "free"))
     return min(tries, key=lambda t: (not t[0].success, t[0].objective_value))
 
 

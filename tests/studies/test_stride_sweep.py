@@ -5,6 +5,7 @@ bad parameters are refused in one line. Cheap: 24 nodes, 1 start, a 2 x 2 grid."
 import dataclasses
 
 import casadi as ca
+
 import numpy as np
 import pytest
 from helpers import SHIPPED
@@ -22,7 +23,12 @@ PARAMS = [("speed_mps", np.array([3.0, 3.5])), ("cadence_spm", np.array([165.0, 
 
 @pytest.fixture(scope="module")
 def scene():
-    return stride_map.for_nodes(load(SHIPPED / "stride.toml"), 24, starts=1)
+    """The shipped stride scene without its tendons: with them, a chain's warm start can stay in
+    a costlier local optimum than the generic guess reaches (0.493 against 0.397 at 3.0 m/s and
+    185 steps/min, 24 nodes, 2026-11-23), so "no worse than a fresh solve" holds only for the
+    rigid-leg landscape; the rows say how each was started (`start`)."""
+    shipped = stride_map.for_nodes(load(SHIPPED / "stride.toml"), 24, starts=1)
+    return dataclasses.replace(shipped, settings=dataclasses.replace(shipped.settings, tendons={}))
 
 
 @pytest.fixture(scope="module")

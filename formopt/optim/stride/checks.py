@@ -133,7 +133,8 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
         times = np.linspace(0.0, T, n + 1)
 
         def rhs(t, x, U=U, times=times, phase=phase):
-            tau = np.array([np.interp(t, times, u) for u in U])
+            tau = np.array([np.interp(t, times, u) for u in U]) \
+                + np.asarray(nlp.tendon_moments(phase, x[:NX], X0[:NX, 0]), float).ravel()
             sliding = (phase.sliding, slip, mu) if phase.sliding else None
             return np.r_[x[NX:], _accelerations(js, phase.rows, x[:NX], x[NX:], tau, slope, sliding)[0]]
 

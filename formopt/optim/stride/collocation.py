@@ -146,16 +146,20 @@ class StrideNLP:
         self.speed, self.slope, self.mu = ca.vertsplit(self.p)
         self.slip = settings.slip
         self._variables()
-        self.terms = {"effort": 0, "positive": 0, "negative": 0, "impacts": 0, "smoothing": 0}
+        self.terms = {"effort": 0, "positive": 0, "negative": 0, "impacts": 0, "smoothing": 0,
+                      "ground": 0, "balance": 0}
         for i in range(len(self.phases)):
             self._phase(i)
         for i in range(1, len(self.phases)):
             self._transition(i)
         self._touchdown()
         self.period_row = self.rows.add(self.period, 0.0, np.inf)
+        if any(settings.tendons.values()):  # the springs let the optimum draw energy from the transcription
+            climb = self.mass * 9.81 * self.speed * self.period * ca.sin(self.slope)
+            self.rows.add(ca.vertcat(self.terms["ground"], self.terms["balance"] - climb) / (self.mass * 9.81))
         objective = self._objective()
-        nlp = {"x": self.blocks.vector(), "p": self.p, "f": objective,
-               "g": ca.vertcat(*self.rows.expr)}
+        self.problem = nlp = {"x": self.blocks.vector(), "p": self.p, "f": objective,
+                              "g": ca.vertcat(*self.rows.expr)}  # the NLP's expressions
         options = {**IPOPT_DEFAULTS, "max_iter": settings.max_iter, "tol": settings.tolerance,
                    **(ipopt or {})}
         self.solver = ca.nlpsol("stride", "ipopt", nlp, {"ipopt": options, "print_time": False})
@@ -232,7 +236,8 @@ class StrideNLP:
         X, A, F, T = self.X[i], self.A[i], self.F[i], self.T[i]
         h = T / n
         for k in range(n + 1):
-            self._node(phase, X[:, k], A[:, k], self.U[i][:, k], F[:, k])
+            spring = self.tendon_moments(phase, X[:NX, k], self.X[0][:NX, 0])
+            self._node(phase, X[:, k], A[:, k], self.U[i][:, k], F[:, k], spring)
         for k in range(n):
             d0 = ca.vertcat(X[NX:, k], A[:, k])
             d1 = ca.vertcat(X[NX:, k + 1], A[:, k + 1])
@@ -240,6 +245,8 @@ class StrideNLP:
             self.terms["smoothing"] += h * ca.sumsqr(A[:, k + 1] - A[:, k])
         for k, (weight, x, tau, f) in enumerate(self.samples(i, h)):
             self.terms["effort"] += weight * ca.sumsqr(tau)
+            self.terms["ground"] += weight * self._ground_power(phase, x, f)
+            self.terms["balance"] += weight * self._power_balance(phase, x, tau, f)
             if phase.sliding:  # the slide's friction work: the rest of its impact's loss
                 t = phase.rows.index((phase.sliding, "t"))
                 v_t = self.contact(((phase.sliding, "t"),), x[:NX], x[NX:])[2]
@@ -250,6 +257,27 @@ class StrideNLP:
                 self.terms["positive"] += weight * self.mass * ca.sum1(S[:NU])
                 self.terms["negative"] += weight * self.mass * ca.sum1(S[NU:])
 
+    def _power_balance(self, phase, x, tau, f):
+        """The power (W) the budget's balance integrates at one node (result.budget): the
+        active joints' net power less what the contacts, the range-of-motion walls and the
+        tendons take."""
+        th, thd = x[:NX], x[NX:]
+        spring = self.tendon_moments(phase, th, self.X[0][:NX, 0])
+        power = ca.sum1(self.joint_power(thd, tau)) + ca.dot(self.js.passive(th), thd) \
+            - ca.dot(spring, thd[3:])
+        if phase.rows:
+            power += self.mass * 9.81 * ca.dot(f, self.contact(phase.rows, th, thd)[2])
+        return power
+
+    def _ground_power(self, phase, x, f):
+        """The power (W) of the ground's force on the held contact points at one node: zero for
+        a point that does not move; the transcription's drift makes it otherwise."""
+        if not phase.rows:
+            return 0.0
+        held = held_rows(phase.rows, phase.sliding)
+        v = self.contact(phase.rows, x[:NX], x[NX:])[2]
+        return self.mass * 9.81 * ca.dot(f[held], v[held])
+
     def samples(self, i, h, blocks=None):
         """(trapezoidal weight (s), state, joint moments (N m), contact forces (body weights))
         at each node of phase i. `blocks`: numeric blocks by name (default: the symbols)."""
@@ -259,11 +287,23 @@ class StrideNLP:
         X, U, F = get("X"), self.mass * get("U"), get("F")
         return [(h * (0.5 if k in (0, n) else 1.0), X[:, k], U[:, k], F[:, k]) for k in range(n + 1)]
 
-    def _node(self, phase, x, thdd, u, f):
+    def tendon_moments(self, phase, theta, theta_touchdown):
+        """The stance leg's tendon moments (N m, 6, extensor positive; problem.TENDON_JOINTS):
+        k m (theta - theta_touchdown) on R's joints while R holds the ground, else zero.
+        Symbolic or numeric theta (9)."""
+        out = [0.0] * NU
+        if phase.points:
+            for joint, k in self.settings.tendons.items():
+                j = JOINTS.index(f"{joint}_R")
+                out[j] = k * self.mass * (theta[3 + j] - theta_touchdown[3 + j])
+        return ca.vertcat(*out)
+
+    def _node(self, phase, x, thdd, u, f, spring=0.0):
         """Equations of motion, contact acceleration, friction cone and ground clearance at
-        one collocation point (state x, accelerations, moments u (N m/kg), forces f (BW))."""
+        one collocation point (state x, accelerations, active moments u (N m/kg), forces f
+        (BW), tendon moments `spring` (N m))."""
         rows, m, g = self.rows, self.mass, 9.81
-        th, thd, tau = x[:NX], x[NX:], m * u
+        th, thd, tau = x[:NX], x[NX:], m * u + spring
         residual = (self.js.mass(th) @ thdd + self.js.bias(th, thd) - self.js.gravity(th)
                     - self.js.passive(th) + ca.vertcat(0, 0, 0, tau))
         if phase.rows:
@@ -320,7 +360,9 @@ class StrideNLP:
                 if a == "t":
                     self.rows.add(ca.vertcat(self.mu * total_n - P[k], self.mu * total_n + P[k]),
                                   0.0, np.inf)
-        self.terms["impacts"] += 0.5 * (ca.bilin(M, v_minus, v_minus) - ca.bilin(M, v_plus, v_plus))
+        T_c = 0.5 * (ca.bilin(M, v_minus, v_minus) - ca.bilin(M, v_plus, v_plus))
+        self.terms["impacts"] += T_c
+        self.terms["balance"] -= T_c
 
     def _sliding_impulse(self, t, n, slip_minus, slip_plus, P):
         """Coulomb's sliding mode: p_t = -s mu p_n, p_n >= 0, s v_t >= 0 before and after (the

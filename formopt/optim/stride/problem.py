@@ -87,6 +87,22 @@ WORK_REGULARISATION = 1e-2
 SMOOTHING = 1e-6
 
 
+# Tendons: a spring in parallel with the stance leg's joint, engaged unloaded at the touchdown
+# and released at toe-off, tau_spring = k m (theta - theta_touchdown) (extensor positive,
+# k in N m/rad per kg). It stands for the elastic return of the stance's negative work
+# (Achilles and patellar tendons, the arch) that a torque-driven model lacks: without it, the
+# energy a joint absorbs is lost and must be paid again, so a rigid impact is a free brake.
+# What the spring still holds at toe-off is lost (the clutch lets go): budget's `spring_J`.
+TENDON_JOINTS = ("hip", "knee", "ankle")
+# The tendons of a runner's scenes (N m/rad per kg): about half the stance quasi-stiffness that
+# running studies report at the knee and ankle (order 5 and 8 N m/rad/kg: the values first
+# tried), the elastic share. Tried on RBDS001's body (heel strike, effort, 40 nodes, 1 start,
+# 2026-11-23): 5/8 at 3.5 m/s gave 152 steps/min and 0.18 s stance; these 2.5/4 gave 147 / 159 /
+# 168 steps/min and 0.29 / 0.24 / 0.20 s at 2.5 / 3.5 / 4.5 m/s against the runner's 156.5 /
+# 171.4 / - and 0.30 / 0.25 / - s; rigid impacts 1-3 J against 40-110 J without tendons.
+RUNNER_TENDONS = {"knee": 2.5, "ankle": 4.0}
+
+
 def other_leg(point: str) -> str:
     """heel_R <-> heel_L, forefoot_R <-> forefoot_L."""
     return point[:-1] + ("L" if point.endswith("R") else "R")
@@ -111,6 +127,7 @@ class StrideSettings:
                                                     "flight": (0.02, 0.3)})  # s, per phase
     max_iter: int = 1000
     tolerance: float = 1e-6
+    tendons: dict = field(default_factory=dict)  # joint ("hip", "knee", "ankle") -> N m/rad/kg
 
     def __post_init__(self):
         if self.strike not in STRIKE_PHASES:
@@ -136,6 +153,10 @@ class StrideSettings:
             raise InputError(f"impact_weight = {self.impact_weight}: expected 0 to 1000")
         if not 0.5 <= self.torque_limit <= 20:
             raise InputError(f"torque_limit = {self.torque_limit}: expected 0.5 to 20 N m/kg")
+        for joint, k in self.tendons.items():
+            if joint not in TENDON_JOINTS or not 0 <= k <= 20:
+                raise InputError(f"tendons.{joint} = {k}: expected a joint of {', '.join(TENDON_JOINTS)} "
+                                 "and a stiffness of 0 to 20 N m/rad per kg")
         for name, (lo, hi) in self.duration.items():
             if not 0 < lo < hi <= 2.0:
                 raise InputError(f"duration {name} = ({lo}, {hi}): expected 0 < low < high <= 2 s")

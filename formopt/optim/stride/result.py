@@ -7,7 +7,9 @@ Energy budget over the half stride (J), every integral by the trapezoidal rule o
     impacts = sum of T_c (the flat-foot impact, if any, and the touchdown)
     friction = -int f . v_c dt (the work the held contacts take: zero if they do not move)
     passive = -int tau_pass . theta' dt (the work the range-of-motion walls take)
-    balance = W+ - W- - impacts - friction - passive - m g d sin(slope)
+    spring = int tau_spring . phi' dt (what the tendons still hold at toe-off, lost when they
+             let go; problem.TENDON_JOINTS; W+- count the active moments only)
+    balance = W+ - W- - impacts - friction - passive - spring - m g d sin(slope)
 
 Kinetic and potential energy return to their start over a period, so `balance` is zero up to
 the transcription's error (O(h^2)). Cost of transport W+ / (m g d); mechanical power W+ / T
@@ -100,11 +102,14 @@ def histories(nlp: StrideNLP, blocks: dict, slope: float):
 def budget(nlp: StrideNLP, blocks: dict, speed: float, slope: float, impacts: float) -> dict:
     """The energy budget (module docstring), J; also the power-split and metabolic figures."""
     js, m = nlp.js, nlp.mass
-    sums = {"positive": 0.0, "negative": 0.0, "friction": 0.0, "passive": 0.0}
+    sums = {"positive": 0.0, "negative": 0.0, "friction": 0.0, "passive": 0.0, "spring": 0.0}
+    touchdown = blocks[f"X_{nlp.phases[0].name}"][:NX, 0]
     for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
         h = blocks[f"T_{phase.name}"].item() / n
         for w, x, tau, f in nlp.samples(i, h, blocks):
             th, thd = x[:NX], x[NX:]
+            spring = np.asarray(nlp.tendon_moments(phase, th, touchdown), float).ravel()
+            sums["spring"] += w * float(spring @ thd[3:])
             power = -tau * thd[3:]
             sums["positive"] += w * np.sum(np.maximum(power, 0))
             sums["negative"] += w * np.sum(np.maximum(-power, 0))
@@ -114,9 +119,11 @@ def budget(nlp: StrideNLP, blocks: dict, speed: float, slope: float, impacts: fl
                 sums["friction"] -= w * m * GRAVITY * f[r] * v[0 if axis == "t" else 1]
     step = speed * half_period(nlp, blocks)
     climb = m * GRAVITY * step * np.sin(slope)
-    balance = sums["positive"] - sums["negative"] - impacts - sums["friction"] - sums["passive"] - climb
+    balance = (sums["positive"] - sums["negative"] - impacts - sums["friction"] - sums["passive"]
+               - sums["spring"] - climb)
     return {"positive_work_J": sums["positive"], "negative_work_J": sums["negative"],
             "impacts_J": impacts, "friction_J": sums["friction"], "passive_J": sums["passive"],
+            "spring_J": sums["spring"],
             "climb_J": climb, "balance_J": balance,
             "metabolic_J": metabolic(sums["positive"], sums["negative"])}
 
