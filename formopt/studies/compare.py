@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import casadi as ca
 import numpy as np
@@ -35,6 +36,9 @@ from ..mechanics.model import STATE, STRIKES, build_model, landmarks
 from ..optim.posture import Gait, PostureProblem, Problem
 from ..optim.solution import CONVERGED, Optimum
 from ..optim.variables import RANGE_OF_MOTION_DEG
+
+if TYPE_CHECKING:  # a type only: the stride section loads the stride solver when asked
+    from .compare_stride import StrideAnswer
 
 G = 9.81  # m/s^2: body weights
 JOINTS = ("trunk", "hip", "knee", "ankle")
@@ -168,7 +172,7 @@ class Comparison:
     #                 other's time down (s), T_c (J) of an impact at the lower point alone
     plate: list[PlateImpact | None] = field(default_factory=list)  # per touchdown, trials with forces
     sequence: list[FlatSequence | None] = field(default_factory=list)  # per touchdown: flat steps'
-    stride: object = None  # compare_stride.StrideAnswer, when asked (compare_stride.answer)
+    stride: StrideAnswer | None = None  # when asked (compare_stride.answer)
 
     def step_T_c(self, k: int) -> float:
         """The headline T_c (J) of touchdown k: a flat step's sequence total, else its impact's."""

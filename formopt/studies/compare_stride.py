@@ -31,7 +31,7 @@ from ..mechanics.body import scaled_body
 from ..optim.stride import Stride, summarise
 from ..optim.stride.problem import STRIKES
 from .stride_form import NODES, joint_work, placement_m, stride_scene, with_body
-from .stride_map import cadence_curve, free, nlp_of
+from .stride_map import cadence_curve, free, nlp_of, solution
 
 WHAT_IF_PCT = (-10.0, -5.0, 5.0, 10.0)  # cadence changes asked (% of the runner's cadence)
 # the band: friction over the range of shod running on track and treadmill belts (0.6-1.0,
@@ -75,7 +75,7 @@ class Curve:
     def to_dict(self) -> dict:
         out = {"name": self.name, "converged": self.ok, "why_not": self.why_not,
                "cadence_spm": self.cadences}
-        if self.ok:
+        if self.ok and self.free is not None:
             out.update(mechanical_power_W=self.power().tolist(), impact_loss_W=self.impact_loss().tolist(),
                        free_cadence_spm=self.free.cadence_spm,
                        free_mechanical_power_W=self.free.mechanical_power_W)
@@ -196,6 +196,8 @@ def variant_curve(name: str, scene, nominal: Curve) -> Curve:
     family of strides. (Warm-started along its own cadences instead, the mass -5 % variant
     of RBDS001 at 3.58 m/s jumped at -10 % to another local optimum, 565 W against the
     nominal's 463 W, and made the band 10 times wider, 2026-11-23.)"""
+    if nominal.free is None:
+        raise ValueError(f"{name}: the nominal curve has no free optimum to start from")
     curve = Curve(name, nominal.cadences)
     curve.free = _at(scene, nominal.free, None)
     curve.strides = [_at(scene, s, c) for s, c in zip(nominal.strides, nominal.cadences)]
@@ -211,8 +213,11 @@ def from_free_curve(name: str, scene, nominal: Curve) -> Curve:
     neighbour: another local optimum where the effort's landscape has several (RBDS001 T35:
     578 W against the chain's 447 W at the runner's cadence, 2026-11-23), so the band also
     spans the local optima the model finds."""
-    curve = Curve(name, nominal.cadences, nominal.free)
-    curve.strides = [_at(scene, nominal.free, c) for c in nominal.cadences]
+    if nominal.free is None:
+        raise ValueError(f"{name}: the nominal curve has no free optimum to start from")
+    free_ = nominal.free
+    curve = Curve(name, nominal.cadences, free_)
+    curve.strides = [_at(scene, free_, c) for c in nominal.cadences]
     failed = [f"{s.cadence_spm:.0f} steps/min" for s in curve.strides if not s.success]
     if failed:
         curve.why_not = f"no convergence at {', '.join(failed)}"
@@ -283,7 +288,7 @@ def _with(scene, **changes):
 def _at(scene, start: Stride, cadence: float | None) -> Stride:
     """The scene's stride at `cadence`, warm-started from `start`."""
     nlp = nlp_of(scene)
-    got = nlp.solve(start.solved.blocks, scene.speed, scene.slope, scene.friction, cadence)
+    got = nlp.solve(solution(start, nlp), scene.speed, scene.slope, scene.friction, cadence)
     return summarise(nlp, got, False)
 
 

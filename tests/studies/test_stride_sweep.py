@@ -5,7 +5,6 @@ bad parameters are refused in one line. Cheap: 24 nodes, 1 start, a 2 x 2 grid."
 import dataclasses
 
 import casadi as ca
-
 import numpy as np
 import pytest
 from helpers import SHIPPED
