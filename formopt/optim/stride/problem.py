@@ -94,12 +94,14 @@ SMOOTHING = 1e-6
 # energy a joint absorbs is lost and must be paid again, so a rigid impact is a free brake.
 # What the spring still holds at toe-off is lost (the clutch lets go): budget's `spring_J`.
 TENDON_JOINTS = ("hip", "knee", "ankle")
-# The tendons of a runner's scenes (N m/rad per kg): about half the stance quasi-stiffness that
-# running studies report at the knee and ankle (order 5 and 8 N m/rad/kg: the values first
-# tried), the elastic share. Tried on RBDS001's body (heel strike, effort, 40 nodes, 1 start,
-# 2026-11-23): 5/8 at 3.5 m/s gave 152 steps/min and 0.18 s stance; these 2.5/4 gave 147 / 159 /
-# 168 steps/min and 0.29 / 0.24 / 0.20 s at 2.5 / 3.5 / 4.5 m/s against the runner's 156.5 /
-# 171.4 / - and 0.30 / 0.25 / - s; rigid impacts 1-3 J against 40-110 J without tendons.
+# The tendons of a runner's scenes (N m/rad per kg), a share of the joints' stance
+# quasi-stiffness that RBDS001 shows at 3.5 m/s (mechanics.landing.RUNNING_JOINTS, from the data
+# set's inverse dynamics: knee 7.4, ankle 4.8 N m/rad per kg): about a third at the knee (mostly
+# muscle) and most of it at the ankle (the Achilles tendon). Tried on RBDS001's body (heel
+# strike, effort, 40 nodes, 2026-11-23): 5/8 at 3.5 m/s gave 152 steps/min and 0.18 s stance;
+# these gave 159 steps/min, 0.238 s and 20.4 N/kg at 3.5 m/s (4 starts) against the runner's
+# 171.4, 0.245 s and 23.5 N/kg, and rigid impacts of 1-8 J against 40-110 J without tendons.
+# Chosen among two settings on one runner, not fitted: docs/concepts/stride.md.
 RUNNER_TENDONS = {"knee": 2.5, "ankle": 4.0}
 
 
