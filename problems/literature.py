@@ -100,18 +100,28 @@ def solved(*strides) -> bool:
     return all(s is not None and s.success for s in strides)
 
 
+def per_objective(curves: Curves, objectives, speed: float, verdicts: list[dict], label: str = "",
+                  **which):
+    """(objective, free optimum, {factor: stride}) for each objective whose free optimum
+    converged (Curves.get); one that did not is printed and gets "no verdict" in `verdicts`."""
+    for objective in objectives:
+        try:
+            f0, at = curves.get(speed, objective, **which)
+        except RuntimeError as err:
+            print(f"  {objective:9s}{label}: {err}")
+            for v in verdicts:
+                v[objective] = "no verdict"
+            continue
+        yield objective, f0, at
+
+
 def cadence_section(curves: Curves, objectives) -> None:
     print("\n== cadence: a U-shaped cost around the free optimum; its minimum against "
           "de Ruiter 2020 (171 +- 8) and Lieberman 2015 (169.6 +- 7.2 steps/min)")
     verdicts = {}
-    for objective in objectives:
-        for speed, factors in ((3.0, CURVE_3), (3.5, CURVE_35)):
-            try:
-                f0, at = curves.get(speed, objective, factors)
-            except RuntimeError as err:
-                print(f"  {objective:9s} {speed:.1f} m/s: {err}")
-                verdicts[objective] = "no verdict"
-                continue
+    for speed, factors in ((3.0, CURVE_3), (3.5, CURVE_35)):
+        for objective, f0, at in per_objective(curves, objectives, speed, [verdicts],
+                                               f" {speed:.1f} m/s", factors=factors):
             costs = {f: s.objective_value for f, s in at.items() if s is not None}
             line = "  ".join(f"{f:4.2f}:" + (f"{s.objective_value:.4f}{'' if s.success else '!'} ({s.cadence_spm:.0f})"
                                               if s is not None else "beyond range") for f, s in at.items())
@@ -136,13 +146,8 @@ def step_section(curves: Curves, objectives) -> None:
     print("\n== step length +-20 % of leg length at 3.83 m/s: a U, long costlier than short "
           f"(Cavanagh & Williams 1982: +{CAVANAGH[1]} long against +{CAVANAGH[0]} short)")
     verdicts = {}
-    for objective in objectives:
-        try:
-            f0, at = curves.get(3.83, objective, steps=(-0.2, -0.1, 0.1, 0.2))
-        except RuntimeError as err:
-            print(f"  {objective:9s}: {err}")
-            verdicts[objective] = "no verdict"
-            continue
+    for objective, f0, at in per_objective(curves, objectives, 3.83, [verdicts],
+                                           steps=(-0.2, -0.1, 0.1, 0.2)):
         c0 = f0.objective_value
         rise = {d: (s.objective_value - c0) / c0 * 100 for d, s in at.items() if s is not None}
         print(f"  {objective:9s}: free step {f0.step_length_m:.3f} m ({f0.cadence_spm:.1f} steps/min); "
@@ -164,13 +169,8 @@ def impacts_section(curves: Curves, objectives) -> None:
     print("\n== impacts (3.0 m/s): T_c per step rising with step length (Derrick 1998); the strike "
           f"closer to the hip with cadence ({LIEBERMAN_PLACEMENT} % per 10 steps/min, Lieberman 2015)")
     derrick, lieberman = {}, {}
-    for objective in objectives:
-        try:
-            f0, at = curves.get(3.0, objective, CURVE_3)
-        except RuntimeError as err:
-            print(f"  {objective:9s}: {err}")
-            derrick[objective] = lieberman[objective] = "no verdict"
-            continue
+    for objective, f0, at in per_objective(curves, objectives, 3.0, [derrick, lieberman],
+                                           factors=CURVE_3):
         strides = [s for s in [f0, *at.values()] if s is not None and s.success]
         step = np.array([s.step_length_m for s in strides])
         T_c = np.array([s.budget["impacts_J"] for s in strides])
@@ -194,13 +194,7 @@ def heiderscheit_section(curves: Curves, objectives) -> None:
     print("\n== Heiderscheit 2011 (3.0 m/s): +5/+10 % cadence lower the stance knee's negative "
           "work; -10 % raises it at every joint (stance leg, J per step)")
     verdicts = {}
-    for objective in objectives:
-        try:
-            f0, at = curves.get(3.0, objective, CURVE_3)
-        except RuntimeError as err:
-            print(f"  {objective:9s}: {err}")
-            verdicts[objective] = "no verdict"
-            continue
+    for objective, f0, at in per_objective(curves, objectives, 3.0, [verdicts], factors=CURVE_3):
         rows = {1.0: f0, **{f: at[f] for f in (0.9, 0.95, 1.05, 1.1)}}
         if not solved(*rows.values()):
             print(f"  {objective:9s}: a stride at 0.9-1.1 x free is missing or did not converge")
@@ -223,13 +217,7 @@ def share_section(curves: Curves, objectives) -> None:
     print(f"\n== the impacts' share of the positive work at 3.0 m/s against ~{SCHROEDER:.0%} "
           "(Schroeder & Kuo 2021)")
     verdicts = {}
-    for objective in objectives:
-        try:
-            f0, _ = curves.get(3.0, objective, CURVE_3)
-        except RuntimeError as err:
-            print(f"  {objective:9s}: {err}")
-            verdicts[objective] = "no verdict"
-            continue
+    for objective, f0, _ in per_objective(curves, objectives, 3.0, [verdicts], factors=CURVE_3):
         share = f0.budget["impacts_J"] / f0.budget["positive_work_J"]
         verdicts[objective] = "reproduced" if 0.5 <= share / SCHROEDER <= 2 else "not reproduced"
         print(f"  {objective:9s}: impacts {f0.budget['impacts_J']:.2f} J of W+ "
