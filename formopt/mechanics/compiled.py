@@ -6,7 +6,7 @@ second process) does not compile again. `external(f)` loads it back as a CasADi 
 use inside other CasADi graphs, or mapped over batches); `Compiled(f)` calls that external
 through CasADi's `Function.buffer()` on preallocated numpy arrays, which costs about a
 microsecond per call instead of CasADi's Python dispatch (`f.call`, tens of microseconds).
-`caller(f, compiled)` gives either, with the same call interface.
+`Compiled(f, compiled=False)` calls f itself the same way (no C compiler needed).
 
 The cache folder is $FORMOPT_CACHE, or ~/.cache/formopt.
 """
@@ -90,18 +90,19 @@ def external(function: ca.Function) -> ca.Function:
 
 
 class Compiled:
-    """Call a compiled CasADi Function from Python with preallocated buffers.
+    """Call a CasADi Function from Python with preallocated buffers.
 
     `Compiled(f)(x, ...)` returns a dict of dense numpy arrays, one per output, like
-    `f.call`; the arrays are fresh copies. The library is `external(f)`, evaluated through
+    `f.call`; the arrays are fresh copies. The Function evaluated is `external(f)` (compiled to
+    C), or f itself with `compiled=False` (CasADi's virtual machine), through
     `Function.buffer()` on numpy arrays bound once (column-major nonzeros of each input and
-    output).
+    output): about a microsecond of overhead per call instead of tens for `f.call`.
     """
 
-    def __init__(self, function: ca.Function):
+    def __init__(self, function: ca.Function, compiled: bool = True):
         self.function = function
-        self._external = external(function)
-        self._buffer, self._eval = self._external.buffer()
+        self._evaluated = external(function) if compiled else function
+        self._buffer, self._eval = self._evaluated.buffer()
         # The generated code of an SX Function is arithmetic only and always returns 0; others
         # (an MX graph's linear solvers) have their status read, which costs about 1 us a call.
         self._checked = not function.is_a("SXFunction")
@@ -139,17 +140,6 @@ class Compiled:
         return out
 
 
-class Interpreted:
-    """The call interface of Compiled for a CasADi Function run by CasADi (no C compiler)."""
-
-    def __init__(self, function: ca.Function):
-        self.function = function
-
-    def __call__(self, *args) -> dict[str, np.ndarray]:
-        return {k: v.full().ravel() if v.size2() == 1 else v.full()
-                for k, v in zip(self.function.name_out(), self.function.call(list(args)))}
-
-
-def caller(function: ca.Function, compiled: bool = True) -> Compiled | Interpreted:
-    """`function` with a numpy call interface: compiled to C (`Compiled`) or interpreted."""
-    return Compiled(function) if compiled else Interpreted(function)
+def caller(function: ca.Function, compiled: bool = True) -> Compiled:
+    """`function` with a numpy call interface, compiled to C or interpreted (`Compiled`)."""
+    return Compiled(function, compiled)

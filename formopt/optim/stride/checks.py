@@ -20,32 +20,26 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ...mechanics import contact
+from ...mechanics.compiled import Compiled
 from ...mechanics.impact import projection
 from ...mechanics.joint_space import POINTS, JointSpace, swap_legs
-from .collocation import NX, StrideNLP, held_rows
+from .collocation import NU, NX, StrideNLP, held_rows
 from .problem import other_leg
 
 
-def contact_matrix(js: JointSpace, rows, theta, slope) -> np.ndarray:
-    """J_c (r x 9) of contact rows ((point, "t" | "n"), ...) at a numeric theta."""
-    out = []
-    for point, axis in rows:
-        J = np.asarray(js.points[point](theta, np.zeros(NX), slope)[2], float)
-        out.append(J[0 if axis == "t" else 1])
-    return np.array(out).reshape(len(rows), NX)
-
-
 def force_directions(js: JointSpace, rows, theta, slope, sliding: tuple | None = None):
-    """(G, D): the held rows of J_c (rows x 9, `held_rows`) and the directions of their
-    forces. `sliding` = (point, s, mu): that point's "t" row is not held and its normal row's
-    force acts along J_n - s mu J_t (on the cone's edge, against the slip s); without it
-    G = D = J_c."""
-    Jc = contact_matrix(js, rows, theta, slope)
+    """(G, D): the held rows of J_c (rows x 9, `held_rows`; J_c of contact rows
+    ((point, "t" | "n"), ...)) and the directions of their forces, as CasADi matrices of a
+    numeric or symbolic theta. `sliding` = (point, s, mu): that point's "t" row is not held and
+    its normal row's force acts along J_n - s mu J_t (on the cone's edge, against the slip s);
+    without it G = D = J_c."""
+    Jc = ca.vertcat(*[js.points[point](theta, ca.DM.zeros(NX), slope)[2][0 if axis == "t" else 1, :]
+                      for point, axis in rows])
     point, slip, mu = sliding or ("", 0, 0.0)
     held = held_rows(rows, point)
-    G, D = Jc[held], Jc[held].copy()
-    if sliding:
-        D[held.index(rows.index((point, "n")))] -= slip * mu * Jc[rows.index((point, "t"))]
+    G = Jc[held, :]
+    D = ca.vertcat(*[Jc[k, :] - (slip * mu * Jc[rows.index((point, "t")), :]
+                                 if sliding and rows[k] == (point, "n") else 0) for k in held])
     return G, D
 
 
@@ -54,7 +48,7 @@ def joint_impact(js: JointSpace, rows, theta, thetad, slope, sliding: tuple | No
     p = -(G M^-1 D^T)^-1 G theta'-, theta'+ = theta'- + M^-1 D^T p (`force_directions`: the
     sticking projection, or Coulomb's sliding mode with `sliding` = (point, s, mu))."""
     M = np.asarray(js.mass(theta), float)
-    G, D = force_directions(js, rows, theta, slope, sliding)
+    G, D = (np.asarray(ca.DM(m), float) for m in force_directions(js, rows, theta, slope, sliding))
     Minv_DT = np.linalg.solve(M, D.T)
     p = -np.linalg.solve(G @ Minv_DT, G @ thetad)
     plus = thetad + Minv_DT @ p
@@ -92,22 +86,30 @@ def impact_check(js: JointSpace, rows, theta, thetad, slope, mu, sliding: tuple 
             "coulomb_slip_mps": float(slip_after), "theta_d_plus": plus}
 
 
-def _accelerations(js, rows, theta, thetad, tau, slope, sliding: tuple | None = None):
-    """theta'' and the contact forces (N, per held row) of the constrained equations of
-    motion (numeric); `sliding` = (point, s, mu): its force on the cone's edge
-    (`force_directions`)."""
-    M = np.asarray(js.mass(theta), float)
-    rhs = (np.asarray(js.gravity(theta), float).ravel() + np.asarray(js.passive(theta), float).ravel()
-           - np.asarray(js.bias(theta, thetad), float).ravel() - np.r_[0, 0, 0, tau])
-    if not rows:
-        return np.linalg.solve(M, rhs), np.zeros(0)
-    G, D = force_directions(js, rows, theta, slope, sliding)
-    drift = np.array([float(js.points[pt](theta, thetad, slope)[3][0 if a == "t" else 1])
-                      for pt, a in rows])[held_rows(rows, sliding[0] if sliding else "")]
-    r = len(drift)
-    K = np.block([[M, -D.T], [G, np.zeros((r, r))]])
-    sol = np.linalg.solve(K, np.r_[rhs, -drift])
-    return sol[:NX], sol[NX:]
+def accelerations(nlp: StrideNLP, phase) -> Compiled:
+    """theta'' (9) of the constrained equations of motion in `phase`, as a numpy call of
+    (theta (9), theta' (9), active moments (N m, 6), theta at touchdown (9, the tendons'
+    rest), slope (rad), mu): [M -D^T; G 0] [theta''; f] = [g + passive - c - tau; -dJ/dt theta']
+    (`force_directions`: a sliding point's force on the cone's edge, against the slip
+    settings.slip); tau adds the tendons' moments (StrideNLP.tendon_moments)."""
+    js = nlp.js
+    th, thd, td = ca.SX.sym("theta", NX), ca.SX.sym("thetad", NX), ca.SX.sym("theta_td", NX)
+    tau, slope, mu = ca.SX.sym("tau", NU), ca.SX.sym("slope"), ca.SX.sym("mu")
+    moments = ca.vertcat(0, 0, 0, tau + nlp.tendon_moments(phase, th, td))
+    rhs = js.gravity(th) + js.passive(th) - js.bias(th, thd) - moments
+    M, rows = js.mass(th), phase.rows
+    if rows:
+        sliding = (phase.sliding, nlp.settings.slip, mu) if phase.sliding else None
+        G, D = force_directions(js, rows, th, slope, sliding)
+        held = held_rows(rows, phase.sliding)
+        drift = ca.vertcat(*[js.points[pt](th, thd, slope)[3][0 if a == "t" else 1] for pt, a in rows])[held]
+        K = ca.blockcat([[M, -D.T], [G, ca.SX.zeros(len(held), len(held))]])
+        thdd = ca.solve(K, ca.vertcat(rhs, -drift))[:NX]
+    else:
+        thdd = ca.solve(M, rhs)
+    return Compiled(ca.Function("accelerations", [th, thd, tau, td, slope, mu], [thdd],
+                                ["theta", "thetad", "tau", "theta_td", "slope", "mu"], ["thetadd"]),
+                    compiled=False)
 
 
 def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
@@ -131,12 +133,13 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
         if i > 0 and nlp.P[i - 1] is not None:  # an impact starts the phase
             state[NX:] = joint_impact(js, phase.rows, state[:NX], state[NX:], slope)[0]
         times = np.linspace(0.0, T, n + 1)
+        acc = accelerations(nlp, phase)
 
-        def rhs(t, x, U=U, times=times, phase=phase):
-            tau = np.array([np.interp(t, times, u) for u in U]) \
-                + np.asarray(nlp.tendon_moments(phase, x[:NX], X0[:NX, 0]), float).ravel()
-            sliding = (phase.sliding, slip, mu) if phase.sliding else None
-            return np.r_[x[NX:], _accelerations(js, phase.rows, x[:NX], x[NX:], tau, slope, sliding)[0]]
+        def rhs(t, x, U=U, times=times, acc=acc):
+            k = min(max(int(np.searchsorted(times, t)) - 1, 0), len(times) - 2)  # piecewise linear moments
+            w = min(max((t - times[k]) / (times[k + 1] - times[k]), 0.0), 1.0)
+            tau = (1 - w) * U[:, k] + w * U[:, k + 1]
+            return np.r_[x[NX:], acc(x[:NX], x[NX:], tau, X0[:NX, 0], slope, mu)["thetadd"]]
 
         for start, record in ((state, errors), (X[:, 0], reset)):
             out = solve_ivp(rhs, (0.0, T), start, method="DOP853", t_eval=times, rtol=1e-10,
