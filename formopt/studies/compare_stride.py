@@ -12,12 +12,14 @@ distance to its own optimum):
     dP(c) = P(c) - P(c_runner),  P = W+ / T (mechanical power, W), likewise the impact loss
     sum T_c / T (W).
 
-Its band [low_W, high_W] spans dP over the variants, each solved warm from the nominal's
-stride at the same cadence (variant_curve): the local optima (each cadence solved from the
-free optimum instead of its neighbour: from_free_curve), the objective (effort, the nominal;
-metabolic: OBJECTIVE_BAND), the friction (FRICTION_BAND) and the body's scaling (MASS_BAND). A
-variant that fails to converge at any cadence is left out of the band and named in `notes`.
-A change whose band holds zero is "no change the model can resolve".
+Each nominal stride is the least costly optimum found from several starts (cadence_curve: from
+the free optimum and from both neighbours, swept until nothing improves); where other starts
+ended in costlier local optima, `notes` says how much costlier. Its band [low_W, high_W] spans
+dP over the variants, each solved warm from the nominal's stride at the same cadence
+(variant_curve): the objective (effort, the nominal; metabolic: OBJECTIVE_BAND), the friction
+(FRICTION_BAND) and the body's scaling (MASS_BAND). A variant that fails to converge at any
+cadence is left out of the band and named in `notes`. A change whose band holds zero is "no
+change the model can resolve".
 """
 
 from __future__ import annotations
@@ -31,7 +33,7 @@ from ..mechanics.body import scaled_body
 from ..optim.stride import Stride, summarise
 from ..optim.stride.problem import STRIKES
 from .stride_form import NODES, joint_work, placement_m, stride_scene, with_body
-from .stride_map import cadence_curve, free, nlp_of, solution
+from .stride_map import cadence_curve, free, nlp_of, warm
 
 WHAT_IF_PCT = (-10.0, -5.0, 5.0, 10.0)  # cadence changes asked (% of the runner's cadence)
 # the band: friction over the range of shod running on track and treadmill belts (0.6-1.0,
@@ -48,7 +50,8 @@ MASS_BAND = (0.95, 1.05)
 # a free optimum this far from the runner's cadence (fraction) is beyond the cadences runners
 # choose around their own (de Ruiter 2020: optimal 171 +- 8 against preferred 165 +- 8)
 FAR = 0.2
-FROM_FREE = "effort, each cadence from the free optimum"  # the band's local-optima variant
+# other starts' optima this much costlier (fraction) than the one kept are named in the notes
+SPREAD_NOTE = 0.01
 STRIDE_LAWS = ("no-slip", "coulomb")  # the stride's impact laws; compare's others map to coulomb
 
 
@@ -61,6 +64,8 @@ class Curve:
     free: Stride | None = None
     strides: list[Stride] = field(default_factory=list)
     why_not: str = ""  # empty when every stride converged
+    spread: list[float] = field(default_factory=list)  # CadenceCurve.spread (nominal only)
+    free_from: str = "free"  # CadenceCurve.free_from
 
     @property
     def ok(self) -> bool:
@@ -74,7 +79,7 @@ class Curve:
 
     def to_dict(self) -> dict:
         out = {"name": self.name, "converged": self.ok, "why_not": self.why_not,
-               "cadence_spm": self.cadences}
+               "cadence_spm": self.cadences, "local_optima_spread": self.spread}
         if self.ok and self.free is not None:
             out.update(mechanical_power_W=self.power().tolist(), impact_loss_W=self.impact_loss().tolist(),
                        free_cadence_spm=self.free.cadence_spm,
@@ -175,7 +180,7 @@ def measured_form(c) -> dict:
 
 
 def run_curve(name: str, scene, speed: float, cadences: list[float]) -> Curve:
-    """The variant's strides at `cadences`, warm-started along them from its free optimum
+    """The variant's strides at `cadences`: at each the least costly optimum found
     (stride_map.cadence_curve)."""
     curve = Curve(name, cadences)
     try:
@@ -183,7 +188,7 @@ def run_curve(name: str, scene, speed: float, cadences: list[float]) -> Curve:
     except RuntimeError as err:
         curve.why_not = str(err)
         return curve
-    curve.free, curve.strides = got.free, got.strides
+    curve.free, curve.strides, curve.spread, curve.free_from = got.free, got.strides, got.spread(), got.free_from
     failed = [f"{s.cadence_spm:.0f}" for s in got.strides if not s.success]
     if failed:
         curve.why_not = f"no convergence at {', '.join(failed)} steps/min"
@@ -208,20 +213,15 @@ def variant_curve(name: str, scene, nominal: Curve) -> Curve:
     return curve
 
 
-def from_free_curve(name: str, scene, nominal: Curve) -> Curve:
-    """The nominal's strides solved again, each from the free optimum rather than from its
-    neighbour: another local optimum where the effort's landscape has several (RBDS001 T35:
-    578 W against the chain's 447 W at the runner's cadence, 2026-11-23), so the band also
-    spans the local optima the model finds."""
-    if nominal.free is None:
-        raise ValueError(f"{name}: the nominal curve has no free optimum to start from")
-    free_ = nominal.free
-    curve = Curve(name, nominal.cadences, free_)
-    curve.strides = [_at(scene, free_, c) for c in nominal.cadences]
-    failed = [f"{s.cadence_spm:.0f} steps/min" for s in curve.strides if not s.success]
-    if failed:
-        curve.why_not = f"no convergence at {', '.join(failed)}"
-    return curve
+def optima_notes(curve: Curve) -> list[str]:
+    """Where other starts ended in costlier local optima, and a free optimum found again from
+    an imposed cadence's stride, in words."""
+    notes = [f"at {c:.0f} steps/min other starts reached local optima up to {f * 100:.0f} % costlier "
+             "(the least costly is used)" for c, f in zip(curve.cadences, curve.spread) if f > SPREAD_NOTE]
+    if curve.free_from != "free":
+        notes.append(f"the free optimum was found again from the stride at {curve.free_from} steps/min "
+                     "(the generic guess's was a costlier local optimum)")
+    return notes
 
 
 def what_ifs(curves: list[Curve], cadences: list[float]) -> list[WhatIf]:
@@ -250,7 +250,7 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True) -> StrideAns
     cadences = [runner] + [runner * (1 + p / 100) for p in WHAT_IF_PCT]
     nominal = stride_scene(scaled_body(body["mass_kg"], body["height_m"], body["sex"]), speed,
                            measured["strike"], "effort", c.settings["friction"], law, nodes)
-    variants = [("effort (nominal)", nominal), (FROM_FREE, nominal)]
+    variants = [("effort (nominal)", nominal)]
     variants += [(f"friction {mu:g}", _with(nominal, friction=mu)) for mu in FRICTION_BAND]
     variants += [(o, _with(nominal, objective=o)) for o in OBJECTIVE_BAND]
     variants += [(f"mass {f * 100 - 100:+.0f} %", with_body(nominal, scaled_body(
@@ -260,8 +260,9 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True) -> StrideAns
     curves = [run_curve(variants[0][0], nominal, speed, cadences)]
     for k, (name, scene) in enumerate(variants[1:], 2):
         say(f"stride [{k}/{len(variants)}] {name}: warm from the nominal")
-        build = from_free_curve if name == FROM_FREE else variant_curve
-        curves.append(build(name, scene, curves[0]) if curves[0].ok else Curve(name, cadences, why_not="no nominal"))
+        curves.append(variant_curve(name, scene, curves[0]) if curves[0].ok
+                      else Curve(name, cadences, why_not="no nominal"))
+    notes += optima_notes(curves[0])
     if not curves[0].ok:
         notes.append(f"the nominal stride did not converge ({curves[0].why_not}): no what-if")
     notes += [f"{cv.name} left out of the band: {cv.why_not}" for cv in curves[1:] if not cv.ok]
@@ -288,8 +289,7 @@ def _with(scene, **changes):
 def _at(scene, start: Stride, cadence: float | None) -> Stride:
     """The scene's stride at `cadence`, warm-started from `start`."""
     nlp = nlp_of(scene)
-    got = nlp.solve(solution(start, nlp), scene.speed, scene.slope, scene.friction, cadence)
-    return summarise(nlp, got, False)
+    return summarise(nlp, warm(nlp, start, scene.speed, scene.slope, scene.friction, cadence), False)
 
 
 def _free_or_none(scene, speed: float) -> Stride | None:

@@ -24,6 +24,7 @@ import hashlib
 import math
 import pickle
 from dataclasses import asdict, dataclass, field, fields, replace
+from itertools import pairwise
 
 import numpy as np
 
@@ -32,6 +33,7 @@ from ..mechanics import limits
 from ..mechanics.errors import InputError
 from ..mechanics.joint_space import JointSpace
 from ..optim.stride import Stride, StrideNLP, summarise
+from ..optim.stride.collocation import Solved
 from ..optim.stride.guess import ballistic, fitted
 from ..optim.stride.problem import metabolic
 from ..optim.stride.result import GRAVITY, optimum
@@ -196,6 +198,14 @@ def free(scene: StrideScene, speed: float, slope: float, mu: float) -> Stride:
     return optimum(nlp_of(scene), speed, slope, mu, None, simulate=False, starts=scene.starts)
 
 
+def warm(nlp: StrideNLP, previous: Stride, speed, slope, mu, cadence) -> Solved:
+    """A solve warm-started from a solved neighbour: with its multipliers when it is a
+    solution of this NLP (StrideNLP.resolve), else from its variables fitted to the nodes."""
+    if previous.solved is not None and previous.solved.layout == nlp.layout:
+        return nlp.resolve(previous.solved, speed, slope, mu, cadence)
+    return nlp.solve(solution(previous, nlp), speed, slope, mu, cadence)
+
+
 def solve_point(scene: StrideScene, values: dict, previous: Stride | None) -> tuple[Stride, str]:
     """One grid point: warm from `previous` (a solved neighbour) when given; else, or when that
     fails, the better of two solves, from the free optimum at the point's speed, slope and
@@ -206,7 +216,7 @@ def solve_point(scene: StrideScene, values: dict, previous: Stride | None) -> tu
     nlp = nlp_of(scene)
     speed, slope, mu, cadence = point(scene, values)
     if previous is not None:
-        stride = summarise(nlp, nlp.solve(solution(previous, nlp), speed, slope, mu, cadence), False)
+        stride = summarise(nlp, warm(nlp, previous, speed, slope, mu, cadence), False)
         if stride.success:
             return stride, "neighbour"
     seed = free(scene, speed, slope, mu)
@@ -236,24 +246,44 @@ def rows(scene: StrideScene, chunk) -> list[dict]:
 
 @dataclass
 class CadenceCurve:
-    """The stride at imposed cadences around the free optimum of one speed."""
+    """The stride at imposed cadences around the free optimum of one speed: at each cadence the
+    least costly of the optima reached from several starts (`cadence_curve`)."""
 
     free: Stride  # the free optimum (cadence not imposed)
     strides: list[Stride] = field(default_factory=list)  # one per cadence, in the order asked
     starts: list[str] = field(default_factory=list)  # how each was started (rows' `start`)
+    # per cadence, the objective values of every converged solve (the kept one among them)
+    tried: list[list[float]] = field(default_factory=list)
+    free_from: str = "free"  # "free", or the imposed cadence whose stride seeded a better free optimum
 
     def rows(self, nlp: StrideNLP) -> list[StrideRow]:
         """The map rows of the free optimum (first) and of each cadence."""
         return [row_of(nlp, self.free, "free")] + [row_of(nlp, s, k) for s, k in zip(self.strides, self.starts)]
 
+    def spread(self) -> list[float]:
+        """Per cadence, how much costlier (fraction) the worst converged local optimum was than
+        the one kept (0 when every start reached the same optimum)."""
+        return [max(t) / min(t) - 1.0 if t else 0.0 for t in self.tried]
+
+
+SAME = 1e-6  # relative: two objective values this close are one optimum (IPOPT's tolerance)
+PASSES = 4  # sweeps of the polish, alternating direction, at most
+
 
 def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | None = None,
                   friction: float | None = None) -> CadenceCurve:
     """The scene's stride at `speed` (m/s) with each cadence of `cadences` (steps/min)
-    imposed, warm-started: the free optimum first (scene.starts starts), then the cadences
-    above it in rising order and those below in falling order, each from the one before
-    (from the free optimum again where a warm start fails). `slope` (rad), `friction`: the
-    scene's when None. Strides are returned in the order of `cadences`."""
+    imposed: the least costly optimum found from several starts, since the stride's
+    landscape has several local optima at an imposed cadence.
+
+    1. The free optimum (scene.starts starts); every cadence solved from it.
+    2. Sweeps along the cadences (the free optimum among them), alternately falling and rising:
+       each cadence re-solved warm from its neighbour when that neighbour changed since, the
+       better kept, until a sweep changes nothing (at most PASSES): a better family of strides
+       found at one cadence spreads to its neighbours.
+    3. The free optimum solved again from the least costly imposed stride, kept if better.
+
+    `slope` (rad), `friction`: the scene's when None. Strides in the order of `cadences`."""
     slope = scene.slope if slope is None else slope
     mu = scene.friction if friction is None else friction
     if speed not in RANGES["speed_mps"]:
@@ -265,18 +295,60 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
     base = free(scene, speed, slope, mu)
     if not base.success:
         raise RuntimeError(f"no free stride optimum at {speed:g} m/s ({base.status})")
-    f0 = base.cadence_spm
-    up = sorted(c for c in values if c >= f0)
-    down = sorted((c for c in values if c < f0), reverse=True)
-    solved: dict[float, tuple[Stride, str]] = {}
-    ground = {"speed_mps": speed, "slope_deg": math.degrees(slope), "friction": mu}
-    for branch in (up, down):
-        previous = base
-        for c in branch:
-            stride, start = solve_point(scene, {**ground, "cadence_spm": c}, previous)
-            solved[c] = (stride, start)
-            previous = stride if stride.success else base
-    return CadenceCurve(base, [solved[c][0] for c in values], [solved[c][1] for c in values])
+    nlp = nlp_of(scene)
+    kept: dict[float, tuple[Stride, str]] = {}
+    tried: dict[float, list[float]] = {c: [] for c in values}
+
+    def attempt(c: float, source: Stride, start: str) -> bool:
+        """Solve cadence c warm from `source`; keep it if it is better; True if kept."""
+        stride = summarise(nlp, warm(nlp, source, speed, slope, mu, c), False)
+        if stride.success:
+            tried[c].append(stride.objective_value)
+        old = kept.get(c)
+        if old is None or (stride.success and (not old[0].success or stride.objective_value
+                                               < old[0].objective_value * (1 - SAME))):
+            kept[c] = (stride, start)
+            return True
+        return False
+
+    for c in values:
+        attempt(c, base, "free")
+    _polish(sorted(set(values) | {base.cadence_spm}), base, kept, attempt)
+    curve = CadenceCurve(base, [kept[c][0] for c in values], [kept[c][1] for c in values],
+                         [tried[c] for c in values])
+    return _better_free(curve, nlp, speed, slope, mu)
+
+
+def _polish(order: list[float], base: Stride, kept: dict, attempt) -> None:
+    """Step 2 of `cadence_curve`: sweeps along `order` (cadences, the free optimum's among
+    them, where `base` stands), each point re-solved from a neighbour changed since (the first
+    sweep each way from every point)."""
+    changed = set(order)
+    for k in range(PASSES):
+        sweep = order[::-1] if k % 2 == 0 else order
+        now: set[float] = set()
+        for source, target in pairwise(sweep):
+            if source not in changed or target == base.cadence_spm:
+                continue
+            stride = base if source == base.cadence_spm else kept[source][0]
+            if stride.success and attempt(target, stride, "neighbour"):
+                now.add(target)
+        if not now and k > 0:
+            return
+        changed = now | (set(order) if k == 0 else set())  # both directions once from every point
+
+
+def _better_free(curve: CadenceCurve, nlp: StrideNLP, speed, slope, mu) -> CadenceCurve:
+    """Step 3 of `cadence_curve`: the free optimum re-solved from the least costly imposed
+    stride when that one is cheaper than it (the free optimum was then a local one)."""
+    ok = [s for s in curve.strides if s.success]
+    cheapest = min(ok, key=lambda s: s.objective_value, default=None)
+    if cheapest is None or cheapest.objective_value >= curve.free.objective_value:
+        return curve
+    again = summarise(nlp, nlp.solve(solution(cheapest, nlp), speed, slope, mu, None), False)
+    if again.success and again.objective_value < curve.free.objective_value:
+        return replace(curve, free=again, free_from=f"{cheapest.cadence_spm:.1f}")
+    return curve
 
 
 def for_nodes(scene: StrideScene, nodes: int, starts: int | None = None) -> StrideScene:

@@ -3,6 +3,7 @@ solves, a finished map repeats nothing, the objectives' values agree with the NL
 bad parameters are refused in one line. Cheap: 24 nodes, 1 start, a 2 x 2 grid."""
 
 import dataclasses
+from itertools import pairwise
 
 import casadi as ca
 import numpy as np
@@ -45,8 +46,11 @@ def test_rows_are_no_worse_than_a_fresh_solve(scene, grid):
         speed, cadence = float(r["speed_mps"]), float(r["cadence_spm"])
         fresh = nlp.solve(ballistic(nlp, speed), speed, 0.0, scene.friction, cadence)
         assert fresh.success
-        # the warm start may find a better local optimum than the generic guess, never a worse one
-        assert float(r["objective_value"]) <= fresh.objective * (1 + 1e-6)
+        # the warm start may find a better local optimum than the generic guess, never a worse
+        # one; the same optimum to 1e-5: IPOPT stops at its tolerance (1e-6 on the scaled KKT
+        # error), and the warm start's monotone barrier stops on another side of it (measured
+        # 1.7e-6 above at 3.5 m/s, 185 steps/min)
+        assert float(r["objective_value"]) <= fresh.objective * (1 + 1e-5)
         assert 60.0 / cadence == pytest.approx(float(r["step_length_m"]) / speed, rel=1e-9)  # imposed
 
 
@@ -105,12 +109,27 @@ def test_a_step_length_imposes_its_cadence(scene):
     assert stride_map.point(scene, {"cadence_spm": 150.0, "step_length_m": 1.2})[0] == pytest.approx(3.0)
 
 
-def test_the_cadence_curve_lies_above_its_free_optimum(scene):
-    curve = stride_map.cadence_curve(scene, 3.5, [160.0, 190.0])
-    assert curve.free.success and curve.starts == ["neighbour", "neighbour"]
-    for cadence, stride in zip((160.0, 190.0), curve.strides):
+def test_the_cadence_curve_is_the_least_costly_optimum_its_neighbours_reach(scene):
+    """Each cadence's stride lies above the free optimum, is the least costly of the optima
+    its starts reached (CadenceCurve.tried), and no neighbour (the free optimum among them)
+    leads a fresh solve (its variables alone, no multipliers) to a cheaper one: the polish's
+    fixed point."""
+    cadences = [160.0, 175.0, 190.0]
+    curve = stride_map.cadence_curve(scene, 3.5, cadences)
+    assert curve.free.success and set(curve.starts) <= {"free", "neighbour"}
+    for cadence, stride, tried in zip(cadences, curve.strides, curve.tried):
         assert stride.success and stride.cadence_spm == pytest.approx(cadence, rel=1e-9)
         assert stride.objective_value >= curve.free.objective_value * (1 - 1e-6)
+        assert stride.objective_value == pytest.approx(min(tried), rel=1e-6)
+    nlp = stride_map.nlp_of(scene)
+    order = sorted([(c, s) for c, s in zip(cadences, curve.strides)] + [(curve.free.cadence_spm, curve.free)],
+                   key=lambda cs: cs[0])
+    for (c0, s0), (c1, s1) in pairwise(order):
+        for cadence, kept, source in ((c1, s1, s0), (c0, s0, s1)):
+            if kept is curve.free:
+                continue
+            again = nlp.solve(stride_map.solution(source, nlp), 3.5, 0.0, scene.friction, cadence)
+            assert not again.success or again.objective >= kept.objective_value * (1 - 1e-4)
 
 
 def test_figures_and_cli(scene, grid, tmp_path, capsys):

@@ -56,6 +56,13 @@ ACCELERATION = 1000.0  # rad/s^2 (m/s^2 for the hip): bound on theta''
 TRUNK = (math.radians(-20.0), math.radians(45.0))  # rad, the trunk's lean (forward positive)
 IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive",
                   "nlp_scaling_method": "gradient-based", "linear_solver": "mumps"}
+# IPOPT's warm start from a neighbouring solution's primal and dual values (StrideNLP.resolve):
+# the barrier starts small and decreases monotonically. Along a cadence chain (paper body, 30
+# nodes, tendons, 165-180 steps/min at 3.5 m/s) 12-20 iterations instead of 43-52, the same
+# optima to IPOPT's tolerance (benchmarks/stride_sweep_speed.py measures the map).
+WARM_START = {"warm_start_init_point": "yes", "mu_strategy": "monotone", "mu_init": 1e-5,
+              "warm_start_bound_push": 1e-6, "warm_start_mult_bound_push": 1e-6,
+              "warm_start_slack_bound_push": 1e-6}
 
 
 class Blocks:
@@ -119,7 +126,9 @@ class Rows:
 
 @dataclass
 class Solved:
-    """The raw solution: blocks, IPOPT's statistics, seconds, the parameters."""
+    """The raw solution: blocks, IPOPT's statistics, seconds, the parameters; the primal and
+    dual values (x, lam_x, lam_g) and the layout of the NLP that produced them (block names,
+    number of rows), for a warm start of the same NLP (StrideNLP.resolve)."""
 
     blocks: dict
     success: bool
@@ -130,6 +139,8 @@ class Solved:
     x: np.ndarray
     lam_g: np.ndarray
     parameters: dict
+    lam_x: np.ndarray | None = None
+    layout: tuple = ()
 
 
 class StrideNLP:
@@ -160,9 +171,10 @@ class StrideNLP:
         objective = self._objective()
         self.problem = nlp = {"x": self.blocks.vector(), "p": self.p, "f": objective,
                               "g": ca.vertcat(*self.rows.expr)}  # the NLP's expressions
-        options = {**IPOPT_DEFAULTS, "max_iter": settings.max_iter, "tol": settings.tolerance,
-                   **(ipopt or {})}
-        self.solver = ca.nlpsol("stride", "ipopt", nlp, {"ipopt": options, "print_time": False})
+        self.options = {**IPOPT_DEFAULTS, "max_iter": settings.max_iter, "tol": settings.tolerance,
+                        **(ipopt or {})}
+        self.solver = ca.nlpsol("stride", "ipopt", nlp, {"ipopt": self.options, "print_time": False})
+        self._warm_solver: ca.Function | None = None
         self.lbg, self.ubg = np.concatenate(self.rows.lower), np.concatenate(self.rows.upper)
         self.build_s = time.perf_counter() - start
 
@@ -425,25 +437,48 @@ class StrideNLP:
             guess[f"S_{name}"] = np.vstack([np.maximum(power, 0), np.maximum(-power, 0)])
         return guess
 
+    @property
+    def layout(self) -> tuple:
+        """What a warm start needs to match: the block names and the number of rows."""
+        return tuple(self.blocks.names), len(self.lbg)
+
     def solve(self, guess: dict, speed: float, slope: float = 0.0, mu: float = 0.8,
               cadence: float | None = None) -> Solved:
         """Solve from a guess (blocks by name, or a previous Solved's blocks); `cadence`
         (steps/min) imposes the half-period 60 / cadence."""
+        return self._run(self.solver, {"x0": self.blocks.join(self._with_power_split(guess))},
+                         speed, slope, mu, cadence)
+
+    def resolve(self, previous: Solved, speed: float, slope: float = 0.0, mu: float = 0.8,
+                cadence: float | None = None) -> Solved:
+        """Solve from a solution of this same NLP (its layout) at neighbouring parameters, with
+        its multipliers (IPOPT's warm start, WARM_START; the solver built on first use); from
+        its primal values alone (`solve`) when that fails."""
+        if previous.layout != self.layout or previous.lam_x is None:
+            raise ValueError("resolve: the previous solution is not one of this NLP's (solve from its blocks)")
+        if self._warm_solver is None:
+            self._warm_solver = ca.nlpsol("stride_warm", "ipopt", self.problem, {
+                "ipopt": {**self.options, **WARM_START}, "print_time": False})
+        got = self._run(self._warm_solver, {"x0": previous.x, "lam_x0": previous.lam_x,
+                                            "lam_g0": previous.lam_g}, speed, slope, mu, cadence)
+        return got if got.success else self.solve(previous.blocks, speed, slope, mu, cadence)
+
+    def _run(self, solver, start: dict, speed, slope, mu, cadence) -> Solved:
+        """One IPOPT run of `solver` from `start` (x0 and maybe multipliers)."""
         lbg, ubg = self.lbg.copy(), self.ubg.copy()
         k = sum(len(e) for e in self.rows.lower[:self.period_row])
         if cadence is not None:
             lbg[k] = ubg[k] = 60.0 / cadence
         b = self.blocks
-        guess = self._with_power_split(guess)
-        p = np.array([speed, slope, mu])
-        start = time.perf_counter()
-        out = self.solver(x0=b.join(guess), p=p, lbx=np.concatenate(b.lower),
-                          ubx=np.concatenate(b.upper), lbg=lbg, ubg=ubg)
-        seconds = time.perf_counter() - start
-        stats = self.solver.stats()
+        clock = time.perf_counter()
+        out = solver(**start, p=np.array([speed, slope, mu]), lbx=np.concatenate(b.lower),
+                     ubx=np.concatenate(b.upper), lbg=lbg, ubg=ubg)
+        seconds = time.perf_counter() - clock
+        stats = solver.stats()
         x = np.asarray(out["x"], float).ravel()
         return Solved(blocks=b.split(x), success=bool(stats["success"]),
                       status=str(stats["return_status"]), iterations=int(stats["iter_count"]),
                       solve_s=seconds, objective=float(out["f"]), x=x,
                       lam_g=np.asarray(out["lam_g"], float).ravel(),
-                      parameters={"speed": speed, "slope": slope, "mu": mu, "cadence": cadence})
+                      parameters={"speed": speed, "slope": slope, "mu": mu, "cadence": cadence},
+                      lam_x=np.asarray(out["lam_x"], float).ravel(), layout=self.layout)
