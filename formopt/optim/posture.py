@@ -182,7 +182,7 @@ class PostureProblem:
                                graph=graph, compiled=compiled, hessian=hessian,
                                integrator=integrator, law=law)
         self.duration = duration
-        self.landing = (LandingModel(model, joints or Joints(), slope, integrator=integrator)
+        self.landing = (LandingModel(model, joints or Joints(), slope, compiled, integrator=integrator)
                         if problem.landing else None)
         # exact Hessians pay for the impact alone; through the landing's RK4 chain a
         # limited-memory Hessian solves 4x faster (benchmarks/solve_speed.py)

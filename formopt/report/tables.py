@@ -251,8 +251,8 @@ def stride_lines(s: dict) -> list[str]:
                         for k, v in s["strikes"].items() if v is not None)
     lines.append(f"    each strike's free optimum (objective per distance): {strikes}; least: {s['best_strike']}")
     if s["what_if"]:
-        lines.append("    what if the cadence changed (against the stride at the runner's own cadence; band over the "
-                     "local optima found, friction 0.6-1.0, the objective and the mass +-5 %):")
+        lines.append("    what if the cadence changed (against the stride at the runner's own cadence; each "
+                     f"cadence's least costly optimum found; band over {s['band']}):")
     for w in s["what_if"]:
         lo, hi = w["impact_loss_band_W"]
         lines.append(f"      {w['cadence_change_pct']:+5.0f} % ({w['cadence_spm']:5.1f} steps/min): mechanical "

@@ -162,9 +162,16 @@ class StrideAnswer:
                              "cadence_spm": s.cadence_spm, "mechanical_power_W": s.mechanical_power_W,
                              "impacts_valid": all(i["valid"] for i in s.impacts)}
                             for k, s in self.best.items()},
-                "what_if": [w.to_dict() for w in self.what_if],
+                "what_if": [w.to_dict() for w in self.what_if], "band": band_text(),
                 "curves": [c.to_dict() for c in self.curves], "notes": self.notes,
                 "seconds": self.seconds}
+
+
+def band_text() -> str:
+    """What the what-if band spans, in words."""
+    return (f"friction {FRICTION_BAND[0]:g}-{FRICTION_BAND[1]:g}, the objective (effort, "
+            f"{', '.join(OBJECTIVE_BAND)}) and the mass {MASS_BAND[0] * 100 - 100:+.0f}/"
+            f"{MASS_BAND[1] * 100 - 100:+.0f} %")
 
 
 def measured_form(c) -> dict:

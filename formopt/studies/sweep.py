@@ -326,7 +326,7 @@ def _landing_row(scene, values, models) -> dict:
         s = apply(scene, values)
         key = repr((s.kind, s.body, s.swing, s.joints, s.slope, s.numerics, s.contact))  # what the model holds
         if key not in models:
-            models[key] = s.landing()
+            models[key] = s.landing(many=True)
         lm = models[key]
         L = simulate_state(lm, s.strike, s.state, s.friction, s.integration.dt,
                            s.integration.duration)
