@@ -21,13 +21,18 @@ from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
+import threading
 from importlib import import_module
 
 from .. import __version__
 from ..mechanics.errors import one_line
 
 __all__ = ["COMMANDS", "main", "parser"]  # the command modules are the CLI's own
+
+INTERRUPTED = threading.Event()  # set by the first Ctrl-C from a shell (`_interrupted`)
+GRACE_S = 2.0  # s: how long an interrupted run has to end by itself
 
 # One module per command, imported when the command line is parsed (inside main's handlers).
 COMMANDS = ("impact", "solve", "simulate", "sweep", "compare", "bench", "stride", "scenes")
@@ -46,7 +51,10 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     """Run one command; Ctrl-C at any moment is one line and exit 130, a closed pipe a quiet
-    exit (141, as a shell reports SIGPIPE)."""
+    exit (141, as a shell reports SIGPIPE). From a shell (argv None) Ctrl-C ends the process
+    at once (`_interrupted`); called with argv (a test, a script), as KeyboardInterrupt."""
+    if argv is None:
+        signal.signal(signal.SIGINT, _interrupted)
     try:
         status = _run(argv)
         sys.stdout.flush()  # a closed pipe shows here, not at the interpreter's exit
@@ -57,6 +65,34 @@ def main(argv=None) -> int:
     except BrokenPipeError:  # the reader went away (formopt ... | head): stop quietly
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 141
+    except Exception:
+        if not INTERRUPTED.is_set():
+            raise
+        print("formopt: interrupted", file=sys.stderr)  # a KeyboardInterrupt CasADi turned into another error
+        return 130
+
+
+def _interrupted(signum, frame) -> None:
+    """SIGINT from a shell: KeyboardInterrupt once, so that a run can say what it wrote (a
+    sweep: how many rows, and that the same command resumes); a delivery again is ignored;
+    and if the run has not ended GRACE_S later, one line and exit 130 at once. Raised inside
+    CasADi's calls, the interrupt can turn into a SystemError (main reports it as the
+    interrupt), fire a second time after main returned, or be swallowed while the run goes on
+    (all three seen on compare, 2026-11-24). Rows are written as they finish and files by
+    atomic renames, so the hard exit loses nothing written; a torn last row of a sweep is
+    repaired on resume."""
+    if INTERRUPTED.is_set():
+        return
+    INTERRUPTED.set()
+    timer = threading.Timer(GRACE_S, _hard_stop)
+    timer.daemon = True  # a run that ends by itself exits without waiting for it
+    timer.start()
+    raise KeyboardInterrupt
+
+
+def _hard_stop() -> None:
+    os.write(2, b"formopt: interrupted\n")
+    os._exit(130)
 
 
 def _run(argv) -> int:
