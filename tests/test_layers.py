@@ -56,3 +56,16 @@ def test_mechanics_reads_no_scenes_or_files():
     for path in (PACKAGE / "mechanics").rglob("*.py"):
         text = path.read_text()
         assert "tomllib" not in text and "open(" not in text.replace("fdopen(", ""), path
+
+
+def test_the_command_line_starts_without_plotting_or_solving_libraries():
+    """`formopt` parses its command line without Matplotlib, scipy.optimize or scipy.integrate
+    (0.5 s of imports at every start, before this was checked): each is imported where it is
+    used."""
+    import subprocess
+    import sys
+
+    code = ("import sys\nfrom formopt.cli import parser\nparser()\n"
+            "print(' '.join(m for m in ('matplotlib', 'scipy.optimize', 'scipy.integrate') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == ""

@@ -20,7 +20,6 @@ from collections.abc import Callable
 
 import casadi as ca
 import numpy as np
-from scipy.optimize import brentq
 
 INTEGRATORS = ("adaptive", "rk4", "midpoint")
 DEFAULT_INTEGRATOR = "adaptive"  # the one default of mechanics and scenes
@@ -92,4 +91,6 @@ def locate(g: Callable[[float], float], h: float) -> float:
         return h
     if not g(0.0) > 0.0:
         return 0.0
+    from scipy.optimize import brentq  # here: scipy.optimize costs 0.3 s at every CLI start
+
     return brentq(g, 0.0, h, xtol=EVENT_TOLERANCE, rtol=4 * np.finfo(float).eps)

@@ -4,11 +4,16 @@ Each function returns a Matplotlib Figure (matplotlib.figure.Figure, not pyplot)
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-from matplotlib.figure import Figure
 
 from ..mechanics.joint_space import JointSpace
 from ..studies.stride import CYCLE_JOINTS, StrideStudy, predicted_cycle
+from .figures import new_figure
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 BONES = (("shoulder", "hip"), ("hip", "knee"), ("knee", "ankle"), ("ankle", "heel"),
          ("heel", "forefoot"), ("forefoot", "ankle"), ("hip", "swing_knee"),
@@ -18,7 +23,7 @@ BONES = (("shoulder", "hip"), ("hip", "knee"), ("knee", "ankle"), ("ankle", "hee
 
 def stick_figures(stride, js: JointSpace, every: int = 3) -> Figure:
     """The body at every `every`-th node over the half stride (right leg dark, left light)."""
-    fig = Figure(figsize=(10, 3.6))
+    fig = new_figure((10, 3.6))
     ax = fig.add_subplot()
     names = js.landmark_names
     for k in range(0, len(stride.t), every):
@@ -40,7 +45,7 @@ def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
     """Right-leg joint angles (deg) or moments (N m/kg) over the gait cycle, or the vertical
     ground force (N/kg); the measured mean beside them (dashed) when given."""
     predicted = predicted_cycle(stride)
-    fig = Figure(figsize=(10, 3.2))
+    fig = new_figure((10, 3.2))
     panels = CYCLE_JOINTS if quantity != "vertical" else ("vertical",)
     unit = {"angles": "deg", "moments": "N m/kg", "vertical": "N/kg"}[quantity]
     for k, name in enumerate(panels):
@@ -61,7 +66,7 @@ def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
 def budget_figure(stride) -> Figure:
     """The energy budget of the half stride (J): positive work against where it goes."""
     b = stride.budget
-    fig = Figure(figsize=(6, 3.6))
+    fig = new_figure((6, 3.6))
     ax = fig.add_subplot()
     sinks = [("negative work", b["negative_work_J"]), ("impacts", b["impacts_J"]),
              ("friction", b["friction_J"]), ("passive", b["passive_J"]), ("climb", b["climb_J"])]

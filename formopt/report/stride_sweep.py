@@ -15,9 +15,12 @@ hollow, strides without an optimum as red crosses (and left out of lines and con
 
 from __future__ import annotations
 
-import matplotlib
+from typing import TYPE_CHECKING
+
 import numpy as np
-from matplotlib.figure import Figure
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 from .figures import _axis_label, _subplots
 
@@ -67,6 +70,8 @@ def cadence_figure(rows: list[dict], x: str, by: str | None) -> Figure:
     fig, axes = _subplots(1, len(PANELS), figsize=(4.2 * len(PANELS), 3.8))
     groups = _groups(_converged(rows), by)
     many = len(groups) > 10  # a colour scale (and a colour bar) instead of a legend
+    import matplotlib
+
     colors = ([matplotlib.colormaps["viridis"](k / max(len(groups) - 1, 1)) for k in range(len(groups))]
               if many else [f"C{k % 10}" for k in range(len(groups))])
     for (value, line), color in zip(groups.items(), colors):

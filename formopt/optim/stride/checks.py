@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import casadi as ca
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from ...mechanics import contact
 from ...mechanics.compiled import Compiled
@@ -121,6 +120,8 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
     the largest s v_t of the sliding point on a fine grid (the slip held if the least is not
     below zero beyond the integration's error), and its v_t at the phase's end.
     `parameters`: speed, slope, mu (Solved.parameters)."""
+    from scipy.integrate import solve_ivp  # here: scipy.integrate costs 0.2 s at every CLI start
+
     js, m = nlp.js, nlp.mass
     slope, mu, slip = parameters["slope"], parameters["mu"], nlp.settings.slip
     X0 = blocks[f"X_{nlp.phases[0].name}"]
