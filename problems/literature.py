@@ -8,7 +8,8 @@ Each relation prints its numbers and a verdict computed from them: "reproduced",
 reproduced" or "depends on the objective" (reproduced under some objectives, not others). The
 paper's body (73 kg, 1.731 m), level ground, friction 0.8, no-slip impacts, one strike (heel:
 most recreational runners'). Strides at imposed cadences come from
-studies.stride_map.cadence_curve (warm-started along the cadences from the free optimum);
+studies.stride_map.cadence_curve (at each cadence the least costly optimum found from the free
+optimum and both neighbours);
 per-joint work from studies.stride_form.joint_work. A stride that does not converge is
 printed as such and leaves its objective without a verdict ("no verdict").
 
@@ -72,19 +73,29 @@ class Curves:
         if key not in self.cache:
             scene = stride_scene(self.body, speed, self.strike, objective, nodes=self.nodes,
                                  starts=self.starts)
-            probe = cadence_curve(scene, speed, [])
-            f0, L0 = probe.free.cadence_spm, probe.free.step_length_m
-            if steps is not None:
-                cadences = [60.0 * speed / (L0 + d * leg_length(self.body)) for d in steps]
-                names = steps
-            else:
-                cadences, names = [f0 * f for f in factors], factors
-            inside = [k for k, c in enumerate(cadences) if c in CADENCE_SPM]
-            got = cadence_curve(scene, speed, [cadences[k] for k in inside])
+            free = cadence_curve(scene, speed, []).free
+            for _ in range(2):  # again around a cheaper free optimum found from an imposed cadence
+                names, cadences = self.grid(free, speed, factors, steps)
+                inside = [k for k, c in enumerate(cadences) if c in CADENCE_SPM]
+                got = cadence_curve(scene, speed, [cadences[k] for k in inside])
+                if got.free_from == "free":
+                    break
+                print(f"  ({objective}, {speed:.1f} m/s: a cheaper free optimum, "
+                      f"{got.free.cadence_spm:.1f} steps/min and cost {got.free.objective_value:.4f} against "
+                      f"{free.cadence_spm:.1f} and {free.objective_value:.4f} from the generic guess, "
+                      f"found from the stride at {got.free_from} steps/min: the grid again around it)")
+                free = got.free
             at = dict.fromkeys(names)  # None: a cadence beyond the stride's range (60-300)
             at.update({names[k]: s for k, s in zip(inside, got.strides)})
-            self.cache[key] = (probe.free, at)  # the free optimum the cadences were set from
+            self.cache[key] = (free, at)  # the free optimum the cadences were set from
         return self.cache[key]
+
+    def grid(self, free, speed: float, factors, steps) -> tuple[list, list[float]]:
+        """(names, cadences (steps/min)) of the grid around a free optimum: factors of its
+        cadence, or step lengths added to its step (multiples of leg length)."""
+        if steps is not None:
+            return steps, [60.0 * speed / (free.step_length_m + d * leg_length(self.body)) for d in steps]
+        return factors, [free.cadence_spm * f for f in factors]
 
 
 def combine(verdicts: dict) -> str:
