@@ -74,16 +74,16 @@ class Curves:
             scene = stride_scene(self.body, speed, self.strike, objective, nodes=self.nodes,
                                  starts=self.starts)
             free = cadence_curve(scene, speed, []).free
-            for _ in range(2):  # again around a cheaper free optimum found from an imposed cadence
+            for _ in range(3):  # again around a cheaper free optimum found from an imposed cadence
                 names, cadences = self.grid(free, speed, factors, steps)
                 inside = [k for k, c in enumerate(cadences) if c in CADENCE_SPM]
-                got = cadence_curve(scene, speed, [cadences[k] for k in inside])
+                got = cadence_curve(scene, speed, [cadences[k] for k in inside], start=free)
                 if got.free_from == "free":
                     break
                 print(f"  ({objective}, {speed:.1f} m/s: a cheaper free optimum, "
                       f"{got.free.cadence_spm:.1f} steps/min and cost {got.free.objective_value:.4f} against "
-                      f"{free.cadence_spm:.1f} and {free.objective_value:.4f} from the generic guess, "
-                      f"found from the stride at {got.free_from} steps/min: the grid again around it)")
+                      f"{free.cadence_spm:.1f} and {free.objective_value:.4f}, found from the stride at "
+                      f"{got.free_from} steps/min: the grid again around it)")
                 free = got.free
             at = dict.fromkeys(names)  # None: a cadence beyond the stride's range (60-300)
             at.update({names[k]: s for k, s in zip(inside, got.strides)})

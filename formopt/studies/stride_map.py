@@ -271,12 +271,13 @@ PASSES = 4  # sweeps of the polish, alternating direction, at most
 
 
 def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | None = None,
-                  friction: float | None = None) -> CadenceCurve:
+                  friction: float | None = None, start: Stride | None = None) -> CadenceCurve:
     """The scene's stride at `speed` (m/s) with each cadence of `cadences` (steps/min)
     imposed: the least costly optimum found from several starts, since the stride's
     landscape has several local optima at an imposed cadence.
 
-    1. The free optimum (scene.starts starts); every cadence solved from it.
+    1. The free optimum (scene.starts starts, or `start`: a free optimum of this scene at
+       these parameters found before); every cadence solved from it.
     2. Sweeps along the cadences (the free optimum among them), alternately falling and rising:
        each cadence re-solved warm from its neighbour when that neighbour changed since, the
        better kept, until a sweep changes nothing (at most PASSES): a better family of strides
@@ -292,7 +293,7 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
     for c in values:
         if c not in RANGES["cadence_spm"]:
             raise InputError(f"cadences: {c:g} is outside its range, {RANGES['cadence_spm'].text()}")
-    base = free(scene, speed, slope, mu)
+    base = free(scene, speed, slope, mu) if start is None else start
     if not base.success:
         raise RuntimeError(f"no free stride optimum at {speed:g} m/s ({base.status})")
     nlp = nlp_of(scene)
