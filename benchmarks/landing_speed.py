@@ -38,7 +38,7 @@ def main():
     args = parser.parse_args()
     scene = load(args.scene)
     t = time.perf_counter()
-    lm = scene.landing()
+    lm = scene.landing(many=True)  # compiled, as a sweep's landings are
 
     models = {None: lm, "rk4": LandingModel(lm.model, lm.joints, lm.slope, True, "rk4", lm.law)}
 

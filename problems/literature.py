@@ -75,19 +75,23 @@ class Curves:
                                  starts=self.starts)
             free = cadence_curve(scene, speed, []).free
             for _ in range(3):  # again around a cheaper free optimum found from an imposed cadence
-                names, cadences = self.grid(free, speed, factors, steps)
+                centre = free
+                names, cadences = self.grid(centre, speed, factors, steps)
                 inside = [k for k, c in enumerate(cadences) if c in CADENCE_SPM]
-                got = cadence_curve(scene, speed, [cadences[k] for k in inside], start=free)
+                got = cadence_curve(scene, speed, [cadences[k] for k in inside], start=centre)
                 if got.free_from == "free":
                     break
-                print(f"  ({objective}, {speed:.1f} m/s: a cheaper free optimum, "
-                      f"{got.free.cadence_spm:.1f} steps/min and cost {got.free.objective_value:.4f} against "
-                      f"{free.cadence_spm:.1f} and {free.objective_value:.4f}, found from the stride at "
-                      f"{got.free_from} steps/min: the grid again around it)")
                 free = got.free
+                print(f"  ({objective}, {speed:.1f} m/s: a cheaper free optimum, "
+                      f"{free.cadence_spm:.1f} steps/min and cost {free.objective_value:.4f} against "
+                      f"{centre.cadence_spm:.1f} and {centre.objective_value:.4f}, found from the stride at "
+                      f"{got.free_from} steps/min: the grid again around it)")
+            else:
+                print(f"  ({objective}, {speed:.1f} m/s: still moving after three grids; the last grid's "
+                      f"centre, {centre.cadence_spm:.1f} steps/min, stands for the free optimum)")
             at = dict.fromkeys(names)  # None: a cadence beyond the stride's range (60-300)
             at.update({names[k]: s for k, s in zip(inside, got.strides)})
-            self.cache[key] = (free, at)  # the free optimum the cadences were set from
+            self.cache[key] = (centre, at)  # the free optimum the cadences were set from
         return self.cache[key]
 
     def grid(self, free, speed: float, factors, steps) -> tuple[list, list[float]]:

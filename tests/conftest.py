@@ -93,7 +93,7 @@ if LoadFileScheduling is not None:
             return "dask" if "dask" in nodeid.rsplit("::", 1)[-1] else super()._split_scope(nodeid)
 
         def _assign_work_unit(self, node) -> None:
-            """Hand out the files of SLOW first, in its order, then the others as collected: the
+            """Hand out the files of SLOW first, in its order, then the others in xdist's order: the
             two workers then finish close together (in xdist's order, by number of tests, the
             last files handed out were among the slowest and one worker idled for 7 s)."""
             first = min(self.workqueue, key=_rank)

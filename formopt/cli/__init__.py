@@ -51,10 +51,14 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     """Run one command; Ctrl-C at any moment is one line and exit 130, a closed pipe a quiet
-    exit (141, as a shell reports SIGPIPE). From a shell (argv None) Ctrl-C ends the process
-    at once (`_interrupted`); called with argv (a test, a script), as KeyboardInterrupt."""
-    if argv is None:
+    exit (141, as a shell reports SIGPIPE). From a shell (argv None, on the main thread) Ctrl-C
+    goes through `_interrupted`; called with argv (a test, a script) it is Python's
+    KeyboardInterrupt."""
+    INTERRUPTED.clear()
+    ended = threading.Event()
+    if argv is None and threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGINT, _interrupted)
+        threading.Thread(target=_watchdog, args=(ended,), daemon=True).start()
     try:
         status = _run(argv)
         sys.stdout.flush()  # a closed pipe shows here, not at the interpreter's exit
@@ -70,29 +74,32 @@ def main(argv=None) -> int:
             raise
         print("formopt: interrupted", file=sys.stderr)  # a KeyboardInterrupt CasADi turned into another error
         return 130
+    finally:
+        ended.set()
 
 
 def _interrupted(signum, frame) -> None:
     """SIGINT from a shell: KeyboardInterrupt once, so that a run can say what it wrote (a
-    sweep: how many rows, and that the same command resumes); a delivery again is ignored;
-    and if the run has not ended GRACE_S later, one line and exit 130 at once. Raised inside
-    CasADi's calls, the interrupt can turn into a SystemError (main reports it as the
-    interrupt), fire a second time after main returned, or be swallowed while the run goes on
-    (all three seen on compare, 2026-11-24). Rows are written as they finish and files by
-    atomic renames, so the hard exit loses nothing written; a torn last row of a sweep is
-    repaired on resume."""
+    sweep: how many rows, and that the same command resumes); a delivery again is ignored
+    (the handler stays installed: CasADi can deliver the same Ctrl-C again after main
+    returned, which Python's own handler would turn into a death by SIGINT). Raised inside
+    CasADi's calls, the interrupt can also turn into a SystemError (main reports it as the
+    interrupt) or be swallowed while the run goes on (all three seen on compare, 2026-11-24):
+    `_watchdog` ends such a run."""
     if INTERRUPTED.is_set():
         return
     INTERRUPTED.set()
-    timer = threading.Timer(GRACE_S, _hard_stop)
-    timer.daemon = True  # a run that ends by itself exits without waiting for it
-    timer.start()
     raise KeyboardInterrupt
 
 
-def _hard_stop() -> None:
-    os.write(2, b"formopt: interrupted\n")
-    os._exit(130)
+def _watchdog(ended: threading.Event) -> None:
+    """Once interrupted, give the run GRACE_S to end by itself, then one line and exit 130 at
+    once. Rows are written as they finish and files by atomic renames, so nothing written is
+    lost; a torn last row of a sweep is repaired on resume."""
+    INTERRUPTED.wait()
+    if not ended.wait(GRACE_S):
+        os.write(2, b"formopt: interrupted\n")
+        os._exit(130)
 
 
 def _run(argv) -> int:

@@ -4,8 +4,8 @@ At the measured speed, for the body scaled from the runner's mass and height (de
 free half-stride optimum (optim.stride) with the runner's own impact point (compare's main side)
 and with each strike ("best": the least costly that converged); the runner's cadence, step
 length, placement of the striking point ahead of the hip and strike beside it; and what-if
-strides with the cadence imposed at WHAT_IF_PCT of the runner's, warm-started along the
-cadences from the free optimum (stride_map.cadence_curve). A change is measured against the
+strides with the cadence imposed at WHAT_IF_PCT of the runner's, at each the least costly
+optimum found (stride_map.cadence_curve). A change is measured against the
 stride at the runner's own cadence (imposed too, so the model's answer is a change and not the
 distance to its own optimum):
 

@@ -14,8 +14,10 @@ its speed, slope and friction (itself solved from the generic guess with the sce
 and one from the generic guess. A point that
 fails says so (`status`, `success`) and seeds nothing: the next starts as a chain's first.
 
-`cadence_curve(scene, speed, cadences)` is the one home of "the stride at these cadences,
-warm-started from the free one" (the literature scripts and compare's what-if call it).
+`cadence_curve(scene, speed, cadences)` is the one home of "the stride at these cadences": at
+each, the least costly optimum reached from the free optimum and from the neighbouring
+cadences (the literature scripts and compare's what-if call it). Warm starts from a solution of
+the same NLP carry its multipliers (StrideNLP.resolve).
 """
 
 from __future__ import annotations
@@ -24,7 +26,6 @@ import hashlib
 import math
 import pickle
 from dataclasses import asdict, dataclass, field, fields, replace
-from itertools import pairwise
 
 import numpy as np
 
@@ -300,7 +301,7 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
     kept: dict[float, tuple[Stride, str]] = {}
     tried: dict[float, list[float]] = {c: [] for c in values}
 
-    def attempt(c: float, source: Stride, start: str) -> bool:
+    def attempt(c: float, source: Stride, how: str) -> bool:
         """Solve cadence c warm from `source`; keep it if it is better; True if kept."""
         stride = summarise(nlp, warm(nlp, source, speed, slope, mu, c), False)
         if stride.success:
@@ -308,13 +309,19 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
         old = kept.get(c)
         if old is None or (stride.success and (not old[0].success or stride.objective_value
                                                < old[0].objective_value * (1 - SAME))):
-            kept[c] = (stride, start)
+            kept[c] = (stride, how)
             return True
         return False
 
     for c in values:
         attempt(c, base, "free")
     _polish(sorted(set(values) | {base.cadence_spm}), base, kept, attempt)
+    for c in values:  # no warm start converged: the generic guess, as a map's chain would
+        if not kept[c][0].success:
+            cold = summarise(nlp, nlp.solve(ballistic(nlp, speed), speed, slope, mu, c), False)
+            if cold.success:
+                tried[c].append(cold.objective_value)
+                kept[c] = (cold, "cold")
     curve = CadenceCurve(base, [kept[c][0] for c in values], [kept[c][1] for c in values],
                          [tried[c] for c in values])
     return _better_free(curve, nlp, speed, slope, mu)
@@ -323,31 +330,45 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
 def _polish(order: list[float], base: Stride, kept: dict, attempt) -> None:
     """Step 2 of `cadence_curve`: sweeps along `order` (cadences, the free optimum's among
     them, where `base` stands), each point re-solved from a neighbour changed since (the first
-    sweep each way from every point)."""
+    sweep each way from every point; a point changed earlier in the same sweep counts, so a
+    cheaper stride travels the whole sweep). The free optimum's cadence is not re-solved; a
+    point next to it is also tried from the point beyond it, so a cheaper family crosses it."""
+    free_cadence = base.cadence_spm
     changed = set(order)
     for k in range(PASSES):
         sweep = order[::-1] if k % 2 == 0 else order
         now: set[float] = set()
-        for source, target in pairwise(sweep):
-            if source not in changed or target == base.cadence_spm:
+        for i in range(1, len(sweep)):
+            target = sweep[i]
+            if target == free_cadence:
                 continue
-            stride = base if source == base.cadence_spm else kept[source][0]
-            if stride.success and attempt(target, stride, "neighbour"):
-                now.add(target)
+            sources = sweep[max(i - 2, 0):i][::-1] if sweep[i - 1] == free_cadence else [sweep[i - 1]]
+            for source in sources:
+                if source not in changed and source not in now:
+                    continue
+                stride = base if source == free_cadence else kept[source][0]
+                if stride.success and attempt(target, stride, "neighbour"):
+                    now.add(target)
         if not now and k > 0:
             return
         changed = now | (set(order) if k == 0 else set())  # both directions once from every point
 
 
+def _valid(stride: Stride) -> tuple:
+    """What makes a stride better than another: converged with valid impacts, then cheaper."""
+    return stride.success and all(i["valid"] for i in stride.impacts), stride.success, -stride.objective_value
+
+
 def _better_free(curve: CadenceCurve, nlp: StrideNLP, speed, slope, mu) -> CadenceCurve:
-    """Step 3 of `cadence_curve`: the free optimum re-solved from the least costly imposed
-    stride when that one is cheaper than it (the free optimum was then a local one)."""
+    """Step 3 of `cadence_curve`: the free optimum solved again (optim.stride.optimum, with
+    its touchdown mode under Coulomb) from the least costly imposed stride when that one is
+    cheaper than it (the free optimum was then a local one); kept if valid and cheaper."""
     ok = [s for s in curve.strides if s.success]
     cheapest = min(ok, key=lambda s: s.objective_value, default=None)
-    if cheapest is None or cheapest.objective_value >= curve.free.objective_value:
+    if cheapest is None or cheapest.solved is None or cheapest.objective_value >= curve.free.objective_value:
         return curve
-    again = summarise(nlp, nlp.solve(solution(cheapest, nlp), speed, slope, mu, None), False)
-    if again.success and again.objective_value < curve.free.objective_value:
+    again = optimum(nlp, speed, slope, mu, None, guess=cheapest.solved.blocks, simulate=False)
+    if _valid(again) > _valid(curve.free):
         return replace(curve, free=again, free_from=f"{cheapest.cadence_spm:.1f}")
     return curve
 

@@ -39,6 +39,7 @@ imposed, when asked, through the bounds of the half-period's row.
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 from dataclasses import dataclass, replace
@@ -146,6 +147,8 @@ class Solved:
 class StrideNLP:
     """The half stride NLP of one body and settings: build once, solve for any parameters."""
 
+    _serial = itertools.count()  # each built NLP's own number (its `layout`)
+
     def __init__(self, js: JointSpace, settings: StrideSettings, ipopt: dict | None = None):
         start = time.perf_counter()
         self.js, self.settings, self.ipopt = js, settings, ipopt
@@ -173,6 +176,7 @@ class StrideNLP:
                         "g": ca.vertcat(*self.rows.expr)}  # the NLP's expressions
         self.options = {**IPOPT_DEFAULTS, "max_iter": settings.max_iter, "tol": settings.tolerance,
                         **(ipopt or {})}
+        self.serial = next(StrideNLP._serial)
         self._solver: ca.Function | None = None
         self._warm_solver: ca.Function | None = None
         self.lbg, self.ubg = np.concatenate(self.rows.lower), np.concatenate(self.rows.upper)
@@ -450,8 +454,9 @@ class StrideNLP:
 
     @property
     def layout(self) -> tuple:
-        """What a warm start needs to match: the block names and the number of rows."""
-        return tuple(self.blocks.names), len(self.lbg)
+        """What a warm start needs to match: this NLP itself (its serial number: another body
+        or objective has the same blocks and rows), its block names and number of rows."""
+        return self.serial, tuple(self.blocks.names), len(self.lbg)
 
     def solve(self, guess: dict, speed: float, slope: float = 0.0, mu: float = 0.8,
               cadence: float | None = None) -> Solved:
@@ -469,10 +474,12 @@ class StrideNLP:
         if previous.layout != self.layout or previous.lam_x is None:
             raise ValueError("resolve: the previous solution is not one of this NLP's (solve from its blocks)")
         if self._warm_solver is None:  # the cold solver's derivatives, not derived again
+            start = time.perf_counter()
             shared = {k: self.solver.get_function(f"nlp_{f}")
                       for k, f in (("grad_f", "grad_f"), ("jac_g", "jac_g"), ("hess_lag", "hess_l"))}
             self._warm_solver = ca.nlpsol("stride_warm", "ipopt", self.problem, {
                 "ipopt": {**self.options, **WARM_START}, "print_time": False, **shared})
+            self.build_s += time.perf_counter() - start
         got = self._run(self._warm_solver, {"x0": previous.x, "lam_x0": previous.lam_x,
                                             "lam_g0": previous.lam_g}, speed, slope, mu, cadence)
         return got if got.success else self.solve(previous.blocks, speed, slope, mu, cadence)
