@@ -138,8 +138,3 @@ class Compiled:
                 out[name] = np.zeros(shape)
                 out[name][pattern] = values
         return out
-
-
-def caller(function: ca.Function, compiled: bool = True) -> Compiled:
-    """`function` with a numpy call interface, compiled to C or interpreted (`Compiled`)."""
-    return Compiled(function, compiled)

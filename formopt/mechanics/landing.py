@@ -40,7 +40,7 @@ import casadi as ca
 import numpy as np
 
 from . import contact, limits
-from .compiled import caller
+from .compiled import Compiled
 from .dynamics import FEET, FREE, GRAVITY, Dynamics, Joints
 from .errors import InputError
 from .impact import check_ground
@@ -258,7 +258,7 @@ class LandingModel(Dynamics):
                               self.heights(q)],
                              ["q", "qd", "s_anchor", "joint", "friction", "t"],
                              ["force", "normal", "residual", "energy", "heights"])
-        self._functions[key] = (caller(step, self.compiled), caller(forces, self.compiled))
+        self._functions[key] = (Compiled(step, self.compiled), Compiled(forces, self.compiled))
         return self._functions[key]
 
 

@@ -34,8 +34,8 @@ from ..mechanics import limits
 from ..mechanics.errors import InputError
 from ..mechanics.joint_space import JointSpace
 from ..optim.stride import Stride, StrideNLP, summarise
-from ..optim.stride.collocation import Solved
 from ..optim.stride.guess import ballistic, fitted
+from ..optim.stride.layout import Solved
 from ..optim.stride.problem import metabolic
 from ..optim.stride.result import GRAVITY, optimum
 

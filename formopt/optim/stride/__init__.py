@@ -1,7 +1,9 @@
 """The periodic running half stride: flight, exact impact maps and stance (issue 23).
 
 problem.py: phases of each strike, objectives, settings; collocation.py: the trapezoidal
-transcription and the solve; guess.py: initial guesses; result.py: the `Stride` and its checks.
+transcription and the solve; layout.py: its bookkeeping (named blocks, rows, the raw solution);
+guess.py: initial guesses; result.py: the `Stride`; checks.py: its checks against independent
+methods.
 """
 
 from .collocation import StrideNLP

@@ -22,7 +22,8 @@ from ...mechanics import contact
 from ...mechanics.compiled import Compiled
 from ...mechanics.impact import projection
 from ...mechanics.joint_space import POINTS, JointSpace, swap_legs
-from .collocation import NU, NX, StrideNLP, held_rows
+from .collocation import NU, NX, StrideNLP
+from .layout import held_rows
 from .problem import other_leg
 
 

@@ -42,12 +42,13 @@ from __future__ import annotations
 import itertools
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import casadi as ca
 import numpy as np
 
 from ...mechanics.joint_space import JOINTS, LIMIT_MARGIN, RANGES, THETA, JointSpace, swap_legs
+from .layout import Blocks, Rows, Solved, held_rows
 from .problem import SMOOTHING, WORK_REGULARISATION, StrideSettings, metabolic, other_leg
 
 NX = len(THETA)
@@ -64,84 +65,6 @@ IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive",
 WARM_START = {"warm_start_init_point": "yes", "mu_strategy": "monotone", "mu_init": 1e-5,
               "warm_start_bound_push": 1e-6, "warm_start_mult_bound_push": 1e-6,
               "warm_start_slack_bound_push": 1e-6}
-
-
-class Blocks:
-    """Named blocks of one decision vector: symbols, bounds and a guess, in order."""
-
-    def __init__(self):
-        self.names, self.symbols, self.lower, self.upper = [], [], [], []
-        self.shapes, self.offsets, self.size = {}, {}, 0
-
-    def add(self, name, shape, lower=-np.inf, upper=np.inf):
-        sym = ca.SX.sym(name, *shape)
-        n = shape[0] * shape[1]
-        self.names.append(name)
-        self.symbols.append(sym)
-        self.lower.append(np.broadcast_to(np.asarray(lower, float), shape).ravel(order="F"))
-        self.upper.append(np.broadcast_to(np.asarray(upper, float), shape).ravel(order="F"))
-        self.shapes[name], self.offsets[name] = shape, self.size
-        self.size += n
-        return sym
-
-    def vector(self):
-        return ca.vertcat(*[ca.vec(s) for s in self.symbols])
-
-    def split(self, x) -> dict[str, np.ndarray]:
-        """Numeric blocks of a decision vector (each in its shape)."""
-        x = np.asarray(x, float).ravel()
-        return {k: x[self.offsets[k]:self.offsets[k] + self.shapes[k][0] * self.shapes[k][1]]
-                .reshape(self.shapes[k], order="F") for k in self.names}
-
-    def join(self, values: dict) -> np.ndarray:
-        return np.concatenate([_shaped(values[k], self.shapes[k]).ravel(order="F")
-                               for k in self.names])
-
-
-def held_rows(rows, sliding: str = "") -> list[int]:
-    """Indices of the contact rows held kinematically: all but the sliding point's "t" row."""
-    return [k for k, (p, a) in enumerate(rows) if not (p == sliding and a == "t")]
-
-
-def _shaped(value, shape) -> np.ndarray:
-    """value broadcast to shape (a column given as a flat vector is taken as one)."""
-    value = np.asarray(value, float)
-    if value.ndim == 1 and shape[1] == 1:
-        value = value[:, None]
-    return np.broadcast_to(value, shape)
-
-
-class Rows:
-    """Constraint rows with their bounds, in order, each group named (for the report)."""
-
-    def __init__(self):
-        self.expr, self.lower, self.upper = [], [], []
-
-    def add(self, expr, lower=0.0, upper=0.0):
-        expr = ca.vec(expr)
-        self.expr.append(expr)
-        self.lower.append(np.full(expr.shape[0], lower, float))
-        self.upper.append(np.full(expr.shape[0], upper, float))
-        return len(self.expr) - 1
-
-
-@dataclass
-class Solved:
-    """The raw solution: blocks, IPOPT's statistics, seconds, the parameters; the primal and
-    dual values (x, lam_x, lam_g) and the layout of the NLP that produced them (block names,
-    number of rows), for a warm start of the same NLP (StrideNLP.resolve)."""
-
-    blocks: dict
-    success: bool
-    status: str
-    iterations: int
-    solve_s: float
-    objective: float
-    x: np.ndarray
-    lam_g: np.ndarray
-    parameters: dict
-    lam_x: np.ndarray | None = None
-    layout: tuple = ()
 
 
 class StrideNLP:

@@ -24,8 +24,9 @@ import numpy as np
 
 from ...mechanics.joint_space import JOINTS, swap_legs
 from .checks import drift, forward, half_period, impact_check
-from .collocation import NX, Solved, StrideNLP
+from .collocation import NX, StrideNLP
 from .guess import ballistic, fitted, perturbed, slide_guess
+from .layout import Solved
 from .problem import SLIDING_PHASES, metabolic, other_leg
 
 GRAVITY = 9.81
