@@ -17,8 +17,9 @@ from os import PathLike
 from pathlib import Path
 
 from .io import mocap
-from .io.scene import Scene, SceneError
+from .io.scene import Scene, SceneError, landing_scene
 from .io.scene import load as load_file
+from .io.stride_scene import StrideScene
 from .mechanics.impact import ImpactResult
 from .mechanics.landing import Landing, simulate_state
 from .optim.solution import Optimum
@@ -58,7 +59,7 @@ def scene_path(scene: str | PathLike) -> Path:
                          f"({', '.join(scenes())}; `formopt scenes` lists them)")
 
 
-def load(scene: str | PathLike) -> Scene:
+def load(scene: str | PathLike) -> Scene | StrideScene:
     """Read and validate a scene: a TOML file, or a shipped scene by name (`load("demo")`).
 
     Parameters
@@ -68,8 +69,9 @@ def load(scene: str | PathLike) -> Scene:
 
     Returns
     -------
-    Scene
-        The typed SI scene with its factories (impact, landing, posture problem).
+    Scene or StrideScene
+        The typed SI scene with its factories (impact, landing, posture problem; a stride
+        scene's NLP).
     """
     return load_file(scene_path(scene))
 
@@ -113,6 +115,7 @@ def impact(scene: Scene) -> ImpactResult:
     ImpactResult
         Energies (J), impulses (N s), critical friction, velocity changes (m/s), validity.
     """
+    scene = landing_scene(scene, "impact")
     return scene.impact()(scene.state)
 
 
@@ -129,6 +132,7 @@ def simulate(scene: Scene) -> Landing:
     Landing
         Time histories (s, m, m/s, J, N), impact events and the checks of its assumptions.
     """
+    scene = landing_scene(scene, "simulate")
     return simulate_state(scene.landing(), scene.strike, scene.state, scene.friction,
                           scene.integration.dt, scene.integration.duration)
 
@@ -151,7 +155,7 @@ def solve(scene: Scene, progress=None, **overrides) -> Optimum:
         `success` is False unless a start converged (IPOPT's status is kept); the state (SI),
         its checked impact, what holds it (active constraints with multipliers).
     """
-    return scene.posture_problem(**overrides).solve(progress)
+    return landing_scene(scene, "solve").posture_problem(**overrides).solve(progress)
 
 
 def stride(scene, speed: float | None = None, strike: str | None = None,

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from .. import api
-from ..io.scene import load
+from ..io.scene import landing_scene, load
 from ..report.tables import impact_table
 from .common import emit, scene_context
 
@@ -16,7 +16,7 @@ def add_parser(commands):
 
 
 def run(args) -> int:
-    scene = load(args.scene)
+    scene = landing_scene(load(args.scene), "formopt impact")
     result = api.impact(scene)
     emit(args, {**scene_context(scene), **result.to_dict()}, impact_table(scene, result))
     return 0

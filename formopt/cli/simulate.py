@@ -6,7 +6,7 @@ import dataclasses
 
 from .. import api
 from ..io.files import save_figure, write_csv
-from ..io.scene import load
+from ..io.scene import landing_scene, load
 from ..mechanics.landing import history_rows
 from ..report.figures import landing_figures
 from ..report.tables import landing_table
@@ -23,7 +23,7 @@ def add_parser(commands):
 
 
 def run(args) -> int:
-    scene = load(args.scene)
+    scene = landing_scene(load(args.scene), "formopt simulate")
     out = out_folder(args, scene.path or scene.name)
     landing = api.simulate(scene)
     model = scene.model()

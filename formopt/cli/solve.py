@@ -7,7 +7,7 @@ import sys
 
 from .. import api
 from ..io.files import save_figure
-from ..io.scene import load, touchdown_table
+from ..io.scene import landing_scene, load, touchdown_table
 from ..mechanics.errors import InputError
 from ..report.figures import indicator_figure, posture_figure
 from ..report.tables import solve_table
@@ -28,7 +28,7 @@ def add_parser(commands):
 
 
 def run(args) -> int:
-    scene = load(args.scene)
+    scene = landing_scene(load(args.scene), "formopt solve")
     if args.compiled:
         scene = dataclasses.replace(scene, numerics=dataclasses.replace(scene.numerics, compiled=True))
     if args.starts is not None and args.starts < 1:

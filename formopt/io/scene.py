@@ -10,6 +10,7 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -25,6 +26,9 @@ from ..mechanics.model import MODELS, STATE, STRIKES, Model, Swing, build_model
 from ..optim.objective import OBJECTIVES, STANCE_PEAK_BW
 from ..optim.posture import Gait, Inadmissible, PostureProblem, Problem, admissible
 from . import validate as val
+
+if TYPE_CHECKING:  # io.stride_scene builds on this module's readers (imported where parsed)
+    from .stride_scene import StrideScene
 
 # The segments each model needs; a segment a model does not use may be given and is ignored.
 # Shank + foot keeps the thigh's geometry: the touchdown state moves the knee through it.
@@ -132,7 +136,7 @@ def touchdown_table(strike: str, state) -> dict:
             "angular_velocity_dps": {k: math.degrees(s["omega_" + k]) for k in RATES}}
 
 
-def load(path) -> Scene:
+def load(path) -> Scene | StrideScene:
     """Read and validate a scene file; an error names the file and the key."""
     data = val.read_toml(path, "a scene")
     try:
@@ -141,14 +145,21 @@ def load(path) -> Scene:
         raise err.in_file(path) from None
 
 
-def parse(data: dict, path: str = "") -> Scene:
+def landing_scene(scene: Scene | StrideScene, command: str) -> Scene:
+    """`scene` if it has a [touchdown] (impact, simulate, solve, sweep, bench need one); a
+    stride scene is refused in one line naming the command that takes it."""
+    if isinstance(scene, Scene):
+        return scene
+    raise SceneError("stride", f"a stride scene ({scene.path or scene.name}): `{command}` needs a "
+                               "[touchdown]; run `formopt stride` on it")
+
+
+def parse(data: dict, path: str = "") -> Scene | StrideScene:
     """Validate a scene given as a dictionary (the parsed TOML); one with a [stride] table is
     a stride scene (io/stride_scene.py, imported here: it builds on this module's readers)."""
     if isinstance(data, dict) and "stride" in data:
         from .stride_scene import parse as parse_stride
-        # a StrideScene stands where a Scene is expected: its touchdown factories raise a
-        # one-line SceneError ("run formopt stride"), so every loader takes both
-        return parse_stride(data, path)  # type: ignore[return-value]
+        return parse_stride(data, path)
     val.keys(data, "", {"scene", "body", "touchdown", "ground", "optimize", "joints", "landing",
                      "numerics"}, ("scene", "touchdown", "ground"))
     scene = val.table(data, "scene", {"name", "model"}, {"name"})

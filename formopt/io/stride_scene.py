@@ -19,9 +19,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from ..mechanics import limits
 from ..mechanics.body import Body
+from ..mechanics.errors import InputError
+from ..optim.stride.collocation import StrideNLP, build
 from ..optim.stride.problem import NODE_SHARE, OBJECTIVES, STRIKES, TENDON_JOINTS, StrideSettings
+from ..optim.stride.ranges import RANGES, point
 from . import validate as val
 from .scene import SceneError, _body
 
@@ -51,12 +53,20 @@ class StrideScene:
         """The settings of one strike."""
         return replace(self.settings, strike=strike)
 
-    def _other_command(self, *args, **kwargs):
-        raise SceneError("stride", "a stride scene: run `formopt stride` (impact, simulate and "
-                                   "solve need a [touchdown])")
+    def nlp(self, strike: str | None = None) -> StrideNLP:
+        """The stride NLP of the scene's body and settings for `strike` (default: the scene's;
+        "best" is no strike, solve each): the one path from a scene to its NLP, built once
+        per process (optim.stride.collocation.build)."""
+        strike = self.strike if strike is None else strike
+        if strike not in STRIKES:
+            raise SceneError("stride.strike", f"{strike!r}: an NLP solves one strike "
+                                              f"({', '.join(STRIKES)})")
+        return build(self.body, self.for_strike(strike))
 
-    # the touchdown commands' factories (io.scene.Scene): a clear error, not an AttributeError
-    model = impact = landing = posture_problem = _other_command
+
+def _whole(key: str) -> tuple[int, int]:
+    """(low, high) of an integer key's range (optim.stride.ranges)."""
+    return int(RANGES[key].low), int(RANGES[key].high)
 
 
 def parse(data: dict, path: str = "") -> StrideScene:
@@ -66,31 +76,37 @@ def parse(data: dict, path: str = "") -> StrideScene:
     name = val.string(scene, "name", "scene")
     body, notes = _body(data.get("body", {"preset": "paper"}), "full-body")
     ground = val.table(data, "ground", {"friction", "slope_deg", "contact"}, {"friction"})
-    friction = val.number(ground, "friction", "ground", limit=limits.FRICTION)
+    friction = val.number(ground, "friction", "ground", limit=RANGES["friction"])
     law = val.choice(ground.get("contact", "no-slip"), "ground.contact", STRIDE_LAWS)
-    slope = val.number(ground, "slope_deg", "ground", default=0.0, low=-20.0, high=20.0)
+    slope = val.number(ground, "slope_deg", "ground", default=0.0, limit=RANGES["slope_deg"])
     stride = val.table(data, "stride", STRIDE_KEYS, {"speed_mps"})
-    speed = val.number(stride, "speed_mps", "stride", low=1.0, high=8.0)
+    speed = val.number(stride, "speed_mps", "stride", limit=RANGES["speed_mps"])
     strike = val.choice(stride.get("strike", "heel"), "stride.strike", STRIDE_STRIKES)
     objective = val.choice(stride.get("objective", "effort"), "stride.objective", OBJECTIVES)
-    nodes = val.integer(stride, "nodes", "stride", default=40, low=20, high=400)
-    weight = val.number(stride, "impact_weight", "stride", default=0.0, low=0.0, high=1e3)
-    torque = val.number(stride, "torque_limit_nm_per_kg", "stride", default=4.0, low=0.5, high=20.0)
-    cadence = val.number(stride, "cadence_spm", "stride", limit=limits.CADENCE_SPM) \
+    nodes = val.integer(stride, "nodes", "stride", 40, *_whole("nodes"))
+    weight = val.number(stride, "impact_weight", "stride", default=0.0, limit=RANGES["impact_weight"])
+    torque = val.number(stride, "torque_limit_nm_per_kg", "stride", default=4.0,
+                         limit=RANGES["torque_limit_nm_per_kg"])
+    cadence = val.number(stride, "cadence_spm", "stride", limit=RANGES["cadence_spm"]) \
         if "cadence_spm" in stride else None
-    max_iter = val.integer(stride, "max_iterations", "stride", default=1000, low=1, high=100000)
-    starts = val.integer(stride, "starts", "stride", default=4, low=1, high=100)
+    if cadence is not None:
+        try:
+            point(speed, cadence)
+        except InputError as err:
+            raise SceneError("stride.cadence_spm", str(err)) from None
+    max_iter = val.integer(stride, "max_iterations", "stride", 1000, *_whole("max_iterations"))
+    starts = val.integer(stride, "starts", "stride", 4, *_whole("starts"))
     duration = dict(StrideSettings().duration)
     if "duration_s" in stride:
         given = val.table(stride, "duration_s", set(NODE_SHARE), set(), "stride")
         for phase in given:
-            low, high = val.pair(given, phase, "stride.duration_s", limit=2.0)
+            low, high = val.pair(given, phase, "stride.duration_s", limit=RANGES["duration_s"].high)
             if not 0 < low < high:
                 raise SceneError(f"stride.duration_s.{phase}", f"must be 0 < low < high, not "
                                                                f"[{low:g}, {high:g}]")
             duration[phase] = (low, high)
     given = val.table(stride, "tendons", set(TENDON_JOINTS), set(), "stride") if "tendons" in stride else {}
-    tendons = {j: val.number(given, j, "stride.tendons", low=0.0, high=20.0) for j in given}
+    tendons = {j: val.number(given, j, "stride.tendons", limit=RANGES["tendon_nm_per_rad_kg"]) for j in given}
     settings = StrideSettings(strike="heel" if strike == "best" else strike, objective=objective,
                               nodes=nodes, law=law, impact_weight=weight, torque_limit=torque,
                               duration=duration, max_iter=max_iter, tendons=tendons)

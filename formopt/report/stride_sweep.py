@@ -45,8 +45,8 @@ def _value(r, key) -> float:
 
 
 def _best(rows) -> dict:
-    """The least-objective row."""
-    return min(rows, key=lambda r: float(r["objective_value"]))
+    """The best row as optim.stride.rank orders strides: valid first, then the least objective."""
+    return min(rows, key=lambda r: (r["valid"] != "True", float(r["objective_value"])))
 
 
 def _groups(rows, by: str | None) -> dict[float, list[dict]]:

@@ -247,9 +247,10 @@ def stride_lines(s: dict) -> list[str]:
                  f"{s['optimum_step_length_m']:.3f} m, strike point {s['optimum_placement_m']:.3f} m "
                  f"ahead of the hip, {s['measured_strike']} strike; mechanical power "
                  f"{s['optimum_mechanical_power_W']:.0f} W, impact loss {s['optimum_impact_loss_W']:.0f} W")
-    strikes = ", ".join(f"{k} {v['objective_value']:.3f}" + ("" if v["impacts_valid"] else " (an impact invalid)")
+    strikes = ", ".join(f"{k} {v['objective_value']:.3f}" + ("" if v["valid"] else " (INVALID)")
                         for k, v in s["strikes"].items() if v is not None)
-    lines.append(f"    each strike's free optimum (objective per distance): {strikes}; least: {s['best_strike']}")
+    best = s["best_strike"] or "none valid"
+    lines.append(f"    each strike's free optimum (objective per distance): {strikes}; best valid: {best}")
     if s["what_if"]:
         lines.append("    what if the cadence changed (against the stride at the runner's own cadence; each "
                      f"cadence's least costly optimum found; band over {s['band']}):")

@@ -19,7 +19,7 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
-from ..io.scene import load
+from ..io.scene import landing_scene, load
 from ..mechanics.compiled import external
 from ..mechanics.impact import Impact, impact_function, on_ground
 from ..mechanics.landing import Diverged, LandingModel, simulate_state
@@ -85,7 +85,7 @@ def run(quick: bool = False, progress=None) -> Bench:
     """All rows (impacts, landings, optimisations, in the order of the table), the compiled
     batch throughput of the paper's leg (states/s) and the ground."""
     say = progress or (lambda text: None)
-    scene = load(DATA / "full_body.toml")
+    scene = landing_scene(load(DATA / "full_body.toml"), "formopt bench")
     states = read_states()[: 20 if quick else 200]
     models = {level: build_model(scene.body, level, scene.strike, scene.swing) for level in LEVELS}
     rows = _impact_rows(scene, models, states, say)

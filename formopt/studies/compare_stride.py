@@ -30,7 +30,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..mechanics.body import scaled_body
-from ..optim.stride import Stride, summarise
+from ..optim.stride import Stride, rank, summarise
 from ..optim.stride.problem import STRIKES
 from .stride_form import NODES, joint_work, placement_m, stride_scene, with_body
 from .stride_map import cadence_curve, free, nlp_of, warm
@@ -139,8 +139,11 @@ class StrideAnswer:
 
     @property
     def best_strike(self) -> str | None:
-        ok = {k: s for k, s in self.best.items() if s is not None and s.success}
-        return min(ok, key=lambda k: ok[k].objective_value) if ok else None
+        """The strike of the best free optimum (optim.stride.rank), None when none is valid
+        (`notes` then says so)."""
+        solved = {k: s for k, s in self.best.items() if s is not None}
+        best = min(solved, key=lambda k: rank(solved[k]), default=None)
+        return best if best is not None and solved[best].valid else None
 
     def to_dict(self) -> dict:
         own = self.nominal.free
@@ -160,7 +163,7 @@ class StrideAnswer:
                 "strikes": {k: None if s is None else
                             {"success": s.success, "objective_value": s.objective_value,
                              "cadence_spm": s.cadence_spm, "mechanical_power_W": s.mechanical_power_W,
-                             "impacts_valid": all(i["valid"] for i in s.impacts)}
+                             "impacts_valid": all(i["valid"] for i in s.impacts), "valid": s.valid}
                             for k, s in self.best.items()},
                 "what_if": [w.to_dict() for w in self.what_if], "band": band_text(),
                 "curves": [c.to_dict() for c in self.curves], "notes": self.notes,
@@ -280,6 +283,10 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True) -> StrideAns
     say("stride: the free optimum of each strike")
     best = {s: curves[0].free if s == measured["strike"] else
             _free_or_none(_with(nominal, strike=s), speed) if band else None for s in STRIKES}
+    solved = [s for s in best.values() if s is not None]
+    if solved and not any(s.valid for s in solved):
+        notes.append("no strike's free optimum is valid (" + "; ".join(
+            f"{s.strike}: {', '.join(s.failed_checks) or s.status}" for s in solved) + "): no best strike")
     return StrideAnswer(speed, law, measured, curves, best,
                         what_ifs(curves, cadences) if curves[0].ok else [], notes,
                         time.perf_counter() - start, nominal.settings.nodes)

@@ -11,8 +11,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..io.stride_scene import StrideScene
-from ..mechanics.joint_space import JointSpace
-from ..optim.stride import Stride, StrideNLP, optimum
+from ..mechanics.errors import InputError
+from ..optim.stride import Stride, optimum, ranges, rank
 from ..optim.stride.problem import STRIKES
 
 ROW_KEYS = ("strike", "success", "objective_value", "cadence_spm", "step_length_m", "stance_s",
@@ -35,7 +35,8 @@ class StrideStudy:
         """The best stride's JSON, with one row per strike solved (`strides`)."""
         rows = [{**{k: getattr(s, k) for k in ROW_KEYS},
                  "impacts_J": s.budget["impacts_J"],
-                 "impacts_valid": all(i["valid"] for i in s.impacts)} for s in self.strides]
+                 "impacts_valid": all(i["valid"] for i in s.impacts), "valid": s.valid}
+                for s in self.strides]
         return {"scene": self.scene, **self.best.to_dict(), "strides": rows}
 
 
@@ -43,17 +44,20 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
         simulate: bool = True, progress=None) -> StrideStudy:
     """Solve the scene's strides (`speed`, `strike`: overrides; "best" solves each);
     `progress(text)`, when given, is told of each strike before it is solved."""
-    js = JointSpace(scene.body)
-    choice = strike or scene.strike
+    speed = scene.speed if speed is None else speed
+    ranges.point(speed, scene.cadence)
+    choice = scene.strike if strike is None else strike
+    if choice not in (*STRIKES, "best"):
+        raise InputError(f"strike {choice!r}: expected one of {', '.join(STRIKES)} or best")
     strikes = STRIKES if choice == "best" else (choice,)
     strides = []
     for k, name in enumerate(strikes, 1):
         if progress:
             progress(f"[{k}/{len(strikes)}] {name} strike: {scene.starts} start(s)")
-        nlp = StrideNLP(js, scene.for_strike(name))
-        strides.append(optimum(nlp, speed or scene.speed, scene.slope, scene.friction,
+        nlp = scene.nlp(name)
+        strides.append(optimum(nlp, speed, scene.slope, scene.friction,
                                scene.cadence, simulate=simulate, starts=scene.starts))
-    strides.sort(key=lambda s: (not s.success, s.objective_value))
+    strides.sort(key=rank)
     return StrideStudy(scene.name, strides)
 
 

@@ -22,18 +22,15 @@ the same NLP carry its multipliers (StrideNLP.resolve).
 
 from __future__ import annotations
 
-import hashlib
+import itertools
 import math
-import pickle
 from dataclasses import asdict, dataclass, field, fields, replace
 
 import numpy as np
 
 from ..io.stride_scene import StrideScene
-from ..mechanics import limits
 from ..mechanics.errors import InputError
-from ..mechanics.joint_space import JointSpace
-from ..optim.stride import Stride, StrideNLP, summarise
+from ..optim.stride import Stride, StrideNLP, ranges, rank, summarise
 from ..optim.stride.guess import ballistic, fitted
 from ..optim.stride.layout import Solved
 from ..optim.stride.problem import metabolic
@@ -42,12 +39,8 @@ from ..optim.stride.result import GRAVITY, optimum
 PARAMETERS = {"speed_mps": "running speed, m/s", "cadence_spm": "imposed cadence, steps/min",
               "step_length_m": "imposed step length (a half stride), m",
               "slope_deg": "ground slope, deg uphill", "friction": "coefficient"}
-# The stride scene's own ranges (io.stride_scene) and the step lengths between them: 60 v / L
-# must be a cadence of limits.CADENCE_SPM at a speed of 1-8 m/s, so 0.2 m to 8 m; 4 m (a
-# 240 steps/min sprint at 16 m/s) is beyond any runner, and a longer step is a typing error.
-RANGES = {"speed_mps": limits.Range(1.0, 8.0, "m/s"), "cadence_spm": limits.CADENCE_SPM,
-          "step_length_m": limits.Range(0.2, 4.0, "m"), "slope_deg": limits.Range(-20.0, 20.0, "deg"),
-          "friction": limits.FRICTION}
+# the ranges of the stride's own keys (optim.stride.ranges, the scene's)
+RANGES = {k: ranges.RANGES[k] for k in PARAMETERS}
 # speed, cadence and step length are one relation (cadence = 60 v / L): a grid gives two at most
 CADENCE_GROUP = ("speed_mps", "cadence_spm", "step_length_m")
 # Points per warm-started chain. A chain's first stride costs about 15-20 warm ones (the free
@@ -106,9 +99,10 @@ COLUMNS = [f.name for f in fields(StrideRow)]
 
 
 def check(scene, params) -> None:
-    """Refuse a grid a stride map cannot take, in one line naming the parameter: a stride
-    scene's `best` strike (a map solves one strike), or speed, cadence and step length all
-    swept (one follows from the other two)."""
+    """Refuse a grid a stride map cannot take, before any solve, in one line naming the
+    parameter: a stride scene's `best` strike (a map solves one strike), speed, cadence and
+    step length all swept (one follows from the other two), or a point whose given or derived
+    speed, cadence or step length is outside its range (`point`)."""
     if scene.strike == "best":
         raise InputError("stride.strike = 'best': a stride map solves one strike; set heel, "
                          "forefoot or flat in the scene")
@@ -116,33 +110,36 @@ def check(scene, params) -> None:
     if len(group) > 2:
         raise InputError(f"--param {group[2]}: speed, cadence and step length are one relation "
                          "(cadence = 60 speed / step length): sweep two of them at most")
+    names = [n for n, _ in params]
+    for values in itertools.product(*[np.asarray(v, float) for _, v in params]):
+        point(scene, dict(zip(names, values)))
 
 
 def point(scene: StrideScene, values: dict) -> tuple[float, float, float, float | None]:
-    """(speed m/s, slope rad, friction, imposed cadence steps/min or None) of a grid point."""
+    """(speed m/s, slope rad, friction, imposed cadence steps/min or None) of a grid point,
+    each given or derived value checked (optim.stride.ranges.point; InputError)."""
     speed = values.get("speed_mps", scene.speed)
-    cadence = values.get("cadence_spm", scene.cadence)
-    if "step_length_m" in values:
-        if "cadence_spm" in values and "speed_mps" not in values:
-            speed = values["cadence_spm"] * values["step_length_m"] / 60.0
-        else:
-            cadence = 60.0 * speed / values["step_length_m"]
-    slope = math.radians(values.get("slope_deg", math.degrees(scene.slope)))
-    return speed, slope, values.get("friction", scene.friction), cadence
-
-
-_NLPS: dict = {}  # per process: the stride NLP of the last body and settings built
+    step = values.get("step_length_m")
+    cadence = values.get("cadence_spm", scene.cadence if step is None else None)
+    if step is not None and "cadence_spm" in values and "speed_mps" not in values:
+        speed = cadence * step / 60.0
+        if speed not in RANGES["speed_mps"]:
+            raise InputError(f"cadence_spm = {cadence:g} and step_length_m = {step:g}: give a speed of "
+                             f"{speed:.4g} m/s, outside {RANGES['speed_mps'].text()}")
+        step = None
+    speed, cadence = ranges.point(speed, None if step is not None else cadence, step)
+    slope = values.get("slope_deg", math.degrees(scene.slope))
+    friction = values.get("friction", scene.friction)
+    ranges.check("slope_deg", slope)
+    ranges.check("friction", friction)
+    return speed, math.radians(slope), friction, cadence
 
 
 def nlp_of(scene: StrideScene) -> StrideNLP:
-    """The scene's stride NLP, built once per process for its body and settings."""
+    """The scene's stride NLP (StrideScene.nlp); one strike, not "best"."""
     if scene.strike == "best":
         raise InputError("stride.strike = 'best': solve one strike (heel, forefoot or flat)")
-    key = hashlib.sha256(pickle.dumps((scene.body, scene.settings))).hexdigest()
-    if key not in _NLPS:
-        _NLPS.clear()
-        _NLPS[key] = StrideNLP(JointSpace(scene.body), scene.settings)
-    return _NLPS[key]
+    return scene.nlp()
 
 
 def solution(stride: Stride, nlp: StrideNLP) -> dict:
@@ -189,7 +186,7 @@ def row_of(nlp: StrideNLP, stride: Stride, start: str) -> StrideRow:
         trunk_deg=angles["trunk"], hip_deg=angles["hip"], knee_deg=angles["knee"],
         ankle_deg=angles["ankle"], hip_from_strike_ahead_m=hip["ahead"],
         hip_from_strike_above_m=hip["above"],
-        valid=stride.success and all(i["valid"] for i in stride.impacts), success=stride.success,
+        valid=stride.valid, success=stride.success,
         status=stride.status, iterations=stride.iterations, solve_s=stride.solve_s, start=start)
 
 
@@ -226,7 +223,7 @@ def solve_point(scene: StrideScene, values: dict, previous: Stride | None) -> tu
     tries = [(summarise(nlp, nlp.solve(ballistic(nlp, speed), speed, slope, mu, cadence), False), "cold")]
     if seed.success:
         tries.insert(0, (summarise(nlp, nlp.solve(solution(seed, nlp), speed, slope, mu, cadence), False), "free"))
-    return min(tries, key=lambda t: (not t[0].success, t[0].objective_value))
+    return min(tries, key=lambda t: rank(t[0]))
 
 
 def rows(scene: StrideScene, chunk) -> list[dict]:
@@ -288,12 +285,9 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
     `slope` (rad), `friction`: the scene's when None. Strides in the order of `cadences`."""
     slope = scene.slope if slope is None else slope
     mu = scene.friction if friction is None else friction
-    if speed not in RANGES["speed_mps"]:
-        raise InputError(f"speed = {speed:g}: outside its range, {RANGES['speed_mps'].text()}")
     values = [float(c) for c in cadences]
     for c in values:
-        if c not in RANGES["cadence_spm"]:
-            raise InputError(f"cadences: {c:g} is outside its range, {RANGES['cadence_spm'].text()}")
+        ranges.point(speed, c)
     base = free(scene, speed, slope, mu) if start is None else start
     if not base.success:
         raise RuntimeError(f"no free stride optimum at {speed:g} m/s ({base.status})")
@@ -307,8 +301,7 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
         if stride.success:
             tried[c].append(stride.objective_value)
         old = kept.get(c)
-        if old is None or (stride.success and (not old[0].success or stride.objective_value
-                                               < old[0].objective_value * (1 - SAME))):
+        if old is None or better(stride, old[0]):
             kept[c] = (stride, how)
             return True
         return False
@@ -354,21 +347,22 @@ def _polish(order: list[float], base: Stride, kept: dict, attempt) -> None:
         changed = now | (set(order) if k == 0 else set())  # both directions once from every point
 
 
-def _valid(stride: Stride) -> tuple:
-    """What makes a stride better than another: converged with valid impacts, then cheaper."""
-    return stride.success and all(i["valid"] for i in stride.impacts), stride.success, -stride.objective_value
+def better(stride: Stride, other: Stride) -> bool:
+    """`stride` ranks before `other` (optim.stride.rank), by more than SAME when the two differ
+    in the objective alone."""
+    a, b = rank(stride), rank(other)
+    return a[:2] < b[:2] or (a[:2] == b[:2] and a[2] < b[2] - SAME * abs(b[2]))
 
 
 def _better_free(curve: CadenceCurve, nlp: StrideNLP, speed, slope, mu) -> CadenceCurve:
     """Step 3 of `cadence_curve`: the free optimum solved again (optim.stride.optimum, with
     its touchdown mode under Coulomb) from the least costly imposed stride when that one is
-    cheaper than it (the free optimum was then a local one); kept if valid and cheaper."""
-    ok = [s for s in curve.strides if s.success]
-    cheapest = min(ok, key=lambda s: s.objective_value, default=None)
-    if cheapest is None or cheapest.solved is None or cheapest.objective_value >= curve.free.objective_value:
+    better than it (`better`: the free optimum was then a local one); kept if better."""
+    cheapest = min(curve.strides, key=rank, default=None)
+    if cheapest is None or cheapest.solved is None or not better(cheapest, curve.free):
         return curve
     again = optimum(nlp, speed, slope, mu, None, guess=cheapest.solved.blocks, simulate=False)
-    if _valid(again) > _valid(curve.free):
+    if better(again, curve.free):
         return replace(curve, free=again, free_from=f"{cheapest.cadence_spm:.1f}")
     return curve
 

@@ -53,7 +53,7 @@ def test_sliding_phase_lists():
     with pytest.raises(InputError, match="slip"):
         StrideSettings(law="coulomb", touchdown="slide", slip=0)
     StrideSettings(strike="forefoot", nodes=20)  # 4 phases: 18 nodes at least
-    with pytest.raises(InputError, match="nodes = 20: expected 22"):  # the sliding variant's 5
+    with pytest.raises(InputError, match="nodes = 20: expected at least 22"):  # the sliding variant's 5
         StrideSettings(strike="forefoot", nodes=20, law="coulomb")
 
 

@@ -8,6 +8,6 @@ methods.
 
 from .collocation import StrideNLP
 from .problem import OBJECTIVES, STRIKE_PHASES, StrideSettings
-from .result import Stride, optimum, summarise
+from .result import Stride, optimum, rank, summarise
 
-__all__ = ["OBJECTIVES", "STRIKE_PHASES", "StrideSettings", "StrideNLP", "Stride", "optimum", "summarise"]
+__all__ = ["OBJECTIVES", "STRIKE_PHASES", "StrideSettings", "StrideNLP", "Stride", "optimum", "rank", "summarise"]

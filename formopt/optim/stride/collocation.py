@@ -39,8 +39,10 @@ imposed, when asked, through the bounds of the half-period's row.
 
 from __future__ import annotations
 
+import hashlib
 import itertools
 import math
+import pickle
 import time
 from dataclasses import replace
 
@@ -426,3 +428,19 @@ class StrideNLP:
                       lam_g=np.asarray(out["lam_g"], float).ravel(),
                       parameters={"speed": speed, "slope": slope, "mu": mu, "cadence": cadence},
                       lam_x=np.asarray(out["lam_x"], float).ravel(), layout=self.layout)
+
+
+_BUILT: dict[str, StrideNLP] = {}  # the last NLPS_KEPT NLPs built, by what they hold
+NLPS_KEPT = 4  # a compare band alternates a few bodies and objectives; each NLP holds its solver
+
+
+def build(body, settings: StrideSettings) -> StrideNLP:
+    """The stride NLP of a body (mechanics.body.Body) and settings, built once per process and
+    kept while it is among the last NLPS_KEPT asked for (keyed by everything it holds: the body
+    and the settings)."""
+    key = hashlib.sha256(pickle.dumps((body, settings))).hexdigest()
+    nlp = _BUILT.pop(key, None) or StrideNLP(JointSpace(body), settings)
+    _BUILT[key] = nlp  # the most recent last
+    while len(_BUILT) > NLPS_KEPT:
+        _BUILT.pop(next(iter(_BUILT)))
+    return nlp

@@ -33,6 +33,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ...mechanics.errors import InputError
+from .ranges import check
 
 
 @dataclass(frozen=True)
@@ -145,23 +146,25 @@ class StrideSettings:
             raise InputError(f"slip = {self.slip}: expected 1 (forward) or -1 (back)")
         # under Coulomb the touchdown may need its sliding variant, one phase more
         phases = SLIDING_PHASES.get(self.strike, self.phases) if self.law == "coulomb" else self.phases
-        if not MIN_NODES * len(phases) + 2 <= self.nodes <= 400:
-            raise InputError(f"nodes = {self.nodes}: expected {MIN_NODES * len(phases) + 2} "
-                             f"to 400 for a {self.strike} strike under {self.law}")
+        nodes = check("nodes", self.nodes, whole=True)
+        if nodes < MIN_NODES * len(phases) + 2:
+            raise InputError(f"nodes = {self.nodes}: expected at least {MIN_NODES * len(phases) + 2} "
+                             f"for a {self.strike} strike under {self.law}")
         if self.law not in ("no-slip", "coulomb"):
             raise InputError(f"law {self.law!r}: expected no-slip or coulomb (frictionless "
                              "impacts leave the foot sliding, a phase the stride does not model)")
-        if not 0 <= self.impact_weight <= 1e3:
-            raise InputError(f"impact_weight = {self.impact_weight}: expected 0 to 1000")
-        if not 0.5 <= self.torque_limit <= 20:
-            raise InputError(f"torque_limit = {self.torque_limit}: expected 0.5 to 20 N m/kg")
+        check("impact_weight", self.impact_weight)
+        check("torque_limit_nm_per_kg", self.torque_limit)
+        check("max_iterations", self.max_iter, whole=True)
         for joint, k in self.tendons.items():
-            if joint not in TENDON_JOINTS or not 0 <= k <= 20:
-                raise InputError(f"tendons.{joint} = {k}: expected a joint of {', '.join(TENDON_JOINTS)} "
-                                 "and a stiffness of 0 to 20 N m/rad per kg")
+            if joint not in TENDON_JOINTS:
+                raise InputError(f"tendons.{joint}: expected a joint of {', '.join(TENDON_JOINTS)}")
+            check("tendon_nm_per_rad_kg", k, name=f"tendons.{joint}")
         for name, (lo, hi) in self.duration.items():
-            if not 0 < lo < hi <= 2.0:
-                raise InputError(f"duration {name} = ({lo}, {hi}): expected 0 < low < high <= 2 s")
+            for bound in (lo, hi):
+                check("duration_s", bound, name=f"duration {name}")
+            if not lo < hi:
+                raise InputError(f"duration {name} = ({lo}, {hi}): expected low < high")
 
     @property
     def phases(self) -> tuple[Phase, ...]:

@@ -31,6 +31,18 @@ from .problem import SLIDING_PHASES, metabolic, other_leg
 
 GRAVITY = 9.81
 FOOT_POINTS = ("heel_R", "forefoot_R")
+# What a stride's own checks may show and still be the stride it claims (`Stride.failed_checks`),
+# each several times what optima of a runner show (paper body, 3.5 m/s, heel and forefoot,
+# 2026-11-25: at 40 nodes with tendons drift 0.3-0.6 mm, forward 0.02-0.03 rad, balance 1e-9
+# (imposed), impact maps 1e-13 J, periodicity 1e-16; at 24 nodes without tendons drift 1.7-1.9
+# mm and balance 0.4-1.1 % of W+, the trapezoid's O(h^2)):
+TOLERANCES = {
+    "drift_m": 5e-3,  # a held point that moves 5 mm is half a shoe sole's compression
+    "forward_theta": 0.1,  # rad (6 deg): beyond it the optimal moments do not make the stride
+    "balance_relative": 5e-2,  # of W+: a budget 5 % off misstates the cost it reports
+    "impact_map_J": 1e-6,  # the NLP's impacts against formopt's impact map
+    "periodicity": 1e-6,  # m or rad: the touchdown equals the start (a constraint of the NLP)
+}
 
 
 @dataclass
@@ -72,10 +84,33 @@ class Stride:
     force: np.ndarray = field(repr=False)  # (n, 2, 2) N, world (x, z) per FOOT_POINTS
     solved: Solved | None = field(repr=False, default=None)  # the raw solution (a warm start)
 
+    @property
+    def failed_checks(self) -> list[str]:
+        """The checks beyond their TOLERANCES ("drift_m 0.24 > 0.005"; the forward check only
+        when it was run) and the impacts that break the scene's contact law."""
+        failed = [f"{k} {self.checks[k]:.3g} > {limit:g}" for k, limit in TOLERANCES.items()
+                  if k in self.checks and not self.checks[k] <= limit]
+        return failed + [f"{i['point']} impact of leg {i['leg']} invalid under {i['law']} "
+                         f"(mu_c {i['mu_c'] if i['mu_c'] is None else round(i['mu_c'], 4)}, "
+                         f"approach {i['approach_mps']:.3f} m/s)" for i in self.impacts if not i["valid"]]
+
+    @property
+    def valid(self) -> bool:
+        """Converged, every impact valid under the scene's law and every check within its
+        tolerance: the stride the model says it is."""
+        return self.success and not self.failed_checks
+
     def to_dict(self) -> dict:
-        """JSON-ready summary (no histories)."""
+        """JSON-ready summary (no histories), with `valid` and `failed_checks`."""
         skip = {"t", "phase", "theta", "thetad", "tau", "force", "solved"}
-        return {k: getattr(self, k) for k in self.__dataclass_fields__ if k not in skip}
+        out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k not in skip}
+        return {**out, "valid": self.valid, "failed_checks": self.failed_checks}
+
+
+def rank(stride: Stride) -> tuple:
+    """The one order of strides, wherever one is chosen (`min(strides, key=rank)`): valid
+    before invalid, converged before not, then the least objective (per distance)."""
+    return not stride.valid, not stride.success, stride.objective_value
 
 
 def histories(nlp: StrideNLP, blocks: dict, slope: float):
@@ -265,17 +300,15 @@ def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
             starts: int = 1, seed: int = 0) -> Stride:
     """Solve the NLP from `guess` (default: the generic guess; a solution of another phase
     list is `fitted` to this one's nodes) and, with `starts` > 1, from
-    starts - 1 perturbations of it (guess.perturbed, seeded); summarise the best converged
-    solve (the least objective), or the first if none converged. Under Coulomb the touchdown's
-    mode is then decided (`touchdown_mode`)."""
+    starts - 1 perturbations of it (guess.perturbed, seeded); summarise the best of the solves
+    (`rank`: valid first, then converged, then the least objective). Under Coulomb the
+    touchdown's mode is then decided (`touchdown_mode`)."""
     first = fitted(nlp, guess) if guess is not None else ballistic(nlp, speed)
     rng = np.random.default_rng(seed)
-    best = None
-    for k in range(starts):
-        solved = nlp.solve(first if k == 0 else perturbed(first, rng), speed, slope, mu, cadence)
-        if best is None or (solved.success, -solved.objective) > (best.success, -best.objective):
-            best = solved
-    assert best is not None  # starts >= 1 (the scene's check)
+    solves = [nlp.solve(first if k == 0 else perturbed(first, rng), speed, slope, mu, cadence)
+              for k in range(starts)]
+    best = solves[0] if starts == 1 else \
+        min(solves, key=lambda solved: rank(summarise(nlp, solved, simulate=False)))
     tried: list = []
     if nlp.settings.law == "coulomb":
         nlp, best, tried = touchdown_mode(nlp, best)
@@ -291,7 +324,7 @@ def touchdown_mode(nlp: StrideNLP, stick: Solved) -> tuple[StrideNLP, Solved, li
     not stick, or the impulse sits on the friction cone's edge (the sticking mode's boundary),
     the sliding variant (problem.SLIDING_PHASES) is solved, warm-started from it, with the
     slip's sign s from the map (or against the tangential impulse); the better valid result
-    is kept (valid first, then converged, then the least objective). Returns the kept NLP and
+    is kept (`rank`). Returns the kept NLP and
     solve, and each mode tried (`checks["touchdown_modes"]`: objective, success, validity,
     cost of transport, cadence; empty when only the sticking one was)."""
     first = summarise(nlp, stick, simulate=False)
@@ -305,10 +338,9 @@ def touchdown_mode(nlp: StrideNLP, stick: Solved) -> tuple[StrideNLP, Solved, li
                            par["slope"], par["mu"], par["cadence"])
     candidates = [(first, nlp, stick), (summarise(sliding, solved, simulate=False), sliding, solved)]
     tried = [{"mode": s.impacts[-1]["mode"], "objective": s.objective_value, "success": s.success,
-              "valid": all(i["valid"] for i in s.impacts), "cost_of_transport": s.cost_of_transport,
+              "valid": s.valid, "cost_of_transport": s.cost_of_transport,
               "cadence_spm": s.cadence_spm} for s, _, _ in candidates]
-    _, kept_nlp, kept = max(candidates, key=lambda c: (
-        all(i["valid"] for i in c[0].impacts), c[0].success, -c[0].objective_value))
+    _, kept_nlp, kept = min(candidates, key=lambda c: rank(c[0]))
     return kept_nlp, kept, tried
 
 
