@@ -110,7 +110,8 @@ if LoadFileScheduling is not None:
 
 # The slowest files (pytest -n 2 --durations=0, 2026-11-24, seconds of the file's tests): they are
 # handed out first. A stale list costs only balance, never a test.
-SLOW = ("studies/test_stride_sweep.py",  # 16
+SLOW = ("optim/stride/test_collocation.py",  # 20 (2026-11-25, loaded machine)
+        "studies/test_stride_sweep.py",  # 16
         "test_examples.py",  # 14
         "test_docs.py",  # 12
         "optim/test_stride.py",  # 12

@@ -30,11 +30,11 @@ import numpy as np
 
 from ..io.stride_scene import StrideScene
 from ..mechanics.errors import InputError
-from ..optim.stride import Stride, StrideNLP, ranges, rank, summarise
+from ..optim.stride import Stride, StrideNLP, costs, ranges, rank, summarise
 from ..optim.stride.guess import ballistic, fitted
 from ..optim.stride.layout import Solved
-from ..optim.stride.problem import metabolic
-from ..optim.stride.result import GRAVITY, optimum
+from ..optim.stride.problem import OBJECTIVES
+from ..optim.stride.result import optimum
 
 PARAMETERS = {"speed_mps": "running speed, m/s", "cadence_spm": "imposed cadence, steps/min",
               "step_length_m": "imposed step length (a half stride), m",
@@ -151,21 +151,16 @@ def solution(stride: Stride, nlp: StrideNLP) -> dict:
 
 
 def objective_values(nlp: StrideNLP, stride: Stride) -> dict[str, float]:
-    """The three objectives (problem.OBJECTIVES) of a solved stride, each per distance d and
-    scaled as the NLP scales it (collocation's `_objective`), without the smoothing and
-    regularisation terms:
-
-        effort = 100 / (m g)^2 / d * int sum tau_j^2 dt   (m s, of order one)
-        work = W+ / (m g d),   metabolic = (W+/0.25 + W-/1.2) / (m g d)
-
-    The integrals by the transcription's trapezoidal rule on the stride's own nodes (a phase
-    boundary's repeated time adds nothing), so a stride that slid is counted with its slide."""
-    mg = nlp.mass * GRAVITY
-    effort = float(np.trapezoid(np.sum(np.square(stride.tau), axis=1), stride.t))
-    d, b = stride.step_length_m, stride.budget
-    return {"effort_value": effort / d * 100.0 / mg ** 2,
-            "work_value": b["positive_work_J"] / (mg * d),
-            "metabolic_value": metabolic(b["positive_work_J"], b["negative_work_J"]) / (mg * d)}
+    """The three objectives (problem.OBJECTIVES) of a solved stride, each per distance and
+    scaled as the NLP scales it (optim.stride.costs.own_terms), without the smoothing and
+    regularisation terms. The integrals by the transcription's trapezoidal rule on the
+    stride's own nodes (a phase boundary's repeated time adds nothing), so a stride that slid
+    is counted with its slide."""
+    b = stride.budget
+    integrals = {"effort": float(np.trapezoid(np.sum(np.square(stride.tau), axis=1), stride.t)),
+                 "positive": b["positive_work_J"], "negative": b["negative_work_J"]}
+    return {f"{o}_value": costs.objective(costs.own_terms(o, nlp.mass), integrals, stride.step_length_m)
+            for o in OBJECTIVES}
 
 
 def row_of(nlp: StrideNLP, stride: Stride, start: str) -> StrideRow:

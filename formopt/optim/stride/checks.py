@@ -21,9 +21,10 @@ import numpy as np
 from ...mechanics import contact
 from ...mechanics.compiled import Compiled
 from ...mechanics.impact import projection
-from ...mechanics.joint_space import POINTS, JointSpace, swap_legs
+from ...mechanics.joint_space import POINTS, JointSpace
 from .collocation import NU, NX, StrideNLP
 from .layout import held_rows
+from .ocp import periodicity, step_length
 from .problem import other_leg
 
 
@@ -86,16 +87,17 @@ def impact_check(js: JointSpace, rows, theta, thetad, slope, mu, sliding: tuple 
             "coulomb_slip_mps": float(slip_after), "theta_d_plus": plus}
 
 
-def accelerations(nlp: StrideNLP, phase) -> Compiled:
+def accelerations(nlp: StrideNLP, i: int) -> Compiled:
     """theta'' (9) of the constrained equations of motion in `phase`, as a numpy call of
     (theta (9), theta' (9), active moments (N m, 6), theta at touchdown (9, the tendons'
     rest), slope (rad), mu): [M -D^T; G 0] [theta''; f] = [g + passive - c - tau; -dJ/dt theta']
     (`force_directions`: a sliding point's force on the cone's edge, against the slip
-    settings.slip); tau adds the tendons' moments (StrideNLP.tendon_moments)."""
+    settings.slip) in phase i; tau adds the actuation's passive moments (the tendons)."""
     js = nlp.js
     th, thd, td = ca.SX.sym("theta", NX), ca.SX.sym("thetad", NX), ca.SX.sym("theta_td", NX)
     tau, slope, mu = ca.SX.sym("tau", NU), ca.SX.sym("slope"), ca.SX.sym("mu")
-    moments = ca.vertcat(0, 0, 0, tau + nlp.tendon_moments(phase, th, td))
+    phase = nlp.phases[i]
+    moments = ca.vertcat(0, 0, 0, tau + nlp.ocp.models[i].actuation.passive(th, td, bool(phase.points)))
     rhs = js.gravity(th) + js.passive(th) - js.bias(th, thd) - moments
     M, rows = js.mass(th), phase.rows
     if rows:
@@ -132,10 +134,10 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
     slips: dict = {}
     for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
         X, U, T = blocks[f"X_{phase.name}"], m * blocks[f"U_{phase.name}"], blocks[f"T_{phase.name}"].item()
-        if i > 0 and nlp.P[i - 1] is not None:  # an impact starts the phase
+        if nlp.impact_before(i):  # an impact starts the phase
             state[NX:] = joint_impact(js, phase.rows, state[:NX], state[NX:], slope)[0]
         times = np.linspace(0.0, T, n + 1)
-        acc = accelerations(nlp, phase)
+        acc = accelerations(nlp, i)
 
         def rhs(t, x, U=U, times=times, acc=acc):
             k = min(max(int(np.searchsorted(times, t)) - 1, 0), len(times) - 2)  # piecewise linear moments
@@ -153,10 +155,8 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
                 slips = _slip(js, phase.sliding, out.sol, T, slope, slip)
     touchdown = (other_leg(nlp.phases[0].sliding), slip, mu) if nlp.phases[0].sliding else None
     plus = joint_impact(js, nlp.touchdown_rows, state[:NX], state[NX:], slope, touchdown)[0]
-    step = parameters["speed"] * half_period(nlp, blocks)
-    shift = np.r_[step * np.cos(slope), step * np.sin(slope), np.zeros(7)]
-    period_error = max(np.abs(swap_legs(state[:NX]) - shift - X0[:NX, 0]).max(),
-                       np.abs(swap_legs(plus) - X0[NX:, 0]).max())
+    step = step_length(parameters["speed"], half_period(nlp, blocks))
+    period_error = np.abs(np.asarray(periodicity(state[:NX], plus, X0[:, 0], step, slope), float)).max()
     err, res = np.array(errors), np.array(reset)
     return {"theta": float(err[:, :NX].max()), "thetad": float(err[:, NX:].max()),
             "per_phase_theta": [float(e) for e in err[:, :NX].max(axis=1)],

@@ -104,11 +104,11 @@ def _blocks(nlp, theta, thetad, durations, stance, period, speed) -> dict:
             force[normals] = weight / sum(normals)
         guess[f"F_{name}"] = force
         guess[f"T_{name}"] = durations[i]
-        if nlp.S:  # the power split of zero moments
+        if nlp.split_power:  # the power split of zero moments
             guess[f"S_{name}"] = np.zeros((2 * NU, n + 1))
         k += n + 1
     for i, phase in enumerate(nlp.phases[1:], 1):
-        if nlp.P[i - 1] is not None:
+        if nlp.impact_before(i):
             guess[f"P_{phase.name}"] = np.zeros((len(phase.rows), 1))
     guess["P_touchdown"] = np.zeros((len(nlp.touchdown_rows), 1))
     guess["V_touchdown"] = swap_legs(thetad[:, 0])

@@ -11,25 +11,32 @@ import numpy as np
 
 
 class Blocks:
-    """Named blocks of one decision vector: symbols, bounds and a guess, in order."""
+    """Named blocks of one decision vector: shapes, bounds and (once `finish`ed) their
+    expressions, slices of one MX symbol `x`, in the order declared."""
 
     def __init__(self):
-        self.names, self.symbols, self.lower, self.upper = [], [], [], []
+        self.names, self.lower, self.upper = [], [], []
         self.shapes, self.offsets, self.size = {}, {}, 0
+        self.x: ca.MX | None = None
+        self.symbols: list = []
 
     def add(self, name, shape, lower=-np.inf, upper=np.inf):
-        sym = ca.SX.sym(name, *shape)
-        n = shape[0] * shape[1]
+        """Declare a block (before `finish`)."""
         self.names.append(name)
-        self.symbols.append(sym)
         self.lower.append(np.broadcast_to(np.asarray(lower, float), shape).ravel(order="F"))
         self.upper.append(np.broadcast_to(np.asarray(upper, float), shape).ravel(order="F"))
         self.shapes[name], self.offsets[name] = shape, self.size
-        self.size += n
-        return sym
+        self.size += shape[0] * shape[1]
+
+    def finish(self) -> dict:
+        """The decision vector x (MX) and each block as a slice of it, by name."""
+        self.x = ca.MX.sym("x", self.size)
+        self.symbols = [ca.reshape(self.x[self.offsets[k]:self.offsets[k] + self.shapes[k][0] * self.shapes[k][1]],
+                                   *self.shapes[k]) for k in self.names]
+        return dict(zip(self.names, self.symbols))
 
     def vector(self):
-        return ca.vertcat(*[ca.vec(s) for s in self.symbols])
+        return self.x
 
     def split(self, x) -> dict[str, np.ndarray]:
         """Numeric blocks of a decision vector (each in its shape)."""
@@ -56,7 +63,7 @@ def _shaped(value, shape) -> np.ndarray:
 
 
 class Rows:
-    """Constraint rows with their bounds, in order, each group named (for the report)."""
+    """Constraint rows (SX or MX) with their bounds (scalars or one per row), in order."""
 
     def __init__(self):
         self.expr, self.lower, self.upper = [], [], []
@@ -64,8 +71,8 @@ class Rows:
     def add(self, expr, lower=0.0, upper=0.0):
         expr = ca.vec(expr)
         self.expr.append(expr)
-        self.lower.append(np.full(expr.shape[0], lower, float))
-        self.upper.append(np.full(expr.shape[0], upper, float))
+        self.lower.append(np.broadcast_to(np.asarray(lower, float), expr.shape[0]).copy())
+        self.upper.append(np.broadcast_to(np.asarray(upper, float), expr.shape[0]).copy())
         return len(self.expr) - 1
 
 

@@ -22,14 +22,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...mechanics.joint_space import JOINTS, swap_legs
+from ...mechanics.joint_space import GRAVITY, JOINTS
 from .checks import drift, forward, half_period, impact_check
 from .collocation import NX, StrideNLP
 from .guess import ballistic, fitted, perturbed, slide_guess
 from .layout import Solved
+from .ocp import INTEGRANDS, Impact, periodicity, step_length
 from .problem import SLIDING_PHASES, metabolic, other_leg
 
-GRAVITY = 9.81
 FOOT_POINTS = ("heel_R", "forefoot_R")
 # What a stride's own checks may show and still be the stride it claims (`Stride.failed_checks`),
 # each several times what optima of a runner show (paper body, 3.5 m/s, heel and forefoot,
@@ -135,26 +135,21 @@ def histories(nlp: StrideNLP, blocks: dict, slope: float):
     return np.concatenate(t), names, states[:, :NX], states[:, NX:], np.hstack(U).T, np.concatenate(force)
 
 
-def budget(nlp: StrideNLP, blocks: dict, speed: float, slope: float, impacts: float) -> dict:
-    """The energy budget (module docstring), J; also the power-split and metabolic figures."""
-    js, m = nlp.js, nlp.mass
-    sums = {"positive": 0.0, "negative": 0.0, "friction": 0.0, "passive": 0.0, "spring": 0.0}
-    touchdown = blocks[f"X_{nlp.phases[0].name}"][:NX, 0]
-    for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
-        h = blocks[f"T_{phase.name}"].item() / n
-        for w, x, tau, f in nlp.samples(i, h, blocks):
-            th, thd = x[:NX], x[NX:]
-            spring = np.asarray(nlp.tendon_moments(phase, th, touchdown), float).ravel()
-            sums["spring"] += w * float(spring @ thd[3:])
-            power = -tau * thd[3:]
-            sums["positive"] += w * np.sum(np.maximum(power, 0))
-            sums["negative"] += w * np.sum(np.maximum(-power, 0))
-            sums["passive"] -= w * float(np.asarray(js.passive(th), float).ravel() @ thd)
-            for r, (point, axis) in enumerate(phase.rows):
-                v = np.asarray(js.points[point](th, thd, slope)[1], float).ravel()
-                sums["friction"] -= w * m * GRAVITY * f[r] * v[0 if axis == "t" else 1]
-    step = speed * half_period(nlp, blocks)
-    climb = m * GRAVITY * step * np.sin(slope)
+def budget(nlp: StrideNLP, solved: Solved, impacts: float) -> dict:
+    """The energy budget (module docstring), J, from the NLP's own node integrands
+    (StrideNLP.integrands: the same functions and quadrature the NLP integrates); also the
+    metabolic figure."""
+    sums = dict.fromkeys(("positive", "negative", "friction", "passive", "spring"), 0.0)
+    joints = [INTEGRANDS.index(f"power_{j}") for j in JOINTS]
+    for L, w in nlp.integrands(solved.blocks, solved.parameters):
+        power = L[joints]
+        sums["positive"] += float(np.maximum(power, 0).sum(axis=0) @ w)
+        sums["negative"] += float(np.maximum(-power, 0).sum(axis=0) @ w)
+        sums["friction"] -= float(L[INTEGRANDS.index("contact")] @ w)
+        sums["passive"] -= float(L[INTEGRANDS.index("walls")] @ w)
+        sums["spring"] += float(L[INTEGRANDS.index("spring")] @ w)
+    par = solved.parameters
+    climb = nlp.mass * GRAVITY * step_length(par["speed"], half_period(nlp, solved.blocks)) * np.sin(par["slope"])
     balance = (sums["positive"] - sums["negative"] - impacts - sums["friction"] - sums["passive"]
                - sums["spring"] - climb)
     return {"positive_work_J": sums["positive"], "negative_work_J": sums["negative"],
@@ -174,10 +169,10 @@ def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> list[dict]
     for i, phase in enumerate(nlp.phases):
         T = blocks[f"T_{phase.name}"].item()
         time += T
-        if i + 1 < len(nlp.phases) and nlp.P[i] is not None:
+        if i + 1 < len(nlp.phases) and nlp.impact_before(i + 1):
             after = nlp.phases[i + 1]
             transitions.append((after.rows, blocks[f"X_{phase.name}"][:, -1],
-                                blocks[f"X_{after.name}"][NX:, 0], time, nlp.added(i + 1), None))
+                                blocks[f"X_{after.name}"][NX:, 0], time, _added(nlp, i + 1), None))
     end = blocks[f"X_{nlp.phases[-1].name}"][:, -1]
     slip = nlp.settings.slip
     sliding = (other_leg(nlp.phases[0].sliding), slip, mu) if nlp.phases[0].sliding else None
@@ -251,17 +246,16 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
     speed, slope, mu = par["speed"], par["slope"], par["mu"]
     m = nlp.mass
     T = half_period(nlp, b)
-    step = speed * T
+    step = step_length(speed, T)
     durations = [(p.name, b[f"T_{p.name}"].item()) for p in nlp.phases]
     stance = sum(d for p, (_, d) in zip(nlp.phases, durations) if p.rows)
     t, names, theta, thetad, tau, force = histories(nlp, b, slope)
     found = impacts(nlp, b, slope, mu)
-    energy = budget(nlp, b, speed, slope, sum(i["T_c"] for i in found))
+    energy = budget(nlp, solved, sum(i["T_c"] for i in found))
     start, end = theta[0], theta[-1]
-    shift = np.r_[step * np.cos(slope), step * np.sin(slope), np.zeros(7)]
-    periodicity = max(np.abs(swap_legs(end) - shift - start).max(),
-                      np.abs(swap_legs(b["V_touchdown"].ravel()) - thetad[0]).max())
-    checks = {"periodicity": float(periodicity),
+    periodic = np.abs(np.asarray(periodicity(end, b["V_touchdown"].ravel(), np.r_[start, thetad[0]], step,
+                                             slope), float)).max()
+    checks = {"periodicity": float(periodic),
               "impact_map_J": max(i["impact_map_difference_J"] for i in found),
               "impact_nlp_J": max(abs(i["T_c"] - i["T_c_exact"]) for i in found),
               "drift_m": drift(nlp, b, slope),
@@ -353,3 +347,8 @@ def _slip_sign(nlp: StrideNLP, stick: Solved) -> int:
     check = impact_check(nlp.js, nlp.touchdown_rows, end[:NX], end[NX:], par["slope"], par["mu"])
     slip = check["coulomb_slip_mps"] if check["coulomb_mode"] != "stick" else -check["impulse_t"]
     return 1 if slip >= 0 else -1
+
+def _added(nlp: StrideNLP, i: int) -> tuple[str, ...]:
+    """The points the impact before phase i adds."""
+    transition = nlp.ocp.transitions[i - 1]
+    return transition.points if isinstance(transition, Impact) else ()

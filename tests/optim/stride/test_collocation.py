@@ -1,0 +1,101 @@
+"""optim.stride.collocation (the trapezoidal transcription of ocp.StrideProblem): solved strides
+checked against what the NLP must impose, each by a formula written here, apart from the code
+that imposes it: the release rows (a dropped point leaves with no force), the periodicity's
+shift along a slope, the objective's scale and the impacts' sign, and the work and metabolic
+objectives. Cheap: the paper's body, 18 nodes."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from formopt.mechanics.body import paper_body
+from formopt.mechanics.joint_space import JointSpace
+from formopt.optim.stride import StrideNLP, StrideSettings, optimum
+from formopt.optim.stride.ocp import Release
+
+NODES, SPEED, G = 18, 3.5, 9.81
+SLOPE = np.arctan(0.05)  # a 5 % slope
+
+
+@pytest.fixture(scope="module")
+def js():
+    return JointSpace(paper_body())
+
+
+@pytest.fixture(scope="module")
+def uphill(js):
+    """A heel strike on a 5 % slope, with an impact weight (the impacts in the objective)."""
+    nlp = StrideNLP(js, StrideSettings(strike="heel", nodes=NODES, impact_weight=0.5))
+    return nlp, optimum(nlp, SPEED, SLOPE, simulate=False)
+
+
+def _objective(stride, nlp, weights):
+    """The objective per distance written out: effort 100/(m g)^2 int sum tau^2 dt, W+ and W-
+    per m g, the impacts' T_c times impact_weight per m g, and 1e-6 sum h |dA|^2 (problem's
+    SMOOTHING), all over d = v T. `weights`: (effort, positive, negative)."""
+    m, d, b = stride.mass_kg, stride.step_length_m, stride.budget
+    effort = np.trapezoid(np.sum(stride.tau ** 2, axis=1), stride.t)
+    smooth = 0.0
+    for phase, n in zip(nlp.phases, nlp.split):
+        A, h = stride.solved.blocks[f"A_{phase.name}"], stride.solved.blocks[f"T_{phase.name}"].item() / n
+        smooth += h * np.sum(np.diff(A, axis=1) ** 2)
+    total = (weights[0] * 100 * effort / (m * G) ** 2 + weights[1] * b["positive_work_J"] / (m * G)
+             + weights[2] * b["negative_work_J"] / (m * G)
+             + nlp.settings.impact_weight * b["impacts_J"] / (m * G))
+    return total / d + 1e-6 * smooth / d
+
+
+def test_uphill_stride_converges_and_is_valid(uphill):
+    _, stride = uphill
+    assert stride.success and stride.valid, stride.failed_checks
+
+
+def test_a_dropped_point_leaves_the_ground_with_no_force(uphill):
+    """Heel-off and toe-off: the dropped point's normal force at its phase's last node is zero
+    (without the release rows, the forefoot left pushing 2.3 body weights)."""
+    nlp, stride = uphill
+    for i, transition in enumerate(nlp.ocp.transitions):
+        if isinstance(transition, Release):
+            F = stride.solved.blocks[f"F_{nlp.phases[i].name}"]
+            assert np.abs(F[list(transition.dropped), -1]).max() < 1e-6
+    assert stride.force[len(stride.t) - 1].sum() == pytest.approx(0.0, abs=1e-6)  # flight's end
+
+
+def test_the_period_moves_the_hip_one_step_along_the_slope(uphill):
+    """The touchdown's hip is one step d = v T along the ground from the start's: up the slope by
+    d sin(slope); the budget's climb is m g d sin(slope) and the budget closes."""
+    _, stride = uphill
+    d = SPEED * stride.half_period_s
+    hip = stride.theta[-1, :2] - stride.theta[0, :2]
+    assert hip == pytest.approx([d * np.cos(SLOPE), d * np.sin(SLOPE)], abs=1e-7)
+    assert stride.budget["climb_J"] == pytest.approx(stride.mass_kg * G * d * np.sin(SLOPE))
+    assert abs(stride.budget["balance_J"]) < 0.05 * stride.budget["positive_work_J"]
+
+
+def test_the_objective_is_the_written_formula(uphill):
+    """The objective IPOPT minimised equals the formula with the impacts counted as a cost (their
+    sign) and each scale as written."""
+    nlp, stride = uphill
+    assert stride.budget["impacts_J"] > 0
+    assert stride.objective_value == pytest.approx(_objective(stride, nlp, (1, 0, 0)), rel=1e-6)
+
+
+@pytest.mark.parametrize("objective, weights", [("work", (1e-2, 1, 0)),
+                                                ("metabolic", (1e-2, 4, 1 / 1.2))])
+def test_work_objectives_are_built_and_solved(js, uphill, objective, weights):
+    """W+ and Margaria's W+/0.25 + W-/1.2 (with 1e-2 of effort), from the effort optimum: the
+    power split's slacks end as the exact positive and negative parts (the objective equals
+    the formula on the budget's max(P, 0) integrals)."""
+    nlp = StrideNLP(js, StrideSettings(strike="heel", nodes=NODES, objective=objective))
+    stride = optimum(nlp, SPEED, SLOPE, guess=uphill[1].solved.blocks, simulate=False)
+    assert stride.success, stride.status
+    assert stride.objective_value == pytest.approx(_objective(stride, nlp, weights), rel=1e-4)
+
+
+def test_impact_weight_lowers_the_impacts(js, uphill):
+    """A cost on the impacts lowers them (the same stride without it absorbs more)."""
+    nlp, stride = uphill
+    plain = StrideNLP(js, dataclasses.replace(nlp.settings, impact_weight=0.0))
+    free = optimum(plain, SPEED, SLOPE, guess=stride.solved.blocks, simulate=False)
+    assert free.success and free.budget["impacts_J"] > stride.budget["impacts_J"]
