@@ -32,7 +32,7 @@ TARGETS = {"build_s": 5.0, "cold_s": 10.0, "warm_s": 1.0}
 def formopt_side(speed=3.0, nodes=40) -> dict:
     start = time.perf_counter()
     nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(strike="heel", nodes=nodes))
-    nlp.solver  # the whole build: the graph, IPOPT and its derivatives (built on first use)
+    assert nlp.solver is not None  # the whole build: graph, IPOPT and its derivatives (built on first use)
     build = time.perf_counter() - start
     cold = nlp.solve(ballistic(nlp, speed), speed)
     warm = nlp.solve(cold.blocks, speed + 0.1)

@@ -44,7 +44,7 @@ def test_the_api_refuses_what_the_command_line_refuses(scene, speed):
 def test_a_scene_whose_cadence_gives_no_run_is_refused():
     data = {"scene": {"name": "s"}, "ground": {"friction": 0.8},
             "stride": {"speed_mps": 3.5, "cadence_spm": 60.0}}
-    with pytest.raises(SceneError, match="stride.cadence_spm.*step of 3.5 m"):
+    with pytest.raises(SceneError, match=r"stride\.cadence_spm.*step of 3\.5 m"):
         formopt.io.scene.parse(data)
 
 
