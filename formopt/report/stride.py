@@ -102,6 +102,10 @@ def stride_table(study: StrideStudy) -> str:
                      f"{s.peak_vertical_grf_bw:7.2f} {s.budget['impacts_J']:7.2f} "
                      f"{s.cost_of_transport:6.3f} {s.mechanical_power_W:6.0f} "
                      f"{s.budget['balance_J']:10.3f} {s.iterations:5d} {s.solve_s:6.1f}")
+    if not study.best.valid:
+        lines.append("no valid stride: " + ("none of the strikes gives one; the first above ranks best "
+                                            "(converged, then the least objective)" if len(study.strides) > 1
+                                            else "read its numbers as the model's, not a runner's"))
     for s in study.strides:
         if not s.valid:
             why = s.failed_checks if s.success else [f"IPOPT: {s.status}", *s.failed_checks]

@@ -15,11 +15,10 @@ the friction and slope it was solved on. Rows are written as chunks finish, resu
 a process pool or on Dask, exactly as landing sweeps (studies.sweep).
 
 A row depends on its chunk (a chunk's first point is cold, the others warm): the chunks are
-cut from the whole serpentine (CHUNK points; on a pool or Dask a fair share, which depends on
-the workers), never from what a resumed run has left, and a partly written chunk runs whole
-again. So a resumed map's rows are those of an uninterrupted run with the same --workers (or
-scheduler), to the last digit, warm and iteration columns included; another worker count
-cuts other chunks, and its rows may differ within IPOPT's tolerance and in those columns.
+cut from the whole serpentine (studies.sweep.CHAINS of them, at least CHAIN_MIN and at most
+CHUNK points, whatever the workers), never from what a resumed run has left, and a partly
+written chunk runs whole again. So a resumed map's rows are those of an uninterrupted run, to
+the last digit, warm and iteration columns included, on any number of workers.
 """
 
 from __future__ import annotations

@@ -148,6 +148,15 @@ def apply(scene, values: dict):
 CHUNK = 8  # landings per task: enough to pay for a worker's model, small enough to balance
 
 
+# A chained map (stride, optimum) is cut into CHAINS chains of at least CHAIN_MIN points, whatever
+# the workers: each chain starts from its own first point's solve and warm-starts the rest, so
+# its rows depend on where it starts. Cut by the workers, a stride map's rows did (2 workers:
+# 4 of 12 points 9-36 % costlier than with 1, issue 37). Eight chains keep a pool of up to eight
+# workers busy; a chain's first point costs about 15-20 warm ones (stride_map.CHUNK).
+CHAINS = 8
+CHAIN_MIN = 4
+
+
 @dataclass(frozen=True)
 class Kind:
     """What a sweep computes at each grid point: `work(scene, chunk)` -> one row ({column:
@@ -174,6 +183,17 @@ def kind_of(scene, params, landings: bool = False) -> Kind:
     return Kind("landing", COLUMNS, landing_rows, CHUNK, False)
 
 
+def chunk_size(kind: Kind, points: int, workers: int = 1, scheduler: str | None = None) -> int:
+    """Points per chunk: a chained map's the same whatever the workers (CHAINS chains of at
+    least CHAIN_MIN points, at most kind.chunk: a chain's rows depend on its start); a landing
+    sweep's a fair share of a pool's or a cluster's workers, so that every one is busy."""
+    if kind.chained:
+        return max(min(kind.chunk, CHAIN_MIN), min(kind.chunk, math.ceil(points / CHAINS)))
+    if workers > 1 or scheduler:
+        return max(1, min(kind.chunk, math.ceil(points / (4 * (workers if not scheduler else 8)))))
+    return kind.chunk
+
+
 def _is_stride(scene) -> bool:
     return isinstance(scene, StrideScene)
 
@@ -191,7 +211,7 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
     check_grid(params)
     names = [n for n, _ in params]
     kind = kind_of(scene, params, landings)
-    work, size = kind.work, kind.chunk
+    work = kind.work
     grid = optimum_map.serpentine(params) if kind.chained else \
         [dict(zip(names, combo)) for combo in itertools.product(*[v for _, v in params])]
     header = names + [c for c in kind.columns if c not in names]  # a swept ground column once
@@ -201,8 +221,7 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
             note(f"{path}: dropped a torn last row (an interrupted write); it is computed again")
         done = _done(path, existing, names, {_key(g, names) for g in grid})
         todo = [g for g in grid if _key(g, names) not in done]
-        if workers > 1 or scheduler:  # every worker busy: chains no longer than a fair share
-            size = max(1, min(size, math.ceil(len(grid) / (4 * (workers if not scheduler else 8)))))
+        size = chunk_size(kind, len(grid), workers, scheduler)
         # chunks cut from the whole grid, not from what is left: a resumed optimum map's chains
         # start where an uninterrupted run's do (a partly done chunk runs whole again, its
         # missing rows kept), so its rows are that run's (optimum_map's docstring)
