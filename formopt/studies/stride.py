@@ -66,6 +66,10 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
 # moments N m/kg, extensor / plantarflexor positive), grfY vertical (N/kg)
 RBDS_SPEEDS = {2.5: "25", 3.5: "35", 4.5: "45"}
 CYCLE_JOINTS = ("hip", "knee", "ankle")
+# The data set's hip moment is flexor positive (-1.1 N m/kg in early stance, where the hip
+# extensors work, +0.8 at toe-off at 3.5 m/s), its knee and ankle moments extensor and
+# plantarflexor positive: the hip's sign turned to formopt's (extensor positive).
+HIP_SIGN = {"hip": -1.0}
 
 
 def measured_cycle(path, speed: float) -> dict | None:
@@ -77,7 +81,7 @@ def measured_cycle(path, speed: float) -> dict | None:
     data = np.genfromtxt(path, names=True, delimiter="\t")
     return {"percent": data["PercGcycle"],
             "angles": {j: data[f"R{j}AngZ{suffix}"] for j in CYCLE_JOINTS},
-            "moments": {j: data[f"R{j}MomZ{suffix}"] for j in CYCLE_JOINTS},
+            "moments": {j: HIP_SIGN.get(j, 1.0) * data[f"R{j}MomZ{suffix}"] for j in CYCLE_JOINTS},
             "vertical": np.nan_to_num(data[f"RgrfY{suffix}"], nan=0.0)}
 
 

@@ -62,7 +62,7 @@ def test_the_objectives_and_impact_loss_are_the_nlps(scene, grid):
     r = rows[0]
     speed, cadence = float(r["speed_mps"]), float(r["cadence_spm"])
     stride = summarise(nlp, nlp.solve(ballistic(nlp, speed), speed, 0.0, scene.friction, cadence), False)
-    graph = ca.Function("effort", [nlp.blocks.vector(), nlp.p], [nlp.terms["effort"]])
+    graph = ca.Function("effort", [nlp.blocks.vector(), nlp.p], [nlp.integral("effort")])
     effort = float(graph(stride.solved.x, [speed, 0.0, scene.friction]))
     values = stride_map.objective_values(nlp, stride)
     assert values["effort_value"] == pytest.approx(

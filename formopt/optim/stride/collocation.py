@@ -8,8 +8,8 @@ split (work objectives), T the duration; per impact the impulse P (one per conta
 it; the touchdown's also its post-impact velocity V_touchdown).
 
 The transcription (trapezoidal): each phase's node model is one CasADi Function of SX (ocp.
-NodeModel), mapped over the phase's nodes (an MX graph, expanded to SX for IPOPT: `SOLVER`);
-on every interval the defects of x' = (theta', theta''),
+NodeModel), mapped over the phase's nodes (an MX graph; IPOPT's derivatives assembled node by
+node, derivatives.py); on every interval the defects of x' = (theta', theta''),
 
     x_k+1 - x_k = h/2 (x'_k + x'_k+1)       (second order: the energy balance closes to O(h^2)),
 
@@ -36,6 +36,7 @@ import casadi as ca
 import numpy as np
 
 from ...mechanics.joint_space import GRAVITY, JOINTS, LIMIT_MARGIN, RANGES, THETA, JointSpace
+from .derivatives import functions as node_derivatives
 from .layout import Blocks, Rows, Solved
 from .ocp import INTEGRANDS, Impact, StrideProblem, periodicity, step_length
 from .problem import StrideSettings
@@ -57,15 +58,12 @@ WARM_START = {"warm_start_init_point": "yes", "mu_strategy": "monotone", "mu_ini
               "warm_start_slack_bound_push": 1e-6}
 
 
-# The NLP is built in MX (one node Function of SX per phase, mapped over its nodes) and expanded
-# to SX for IPOPT. Measured (paper body, heel, 40 nodes, tendons, 2-core machine with other
-# work on it, 2026-11-25): in MX, graph 0.03 s and solver 0.9 s of CPU, but IPOPT's Hessian of
-# the Lagrangian 89 ms and constraint Jacobian 35 ms a call (cold solve 8.7 s); expanded, the
-# solver's derivatives take 7 s of CPU to build and 10.7 ms and 4 ms a call (cold 2.5 s). The
-# solves are many and the builds few (NLPs are kept: `build`), so SX it is; the fast build
-# needs derivatives assembled node by node (each node Function's own, sparse), not yet done.
-SOLVER = {"expand": True}
-
+# IPOPT's derivatives are assembled node by node (derivatives.py), each phase's node model's own
+# derivatives mapped over its nodes. Measured (paper body, heel, 40 nodes, tendons, 2-core
+# machine with other work on it, 2026-11-25), build CPU and ms a call of grad_f / jac_g /
+# hess_lag: assembled 0.35 s, 3.4 / 3.9 / 9.5; CasADi's own derivatives of the whole NLP
+# expanded to SX 7.3 s, about 0.2 / 4 / 10.7; in MX 0.9 s, but 35 ms (jac_g) and 89 ms
+# (hess_lag); the node derivatives inlined into one SX graph 1.7 s, 0.16 / 3.4 / 4.5.
 
 def trapezoid_weights(n: int, h):
     """The trapezoidal rule's weights (n + 1, a row) on n intervals of length h."""
@@ -94,6 +92,11 @@ class StrideNLP:
         self.period = ca.sum1(ca.vertcat(*[self.v[f"T_{ph.name}"] for ph in self.phases]))
         self.node_functions = [self._node_function(i) for i in range(len(self.phases))]
         self.terms: dict = dict.fromkeys((*INTEGRANDS, "impacts", "smoothing"), 0)
+        # the node integrands' values, one column per node (ell: their stack, node by node)
+        self.ell_sizes = [len(INTEGRANDS) * (n + 1) for n in self.split]
+        self.ell = ca.MX.sym("ell", sum(self.ell_sizes))
+        self.node_rows = Rows()
+        self.node_integrands: list = []  # per phase, its nodes' integrands (MX, stacked)
         for i in range(len(self.phases)):
             self._phase(i)
         for i in range(1, len(self.phases)):
@@ -106,23 +109,31 @@ class StrideNLP:
             self.rows.add(ca.vertcat(self.terms["ground"], self.terms["balance"] - climb) / weight)
         self.terms["impacts"] += self.terms["slide"]
         objective = self.ocp.objective(self.terms, self.p[0], self.period)
-        self.problem = {"x": self.blocks.vector(), "p": self.p, "f": objective,
-                        "g": ca.vertcat(*self.rows.expr)}  # the NLP's expressions
+        x = self.blocks.vector()
+        # the objective and every row but the nodes', as functions of (x, ell, p); ell = the
+        # node integrands of x in the NLP (derivatives.py assembles its derivatives so)
+        self.rest = ca.Function("rest", [x, self.ell, self.p], [objective, ca.vertcat(*self.rows.expr)],
+                                ["x", "ell", "p"], ["f", "g"])
+        f, g = self.rest(x, ca.vertcat(*self.node_integrands), self.p)
+        self.problem = {"x": x, "p": self.p, "f": f,
+                        "g": ca.vertcat(*self.node_rows.expr, g)}  # the NLP's expressions
         self.options = {**IPOPT_DEFAULTS, "max_iter": settings.max_iter, "tol": settings.tolerance,
                         **(ipopt or {})}
         self.serial = next(StrideNLP._serial)
         self._solver: ca.Function | None = None
         self._warm_solver: ca.Function | None = None
-        self.lbg, self.ubg = np.concatenate(self.rows.lower), np.concatenate(self.rows.upper)
+        self.lbg = np.concatenate(self.node_rows.lower + self.rows.lower)
+        self.ubg = np.concatenate(self.node_rows.upper + self.rows.upper)
         self.build_s = time.perf_counter() - start
 
     @property
     def solver(self) -> ca.Function:
-        """IPOPT on the NLP, built on first use (with its derivatives); build_s counts it."""
+        """IPOPT on the NLP with its derivatives (derivatives.functions), built on first use;
+        build_s counts it."""
         if self._solver is None:
             start = time.perf_counter()
-            self._solver = ca.nlpsol("stride", "ipopt", self.problem, {"ipopt": self.options,
-                                                                       "print_time": False, **SOLVER})
+            self._solver = ca.nlpsol("stride", "ipopt", self.problem, {
+                "ipopt": self.options, "print_time": False, **node_derivatives(self)})
             self.build_s += time.perf_counter() - start
         return self._solver
 
@@ -181,11 +192,14 @@ class StrideNLP:
         G, L = self.node_functions[i].map(n + 1)(X, A, U, F, S, ca.repmat(td, 1, n + 1),
                                                   ca.repmat(self.p, 1, n + 1))
         lower, upper = self.node_bounds[i]
-        self.rows.add(G, np.tile(lower, n + 1), np.tile(upper, n + 1))
+        self.node_rows.add(G, np.tile(lower, n + 1), np.tile(upper, n + 1))
+        self.node_integrands.append(ca.vec(L))
         h = T / n
         D = ca.vertcat(X[NX:, :], A)
         self.rows.add(X[:, 1:] - X[:, :-1] - 0.5 * h * (D[:, :-1] + D[:, 1:]))
-        integrals = L @ trapezoid_weights(n, h).T
+        start = sum(self.ell_sizes[:i])
+        ell = ca.reshape(self.ell[start:start + self.ell_sizes[i]], len(INTEGRANDS), n + 1)
+        integrals = ell @ trapezoid_weights(n, h).T
         for k, key in enumerate(INTEGRANDS):
             self.terms[key] += integrals[k]
         self.terms["smoothing"] += h * ca.sumsqr(A[:, 1:] - A[:, :-1])
@@ -214,6 +228,13 @@ class StrideNLP:
         self.terms["balance"] -= T_c
         self.rows.add(periodicity(end[:NX], V, start, step_length(self.p[0], self.period), self.p[1]))
         self.rows.add(start[0])
+
+    def integral(self, key: str) -> ca.MX:
+        """The NLP's integral `key` (INTEGRANDS, "impacts", "smoothing") as an expression of
+        the decision vector and the parameters (the node integrands put in for ell)."""
+        x = self.blocks.vector()
+        term = ca.Function("term", [x, self.ell, self.p], [self.terms[key]])
+        return term(x, ca.vertcat(*self.node_integrands), self.p)
 
     def integrands(self, blocks: dict, parameters) -> list[tuple[np.ndarray, np.ndarray]]:
         """Per phase, the node integrands of a numeric solution (len(INTEGRANDS) x N+1) and the
@@ -281,7 +302,7 @@ class StrideNLP:
             shared = {k: self.solver.get_function(f"nlp_{f}")
                       for k, f in (("grad_f", "grad_f"), ("jac_g", "jac_g"), ("hess_lag", "hess_l"))}
             self._warm_solver = ca.nlpsol("stride_warm", "ipopt", self.problem, {
-                "ipopt": {**self.options, **WARM_START}, "print_time": False, **SOLVER, **shared})
+                "ipopt": {**self.options, **WARM_START}, "print_time": False, **shared})
             self.build_s += time.perf_counter() - start
         got = self._run(self._warm_solver, {"x0": previous.x, "lam_x0": previous.lam_x,
                                             "lam_g0": previous.lam_g}, speed, slope, mu, cadence)
@@ -290,7 +311,7 @@ class StrideNLP:
     def _run(self, solver, start: dict, speed, slope, mu, cadence) -> Solved:
         """One IPOPT run of `solver` from `start` (x0 and maybe multipliers)."""
         lbg, ubg = self.lbg.copy(), self.ubg.copy()
-        k = sum(len(e) for e in self.rows.lower[:self.period_row])
+        k = sum(len(e) for e in self.node_rows.lower + self.rows.lower[:self.period_row])
         if cadence is not None:
             lbg[k] = ubg[k] = 60.0 / cadence
         b = self.blocks

@@ -1,0 +1,137 @@
+"""The stride NLP's derivatives, assembled node by node (what IPOPT calls: grad_f, jac_g,
+hess_lag), instead of derived from the whole NLP's graph.
+
+The NLP (collocation.StrideNLP) is g = [G(z_k) for every node k; R(x, ell(x))] and
+f = F(x, ell(x)), where z_k (the node's state, accelerations, controls, forces, power split
+and the touchdown state) is a selection E_k x of the decision vector, G the node model's rows
+and ell_k = L(z_k) its integrands. With the node model's own derivatives (one small SX graph
+per phase, `NodeDerivatives`) and R, F's (a small graph: defects, transitions, periodicity,
+integrals):
+
+    dg/dx = [dG/dz_k E_k ;  R_x + R_ell ell_x],      ell_x = [dL/dz_k E_k]_k
+    df/dx = F_x + ell_x^T F_ell
+    hess  = Phi_xx + Phi_x,ell ell_x + ell_x^T Phi_ell,x + ell_x^T Phi_ell,ell ell_x
+            + sum_k E_k^T d2/dz2 (lam_k . G + Phi_ell,k . L)(z_k) E_k
+
+with Phi = lam_f F + lam_R . R (the Lagrangian's part outside the nodes). Nothing is derived on
+the whole graph, so a 40-node build takes a fraction of a second; the functions are SX.
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+from .ocp import INTEGRANDS
+
+
+class NodeDerivatives:
+    """One phase's node Function (collocation.StrideNLP.node_functions) on the stacked node
+    vector z: its outputs [rows; integrands], their Jacobian and the Hessian of w . outputs."""
+
+    def __init__(self, node: ca.Function):
+        sizes = [node.size1_in(k) for k in range(node.n_in() - 1)]  # all inputs but p
+        z, p = ca.SX.sym("z", sum(sizes)), ca.SX.sym("p", node.size1_in(node.n_in() - 1))
+        parts = ca.vertsplit(z, np.cumsum([0, *sizes]).tolist())
+        rows, ell = node(*parts, p)
+        out = ca.vertcat(rows, ell)
+        w = ca.SX.sym("w", out.shape[0])
+        self.rows = rows.shape[0]
+        self.jacobian = ca.Function("node_jacobian", [z, p], [out, ca.jacobian(out, z)])
+        self.hessian = ca.Function("node_hessian", [z, p, w], [ca.hessian(ca.dot(w, out), z)[0]])
+
+
+def node_indices(nlp, i: int, k: int) -> np.ndarray:
+    """The decision vector's indices of node k of phase i's z (x, a, u, f, s, theta_td)."""
+    b, name = nlp.blocks, nlp.phases[i].name
+    out = []
+    for key in ("X", "A", "U", "F", "S"):
+        block = f"{key}_{name}"
+        if block in b.offsets:
+            rows = b.shapes[block][0]
+            out.append(b.offsets[block] + k * rows + np.arange(rows))
+    out.append(b.offsets[f"X_{nlp.phases[0].name}"] + np.arange(9))  # the touchdown state
+    return np.concatenate(out)
+
+
+def _scatter(values, rows, cols, shape) -> ca.MX:
+    """The sparse matrix (MX) with values[t] at (rows[t], cols[t]), duplicates summed:
+    one constant sparse product, A values, then cast to the pattern."""
+    pattern, mapping = ca.Sparsity.triplet(shape[0], shape[1], list(rows), list(cols), True)
+    A = ca.DM(ca.Sparsity.triplet(pattern.nnz(), len(mapping), list(mapping), list(range(len(mapping)))), 1.0)
+    return ca.sparsity_cast(A @ values, pattern)
+
+
+def _nonzeros(M: ca.MX) -> tuple[ca.MX, np.ndarray, np.ndarray]:
+    """(the nonzeros of M as a column, their rows, their columns)."""
+    r, c = M.sparsity().get_triplet()
+    return M.nz[list(range(M.nnz()))], np.asarray(r), np.asarray(c)
+
+
+def functions(nlp) -> dict:
+    """{"grad_f", "jac_g", "hess_lag"}: nlpsol's derivative functions of `nlp` (module
+    docstring), with its signatures: (x, p) -> (f, grad), (x, p) -> (g, jac), (x, p, lam_f,
+    lam_g) -> triu(hess). MX graphs calling each phase's node derivatives mapped over its
+    nodes and the rest's (SX), their nonzeros scattered into the NLP's by constant sparse maps."""
+    size, n_ell = nlp.blocks.size, nlp.ell.shape[0]
+    x, p = ca.MX.sym("x", size), ca.MX.sym("p", nlp.p.shape[0])
+    lam_f, lam_g = ca.MX.sym("lam_f"), ca.MX.sym("lam_g", len(nlp.lbg))
+    value, grad_parts, rest_jac, rest_hess = _rest_derivatives(nlp)
+    n_node = sum(e.shape[0] for e in nlp.node_rows.expr)
+    G, ells, jac_nz, hess_nz, phases = [], [], [], [], []
+    row, col = 0, 0  # the node rows and integrands before this phase
+    for i, (node, n) in enumerate(zip(nlp.node_functions, nlp.split)):
+        d = NodeDerivatives(node)
+        idx = np.column_stack([node_indices(nlp, i, k) for k in range(n + 1)])
+        Z = ca.reshape(x[ca.DM(idx.ravel(order="F").tolist())], idx.shape[0], n + 1)
+        out, J = d.jacobian.map(n + 1)(Z, ca.repmat(p, 1, n + 1))
+        G.append(ca.vec(out[:d.rows, :]))
+        ells.append(ca.vec(out[d.rows:, :]))
+        nz, r, c = _nonzeros(J)
+        k, j = c // idx.shape[0], c % idx.shape[0]
+        out_rows = np.where(r < d.rows, row + k * d.rows + r, n_node + col + k * len(INTEGRANDS) + r - d.rows)
+        jac_nz.append((nz, out_rows, idx[j, k]))
+        phases.append((d, idx, Z, n, row, col))
+        row, col = row + d.rows * (n + 1), col + len(INTEGRANDS) * (n + 1)
+    ell = ca.vertcat(*ells)
+    both = _scatter(ca.vertcat(*[t[0] for t in jac_nz]), np.concatenate([t[1] for t in jac_nz]),
+                    np.concatenate([t[2] for t in jac_nz]), (n_node + n_ell, size))
+    J_G, L = both[:n_node, :], both[n_node:, :]
+    f, g = value(x, ell, p)
+    F_x, F_ell = grad_parts(x, ell, p)
+    R_x, R_ell = rest_jac(x, ell, p)
+    H_xx, H_xe, H_ee, dphi_dell = rest_hess(x, ell, p, lam_f, lam_g[n_node:])
+    for d, idx, Z, n, row, col in phases:
+        W = ca.vertcat(ca.reshape(lam_g[row:row + d.rows * (n + 1)], d.rows, n + 1),
+                       ca.reshape(dphi_dell[col:col + len(INTEGRANDS) * (n + 1)], len(INTEGRANDS), n + 1))
+        nz, r, c = _nonzeros(d.hessian.map(n + 1)(Z, ca.repmat(p, 1, n + 1), W))
+        k = c // idx.shape[0]
+        hess_nz.append((nz, idx[r, k], idx[c % idx.shape[0], k]))
+    H_nodes = _scatter(ca.vertcat(*[t[0] for t in hess_nz]), np.concatenate([t[1] for t in hess_nz]),
+                       np.concatenate([t[2] for t in hess_nz]), (size, size))
+    cross = H_xe @ L
+    H = H_xx + cross + cross.T + L.T @ H_ee @ L + H_nodes
+    return {"grad_f": ca.Function("nlp_grad_f", [x, p], [f, F_x + L.T @ F_ell], ["x", "p"], ["f", "grad_f_x"]),
+            "jac_g": ca.Function("nlp_jac_g", [x, p], [ca.vertcat(*G, g), ca.vertcat(J_G, R_x + R_ell @ L)],
+                                 ["x", "p"], ["g", "jac_g_x"]),
+            "hess_lag": ca.Function("nlp_hess_l", [x, p, lam_f, lam_g], [ca.triu(H)],
+                                    ["x", "p", "lam_f", "lam_g"], ["triu_hess_gamma_x_x"])}
+
+
+def _rest_derivatives(nlp) -> tuple[ca.Function, ...]:
+    """The objective and the rows outside the nodes (StrideNLP.rest, expanded to SX), and their
+    derivatives, as functions of (x, ell, p): (f, g), (F_x, F_ell), (R_x, R_ell), and of (x,
+    ell, p, lam_f, lam_rest): (Phi_xx, Phi_x,ell, Phi_ell,ell, Phi_ell), Phi = lam_f f +
+    lam_rest . g."""
+    size = nlp.blocks.size
+    x, ell, p = ca.SX.sym("x", size), ca.SX.sym("ell", nlp.ell.shape[0]), ca.SX.sym("p", nlp.p.shape[0])
+    f, g = nlp.rest.expand()(x, ell, p)
+    lam_f, lam = ca.SX.sym("lam_f"), ca.SX.sym("lam", g.shape[0])
+    phi = lam_f * f + ca.dot(lam, g)
+    H = ca.hessian(phi, ca.vertcat(x, ell))[0]
+    args = [x, ell, p]
+    return (ca.Function("rest_value", args, [f, g]),
+            ca.Function("rest_gradient", args, [ca.gradient(f, x), ca.gradient(f, ell)]),
+            ca.Function("rest_jacobian", args, [ca.jacobian(g, x), ca.jacobian(g, ell)]),
+            ca.Function("rest_hessian", [*args, lam_f, lam],
+                        [H[:size, :size], H[:size, size:], H[size:, size:], ca.gradient(phi, ell)]))

@@ -1,0 +1,58 @@
+"""optim.stride.derivatives: IPOPT's gradient, constraint Jacobian and Hessian of the
+Lagrangian, assembled node by node, against CasADi's own derivatives of the whole NLP and
+against central finite differences, at a perturbed generic guess with random multipliers."""
+
+import casadi as ca
+import numpy as np
+import pytest
+from helpers import SEED
+
+from formopt.mechanics.body import paper_body
+from formopt.mechanics.joint_space import JointSpace
+from formopt.optim.stride import StrideNLP, StrideSettings
+from formopt.optim.stride.derivatives import functions
+from formopt.optim.stride.guess import ballistic, perturbed
+from formopt.optim.stride.problem import RUNNER_TENDONS
+
+
+@pytest.fixture(scope="module", params=[{"strike": "heel", "tendons": RUNNER_TENDONS},
+                                        {"strike": "forefoot", "objective": "metabolic", "impact_weight": 1.0}])
+def case(request):
+    nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(nodes=18, **request.param))
+    rng = np.random.default_rng(SEED)
+    x = nlp.blocks.join(nlp._with_power_split(perturbed(ballistic(nlp, 3.5), rng)))
+    x += rng.uniform(-0.01, 0.01, x.size)
+    return nlp, functions(nlp), x, np.array([3.5, 0.05, 0.8]), rng
+
+
+def test_against_casadis_own_derivatives(case):
+    nlp, ours, x, p, rng = case
+    X, P = nlp.problem["x"], nlp.problem["p"]
+    f, g = nlp.problem["f"], nlp.problem["g"]
+    lam_f, lam_g = 0.7, rng.normal(size=g.shape[0])
+    lag = ca.Function("lag", [X, P], [lam_f * f + ca.dot(ca.DM(lam_g), g)]).expand()
+    Xs, Ps = ca.SX.sym("x", X.shape[0]), ca.SX.sym("p", P.shape[0])
+    fg = ca.Function("fg", [X, P], [f, g]).expand()
+    fs, gs = fg(Xs, Ps)
+    reference = ca.Function("ref", [Xs, Ps], [ca.gradient(fs, Xs), ca.jacobian(gs, Xs),
+                                              ca.hessian(lag(Xs, Ps), Xs)[0]])
+    grad, jac, hess = (np.asarray(ca.densify(m), float) for m in reference(x, p))
+    f1, grad1 = ours["grad_f"](x, p)
+    g1, jac1 = ours["jac_g"](x, p)
+    H1 = np.asarray(ca.densify(ours["hess_lag"](x, p, lam_f, lam_g)), float)
+    assert float(f1) == pytest.approx(float(fg(x, p)[0]), rel=1e-12)
+    np.testing.assert_allclose(np.asarray(g1).ravel(), np.asarray(fg(x, p)[1]).ravel(), atol=1e-10)
+    np.testing.assert_allclose(np.asarray(grad1).ravel(), grad.ravel(), rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(np.asarray(ca.densify(jac1)), jac, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(np.triu(H1), np.triu(hess), rtol=1e-8, atol=1e-8)
+
+
+def test_jacobian_against_finite_differences(case):
+    nlp, ours, x, p, rng = case
+    J = np.asarray(ca.densify(ours["jac_g"](x, p)[1]), float)
+    g = ca.Function("g", [nlp.problem["x"], nlp.problem["p"]], [nlp.problem["g"]])
+    for k in rng.choice(x.size, 20, replace=False):
+        e = np.zeros(x.size)
+        e[k] = 1e-6
+        numeric = (np.asarray(g(x + e, p)) - np.asarray(g(x - e, p))).ravel() / 2e-6
+        np.testing.assert_allclose(J[:, k], numeric, rtol=1e-5, atol=1e-5)
