@@ -4,8 +4,12 @@ The muscles (Ackermann & van den Bogert 2010, J Biomech 43:1055, the gait2d mode
 iliopsoas, glutei, hamstrings, rectus femoris, vasti, gastrocnemius, soleus and tibialis
 anterior, each a contractile element with a parallel elastic element in series with a compliant
 tendon, without pennation (gait2d has none). The parameters are gait2d's (data/gait2d_muscles.csv,
-copied from BioMAC-Sim-Toolbox's gait2dc_par.xls, Apache-2.0, licence beside it), the curves and
-the formulation De Groote et al. 2016 (Ann Biomed Eng 44:2922, supplementary material).
+copied from BioMAC-Sim-Toolbox's gait2dc_par.xls, Apache-2.0, licence beside it); the formulation,
+the tendon and the force-velocity curve are De Groote et al. 2016's (Ann Biomed Eng 44:2922,
+supplementary material). The force-length curves of the fibres are gait2d's, per muscle: its
+widths and parallel-element slack lengths belong to its constant moment arms (with De Groote's
+single narrow curve, at 62 kg and 1.81 m, rectus femoris would pull 4.3 F_max passively at knee
+120 deg, hip 0 deg (gait2d's: 0.46), and the hip extensors hold 22 N m at hip 0 deg (224)).
 
 Joint angles theta = [hip, knee, ankle] (rad) follow design.md section 2: hip flexion, knee
 flexion and ankle dorsiflexion positive, the ankle 0 with the foot perpendicular to the shank.
@@ -49,28 +53,23 @@ REFERENCE_HEIGHT = 1.8  # m
 REFERENCE_MASS = 75.0  # kg
 STRENGTH_EXPONENT = 2.0 / 3.0  # F_max ~ mass^(2/3): see `gait2d_muscles`
 
-# -- De Groote et al. 2016, supplementary material (S1-S3) ---------------------------------
-# Active force-length: a sum of three Gaussian-like terms b1 exp(-(l - b2)^2 / (2 (b3 + b4 l)^2)).
-ACTIVE_FL = ((0.814483478343008, 1.055033428970575, 0.162384573599574, 0.063303448465465),
-             (0.433004984392647, 0.716775413397760, -0.029947116970696, 0.200356847296188),
-             (0.1, 1.0, 0.5 * math.sqrt(0.5), 0.0))
+# -- De Groote et al. 2016, supplementary material ------------------------------------------
 # Force-velocity: f_V = d1 ln(d2 v + d3 + sqrt((d2 v + d3)^2 + 1)) + d4, v in v_max.
 FORCE_VELOCITY = (-0.318323436899127, -8.149156043475250, -0.374121508647863, 0.885644059915004)
-# Passive fibre force: f_PE = (exp(kPE (l - 1) / e0) - 1) / (exp(kPE) - 1).
-PASSIVE_K, PASSIVE_E0 = 4.0, 0.6
 # Tendon: F = c1 exp(kT (l_T / l_Ts - c2)) - c3.
 TENDON_C1, TENDON_C2, TENDON_C3, TENDON_K = 0.2, 0.995, 0.25, 35.0
 MAX_VELOCITY = 10.0  # v_max, optimal fibre lengths per second (De Groote et al. 2016)
 # Fibre damping beta (F_max per v_max): Falisse et al. 2019 (J R Soc Interface 16:20190402,
 # 3dpredictsim): keeps the equilibrium's derivative in F' away from zero when a = 0.
 DAMPING = 0.01
-# Activation dynamics (De Groote et al. 2016, eq. 1-2; time constants of Winters 1995).
+# Activation dynamics (De Groote et al. 2016, eq. 1-2, and their time constants).
 ACTIVATION_TIME, DEACTIVATION_TIME = 0.015, 0.060  # s
 ACTIVATION_SMOOTHING = 10.0  # b; see `activation_rate`
+PASSIVE_SMOOTHING = 0.05  # l_opt: the parallel element's slack corner, rounded (f_PE = 6e-4 there)
 
 # -- Bhargava et al. 2004 (J Biomech 37:81), smooth as in 3dpredictsim -----------------------
-MUSCLE_DENSITY = 1059.7  # kg/m^3 (Mendez & Keys 1960, as Umberger et al. 2003 and Bhargava 2004)
-SPECIFIC_TENSION = 0.25e6  # Pa (Umberger et al. 2003, J Biomech 36:1375; OpenSim's default)
+MUSCLE_DENSITY = 1059.7  # kg/m^3 (Mendez & Keys 1960, Metabolism 9:184; OpenSim's probes' default)
+SPECIFIC_TENSION = 0.25e6  # Pa (OpenSim's metabolic probes' default, BioMAC's getEratec_bhargava)
 ACTIVATION_HEAT = (40.0, 133.0)  # W/kg, slow / fast twitch (Bhargava et al. 2004)
 MAINTENANCE_HEAT = (74.0, 111.0)  # W/kg, slow / fast twitch (Bhargava et al. 2004)
 SHORTENING_HEAT = (0.16, 0.18, 0.157)  # of F_iso, of F_CE (shortening); of F_CE (lengthening)
@@ -85,6 +84,9 @@ class Muscles:
     names: tuple[str, ...]
     max_force: np.ndarray  # N, F_max
     optimal_fibre_length: np.ndarray  # m, l_opt
+    width: np.ndarray  # l_opt: f_L = exp(-((l~ - 1) / width)^2)
+    passive_slack: np.ndarray  # l_opt: the parallel element's slack length
+    passive_stiffness: np.ndarray  # F_max / l_opt^2
     tendon_slack_length: np.ndarray  # m, l_Ts
     length_at_zero: np.ndarray  # m, L0: the unit's length at theta = 0
     moment_arms: np.ndarray  # m, r: flexion (hip, knee) / dorsiflexion (ankle) moment arms
@@ -127,6 +129,9 @@ def gait2d_muscles(mass: float = REFERENCE_MASS, height: float = REFERENCE_HEIGH
         names=MUSCLES,
         max_force=column("Fmax") * (mass / REFERENCE_MASS) ** STRENGTH_EXPONENT,
         optimal_fibre_length=column("Lceopt") * length,
+        width=column("Width"),
+        passive_slack=column("PEEslack"),
+        passive_stiffness=column("kPEE"),
         tendon_slack_length=column("SEEslack") * length,
         length_at_zero=column("L0") * length,
         moment_arms=np.column_stack([column(f"dR{j}") for j in JOINTS]) * GAIT2D_SIGNS * length,
@@ -137,16 +142,21 @@ def subset(muscles: Muscles, names: tuple[str, ...]) -> Muscles:
     """The named muscles only (in the order given)."""
     index = [muscles.names.index(name) for name in names]
     arrays = {key: getattr(muscles, key)[index] for key in
-              ("max_force", "optimal_fibre_length", "tendon_slack_length", "length_at_zero",
-               "moment_arms", "fast_twitch")}
+              ("max_force", "optimal_fibre_length", "width", "passive_slack", "passive_stiffness",
+               "tendon_slack_length", "length_at_zero", "moment_arms", "fast_twitch")}
     return replace(muscles, names=tuple(names), **arrays)
 
 
 # -- the normalised curves (any CasADi or float argument, element-wise) ---------------------
-def active_force_length(length):
-    """f_L(l~): active force at full activation per F_max, l~ = l_M / l_opt (~1 at l~ = 1)."""
-    return sum(b1 * ca.exp(-0.5 * (length - b2) ** 2 / (b3 + b4 * length) ** 2)
-               for b1, b2, b3, b4 in ACTIVE_FL)
+def _smooth_max(x, y, width):
+    """max(x, y), smoothed over `width` (the hyperbola (x + y + sqrt((x - y)^2 + width^2)) / 2)."""
+    return 0.5 * (x + y + ca.sqrt((x - y) ** 2 + width**2))
+
+
+def active_force_length(length, width):
+    """f_L(l~) = exp(-((l~ - 1) / width)^2): gait2d's active force at full activation per F_max,
+    l~ = l_M / l_opt (1 at l~ = 1, 1/e at 1 +- width)."""
+    return ca.exp(-(((length - 1.0) / width) ** 2))
 
 
 def force_velocity(velocity):
@@ -155,9 +165,10 @@ def force_velocity(velocity):
     return d1 * ca.asinh(d2 * velocity + d3) + d4
 
 
-def passive_force_length(length):
-    """f_PE(l~): 0 at l~ = 1, 1 at l~ = 1 + e0 (slightly negative below l~ = 1, as published)."""
-    return (ca.exp(PASSIVE_K * (length - 1.0) / PASSIVE_E0) - 1.0) / (math.exp(PASSIVE_K) - 1.0)
+def passive_force_length(length, slack, stiffness):
+    """f_PE(l~) = k s(l~ - slack)^2: gait2d's parallel element (k = 1: F_max at 1 l_opt beyond
+    slack), s(x) = (x + sqrt(x^2 + w^2)) / 2 rounding its corner over w = `PASSIVE_SMOOTHING`."""
+    return stiffness * _smooth_max(length - slack, 0.0, PASSIVE_SMOOTHING) ** 2
 
 
 def tendon_force(length):
@@ -198,8 +209,10 @@ def fibre_state(muscles: Muscles, angles, rates, force, force_rate):
 def hill_residual(muscles: Muscles, activation, angles, rates, force, force_rate):
     """The Hill equilibrium a f_L f_V + f_PE + beta v~ - F (per F_max, shape (n,)); 0 on a path."""
     length, velocity = fibre_state(muscles, angles, rates, force, force_rate)
-    fibre = (activation * active_force_length(length) * force_velocity(velocity)
-             + passive_force_length(length) + DAMPING * velocity)
+    fibre = (activation * active_force_length(length, ca.DM(muscles.width)) * force_velocity(velocity)
+             + passive_force_length(length, ca.DM(muscles.passive_slack),
+                                    ca.DM(muscles.passive_stiffness))
+             + DAMPING * velocity)
     return fibre - force
 
 
@@ -236,11 +249,6 @@ def isometric_force(muscles: Muscles, activation, angles) -> np.ndarray:
 
 
 # -- what the muscles cost --------------------------------------------------------------
-def _smooth_max(x, y, width):
-    """max(x, y), smoothed over `width` (the hyperbola (x + y + sqrt((x - y)^2 + width^2)) / 2)."""
-    return 0.5 * (x + y + ca.sqrt((x - y) ** 2 + width**2))
-
-
 def maintenance_length_factor(length):
     """Bhargava's length dependence of the maintenance heat, smoothed: 0.5 below l~ = 0.5, l~ up
     to 1, 3 - 2 l~ up to 1.5, 0 beyond (OpenSim's Bhargava2004MuscleMetabolicsProbe default)."""
@@ -269,7 +277,7 @@ def metabolic_rate(muscles: Muscles, activation, length, velocity):
     heat = mass * (ACTIVATION_HEAT[0] * slow_recruited + ACTIVATION_HEAT[1] * fast_recruited)
     heat += mass * maintenance_length_factor(length) * (
         MAINTENANCE_HEAT[0] * slow_recruited + MAINTENANCE_HEAT[1] * fast_recruited)
-    isometric = activation * active_force_length(length) * ca.DM(muscles.max_force)
+    isometric = activation * active_force_length(length, ca.DM(muscles.width)) * ca.DM(muscles.max_force)
     contractile = isometric * force_velocity(velocity)
     speed = velocity * ca.DM(muscles.max_velocity)
     lengthening = 0.5 + 0.5 * ca.tanh(speed / SMOOTHING_VELOCITY)
