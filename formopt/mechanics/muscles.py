@@ -10,6 +10,8 @@ supplementary material). The force-length curves of the fibres are gait2d's, per
 widths and parallel-element slack lengths belong to its constant moment arms (with De Groote's
 single narrow curve, at 62 kg and 1.81 m, rectus femoris would pull 4.3 F_max passively at knee
 120 deg, hip 0 deg (gait2d's: 0.46), and the hip extensors hold 22 N m at hip 0 deg (224)).
+The fast-twitch fractions are gait2d's, within 0.05 of the group means of Uchida et al. 2016
+(PLoS ONE, as 3dpredictsim tabulates them) except the hamstrings (0.35 against 0.50).
 
 Joint angles theta = [hip, knee, ankle] (rad) follow design.md section 2: hip flexion, knee
 flexion and ankle dorsiflexion positive, the ankle 0 with the foot perpendicular to the shank.
