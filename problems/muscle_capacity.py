@@ -19,6 +19,7 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
+from formopt.io.muscles import gait2d_muscles
 from formopt.mechanics import muscles as mu
 
 DATA = Path(__file__).resolve().parent.parent / "data" / "rbds" / "RBDS001processed.txt"
@@ -42,7 +43,7 @@ def capacity(leg, theta, joint: int, sign: float) -> float:
 
 def main() -> None:
     data = np.genfromtxt(DATA, names=True, delimiter="\t")
-    leg = mu.gait2d_muscles(MASS, HEIGHT)
+    leg = gait2d_muscles(MASS, HEIGHT)
     print(f"RBDS001 ({MASS:g} kg, {HEIGHT:g} m), measured moments and the muscles' margin")
     for speed in ("25", "35", "45"):
         angles = np.radians(np.column_stack([data[f"R{j}AngZ{speed}"] for j in JOINTS]))

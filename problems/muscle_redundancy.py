@@ -22,6 +22,7 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
+from formopt.io.muscles import gait2d_muscles
 from formopt.mechanics import muscles as mu
 
 DATA = Path(__file__).resolve().parent.parent / "data" / "rbds" / "RBDS001processed.txt"
@@ -50,7 +51,7 @@ def nxt(x):
 
 def solve(speed: float) -> None:
     angles, rates, moments, h = measured(speed)
-    leg = mu.gait2d_muscles(MASS, HEIGHT)
+    leg = gait2d_muscles(MASS, HEIGHT)
     f = mu.leg_functions(leg)
     nodes, n = len(angles), len(leg.names)
     a, F, e, dF10, reserve = (ca.MX.sym(name, n if name != "reserve" else 3, nodes)

@@ -3,8 +3,8 @@
 The muscles (Ackermann & van den Bogert 2010, J Biomech 43:1055, the gait2d model; `MUSCLES`):
 iliopsoas, glutei, hamstrings, rectus femoris, vasti, gastrocnemius, soleus and tibialis
 anterior, each a contractile element with a parallel elastic element in series with a compliant
-tendon, without pennation (gait2d has none). The parameters are gait2d's (data/gait2d_muscles.csv,
-copied from BioMAC-Sim-Toolbox's gait2dc_par.xls, Apache-2.0, licence beside it); the formulation,
+tendon, without pennation (gait2d has none). The parameters are gait2d's (`from_gait2d`; the table,
+io/data/gait2d_muscles.csv, is BioMAC-Sim-Toolbox's gait2dc_par.xls, Apache-2.0); the formulation,
 the tendon and the force-velocity curve are De Groote et al. 2016's (Ann Biomed Eng 44:2922,
 supplementary material). The force-length curves of the fibres are gait2d's, per muscle: its
 widths and parallel-element slack lengths belong to its constant moment arms (with De Groote's
@@ -37,15 +37,13 @@ on the flexion angles is -tau).
 
 from __future__ import annotations
 
-import csv
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
-from pathlib import Path
 
 import casadi as ca
 import numpy as np
 
-DATA = Path(__file__).resolve().parent / "data" / "gait2d_muscles.csv"
 MUSCLES = ("iliopsoas", "glutei", "hamstrings", "rectus_femoris", "vasti", "gastrocnemius",
            "soleus", "tibialis_anterior")
 JOINTS = ("hip", "knee", "ankle")
@@ -53,7 +51,7 @@ GAIT2D_SIGNS = np.array([1.0, -1.0, 1.0])  # theta_gait2d = GAIT2D_SIGNS * theta
 # The body gait2dc_par.xls is made for (its Height and Mass rows).
 REFERENCE_HEIGHT = 1.8  # m
 REFERENCE_MASS = 75.0  # kg
-STRENGTH_EXPONENT = 2.0 / 3.0  # F_max ~ mass^(2/3): see `gait2d_muscles`
+STRENGTH_EXPONENT = 2.0 / 3.0  # F_max ~ mass^(2/3): see `from_gait2d`
 
 # -- De Groote et al. 2016, supplementary material ------------------------------------------
 # Force-velocity: f_V = d1 ln(d2 v + d3 + sqrt((d2 v + d3)^2 + 1)) + d4, v in v_max.
@@ -110,9 +108,10 @@ class Muscles:
         return MUSCLE_DENSITY * self.volume
 
 
-def gait2d_muscles(mass: float = REFERENCE_MASS, height: float = REFERENCE_HEIGHT,
-                   path: Path = DATA) -> Muscles:
-    """gait2d's muscles scaled to a body of `mass` (kg) and `height` (m).
+def from_gait2d(table: Mapping[str, np.ndarray], mass: float = REFERENCE_MASS,
+                height: float = REFERENCE_HEIGHT) -> Muscles:
+    """gait2d's muscles (`table`: its columns, gait2d's names, units and signs, one value per
+    muscle in the order of `MUSCLES`) scaled to a body of `mass` (kg) and `height` (m).
 
     Lengths (l_opt, l_Ts, L0, moment arms) scale with height; maximal forces with
     (mass / 75 kg)^(2/3): geometric similarity, the exponent strength follows across body sizes
@@ -120,11 +119,8 @@ def gait2d_muscles(mass: float = REFERENCE_MASS, height: float = REFERENCE_HEIGH
     proportional to mass every stride would be the same per kg; with mass^(2/3) a heavier runner
     of the same height is weaker per kg. The reference body is gait2dc_par.xls's (1.8 m, 75 kg).
     """
-    with path.open() as fh:
-        rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
-
     def column(key: str) -> np.ndarray:
-        return np.array([float(row[key]) for row in rows])
+        return np.asarray(table[key], float)
 
     length = height / REFERENCE_HEIGHT
     return Muscles(

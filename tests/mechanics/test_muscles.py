@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from helpers import central_difference
 
+from formopt.io.muscles import gait2d_muscles
 from formopt.mechanics import muscles as mu
 
 RUNNER = (62.0, 1.81)  # RBDS001: kg, m (data/rbds/RBDSinfo.txt)
@@ -15,7 +16,7 @@ RUNNER = (62.0, 1.81)  # RBDS001: kg, m (data/rbds/RBDSinfo.txt)
 
 @pytest.fixture(scope="module")
 def leg():
-    return mu.gait2d_muscles(*RUNNER)
+    return gait2d_muscles(*RUNNER)
 
 
 @pytest.fixture(scope="module")
@@ -62,7 +63,7 @@ def test_passive_and_tendon_named_points():
 # -- geometry: formopt's angles against gait2d's ---------------------------------------------
 def test_lengths_are_gait2ds_with_the_sign_mapping():
     """gait2d: l_MT = L0 - d . theta_gait2d with theta_gait2d = (hip, -knee, ankle)."""
-    reference = mu.gait2d_muscles()
+    reference = gait2d_muscles()
     d = np.array([[0.05, 0, 0], [-0.062, 0, 0], [-0.072, -0.034, 0], [0.034, 0.05, 0],
                   [0, 0.042, 0], [0, -0.02, -0.053], [0, 0, -0.053], [0, 0, 0.037]])
     theta = np.array([0.4, 0.7, -0.2])
@@ -96,8 +97,8 @@ def test_muscles_lengthen_and_pull_as_anatomy_says(leg):
 
 
 def test_scaling_with_mass_and_height():
-    light, heavy, tall = (mu.gait2d_muscles(62.0, 1.8), mu.gait2d_muscles(75.0, 1.8),
-                          mu.gait2d_muscles(75.0, 1.98))
+    light, heavy, tall = (gait2d_muscles(62.0, 1.8), gait2d_muscles(75.0, 1.8),
+                          gait2d_muscles(75.0, 1.98))
     np.testing.assert_allclose(light.max_force / heavy.max_force, (62 / 75) ** (2 / 3))
     np.testing.assert_allclose(tall.optimal_fibre_length / heavy.optimal_fibre_length, 1.1)
     np.testing.assert_allclose(tall.moment_arms / 1.1, heavy.moment_arms, atol=1e-15)
