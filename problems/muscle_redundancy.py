@@ -22,7 +22,7 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
-from formopt.io.muscles import gait2d_muscles
+from formopt.io.muscle_table import gait2d_muscles
 from formopt.mechanics import muscles as mu
 
 DATA = Path(__file__).resolve().parent.parent / "data" / "rbds" / "RBDS001processed.txt"

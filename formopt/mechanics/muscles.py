@@ -72,7 +72,7 @@ MUSCLE_DENSITY = 1059.7  # kg/m^3 (Mendez & Keys 1960, Metabolism 9:184; OpenSim
 SPECIFIC_TENSION = 0.25e6  # Pa (OpenSim's metabolic probes' default, BioMAC's getEratec_bhargava)
 ACTIVATION_HEAT = (40.0, 133.0)  # W/kg, slow / fast twitch (Bhargava et al. 2004)
 MAINTENANCE_HEAT = (74.0, 111.0)  # W/kg, slow / fast twitch (Bhargava et al. 2004)
-SHORTENING_HEAT = (0.16, 0.18, 0.157)  # of F_iso, of F_CE (shortening); of F_CE (lengthening)
+SHORTENING_HEAT = (0.16, 0.18, 0.157)  # of F_iso, of F_M (shortening); of F_M (lengthening)
 MINIMUM_HEAT = 1.0  # W per kg of muscle (OpenSim's Bhargava2004MuscleMetabolicsProbe)
 SMOOTHING_VELOCITY = 0.01  # m/s: the tanh switches of the heat rates (b = 1/0.01 = 100 s/m)
 
@@ -261,13 +261,15 @@ def metabolic_rate(muscles: Muscles, activation, length, velocity):
         E' = max(A + M + S, 1 W/kg * m_M) + W,  W = max(0, -F_CE v_M)
         A  = m_M (40 (1 - f) sin(pi a / 2) + 133 f (1 - cos(pi a / 2)))
         M  = m_M g(l~) (74 (1 - f) sin(pi a / 2) + 111 f (1 - cos(pi a / 2)))
-        S  = -(0.16 F_iso + 0.18 F_CE) v_M shortening,  -0.157 F_CE v_M lengthening
+        S  = -(0.16 F_iso + 0.18 F_M) v_M shortening,  -0.157 F_M v_M lengthening
 
     with m_M the muscle's mass (`Muscles.mass`), f its fast-twitch fraction, F_iso = a f_L F_max,
-    F_CE = F_iso f_V and v_M = v~ v_max (m/s, lengthening positive). The switches are tanh over
-    `SMOOTHING_VELOCITY` and hyperbolae (as 3dpredictsim's getMetabolicEnergySmooth2004all,
-    Falisse et al. 2019, which also recruits the fibres by activation instead of excitation);
-    the activation heat's decay is 1 (as there and in OpenSim). No basal rate.
+    F_CE = F_iso f_V, F_M = F_CE + f_PE F_max the fibres' force and v_M = v~ v_max (m/s,
+    lengthening positive). As 3dpredictsim's getMetabolicEnergySmooth2004all (Falisse et al.
+    2019) and OpenSim's Bhargava2004MuscleMetabolicsProbe: the shortening heat's force-dependent
+    coefficient, the activation heat's decay 1, the fibres recruited by activation instead of
+    excitation; the switches are tanh over `SMOOTHING_VELOCITY`, the corners hyperbolae over
+    0.02 l_opt (g) and 0.1 W/kg (the floor). No basal rate.
     """
     mass, fast = ca.DM(muscles.mass), ca.DM(muscles.fast_twitch)
     slow_recruited = (1.0 - fast) * ca.sin(0.5 * math.pi * activation)
@@ -277,11 +279,13 @@ def metabolic_rate(muscles: Muscles, activation, length, velocity):
         MAINTENANCE_HEAT[0] * slow_recruited + MAINTENANCE_HEAT[1] * fast_recruited)
     isometric = activation * active_force_length(length, ca.DM(muscles.width)) * ca.DM(muscles.max_force)
     contractile = isometric * force_velocity(velocity)
+    fibre = contractile + ca.DM(muscles.max_force) * passive_force_length(
+        length, ca.DM(muscles.passive_slack), ca.DM(muscles.passive_stiffness))
     speed = velocity * ca.DM(muscles.max_velocity)
     lengthening = 0.5 + 0.5 * ca.tanh(speed / SMOOTHING_VELOCITY)
     short_a, short_b, long_c = SHORTENING_HEAT
-    heat -= ((short_a * isometric + short_b * contractile) * (1.0 - lengthening)
-             + long_c * contractile * lengthening) * speed
+    heat -= ((short_a * isometric + short_b * fibre) * (1.0 - lengthening)
+             + long_c * fibre * lengthening) * speed
     work = -contractile * speed * (1.0 - lengthening)
     return _smooth_max(heat / mass, MINIMUM_HEAT, 0.1) * mass + work
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from helpers import central_difference
 
-from formopt.io.muscles import gait2d_muscles
+from formopt.io.muscle_table import gait2d_muscles
 from formopt.mechanics import muscles as mu
 
 RUNNER = (62.0, 1.81)  # RBDS001: kg, m (data/rbds/RBDSinfo.txt)

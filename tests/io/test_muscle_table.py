@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from formopt.io.muscles import DATA, gait2d_muscles, read_gait2d_table
+from formopt.io.muscle_table import DATA, gait2d_muscles, read_gait2d_table
 from formopt.mechanics.errors import InputError
 from formopt.mechanics.muscles import MUSCLES
 
