@@ -1,11 +1,12 @@
 """The muscle layer in a collocation problem: RBDS001's measured cycle driven by its muscles.
 
-    python problems/muscle_redundancy.py [--speed 3.5]
+    python problems/muscle_redundancy.py [--speed 3.5] [--every 1]
 
 The muscle-redundancy problem of De Groote et al. 2016 on a runner: the right leg's measured
 joint angles and moments over RBDS001's mean gait cycle (RBDS001processed.txt, 101 rows, the
 hip moment negated to extensor positive: problems/muscle_capacity.py says why), periodic, the
-cycle lasting two steps at the runner's measured cadence. Unknowns per node: activations a and
+cycle lasting two steps at the runner's measured cadence (every `--every`-th of its 100 rows a
+node). Unknowns per node: activations a and
 normalised tendon forces F (states), excitations e and force rates F' (controls), and a reserve
 moment per joint; trapezoidal collocation of da/dt and dF/dt; per node the Hill equilibrium
 (`LegFunctions.residual`, one row per muscle) and the moment balance muscles + reserve =
@@ -32,13 +33,13 @@ HIP_FLIP = np.array([-1.0, 1.0, 1.0])  # the data set's moments -> extensor / pl
 JOINTS = ("hip", "knee", "ankle")
 
 
-def measured(speed: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
-    """Angles (rad), rates (rad/s), moments (N m), each (100, 3) over one periodic cycle, and
-    the node spacing (s)."""
+def measured(speed: float, every: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """Angles (rad), rates (rad/s), moments (N m), each (100 / every, 3) over one periodic
+    cycle, and the node spacing (s)."""
     suffix = f"{speed:.1f}".replace(".", "")
     data = np.genfromtxt(DATA, names=True, delimiter="\t")
-    angles = np.radians(np.column_stack([data[f"R{j}AngZ{suffix}"] for j in JOINTS]))[:-1]
-    moments = (np.column_stack([data[f"R{j}MomZ{suffix}"] for j in JOINTS]) * MASS * HIP_FLIP)[:-1]
+    angles = np.radians(np.column_stack([data[f"R{j}AngZ{suffix}"] for j in JOINTS]))[:-1:every]
+    moments = (np.column_stack([data[f"R{j}MomZ{suffix}"] for j in JOINTS]) * MASS * HIP_FLIP)[:-1:every]
     step = 120.0 / CADENCE[speed] / len(angles)
     rates = (np.roll(angles, -1, axis=0) - np.roll(angles, 1, axis=0)) / (2 * step)
     return angles, rates, moments, step
@@ -49,8 +50,8 @@ def nxt(x):
     return ca.horzcat(x[:, 1:], x[:, :1])
 
 
-def solve(speed: float) -> None:
-    angles, rates, moments, h = measured(speed)
+def solve(speed: float, every: int) -> None:
+    angles, rates, moments, h = measured(speed, every)
     leg = gait2d_muscles(MASS, HEIGHT)
     f = mu.leg_functions(leg)
     nodes, n = len(angles), len(leg.names)
@@ -96,4 +97,7 @@ def report(solver, out, f, leg, angles, rates, nodes, seconds) -> None:
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5, choices=sorted(CADENCE))
-    solve(parser.parse_args().speed)
+    parser.add_argument("--every", type=int, default=1, choices=(1, 2, 4, 5),
+                        help="a node at every n-th row of the measured cycle (100 rows)")
+    args = parser.parse_args()
+    solve(args.speed, args.every)
