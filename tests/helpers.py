@@ -78,3 +78,13 @@ def assert_nlp_derivatives(problem, points, h=1e-5, hessian=True):
                 gradp = np.asarray(jac(u0 + e)[0], float).ravel()
                 gradm = np.asarray(jac(u0 - e)[0], float).ravel()
                 np.testing.assert_allclose((gradp - gradm) / (2 * h), H[:, k], rtol=1e-5, atol=1e-5)
+
+
+def central_difference(f, x, h=1e-4):
+    """Fourth-order central differences: truncation O(h^4), rounding O(eps / h)."""
+    cols = []
+    for k in range(x.size):
+        e = np.zeros_like(x)
+        e[k] = h
+        cols.append((-f(x + 2 * e) + 8 * f(x + e) - 8 * f(x - e) + f(x - 2 * e)) / (12 * h))
+    return np.column_stack(cols)

@@ -3,21 +3,11 @@
 import casadi as ca
 import numpy as np
 import pytest
-from helpers import random_states
+from helpers import central_difference, random_states
 
 from formopt.mechanics.impact import impact_function, on_ground
 
 OUTPUTS = ("T_c", "impulse", "impulse_total", "dv_trunk", "dv_com", "T_a")
-
-
-def central_difference(f, x, h=1e-4):
-    """Fourth-order central differences: truncation O(h^4), rounding O(eps / h)."""
-    cols = []
-    for k in range(x.size):
-        e = np.zeros_like(x)
-        e[k] = h
-        cols.append((-f(x + 2 * e) + 8 * f(x + e) - 8 * f(x - e) + f(x - 2 * e)) / (12 * h))
-    return np.column_stack(cols)
 
 
 @pytest.mark.parametrize("strike", ["heel", "forefoot", "flat"])
