@@ -176,7 +176,8 @@ def stride(scene, speed: float | None = None, strike: str | None = None,
     Returns
     -------
     StrideStudy
-        The strides, the least costly first (`best`), each a `Stride` with cadence, step,
+        The strides, the best first (`best`: valid before invalid, then the least costly;
+        optim.stride.rank), each a `Stride` with `valid`, `failed_checks`, cadence, step,
         phases, ground force, energy budget (J) and checks; `to_dict()` is JSON-ready.
     """
     return run_stride(scene, speed, strike, progress=progress)

@@ -103,7 +103,7 @@ def _stride_summary(rows, params, out, fmt) -> int:
     valid = [r for r in good if r["valid"] == "True"]
     starts = Counter(r["start"] for r in good)
     print(f"{len(rows)} strides in {out}, in parameter order: {len(good)} converged "
-          f"({len(valid)} with valid impacts), {len(rows) - len(good)} without an optimum; started "
+          f"({len(valid)} valid: impacts and checks), {len(rows) - len(good)} without an optimum; started "
           + ", ".join(f"{n} from {how}" for how, n in starts.most_common()))
     failed = Counter(r["error"] or r["status"] for r in rows if r not in good)
     if failed:

@@ -107,8 +107,11 @@ def parse(data: dict, path: str = "") -> StrideScene:
             duration[phase] = (low, high)
     given = val.table(stride, "tendons", set(TENDON_JOINTS), set(), "stride") if "tendons" in stride else {}
     tendons = {j: val.number(given, j, "stride.tendons", limit=RANGES["tendon_nm_per_rad_kg"]) for j in given}
-    settings = StrideSettings(strike="heel" if strike == "best" else strike, objective=objective,
-                              nodes=nodes, law=law, impact_weight=weight, torque_limit=torque,
-                              duration=duration, max_iter=max_iter, tendons=tendons)
+    try:
+        settings = StrideSettings(strike="heel" if strike == "best" else strike, objective=objective,
+                                  nodes=nodes, law=law, impact_weight=weight, torque_limit=torque,
+                                  duration=duration, max_iter=max_iter, tendons=tendons)
+    except InputError as err:  # what only the settings check (e.g. a strike's least nodes)
+        raise SceneError("stride", str(err)) from None
     return StrideScene(name, body, speed, math.radians(slope), friction, strike, settings,
                        cadence, starts, path, notes)

@@ -9,7 +9,7 @@
 - `map_figure`: filled contours of the objective, the power and the impact loss over the
   first two parameters, the least-objective point of each line of the first marked.
 
-Converged strides with valid impacts are drawn filled, converged ones with an invalid impact
+Valid strides (optim.stride.result: impacts and checks) are drawn filled, converged invalid ones
 hollow, strides without an optimum as red crosses (and left out of lines and contours).
 """
 
@@ -60,13 +60,13 @@ def _groups(rows, by: str | None) -> dict[float, list[dict]]:
 def _counts(rows) -> str:
     ok = _converged(rows)
     valid = sum(r["valid"] == "True" for r in ok)
-    return (f"{len(rows)} strides: {valid} valid, {len(ok) - valid} with an invalid impact (hollow), "
+    return (f"{len(rows)} strides: {valid} valid, {len(ok) - valid} invalid (hollow), "
             f"{len(rows) - len(ok)} without an optimum (red x)")
 
 
 def cadence_figure(rows: list[dict], x: str, by: str | None) -> Figure:
     """PANELS against `x` (cadence_spm or step_length_m), one line per value of `by`, the
-    least-objective row of each line marked with a star."""
+    best row of each line (valid first, then the least objective) marked with a star."""
     fig, axes = _subplots(1, len(PANELS), figsize=(4.2 * len(PANELS), 3.8))
     groups = _groups(_converged(rows), by)
     many = len(groups) > 10  # a colour scale (and a colour bar) instead of a legend

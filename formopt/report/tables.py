@@ -243,7 +243,8 @@ def stride_lines(s: dict) -> list[str]:
              f"ahead of the hip, {s['measured_strike']} strike"]
     if s["optimum_cadence_spm"] is None:
         return lines + [f"    no stride optimum: {'; '.join(s['notes'])}"]
-    lines.append(f"    the optimum: cadence {s['optimum_cadence_spm']:6.1f} steps/min, step "
+    mark = "" if s.get("optimum_valid", True) else " INVALID (see the notes)"
+    lines.append(f"    the optimum{mark}: cadence {s['optimum_cadence_spm']:6.1f} steps/min, step "
                  f"{s['optimum_step_length_m']:.3f} m, strike point {s['optimum_placement_m']:.3f} m "
                  f"ahead of the hip, {s['measured_strike']} strike; mechanical power "
                  f"{s['optimum_mechanical_power_W']:.0f} W, impact loss {s['optimum_impact_loss_W']:.0f} W")

@@ -154,6 +154,7 @@ class StrideAnswer:
                 "measured_placement_m": self.measured["placement_m"],
                 "measured_strike": self.measured["strike"],
                 "optimum_cadence_spm": own.cadence_spm if own else None,
+                "optimum_valid": own.valid if own else None,
                 "optimum_step_length_m": own.step_length_m if own else None,
                 "optimum_placement_m": placement_m(own) if own else None,
                 "optimum_mechanical_power_W": own.mechanical_power_W if own else None,
@@ -231,6 +232,9 @@ def optima_notes(curve: Curve) -> list[str]:
     if curve.free_from != "free":
         notes.append(f"the free optimum was found again from the stride at {curve.free_from} steps/min "
                      "(the generic guess's was a costlier local optimum)")
+    invalid = [s for s in ([curve.free] if curve.free else []) + curve.strides if s.success and not s.valid]
+    notes += [f"the stride at {s.cadence_spm:.0f} steps/min is INVALID ({'; '.join(s.failed_checks)}): "
+              "read what it says as the model's, not a runner's" for s in invalid]
     return notes
 
 

@@ -1,4 +1,5 @@
-"""The stride of a scene: one optimum per strike ("best": each solved, the least costly first).
+"""The stride of a scene: one optimum per strike ("best": each solved, the best first by
+optim.stride.rank: valid, converged, then the least costly).
 
 The NLP of a body and settings is built once (`Strider`) and solved for any speed, slope,
 friction and imposed cadence; a neighbouring solve is warm-started from the last optimum.

@@ -208,14 +208,16 @@ def solve_point(scene: StrideScene, values: dict, previous: Stride | None) -> tu
     2026-11-23), and its chain followed it. (the stride, how it was started)."""
     nlp = nlp_of(scene)
     speed, slope, mu, cadence = point(scene, values)
+    tries = []
     if previous is not None:
         stride = summarise(nlp, warm(nlp, previous, speed, slope, mu, cadence), False)
-        if stride.success:
+        if stride.valid:
             return stride, "neighbour"
+        tries.append((stride, "neighbour"))
     seed = free(scene, speed, slope, mu)
     if cadence is None:
-        return seed, "free" if seed.success else "cold"
-    tries = [(summarise(nlp, nlp.solve(ballistic(nlp, speed), speed, slope, mu, cadence), False), "cold")]
+        return min([*tries, (seed, "free" if seed.success else "cold")], key=lambda t: rank(t[0]))
+    tries.append((summarise(nlp, nlp.solve(ballistic(nlp, speed), speed, slope, mu, cadence), False), "cold"))
     if seed.success:
         tries.insert(0, (summarise(nlp, nlp.solve(solution(seed, nlp), speed, slope, mu, cadence), False), "free"))
     return min(tries, key=lambda t: rank(t[0]))
@@ -304,11 +306,12 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
     for c in values:
         attempt(c, base, "free")
     _polish(sorted(set(values) | {base.cadence_spm}), base, kept, attempt)
-    for c in values:  # no warm start converged: the generic guess, as a map's chain would
-        if not kept[c][0].success:
+    for c in values:  # no warm start gave a valid stride: the generic guess, as a map's chain would
+        if not kept[c][0].valid:
             cold = summarise(nlp, nlp.solve(ballistic(nlp, speed), speed, slope, mu, c), False)
             if cold.success:
                 tried[c].append(cold.objective_value)
+            if better(cold, kept[c][0]):
                 kept[c] = (cold, "cold")
     curve = CadenceCurve(base, [kept[c][0] for c in values], [kept[c][1] for c in values],
                          [tried[c] for c in values])

@@ -152,9 +152,10 @@ CHUNK = 8  # landings per task: enough to pay for a worker's model, small enough
 # the workers: each chain starts from its own first point's solve and warm-starts the rest, so
 # its rows depend on where it starts. Cut by the workers, a stride map's rows did (2 workers:
 # 4 of 12 points 9-36 % costlier than with 1, issue 37). Eight chains keep a pool of up to eight
-# workers busy; a chain's first point costs about 15-20 warm ones (stride_map.CHUNK).
+# workers busy on a large map; a small one stays one chain of up to 16 points, since a chain's
+# first point costs about 15-20 warm ones (stride_map.CHUNK).
 CHAINS = 8
-CHAIN_MIN = 4
+CHAIN_MIN = 16
 
 
 @dataclass(frozen=True)

@@ -142,9 +142,9 @@ def test_figures_and_cli(scene, grid, tmp_path, capsys):
 
 def test_chains_do_not_depend_on_the_workers(scene):
     """A stride map's chains (and so its rows) are cut the same on 1, 2 or 8 workers or a
-    cluster: 861 points in 8 chains of 108, 12 points in 3 of 4 (issue 37: cut by the workers,
-    4 of 12 points came out 9-36 % costlier on 2 workers than on 1)."""
+    cluster: 861 points in 8 chains of 108, 200 in 8 of 25, 40 in 3 of 16 (issue 37: cut by the
+    workers, 4 of 12 points came out 9-36 % costlier on 2 workers than on 1)."""
     kind = sweep.kind_of(scene, PARAMS)
-    for points, size in ((861, 108), (12, 4), (4, 4), (3, 4)):
+    for points, size in ((861, 108), (200, 25), (40, 16), (4, 16)):
         sizes = {sweep.chunk_size(kind, points, w, s) for w, s in ((1, None), (2, None), (8, None), (1, "tcp://x"))}
         assert sizes == {size}

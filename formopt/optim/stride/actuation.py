@@ -6,7 +6,7 @@ JOINTS order, extensor positive) that enter the equations of motion,
     tau = tau_active(u) + tau_passive(theta, theta_td),
 
 with the active part's power P_j = -tau_j phi_j' (W; what W+ and W- count) apart from the
-passive elements' (what they store, `stored_power`). Symbolic (SX) or numeric arguments.
+passive elements' (the budget's `spring_J`). Symbolic (SX) or numeric arguments.
 """
 
 from __future__ import annotations
@@ -39,10 +39,6 @@ class Torques:
     def passive(self, theta, theta_td, stance: bool):
         """The passive elements' joint moments (N m, 6): none."""
         return ca.DM.zeros(NU)
-
-    def moments(self, theta, u, theta_td, stance: bool):
-        """tau = active + passive (N m, 6)."""
-        return self.active(u) + self.passive(theta, theta_td, stance)
 
 
 class TorquesWithSprings(Torques):

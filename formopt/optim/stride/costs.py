@@ -3,7 +3,7 @@ the step length d (per distance) and scaled so that IPOPT sees values of order o
 
     J = sum_k  weight_k * scale_k * I_k / d
 
-with the integrals I_k (the transcription's quadrature of the node integrands, `INTEGRALS`):
+with the integrals I_k (the transcription's quadrature of the node integrands, ocp.INTEGRANDS):
 
     effort     int sum_j tau_j^2 dt                           (N^2 m^2 s), scale 100 / (m g)^2
     positive   int sum_j P_j+ dt,  negative  int sum_j P_j- dt  (J), P_j = P_j+ - P_j-, P_j+- >= 0
@@ -21,8 +21,6 @@ from dataclasses import dataclass
 
 from ...mechanics.joint_space import GRAVITY
 from .problem import EFFICIENCY_NEGATIVE, EFFICIENCY_POSITIVE, SMOOTHING, WORK_REGULARISATION, StrideSettings
-
-INTEGRALS = ("effort", "positive", "negative", "impacts", "smoothing")
 
 
 @dataclass(frozen=True)

@@ -97,7 +97,7 @@ def _blocks(nlp, theta, thetad, durations, stance, period, speed) -> dict:
         name = phase.name
         guess[f"X_{name}"] = np.vstack([theta[:, cols], thetad[:, cols]])
         guess[f"A_{name}"] = np.zeros((NX, n + 1))
-        guess[f"U_{name}"] = np.zeros((NU, n + 1))
+        guess[f"U_{name}"] = np.zeros((nlp.ocp.models[i].actuation.controls, n + 1))
         normals = [a == "n" for _, a in phase.rows]
         force = np.zeros((len(phase.rows), n + 1))
         if any(normals):
