@@ -10,6 +10,7 @@ import math
 from pathlib import Path
 
 from ..io.scene import Scene, touchdown_table
+from ..measure.plate import COP_WINDOW_S
 from ..mechanics.contact import LAWS
 from ..mechanics.impact import ImpactResult
 from ..optim.objective import UNITS
@@ -205,9 +206,17 @@ def comparison_table(c: Comparison, rep: dict) -> str:
                      + (f"; {s['left_out']} left out (markers)" if s["left_out"] else ""))
         lines.append(f"  {'   sd':22s} {'':5s} {'':9s} " + " ".join(f"{sd[k]:7.1f}" for k in JOINTS)
                      + f" {s['foot_strike_angle_deg_sd']:7.1f}")
-        lines.append(f"  {'':22s} first down: the model's sole " + ", ".join(
-            f"{p} {n}" for p, n in s["impact_points"].items()) + "; the markers " + ", ".join(
-            f"{p} {n}" for p, n in s["contact_order"].items()))
+        lines.append(f"  {'':22s} impact point " + ", ".join(
+            f"{p} {n} ({100 * s['impact_point_share'][p]:.0f} %)" for p, n in s["impact_points"].items())
+            + "; the markers' contact order " + ", ".join(f"{p} {n}" for p, n in s["contact_order"].items())
+            + "; the model's sole " + ", ".join(f"{p} {n}" for p, n in s["model_sole"].items()))
+        cop = s.get("centre_of_pressure")
+        if cop:
+            lines.append(f"  {'':22s} the plate's centre of pressure over the first {COP_WINDOW_S * 1e3:.0f} ms (0 heel, 1 forefoot): "
+                         f"median {cop['index_median']:.2f} (10-90 %: {cop['index_10_90'][0]:.2f}-"
+                         f"{cop['index_10_90'][1]:.2f}); " + ", ".join(f"{p} {n}" for p, n in cop["points"].items())
+                         + f"; the markers agree in {cop['contact_order_agrees']}/{cop['steps']}, the model's sole in "
+                         f"{cop['model_sole_agrees']}/{cop['steps']}")
         pl = s.get("plate")
         if pl:
             laws = ", ".join(f"{law} {v:+.2f}" for law, v in pl["laws_impulse_ratio"].items() if v is not None)
