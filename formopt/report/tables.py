@@ -18,6 +18,26 @@ from ..optim.solution import explain
 from ..studies.compare import JOINTS, Comparison
 
 
+def _mass_lines(im: dict | None, law: str) -> list[str]:
+    """A side's rigid effective mass and normal impulse beside the plate's two-mass fit."""
+    if not im:
+        return []
+    out = [f"  {'':22s} the rigid impact (medians): m_eff {im['m_eff_kg']:.2f} kg ({im['m_eff_pct_body_mass']:.1f} % of "
+           f"body mass; running's 5-8 %), approach {-im['v_n_mps']:.2f} m/s, p_n = m_eff v_n {im['p_n_Ns']:.2f} N s "
+           f"({law}: {im['p_n_law_Ns']:.2f})"]
+    pl = im.get("plate")
+    if pl:
+        pct = pl["J1_per_v_n_pct_body_mass"]
+        out.append(f"  {'':22s} the plate's two-mass fit (touchdown to 50 N; a half sine peaking at t1 within "
+                   f"5-60 ms + a half sine over the contact): J1 {pl['J1_Ns']:.1f} N s, J1/v_n "
+                   + (f"{pct:.0f} % of body mass" if pct is not None else "-")
+                   + f", t1 {pl['t1_ms']:.0f} ms (on its bound in {pl['t1_on_bound']}/{pl['steps']}"
+                   + (": no impact pulse the plate separates" if 2 * pl["t1_on_bound"] > pl["steps"] else "")
+                   + f"); R^2 {pl['r2_median']:.3f} (least {pl['r2_least']:.3f}; the body's half sine alone "
+                   f"{pl['r2_half_sine_alone']:.3f})")
+    return out
+
+
 def impact_table(scene: Scene, r: ImpactResult) -> str:
     """The indicators of one strike as a terminal table."""
     lines = [f"{scene.name}  ({scene.path})",
@@ -225,6 +245,7 @@ def comparison_table(c: Comparison, rep: dict) -> str:
                          f"{pl['impulse_ratio_median']:+.2f} (sd {pl['impulse_ratio_sd']:.2f}) against the rigid impact's "
                          f"{laws}: nearest {pl['nearest_law']}; impact peak {pl['impact_peak_bw_mean']:.2f} BW, "
                          f"loading rate {pl['loading_rate_bw_per_s_mean']:.0f} BW/s")
+        lines += _mass_lines(s.get("impact_mass"), c.law)
     for side, o in rep["optimum"].items():
         lines += _side_lines(c, side, o, st.cadence_spm)
     lines += ["", f"  every touchdown under each contact law (T_c mean, J; valid touchdowns; * {c.law}, "

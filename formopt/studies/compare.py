@@ -26,7 +26,7 @@ from ..io import mocap
 from ..io.markerset import SIDES
 from ..measure import Measurement, Options, Steps, Touchdown, measure
 from ..measure.filters import effective_cutoff
-from ..measure.plate import PlateImpact, cop_point, plate_impact
+from ..measure.plate import PlateImpact, TwoMassFit, cop_point, plate_impact, two_mass_fit
 from ..measure.touchdowns import FLAT_S, shifted
 from ..mechanics.body import Body, scaled_body
 from ..mechanics.contact import LAWS
@@ -159,6 +159,41 @@ def flat_sequence(lm: LandingModel, first: str, x, friction: float) -> FlatSeque
                         None if second is None else second * 1e3, tuple(landing.violations))
 
 
+@dataclass(frozen=True)
+class ImpactMass:
+    """The rigid map's effective mass at a touchdown's impact point beside the plate's
+    two-mass fit (measure.plate.two_mass_fit): the map stops m_eff = 1 / (n^T J M^-1 J^T n)
+    = 1 / W_nn (W_c the contact-space inverse inertia, mechanics.impact) in an instant with the
+    normal impulse p_n = m_eff |v_n| (frictionless; the law's own beside it); the plate's
+    stopped mass pushes J1 over a pulse of 2 t1, and J1 / |v_n| is the mass that impulse
+    stops from the same approach speed."""
+
+    m_eff: float  # kg
+    v_n: float  # m/s: the impact point's normal velocity before the impact (< 0 approaching)
+    p_n_law: float  # N s: the normal impulse under the comparison's law
+    fit: TwoMassFit | None  # None without a plate (or a contact cut by the record's end)
+
+    @property
+    def p_n(self) -> float:
+        return self.m_eff * -self.v_n
+
+    @property
+    def plate_mass(self) -> float | None:
+        """kg: J1 / |v_n|."""
+        return self.fit.impulse_1 / -self.v_n if self.fit is not None and self.v_n < 0 else None
+
+
+def impact_mass(impact: Impact, x, result: ImpactResult, fit: TwoMassFit | None) -> ImpactMass | None:
+    """The ImpactMass of one touchdown (state x, model.STATE) at `impact`'s point; None for a
+    flat strike (two points: no single normal direction's mass)."""
+    out = impact.evaluate(x)
+    W_nn = float(np.asarray(out["W_c"], float)[1, 1])
+    if not math.isfinite(W_nn):
+        return None
+    return ImpactMass(1.0 / W_nn, float(np.asarray(out["v_contact"], float).ravel()[1]),
+                      result.impulse_total[1], fit)
+
+
 @dataclass
 class Comparison:
     measurement: Measurement
@@ -174,6 +209,7 @@ class Comparison:
     plate: list[PlateImpact | None] = field(default_factory=list)  # per touchdown, trials with forces
     sequence: list[FlatSequence | None] = field(default_factory=list)  # per touchdown: flat steps'
     stride: StrideAnswer | None = None  # when asked (compare_stride.answer)
+    masses: list[ImpactMass | None] = field(default_factory=list)  # per touchdown
 
     def step_T_c(self, k: int) -> float:
         """The headline T_c (J) of touchdown k: a flat step's sequence total, else its impact's."""
@@ -378,7 +414,7 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
     return Comparison(m, results, points, band, sides, body, law, settings,
                       [(lower, follows, r.T_c if p == lower else impacts[lower](td.state()).T_c)
                        for (p, lower, follows), r, td in zip(firsts, results, steps.touchdowns)], plate,
-                      sequence)
+                      sequence, masses=impact_masses(m, points, results, impacts, plate))
 
 
 def plate_impacts(m: Measurement, mass: float) -> list[PlateImpact | None]:
@@ -388,6 +424,16 @@ def plate_impacts(m: Measurement, mass: float) -> list[PlateImpact | None]:
     return [plate_impact(t.force, t.force_rate, axes.forward, axes.up, td.time, mass * G, t.source)
             if m.steps.method == "force plate" and t.force_rate is not None else None
             for td in m.steps.touchdowns]
+
+
+def impact_masses(m: Measurement, points, results, impacts: dict, plate) -> list[ImpactMass | None]:
+    """Each touchdown's ImpactMass at its impact point, the plate's two-mass fit beside it
+    where the touchdown has a plate impact."""
+    t = m.trial
+    return [impact_mass(impacts[p], modelled_state(td, p), r,
+                        two_mass_fit(t.force, t.force_rate, m.calibration.axes.up, td.time, t.source)
+                        if pl is not None and t.force_rate is not None else None)
+            for td, p, r, pl in zip(m.steps.touchdowns, points, results, plate)]
 
 
 def headline_T_c(td: Touchdown, point: str, sole: ca.Function, impacts: dict, lm: LandingModel,
@@ -508,6 +554,15 @@ def touchdown_row(c: Comparison, k: int) -> dict:
         row.update({"plate_impulse_ratio": pl.impulse_ratio, "impact_peak_bw": pl.impact_peak_bw,
                     "loading_rate_bw_per_s": pl.loading_rate_bw_per_s,
                     "impact_window_ms": pl.window_s * 1e3, "impact_peak_found": pl.peak})
+    im = c.masses[k] if c.masses else None
+    if im is not None:
+        row["rigid_impact"] = {"m_eff_kg": im.m_eff, "m_eff_pct_body_mass": 100 * im.m_eff / c.body.mass,
+                               "v_n_mps": im.v_n, "p_n_Ns": im.p_n, "p_n_law_Ns": im.p_n_law}
+        if im.fit is not None:
+            f = im.fit
+            row["plate_two_mass"] = {"J1_Ns": f.impulse_1, "t1_ms": f.t1 * 1e3, "t1_on_bound": f.bounded,
+                                     "J2_Ns": f.impulse_2, "contact_ms": f.contact * 1e3, "r2": f.r2,
+                                     "r2_half_sine_alone": f.r2_half_sine, "J1_per_v_n_kg": im.plate_mass}
     side = c.sides.get(td.side)
     if side is not None and k in side.per_step:
         o = side.per_step[k]
@@ -570,6 +625,7 @@ def summary(c: Comparison) -> dict:
                      "foot_strike_angle_deg_mean": float(fsa[0]), "foot_strike_angle_deg_sd": float(fsa[1]),
                      "T_c_point": point, "T_c_mean": float(T_c[0]), "T_c_sd": float(T_c[1]),
                      "plate": plate_summary(c, side),
+                     "impact_mass": mass_summary(c, side),
                      "laws": {law: {"T_c_mean": float(np.mean([r.contact_laws[law].T_c for _, r in rows])),
                                     "impulse_ratio_median": _median([impulse_ratio(r.contact_laws[law]) for _, r in rows]),
                                     "valid": sum(r.contact_laws[law].valid for _, r in rows)}
@@ -593,6 +649,30 @@ def cop_summary(tds: list[Touchdown], firsts: list[str]) -> dict | None:
             "model_sole_agrees": sum(a == b for a, b in zip(soles, ref)),
             "contact_order_by_cop": {r: {p: sum(o == p for o, q in zip(orders, ref) if q == r) for p in STRIKES}
                                      for r in STRIKES if r in ref}}
+
+
+def mass_summary(c: Comparison, side: str) -> dict | None:
+    """A side's rigid effective mass and normal impulse (valid steps with a single impact
+    point; medians) beside the plate's two-mass fit where there is one: J1, J1 / |v_n|, t1
+    (and how many fits put it on its bound: no separate impact pulse), R^2 (median, least)
+    and the half sine's alone."""
+    rows = [im for im, td in zip(c.masses, c.steps.touchdowns) if im is not None and td.side == side and td.valid_data]
+    if not rows:
+        return None
+    mass = c.body.mass
+    out: dict = {"steps": len(rows), "m_eff_kg": float(np.median([r.m_eff for r in rows])),
+           "m_eff_pct_body_mass": float(np.median([100 * r.m_eff / mass for r in rows])),
+           "v_n_mps": float(np.median([r.v_n for r in rows])),
+           "p_n_Ns": float(np.median([r.p_n for r in rows])), "p_n_law_Ns": float(np.median([r.p_n_law for r in rows]))}
+    fits = [(r.fit, r.plate_mass) for r in rows if r.fit is not None]
+    if fits:
+        out["plate"] = {"steps": len(fits), "J1_Ns": float(np.median([f.impulse_1 for f, _ in fits])),
+                        "J1_per_v_n_pct_body_mass": _median([None if m is None else 100 * m / mass for _, m in fits]),
+                        "t1_ms": float(np.median([f.t1 for f, _ in fits]) * 1e3),
+                        "t1_on_bound": sum(f.bounded for f, _ in fits),
+                        "r2_median": float(np.median([f.r2 for f, _ in fits])), "r2_least": min(f.r2 for f, _ in fits),
+                        "r2_half_sine_alone": float(np.median([f.r2_half_sine for f, _ in fits]))}
+    return out
 
 
 def _median(values) -> float | None:

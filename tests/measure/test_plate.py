@@ -45,3 +45,27 @@ def test_the_strike_index_follows_the_foot_along_the_belt_and_weighs_out_the_fir
     window = force_z[k0:k0 + round(COP_WINDOW_S * rate) + 1]
     assert index == pytest.approx(0.85 + (force_z[k0] - force_z[k0 + 1]) * 5.0 / window.sum(), abs=1e-6)
     assert cop_point(index) == "forefoot" and cop_point(0.2) == "heel" and cop_point(0.5) == "flat"
+
+
+def test_the_two_mass_fit_finds_the_pulses_it_was_built_from():
+    """A contact of 0.25 s at 1000 Hz: a stopped mass's half sine peaking at 20 ms (J1 8 N s)
+    on the body's half sine (J2 200 N s), with 20 N of noise: J1 within 5 %, t1 within 2 ms,
+    R^2 above 0.99; the body's half sine alone leaves no pulse (J1 near 0, R^2 no better than
+    the half sine's alone)."""
+    from formopt.measure.plate import two_mass_fit
+    rate, t0, tc, t1 = 1000.0, 0.1, 0.25, 0.020
+    t = np.arange(0, 0.6, 1 / rate) - t0
+    inside = (t >= 0) & (t < tc)
+    body = np.where(inside, 200.0 * np.pi / (2 * tc) * np.sin(np.pi * np.clip(t, 0, tc) / tc), 0.0)
+    pulse = np.where((t >= 0) & (t < 2 * t1), 8.0 * np.pi / (4 * t1) * np.sin(np.pi * np.clip(t, 0, None) / (2 * t1)), 0.0)
+    noise = np.random.default_rng(0).normal(0.0, 20.0, len(t))
+    for vertical, J1 in ((body + pulse + noise, 8.0), (body, 0.0)):
+        force = np.stack([np.zeros_like(t), np.zeros_like(t), np.where(inside, vertical, 0.0)], axis=1)
+        fit = two_mass_fit(force, rate, Z, t0 + 0.001)
+        assert fit.impulse_1 == pytest.approx(J1, abs=0.05 * 8.0)
+        assert fit.r2 > 0.99 and fit.contact == pytest.approx(tc, abs=0.01)
+        if J1:
+            assert fit.t1 == pytest.approx(t1, abs=0.002) and not fit.bounded
+            assert fit.r2 > fit.r2_half_sine + 0.01
+        else:
+            assert fit.r2 < fit.r2_half_sine + 1e-3

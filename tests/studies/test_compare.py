@@ -168,3 +168,16 @@ def test_a_flat_step_is_its_sequence_below_the_rigid_flat_impact():
         assert seq.first_J == pytest.approx(Impact(model, first, 0.0, 0.8, law="coulomb")(td.state()).T_c, rel=1e-6)
         assert 0 < seq.second_ms < 5.0
         assert seq.first_J < seq.total_J <= rigid * 1.01
+
+
+def test_the_effective_mass_gives_the_frictionless_impact(t35):
+    """Each touchdown's m_eff = 1 / W_nn and approach v_n against the projection's own
+    frictionless impact (a normal-only contact: p_n = m_eff |v_n|, T_c = m_eff v_n^2 / 2);
+    the plate's two-mass fit beside every step of the trial with forces, its R^2 above the
+    body's half sine alone."""
+    assert len(t35.masses) == len(t35.results)
+    for im, r in zip(t35.masses, t35.results):
+        free = r.contact_laws["frictionless"]
+        assert im.p_n == pytest.approx(sum(v[1] for v in free.impulse.values()), rel=1e-6)
+        assert free.T_c == pytest.approx(0.5 * im.m_eff * im.v_n ** 2, rel=1e-6)
+        assert im.fit is not None and im.fit.r2 >= im.fit.r2_half_sine
