@@ -24,6 +24,7 @@ With a plate, the centre of pressure's index and class (cop_index) ride along ea
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field, replace
 
@@ -32,11 +33,12 @@ import numpy as np
 from ..io.markerset import SIDES
 from ..io.mocap import MocapError, Trial
 from ..mechanics.model import joint_angles, xy
+from .clean import measured_frames
 from .filters import lowpass
 from .joints import Calibration
 from .kinematics import Kinematics
 from .plate import FORCE_CUTOFF_HZ, strike_index
-from .stance import MIN_REST_FRAMES, at_rest
+from .stance import at_rest, no_rest_reason, stances
 
 FORCE_THRESHOLD_N = 50.0  # vertical force at touchdown
 FOOT_SPEED_FRACTION = 0.5  # without a plate: the foot's speed over the ground below this
@@ -59,6 +61,7 @@ JUMP_FLOOR = {"segments.foot": (5.0, "deg"), "segments.shank": (5.0, "deg"),
               "segments.thigh": (5.0, "deg"), "rates.foot": (200.0, "deg/s"),
               "rates.shank": (200.0, "deg/s"), "rates.thigh": (200.0, "deg/s")}
 #  floors: 3-5 times the step-to-step sd of touchdown angles (0.6-1.6 deg on the shipped runs)
+MISSED_STRIDES = 1.5  # a foot's touchdowns this many strides apart miss one between them
 SEPARATION = {"force plate": 0.15, "kinematics": 0.25}  # s: a touchdown within this of the
 #                                                        last one is the same contact
 
@@ -98,6 +101,8 @@ class Steps:
     speed: float  # m/s: the runner's speed over the ground
     method: str  # "force plate" or "kinematics"
     notes: list[str] = field(default_factory=list)  # from the reader and the checks
+    missed: list[str] = field(default_factory=list)  # stretches where a foot's touchdowns
+    #                                                  were not found, and why (_missed)
 
     @property
     def valid(self) -> list[Touchdown]:
@@ -105,9 +110,9 @@ class Steps:
 
     @property
     def left_out(self) -> list[str]:
-        """The steps not used, and why."""
+        """The steps not used, and why: those found but unsound, and those not found."""
         return [f"{td.time:.3f} s ({td.side}): {'; '.join(td.problems)}"
-                for td in self.touchdowns if not td.valid_data]
+                for td in self.touchdowns if not td.valid_data] + self.missed
 
 
 def strike_pattern(foot_strike_angle: float) -> str:
@@ -157,7 +162,8 @@ def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration,
     foot_low = {s: np.minimum(kin.points[f"{s}.heel"][:, 1], kin.points[f"{s}.forefoot"][:, 1])
                 for s in SIDES}
     motion = {s: _foot_motion(kin, cal, s) for s in SIDES}
-    belt = _belt_speed(trial, motion)
+    notes = list(trial.notes) + list(cal.notes)
+    belt = _belt_speed(trial, cal, motion, notes)
     pelvis = np.mean([kin.points[f"{s}.hip"][:, 0] for s in SIDES], axis=0)
     speed = belt + float(np.median(np.gradient(pelvis, 1.0 / kin.rate)))
     if not SPEED_RANGE[0] <= speed <= SPEED_RANGE[1]:
@@ -176,9 +182,9 @@ def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration,
         times = sorted((t, s) for s in SIDES for t in foot_speed_touchdowns(
             motion[s][0], kin.rate, belt, speed, foot_speed_fraction))
     if len(times) < 2:
-        raise MocapError(f"{trial.source}: fewer than two touchdowns found ({method})")
+        raise MocapError(f"{trial.source}: fewer than two touchdowns found ({method}"
+                         + (f"; is the rate, {trial.rate:g} Hz, right?)" if method == "kinematics" else ")"))
     cadence = 60.0 / float(np.median(np.diff([t for t, _ in times])))
-    notes = list(trial.notes) + list(cal.notes)
     _check_cadence(trial, kin, foot_low, cadence, notes)
     steps = []
     window = max(1, round(STEP_WINDOW * kin.rate))
@@ -196,7 +202,10 @@ def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration,
     if bad:
         notes.append(f"{bad} of {len(steps)} touchdowns have unsound markers around them: "
                      f"listed, left out of the means")
-    return Steps(steps, cadence, belt, speed, method, notes)
+    missed = _missed(trial, cal, times, cadence)
+    if missed:
+        notes.append(f"{len(missed)} stretches without the touchdowns the cadence expects: listed")
+    return Steps(steps, cadence, belt, speed, method, notes, missed)
 
 
 def _foot_motion(kin: Kinematics, cal: Calibration, side: str):
@@ -208,25 +217,35 @@ def _foot_motion(kin: Kinematics, cal: Calibration, side: str):
     return np.gradient(centre, dt, axis=0), centre[:, 1], np.gradient(kin.angles[f"{side}.foot"], dt)
 
 
-def _belt_speed(trial: Trial, motion: dict) -> float:
-    """The ground's backward speed (m/s; 0 overground): the foot cluster's median while it
-    rests (stance.at_rest: low, turning and moving up or down slowly for its own motion)."""
-    speeds = []
-    for v, height, omega in motion.values():
-        rest = at_rest(height, omega, v[:, 1])
-        if rest.sum() >= MIN_REST_FRAMES:
-            speeds.append(-float(np.median(v[rest, 0])))
+def _belt_speed(trial: Trial, cal: Calibration, motion: dict, notes: list) -> float:
+    """The ground's backward speed (m/s; 0 overground): the foot cluster's median over its
+    stances (stance.at_rest: measured, low, turning and moving up or down slowly for its own
+    motion; stance.stances), both feet's averaged, or the one foot's that has stances (the
+    other named in `notes` with what it failed); refused, naming both, when neither has."""
+    speeds, failed = [], []
+    for side, (v, height, omega) in motion.items():
+        measured = measured_frames(trial, [n for n in cal.points[f"{side}.heel"][0] if n in trial.markers])
+        found = stances(at_rest(height, omega, v[:, 1], measured), trial.rate)
+        if found:
+            speeds.append(-float(np.median(np.concatenate([v[a:b, 0] for a, b in found]))))
+        else:
+            failed.append(f"{'right' if side == 'R' else 'left'}: "
+                          f"{no_rest_reason(height, omega, v[:, 1], measured, trial.rate)}")
     if not speeds:
-        raise MocapError(f"{trial.source}: no stance found: the feet never rest on the ground "
-                         f"(is the rate, {trial.rate:g} Hz, right?)")
+        raise MocapError(f"{trial.source}: no stance found: neither foot rests on the ground ("
+                         f"{'; '.join(failed)}; is the rate, {trial.rate:g} Hz, right?)")
+    if failed:
+        notes.append(f"one foot never rests ({failed[0]}): the belt's speed from the other")
     return float(np.mean(speeds))
 
 
 def _jumps(steps: list[Touchdown]) -> list[Touchdown]:
     """Each touchdown whose foot, shank or thigh angle, or whose segment rate, lies far from
-    the median of its side's JUMP_NEIGHBOURS steps on each side (more than JUMP_SD robust
-    standard deviations of theirs and the floor of JUMP_FLOOR) marked unsound, the reason
-    named: a cluster that slipped or was relabelled for a step passes the rigidity test."""
+    the median of its side's JUMP_NEIGHBOURS steps on each side, or from the median of all its
+    side's other steps (more than JUMP_SD robust standard deviations of theirs and the floor of
+    JUMP_FLOOR), marked unsound, the reason named: a cluster that slipped or was relabelled for
+    a step passes the rigidity test, and one turned for many steps in a row passes the
+    neighbours' test (they moved with it) but not the trial's while most steps are sound."""
     out = list(steps)
     for side in SIDES:
         idx = [k for k, td in enumerate(steps) if td.side == side]
@@ -234,17 +253,19 @@ def _jumps(steps: list[Touchdown]) -> list[Touchdown]:
             kind, seg = key.split(".")
             values = np.degrees([getattr(steps[k], kind)[seg] for k in idx])
             for j, k in enumerate(idx):
-                near = np.delete(values[max(j - JUMP_NEIGHBOURS, 0):j + JUMP_NEIGHBOURS + 1],
-                                 min(j, JUMP_NEIGHBOURS))
-                if len(near) < 4:
-                    continue
-                med = float(np.median(near))
-                limit = max(floor, JUMP_SD * 1.4826 * float(np.median(np.abs(near - med))))
-                if abs(values[j] - med) > limit:
-                    td = out[k]
-                    why = (f"the {seg} {'angle' if kind == 'segments' else 'rate'} {values[j]:.0f} {unit} "
-                           f"is {values[j] - med:+.0f} from its neighbours' {med:.0f} (beyond {limit:.0f})")
-                    out[k] = replace(td, valid_data=False, problems=td.problems + (why,))
+                neighbours = np.delete(values[max(j - JUMP_NEIGHBOURS, 0):j + JUMP_NEIGHBOURS + 1],
+                                       min(j, JUMP_NEIGHBOURS))
+                for near, whose in ((neighbours, "its neighbours'"), (np.delete(values, j), "its side's")):
+                    if len(near) < 4:
+                        continue
+                    med = float(np.median(near))
+                    limit = max(floor, JUMP_SD * 1.4826 * float(np.median(np.abs(near - med))))
+                    if abs(values[j] - med) > limit:
+                        td = out[k]
+                        why = (f"the {seg} {'angle' if kind == 'segments' else 'rate'} {values[j]:.0f} {unit} "
+                               f"is {values[j] - med:+.0f} from {whose} {med:.0f} (beyond {limit:.0f})")
+                        out[k] = replace(td, valid_data=False, problems=td.problems + (why,))
+                        break
     return out
 
 
@@ -282,6 +303,24 @@ def _check_cadence(trial: Trial, kin: Kinematics, foot_low: dict, cadence: float
         raise MocapError(f"{trial.source}: the touchdowns give a cadence of {cadence:.0f} steps/min "
                          f"but the feet move at {feet:.0f}: {why}")
     notes.append(f"cadence {cadence:.1f} steps/min; the feet's rhythm {feet:.1f}")
+
+
+def _missed(trial: Trial, cal: Calibration, times, cadence: float) -> list[str]:
+    """Each stretch between one foot's touchdowns longer than MISSED_STRIDES strides (two
+    steps at `cadence`): how many touchdowns the rhythm expects there, and the share of its
+    frames where that foot's markers were not measured (clean: missing, frozen or spiked)."""
+    stride = 120.0 / cadence
+    out = []
+    for side in SIDES:
+        own = [t for t, s in times if s == side]
+        foot = [n for n in cal.points[f"{side}.heel"][0] if n in trial.markers]
+        measured = measured_frames(trial, foot)
+        for a, b in itertools.pairwise(own):
+            if b - a > MISSED_STRIDES * stride:
+                lost = 1.0 - measured[round(a * trial.rate):round(b * trial.rate)].mean()
+                out.append(f"{a:.3f}-{b:.3f} s ({side}): about {round((b - a) / stride) - 1} touchdowns "
+                           f"not found; the foot's markers not measured in {100 * lost:.0f} % of it")
+    return out
 
 
 def _separated(times, gap: float) -> np.ndarray:
