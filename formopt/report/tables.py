@@ -31,10 +31,20 @@ def _mass_lines(im: dict | None, law: str) -> list[str]:
         out.append(f"  {'':22s} the plate's two-mass fit (touchdown to 50 N; a half sine peaking at t1 within "
                    f"5-60 ms + a half sine over the contact): J1 {pl['J1_Ns']:.1f} N s, J1/v_n "
                    + (f"{pct:.0f} % of body mass" if pct is not None else "-")
-                   + f", t1 {pl['t1_ms']:.0f} ms (on its bound in {pl['t1_on_bound']}/{pl['steps']}"
-                   + (": no impact pulse the plate separates" if 2 * pl["t1_on_bound"] > pl["steps"] else "")
-                   + f"); R^2 {pl['r2_median']:.3f} (least {pl['r2_least']:.3f}; the body's half sine alone "
+                   + f", t1 {pl['t1_ms']:.0f} ms (on its bound in {pl['t1_on_bound']}/{pl['steps']}); R^2 "
+                   f"{pl['r2_median']:.3f} (least {pl['r2_least']:.3f}; the body's half sine alone "
                    f"{pl['r2_half_sine_alone']:.3f})")
+        share = 100 * im["p_n_Ns"] / pl["J1_Ns"] if pl["J1_Ns"] > 0 else float("inf")
+        if 2 * pl["t1_on_bound"] > pl["steps"]:
+            out.append(f"  {'':22s} read: the plate shows no impact pulse the fit separates (its first pulse runs to "
+                       f"the bound and takes up the stance's loading); the rigid p_n is {share:.0f} % of that J1: the "
+                       "plate and the map agree the impact is small, and the loading the fit sees is what the rigid "
+                       "map (an instant, free joints) does not model")
+        else:
+            out.append(f"  {'':22s} read: the rigid p_n is {share:.0f} % of the plate's J1, m_eff "
+                       f"{im['m_eff_pct_body_mass']:.1f} % against J1/v_n "
+                       + (f"{pl['J1_per_v_n_pct_body_mass']:.1f} %" if pl["J1_per_v_n_pct_body_mass"] is not None else "-")
+                       + " of body mass")
     return out
 
 
