@@ -8,8 +8,9 @@ not span the marker file is refused. Strike pattern from the foot strike angle (
 touchdown relative to standing; Altman & Davis 2012, Gait Posture 35:298-300): rearfoot
 > 8 deg, forefoot < -1.6 deg, midfoot between. A touchdown whose markers around it (+-30 ms)
 were missing, spiked, frozen, or whose clusters were not rigid (residual > 12 mm), or whose
-segment angle or rate jumps from its side's neighbouring steps (_jumps), is listed with
-valid_data False and its reason, and left out of the means.
+segment angle or rate jumps from its side's neighbouring steps or from its side's over the
+trial (_jumps), is listed with valid_data False and its reason, and left out of the means;
+touchdowns a foot misses (the cadence expects one and none is found, _missed) are listed too.
 
 Contact order (contact_order): which of the heel and forefoot points reaches its stance level
 first, each point by the first of its own markers (kinematics.Kinematics.soles: the heel
