@@ -1,8 +1,10 @@
 """Measured touchdowns against the optimum: the runner's own posture, indicators and the gap.
 
 For each touchdown of a trial (measure.measure), the impact on the paper's leg scaled to the
-runner (de Leva) at the point the model's sole puts down first (model_impact_point; the
-markers' contact order beside it), under the law asked (default Coulomb; every law kept), with
+runner (de Leva) at the point where the foot first pushes (impact_point: the plate's centre of
+pressure, else the markers' contact order; the model sole's lower point beside it), under the
+law asked (default Coulomb; every law kept), its effective mass beside the plate's two-mass fit
+(ImpactMass), with
 T_c's band over the measurement's variants (the markers' cut-off across FILTER_BAND_HZ, the
 touchdown TIME_SHIFTS frames off). Per side, never pooled: the gait-anchored optimum of the
 mean touchdown of that side's dominant impact point (the measured hip placement over the
