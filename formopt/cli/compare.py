@@ -173,11 +173,12 @@ def settings(args) -> list[dict]:
 
 
 TOUCHDOWN_COLUMNS = ["time_s", "side", "valid_data", "strike", "foot_strike_angle_deg",
-                     "impact_point", "contact_order",
+                     "impact_point", "contact_order", "cop_index", "cop_point",
                      *[f"{k}_deg" for k in JOINTS], "thigh_deg", "shank_deg", "foot_deg",
                      "hip_vx", "hip_vz", "T_c_J", "T_c_low_J", "T_c_high_J", "valid",
                      *[f"{column}_{law}" for law in LAWS for column in ("T_c_J", "valid")],
                      "optimum_hip_deg", "optimum_knee_deg", "optimum_ankle_deg", "saving_J",
+                     "m_eff_kg", "v_n_mps", "p_n_Ns", "plate_J1_Ns", "plate_t1_ms", "plate_r2",
                      "data_problems"]
 
 TRIAL_COLUMNS = ["trial", "markers", "method", "touchdowns", "valid_data", "cadence_spm",
@@ -185,6 +186,11 @@ TRIAL_COLUMNS = ["trial", "markers", "method", "touchdowns", "valid_data", "cade
                  *[f"{k}_deg" for k in JOINTS], "T_c_J", "impact_point", "reference_valid",
                  "optimum_headline", *[f"optimum_{k}_deg" for k in ("hip", "knee", "ankle")],
                  "saving_J_per_step", "saving_low_J", "saving_high_J", "resolvable"]
+
+
+def _blank(value):
+    """A CSV cell: empty for None."""
+    return "" if value is None else value
 
 
 def run_one(s: dict, args, out: Path, show: bool = True):
@@ -206,13 +212,16 @@ def run_one(s: dict, args, out: Path, show: bool = True):
     rows = [TOUCHDOWN_COLUMNS]
     for t in rep["touchdowns"]:
         a, g, o = t["angles_deg"], t["segment_angles_deg"], t.get("optimum", {})
+        ri, fit = t.get("rigid_impact", {}), t.get("plate_two_mass", {})
         rows.append([t["time"], t["side"], t["valid_data"], t["strike"], t["foot_strike_angle_deg"],
-                     t["impact_point"], t["contact_order"],
+                     t["impact_point"], t["contact_order"], _blank(t["cop_index"]), _blank(t["cop_point"]),
                      *[a[k] for k in JOINTS], g["thigh"], g["shank"], g["foot"],
                      *t["hip_velocity_mps"], t["T_c"], *t["T_c_band_J"], t["valid"],
                      *[t["contact_laws"][law][k] for law in LAWS for k in ("T_c", "valid")],
                      *[o["angles_deg"][k] if o.get("success") else "" for k in ("hip", "knee", "ankle")],
-                     o.get("saving_J", "") if o.get("success") else "", "; ".join(t["data_problems"])])
+                     o.get("saving_J", "") if o.get("success") else "",
+                     *[ri.get(k, "") for k in ("m_eff_kg", "v_n_mps", "p_n_Ns")],
+                     *[fit.get(k, "") for k in ("J1_Ns", "t1_ms", "r2")], "; ".join(t["data_problems"])])
     m = result.measurement
     if "stride" in rep:
         rep["stride"]["figure"] = str(save_figure(stride_cadence_figure(rep["stride"]),

@@ -4,7 +4,8 @@ formopt.measure's.
 
 Readers: C3D through ezc3d (markers, force plates with their calibration, units and rates from
 the file) and the RBDS text layout (markers: Time (s) then NAMEX NAMEY NAMEZ; forces: frame,
-Fx Fy Fz (N), ... at the rate that spans the marker file's duration). An empty cell, a NaN or
+Fx Fy Fz (N), and where the header names them COPx COPy COPz (mm), ... at the rate that spans
+the marker file's duration). An empty cell, a NaN or
 an exact (0, 0, 0) is a missing sample (measure.clean marks it); a column with no value at all
 is a marker the lab removed (dropped, with a note); missing force samples are interpolated
 (with a note), and an empty plate is dropped (touchdowns then come from the kinematics).
@@ -31,7 +32,7 @@ class MocapError(InputError):
 @dataclass
 class Trial:
     """Markers (m once the units are known; lab axes as recorded) and, if any, the ground
-    reaction force (N)."""
+    reaction force (N) and its centre of pressure (m, the markers' lab frame)."""
 
     markers: dict[str, np.ndarray]  # name -> (frames, 3)
     rate: float  # Hz
@@ -43,6 +44,7 @@ class Trial:
     gaps: dict[str, list[tuple[int, int]]] = field(default_factory=dict)
     suspect: dict[str, np.ndarray] = field(default_factory=dict)  # name -> (frames,) bool
     notes: list[str] = field(default_factory=list)  # what the reader (and the cleaning) did
+    cop: np.ndarray | None = None  # (samples, 3) m, at force_rate; None: the file has none
 
     @property
     def frames(self) -> int:
@@ -103,8 +105,11 @@ def read_c3d(path) -> Trial:
     trial = Trial(markers, rate, source=str(path), units=unit)
     platforms = c3d["data"].get("platform", [])
     if platforms:
-        _set_force(trial, np.asarray(platforms[0]["force"], float).T,
-                   float(c3d["header"]["analogs"]["frame_rate"]), Path(path).name)
+        plate = platforms[0]
+        scale = UNITS.get(str(plate.get("unit_position", "")).strip().lower())
+        _set_force(trial, np.asarray(plate["force"], float).T,
+                   float(c3d["header"]["analogs"]["frame_rate"]), Path(path).name,
+                   None if scale is None else np.asarray(plate["center_of_pressure"], float).T * scale)
     return _drop_empty(trial)
 
 
@@ -158,16 +163,20 @@ def read_text(path, forces=None) -> Trial:
     trial = Trial(markers, rate, source=str(path), units="mm")
     if forces is not None:
         fpath = Path(forces)
-        _, fdata = _table(fpath, "force")
+        fheader, fdata = _table(fpath, "force")
         if fdata.shape[1] < 4 or len(fdata) < 2:
             raise MocapError(f"{fpath}: expected frame, Fx, Fy, Fz columns")
-        _set_force(trial, fdata[:, 1:4], round(len(fdata) / (len(time) / rate), 2), fpath.name)
+        cop = [fheader.index(f"COP{a}") for a in "xyz" if f"COP{a}" in fheader]
+        _set_force(trial, fdata[:, 1:4], round(len(fdata) / (len(time) / rate), 2), fpath.name,
+                   fdata[:, cop] * 1e-3 if len(cop) == 3 else None)
     return _drop_empty(trial)
 
 
-def _set_force(trial: Trial, force, rate: float, name: str):
-    """The plate's force, unless it is empty (then touchdowns come from the kinematics)."""
+def _set_force(trial: Trial, force, rate: float, name: str, cop=None):
+    """The plate's force and its centre of pressure (m; None: not in the file), unless the
+    force is empty (then touchdowns come from the kinematics)."""
     if force.size and np.nanmax(np.abs(force)) > 50.0:
+        trial.cop = cop if cop is not None and cop.shape == force.shape else None
         if not np.all(np.isfinite(force)):
             good = np.all(np.isfinite(force), axis=1)
             for axis in range(3):
@@ -192,15 +201,17 @@ def _drop_empty(trial: Trial) -> Trial:
 
 
 def write_text(trial: Trial, markers_path, forces_path=None):
-    """Write a trial in the RBDS text layout (mm; forces in N), each file renamed into place."""
+    """Write a trial in the RBDS text layout (mm; forces in N, the centre of pressure in mm),
+    each file renamed into place."""
     names = list(trial.markers)
     table = np.column_stack([np.arange(trial.frames) / trial.rate] +
                             [trial.markers[n] * 1e3 for n in names])
     header = "\t".join(["Time"] + [f"{n}{a}" for n in names for a in "XYZ"])
     _save(markers_path, table, header)
     if forces_path is not None and trial.force is not None:
-        rows = np.column_stack([np.arange(1, len(trial.force) + 1), trial.force])
-        _save(forces_path, rows, "Time\tFx\tFy\tFz")
+        rows = np.column_stack([np.arange(1, len(trial.force) + 1), trial.force]
+                               + ([trial.cop * 1e3] if trial.cop is not None else []))
+        _save(forces_path, rows, "Time\tFx\tFy\tFz" + ("\tCOPx\tCOPy\tCOPz" if trial.cop is not None else ""))
 
 
 def _save(path, table, header):

@@ -18,9 +18,10 @@ import numpy as np
 from ..io import markerset as msets
 from ..io.markerset import SIDES
 from ..io.mocap import MocapError, Trial
+from .clean import measured_frames
 from .filters import CUTOFF_HZ, lowpass
 from .rigid import angular_velocity, kabsch
-from .stance import StancePaths, at_rest, stance_paths
+from .stance import StancePaths, at_rest, no_rest_reason, stance_paths
 
 
 @dataclass(frozen=True)
@@ -73,9 +74,6 @@ def find_axes(static: Trial, trial: Trial, ms: msets.MarkerSet) -> tuple[Axes, l
         raise MocapError(f"{trial.source}: the vertical ({vertical}) is {tilt:.0f} deg from the "
                          f"standing body's: the standing trial is not upright or the files "
                          f"do not belong together{rate}")
-    if paths is None:
-        raise MocapError(f"{trial.source}: no stance found: the feet never rest on the ground "
-                         f"(is the rate, {trial.rate:g} Hz, right?)")
     notes.append(_level_note(paths, up))
     pelvis = np.mean([trial.markers[n] for n in ms.pelvis], axis=0)
     belt = (paths.velocity @ paths.direction) * paths.direction  # the resting feet ride it
@@ -91,9 +89,9 @@ def find_axes(static: Trial, trial: Trial, ms: msets.MarkerSet) -> tuple[Axes, l
     return Axes(forward, left if not mirrored else -left, up, vertical, mirrored), notes
 
 
-def _vertical(trial: Trial, body, paths: StancePaths | None) -> tuple[np.ndarray, str]:
+def _vertical(trial: Trial, body, paths: StancePaths) -> tuple[np.ndarray, str]:
     """Up (3,) and how it was found: the plate's mean force, else the standing body's up
-    `body` pitched normal to the resting feet's paths, else `body` itself."""
+    `body` pitched normal to the resting feet's paths."""
     if trial.force is not None:
         finite = np.all(np.isfinite(trial.force), axis=1)
         mean = trial.force[finite].mean(axis=0) if finite.any() else np.zeros(3)
@@ -101,10 +99,8 @@ def _vertical(trial: Trial, body, paths: StancePaths | None) -> tuple[np.ndarray
             raise MocapError(f"{trial.source}: the force plate holds no finite non-zero force to "
                              f"find up from (an empty or broken plate: remove it)")
         return unit(mean) * (1 if mean @ body > 0 else -1), "the force plate's mean force"
-    if paths is not None:
-        d = paths.direction
-        return unit(body - (body @ d) * d), "the standing body, pitched to the resting feet's level paths"
-    return body, "the standing body (pelvis above feet)"
+    d = paths.direction
+    return unit(body - (body @ d) * d), "the standing body, pitched to the resting feet's level paths"
 
 
 def _level_note(paths: StancePaths, up) -> str:
@@ -116,15 +112,17 @@ def _level_note(paths: StancePaths, up) -> str:
             + ", ".join(f"{s} {math.degrees(e):+.2f}" for s, e in sides.items()) + ")")
 
 
-def _stance_paths(trial: Trial, ms: msets.MarkerSet, ref: dict, body) -> StancePaths | None:
+def _stance_paths(trial: Trial, ms: msets.MarkerSet, ref: dict, body) -> StancePaths:
     """Each foot cluster's markers (low-passed at CUTOFF_HZ) over the frames it rests
     (stance.at_rest: its pitch rate from its rigid fit to its standing shape `ref`, about the
     axis normal to `body` and to the feet's fore-aft swing, its heights along `body`), as stance.stance_paths; then again with the
     vertical speed tested along the up those paths give (along `body` the belt's speed leaks
-    into it: 0.1 m/s per 1.6 deg of tilt at 3.5 m/s)."""
-    markers, omega = {}, {}
+    into it: 0.1 m/s per 1.6 deg of tilt at 3.5 m/s). Only measured frames rest; refused,
+    with what each foot failed, when neither has a stance."""
+    markers, omega, measured = {}, {}, {}
     for s in SIDES:
         names = [n for n in ms.cluster(s, "foot") if not n.startswith("@")]
+        measured[s] = measured_frames(trial, names)
         markers[s] = np.stack([lowpass(trial.markers[n], trial.rate, min(CUTOFF_HZ, 0.4 * trial.rate),
                                        trial.source) for n in names], axis=1)
         R, _ = kabsch(np.array([ref[n] for n in names]), markers[s])
@@ -134,13 +132,18 @@ def _stance_paths(trial: Trial, ms: msets.MarkerSet, ref: dict, body) -> StanceP
     feet -= np.outer(feet @ body, body)  # the feet swing fore and aft: normal to it is lateral
     lateral = unit(np.cross(body, np.linalg.eigh(feet.T @ feet)[1][:, -1]))
     pitch_rate = {s: w @ lateral for s, w in omega.items()}
-    paths, up = None, body
+    paths: StancePaths | None = None
+    up = body
     for test_vertical in (False, True):
-        rest = {s: at_rest((M @ up).min(axis=1), pitch_rate[s],
-                           np.gradient(M.mean(axis=1) @ up, 1.0 / trial.rate) if test_vertical else None)
-                for s, M in markers.items()}
-        paths = stance_paths(markers, rest, trial.rate) or paths
+        tests = {s: ((M @ up).min(axis=1), pitch_rate[s],
+                     np.gradient(M.mean(axis=1) @ up, 1.0 / trial.rate) if test_vertical else None, measured[s])
+                 for s, M in markers.items()}
+        paths = stance_paths(markers, {s: at_rest(*t) for s, t in tests.items()}, trial.rate) or paths
         if paths is None:
-            return None
+            raise MocapError(f"{trial.source}: no stance found: neither foot rests on the ground ("
+                             + "; ".join(f"{'right' if s == 'R' else 'left'}: {no_rest_reason(*t, trial.rate)}"
+                                         for s, t in tests.items())
+                             + f"; is the rate, {trial.rate:g} Hz, right?)")
         up = unit(body - (body @ paths.direction) * paths.direction)
+    assert paths is not None  # the loop ran
     return paths

@@ -92,6 +92,12 @@ def clean(trial: Trial) -> Trial:
     return trial
 
 
+def measured_frames(trial: Trial, names) -> np.ndarray:
+    """(frames,) bool: none of the markers `names` missing, frozen or spiked there (clean)."""
+    bad = [trial.suspect[n] for n in names if n in trial.suspect]
+    return ~np.logical_or.reduce(bad) if bad else np.ones(trial.frames, bool)
+
+
 def _fill(trial: Trial, name: str, missing) -> None:
     """Interpolate marker `name` over `missing`, noting the gaps too long to trust."""
     trial.suspect[name] = missing

@@ -2,7 +2,10 @@
 (Kabsch) of its segment's cluster, frame by frame; sagittal segment angles (design.md section 2)
 from the carried points.
 
-The fit's residual says whether the cluster stayed rigid. Segment angles: thigh and shank from
+The fit's residual says whether the cluster stayed rigid. The contact points' heights (`soles`)
+are each of the map's heel and forefoot markers on its own (a forefoot lands on one edge first:
+RBDS001's lateral metatarsal 20-40 mm below the medial one at touchdown, so the two markers'
+mean lands 20-30 ms after the first of them), or the carried point where the map has none. Segment angles: thigh and shank from
 the downward vertical, positive when the distal end is ahead; foot: the heel-to-forefoot line
 relative to standing, toe up positive; trunk: the pelvis's forward tilt relative to standing.
 """
@@ -31,6 +34,8 @@ class Kinematics:
     rate: float  # Hz
     residual: dict[tuple[str, ...], np.ndarray]  # cluster -> rms fit residual per frame (m)
     markers: dict[str, np.ndarray]  # filtered markers (frames, 3), lab frame (for exports)
+    soles: dict[str, np.ndarray]  # "R.heel", "R.forefoot" -> (k, frames) m: the heights of the
+    #                              point's own markers, or of the carried point (module docstring)
 
 
 def kinematics(trial: Trial, cal: Calibration, cutoff_hz: float = CUTOFF_HZ) -> Kinematics:
@@ -54,8 +59,14 @@ def kinematics(trial: Trial, cal: Calibration, cutoff_hz: float = CUTOFF_HZ) -> 
     points = {k: cal.axes.sagittal(v) for k, v in carried.items()}
     angles = segment_angles(points, cal.foot_offset)
     angles["trunk"] = pitch(fits[cal.points["R.hip"][0]][0], cal.axes)
+    markers = {**filtered, **carried}
+    soles = {}
+    for key in (f"{s}.{p}" for s in SIDES for p in ("heel", "forefoot")):
+        own = [n for n in cal.markerset.landmarks(*key.split(".")) if n in markers]
+        soles[key] = (np.array([cal.axes.sagittal(markers[n])[:, 1] for n in own]) if own
+                      else points[key][:, 1][None, :])
     return Kinematics(np.arange(trial.frames) / trial.rate, points, angles, trial.rate, residual,
-                      {**filtered, **carried})
+                      markers, soles)
 
 
 def segment_angles(points: dict, foot_offset: dict) -> dict[str, np.ndarray]:

@@ -13,6 +13,13 @@ A rate 10 times too high is refused, in one line naming the
 rate (no rest: the markers' low-pass then cuts the stride; or a vertical far from the standing
 body's; or a cadence the feet do not show).
 
+Only measured frames rest (`measured`: none of the foot's markers missing, frozen or spiked,
+measure.clean), and the speeds' percentiles are taken over them: a cluster frozen or lost for
+seconds, filled by interpolation, glides slowly along a straight line and would otherwise be
+one long "stance" whose path turns the vertical (40 deg on the RIC runner with its right foot
+frozen for 10 s). A stance is a run of MIN_REST_FRAMES to MAX_STANCE_S of rest (stances). A
+foot without any is named with what it failed (no_rest_reason); the other foot carries on.
+
 On a treadmill the resting foot rides the belt, so its markers move along a level line: the
 first principal direction of their paths over every stance (each marker's path centred on its
 own mean, each side's, and the two sides' directions averaged) is horizontal (axes.find_axes
@@ -36,18 +43,46 @@ REST_FRACTION = 0.07  # of the 95th percentile of the foot's angular and vertica
 #   by up to 0.16 deg between 0.05 and 0.1 (0.26-0.28 deg from the plate's on RBDS001 T35,
 #   0.14-0.30 on T25)
 MIN_REST_FRAMES = 5  # frames in a row: a stance, for the paths
+MAX_STANCE_S = 1.0  # s: a foot at rest longer is not running (stance 0.2-0.3 s at 2.5-4.5 m/s,
+#                     walking's 0.6-0.7 s)
 BOOTSTRAP = 200  # resamples of the stances for the direction's spread
 
 
-def at_rest(height, omega, v_up=None) -> np.ndarray:
+def rest_tests(height, omega, v_up=None, measured=None) -> dict[str, np.ndarray]:
+    """Each test of at_rest, (frames,) bool: "measured", "low", "turning slowly" and (with
+    `v_up`) "moving up or down slowly"."""
+    ok = np.ones(len(height), bool) if measured is None else np.asarray(measured, bool)
+    if not ok.any():
+        return {"measured": ok}
+    tests = {"measured": ok, "low": height < np.percentile(height[ok], LOW_QUANTILE)}
+    for name, speed in (("turning slowly", omega), ("moving up or down slowly", v_up)):
+        if speed is not None:
+            tests[name] = np.abs(speed) < REST_FRACTION * np.percentile(np.abs(speed[ok]), 95)
+    return tests
+
+
+def at_rest(height, omega, v_up=None, measured=None) -> np.ndarray:
     """(frames,) bool: the foot rests (module docstring); `height` (frames,; m), `omega` its
     pitch rate (frames,; rad/s), `v_up` its vertical velocity (frames,; m/s; None: not tested,
-    where up is not yet known to better than the belt's speed times the tilt)."""
-    rest = height < np.percentile(height, LOW_QUANTILE)
-    for speed in (omega, v_up):
-        if speed is not None:
-            rest &= np.abs(speed) < REST_FRACTION * np.percentile(np.abs(speed), 95)
-    return rest
+    where up is not yet known to better than the belt's speed times the tilt), `measured`
+    (frames,) bool the frames its markers were measured (None: all)."""
+    return np.logical_and.reduce(list(rest_tests(height, omega, v_up, measured).values()))
+
+
+def stances(rest, rate: float) -> list[tuple[int, int]]:
+    """(start, stop) frames of each run of `rest` from MIN_REST_FRAMES to MAX_STANCE_S long."""
+    return [(a, b) for a, b in runs(rest) if MIN_REST_FRAMES <= b - a <= MAX_STANCE_S * rate]
+
+
+def no_rest_reason(height, omega, v_up, measured, rate: float) -> str:
+    """Why a foot has no stance: the share of frames that pass each test, all of them at once,
+    and their longest run against MIN_REST_FRAMES and MAX_STANCE_S."""
+    tests = rest_tests(height, omega, v_up, measured)
+    both = np.logical_and.reduce(list(tests.values()))
+    longest = max((b - a for a, b in runs(both)), default=0)
+    return (", ".join(f"{name} {100 * t.mean():.0f} %" for name, t in tests.items())
+            + f", all at once {100 * both.mean():.1f} % of the frames; the longest run {longest} frames "
+            f"(a stance: {MIN_REST_FRAMES} to {MAX_STANCE_S * rate:.0f})")
 
 
 @dataclass(frozen=True)
@@ -85,16 +120,15 @@ class StancePaths:
 
 def stance_paths(markers: dict[str, np.ndarray], rest: dict[str, np.ndarray], rate: float) -> StancePaths | None:
     """The paths of each side's foot markers (`markers`: side -> (frames, k, 3); m, filtered)
-    over its `rest` frames (side -> (frames,) bool), stances of MIN_REST_FRAMES or more; None
-    without any."""
+    over its `rest` frames (side -> (frames,) bool), in stances (stances); None without any."""
     scatter, sides, velocities = [], [], []
     for side, M in markers.items():
-        velocities.append(np.gradient(M, 1.0 / rate, axis=0)[rest[side]].reshape(-1, 3))
-        for a, b in runs(rest[side]):
-            if b - a >= MIN_REST_FRAMES:
-                c = (M[a:b] - M[a:b].mean(axis=0)).reshape(-1, 3)
-                scatter.append(c.T @ c)
-                sides.append(side)
+        v = np.gradient(M, 1.0 / rate, axis=0)
+        for a, b in stances(rest[side], rate):
+            velocities.append(v[a:b].reshape(-1, 3))
+            c = (M[a:b] - M[a:b].mean(axis=0)).reshape(-1, 3)
+            scatter.append(c.T @ c)
+            sides.append(side)
     if not scatter:
         return None
     return StancePaths(np.median(np.concatenate(velocities), axis=0), np.array(scatter), tuple(sides))

@@ -8,18 +8,24 @@ not span the marker file is refused. Strike pattern from the foot strike angle (
 touchdown relative to standing; Altman & Davis 2012, Gait Posture 35:298-300): rearfoot
 > 8 deg, forefoot < -1.6 deg, midfoot between. A touchdown whose markers around it (+-30 ms)
 were missing, spiked, frozen, or whose clusters were not rigid (residual > 12 mm), or whose
-segment angle or rate jumps from its side's neighbouring steps (_jumps), is listed with
-valid_data False and its reason, and left out of the means.
+segment angle or rate jumps from its side's neighbouring steps or from its side's over the
+trial (_jumps), is listed with valid_data False and its reason, and left out of the means;
+touchdowns a foot misses (the cadence expects one and none is found, _missed) are listed too.
 
-Contact order (contact_order): which of the heel and forefoot points (the heel marker and the
-metatarsal markers, or where a map has none the foot cluster's sole points) reaches its stance
-level first: each point's lowest height from STEP_WINDOW before the touchdown to ORDER_WINDOW
-after it is its stance level, and it has reached it when it is within LEVEL_M of it; "flat"
-when the two reach times differ by at most FLAT_S.
+Contact order (contact_order): which of the heel and forefoot points reaches its stance level
+first, each point by the first of its own markers (kinematics.Kinematics.soles: the heel
+marker, each metatarsal marker, or where a map has none the foot cluster's sole points): each
+marker's lowest height from STEP_WINDOW before the touchdown to ORDER_WINDOW after it is its
+stance level, and it has reached it when it is within LEVEL_M of it; "flat" when the two reach
+times differ by at most FLAT_S. Against the plate's centre of pressure (plate.strike_index) on
+RBDS001, the metatarsals' mean as the forefoot said heel or flat for 163 of 163 forefoot
+touchdowns; each metatarsal on its own agrees in 157 (6 flat).
+With a plate, the centre of pressure's index and class (cop_index) ride along each touchdown.
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field, replace
 
@@ -28,10 +34,12 @@ import numpy as np
 from ..io.markerset import SIDES
 from ..io.mocap import MocapError, Trial
 from ..mechanics.model import joint_angles, xy
+from .clean import measured_frames
 from .filters import lowpass
 from .joints import Calibration
 from .kinematics import Kinematics
-from .stance import MIN_REST_FRAMES, at_rest
+from .plate import FORCE_CUTOFF_HZ, strike_index
+from .stance import at_rest, no_rest_reason, stances
 
 FORCE_THRESHOLD_N = 50.0  # vertical force at touchdown
 FOOT_SPEED_FRACTION = 0.5  # without a plate: the foot's speed over the ground below this
@@ -41,7 +49,6 @@ STEP_WINDOW = 0.03  # s each side of a touchdown whose markers must be sound
 SPEED_RANGE = (0.5, 12.0)  # m/s: running
 CADENCE_TOLERANCE = 0.1  # relative: touchdowns against the feet's rhythm
 REARFOOT_DEG, FOREFOOT_DEG = 8.0, -1.6  # Altman & Davis (2012) foot strike angle thresholds
-FORCE_CUTOFF_HZ = 50.0  # low-pass of the force before the threshold (at most 0.4 of its rate)
 ORDER_WINDOW = 0.15  # s after a touchdown: both points are down by then (stance >= 0.2 s)
 LEVEL_M = 0.003  # m above its stance level a point counts as down: 2-3 times the filtered
 #                  markers' noise, and less than the 5-20 mm each point still falls in the
@@ -55,6 +62,7 @@ JUMP_FLOOR = {"segments.foot": (5.0, "deg"), "segments.shank": (5.0, "deg"),
               "segments.thigh": (5.0, "deg"), "rates.foot": (200.0, "deg/s"),
               "rates.shank": (200.0, "deg/s"), "rates.thigh": (200.0, "deg/s")}
 #  floors: 3-5 times the step-to-step sd of touchdown angles (0.6-1.6 deg on the shipped runs)
+MISSED_STRIDES = 1.5  # a foot's touchdowns this many strides apart miss one between them
 SEPARATION = {"force plate": 0.15, "kinematics": 0.25}  # s: a touchdown within this of the
 #                                                        last one is the same contact
 
@@ -77,6 +85,7 @@ class Touchdown:
     reach_s: tuple[float, float] = (0.0, 0.0)  # s after the touchdown: heel, forefoot at their stance level
     valid_data: bool = True
     problems: tuple[str, ...] = ()  # why valid_data is False
+    cop_index: float | None = None  # the centre of pressure along the foot (plate.strike_index)
 
     def state(self) -> np.ndarray:
         """formopt's touchdown state vector (model.STATE)."""
@@ -93,6 +102,8 @@ class Steps:
     speed: float  # m/s: the runner's speed over the ground
     method: str  # "force plate" or "kinematics"
     notes: list[str] = field(default_factory=list)  # from the reader and the checks
+    missed: list[str] = field(default_factory=list)  # stretches where a foot's touchdowns
+    #                                                  were not found, and why (_missed)
 
     @property
     def valid(self) -> list[Touchdown]:
@@ -100,9 +111,9 @@ class Steps:
 
     @property
     def left_out(self) -> list[str]:
-        """The steps not used, and why."""
+        """The steps not used, and why: those found but unsound, and those not found."""
         return [f"{td.time:.3f} s ({td.side}): {'; '.join(td.problems)}"
-                for td in self.touchdowns if not td.valid_data]
+                for td in self.touchdowns if not td.valid_data] + self.missed
 
 
 def strike_pattern(foot_strike_angle: float) -> str:
@@ -112,13 +123,15 @@ def strike_pattern(foot_strike_angle: float) -> str:
 
 
 def contact_order(heel, forefoot, frame: int, rate: float) -> tuple[str, tuple[float, float]]:
-    """(order, (heel, forefoot) reach times in s after `frame`) from the heights (frames; m)
-    of the heel and forefoot points (module docstring: stance level, LEVEL_M, FLAT_S)."""
-    lo = max(frame - round(STEP_WINDOW * rate), 0)
-    hi = min(frame + round(ORDER_WINDOW * rate) + 1, len(heel))
+    """(order, (heel, forefoot) reach times in s after `frame`) from the heights ((k, frames)
+    or (frames,); m) of the heel's and the forefoot's markers, each point reached when the
+    first of its markers is (module docstring: stance level, LEVEL_M, FLAT_S)."""
     reach = []
-    for z in (heel[lo:hi], forefoot[lo:hi]):
-        reach.append((lo + int(np.flatnonzero(z <= z.min() + LEVEL_M)[0]) - frame) / rate)
+    for zs in (np.atleast_2d(heel), np.atleast_2d(forefoot)):
+        lo = max(frame - round(STEP_WINDOW * rate), 0)
+        hi = min(frame + round(ORDER_WINDOW * rate) + 1, zs.shape[1])
+        reach.append(min((lo + int(np.flatnonzero(z <= z.min() + LEVEL_M)[0]) - frame) / rate
+                         for z in zs[:, lo:hi]))
     gap = reach[0] - reach[1]
     order = "flat" if abs(gap) <= FLAT_S + 1e-9 else "heel" if gap < 0 else "forefoot"
     return order, (reach[0], reach[1])
@@ -150,7 +163,8 @@ def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration,
     foot_low = {s: np.minimum(kin.points[f"{s}.heel"][:, 1], kin.points[f"{s}.forefoot"][:, 1])
                 for s in SIDES}
     motion = {s: _foot_motion(kin, cal, s) for s in SIDES}
-    belt = _belt_speed(trial, motion)
+    notes = list(trial.notes) + list(cal.notes)
+    belt = _belt_speed(trial, cal, motion, notes)
     pelvis = np.mean([kin.points[f"{s}.hip"][:, 0] for s in SIDES], axis=0)
     speed = belt + float(np.median(np.gradient(pelvis, 1.0 / kin.rate)))
     if not SPEED_RANGE[0] <= speed <= SPEED_RANGE[1]:
@@ -169,9 +183,9 @@ def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration,
         times = sorted((t, s) for s in SIDES for t in foot_speed_touchdowns(
             motion[s][0], kin.rate, belt, speed, foot_speed_fraction))
     if len(times) < 2:
-        raise MocapError(f"{trial.source}: fewer than two touchdowns found ({method})")
+        raise MocapError(f"{trial.source}: fewer than two touchdowns found ({method}"
+                         + (f"; is the rate, {trial.rate:g} Hz, right?)" if method == "kinematics" else ")"))
     cadence = 60.0 / float(np.median(np.diff([t for t, _ in times])))
-    notes = list(trial.notes) + list(cal.notes)
     _check_cadence(trial, kin, foot_low, cadence, notes)
     steps = []
     window = max(1, round(STEP_WINDOW * kin.rate))
@@ -181,11 +195,18 @@ def touchdowns(trial: Trial, kin: Kinematics, cal: Calibration,
             problems = _problems(trial, kin, cal, side, frame, window)
             steps.append(_touchdown(kin, side, frame, t, belt, foot_low[side][frame], problems))
     steps = _jumps(steps)
+    if trial.force is not None and trial.cop is not None and trial.force_rate is not None:
+        steps = [replace(td, cop_index=strike_index(
+            trial.force, trial.cop, trial.force_rate, cal.axes.up, cal.axes.forward, td.time, kin.t,
+            kin.points[f"{td.side}.heel"][:, 0], kin.points[f"{td.side}.forefoot"][:, 0])) for td in steps]
     bad = sum(not td.valid_data for td in steps)
     if bad:
         notes.append(f"{bad} of {len(steps)} touchdowns have unsound markers around them: "
                      f"listed, left out of the means")
-    return Steps(steps, cadence, belt, speed, method, notes)
+    missed = _missed(trial, cal, times, cadence)
+    if missed:
+        notes.append(f"{len(missed)} stretches without the touchdowns the cadence expects: listed")
+    return Steps(steps, cadence, belt, speed, method, notes, missed)
 
 
 def _foot_motion(kin: Kinematics, cal: Calibration, side: str):
@@ -197,25 +218,35 @@ def _foot_motion(kin: Kinematics, cal: Calibration, side: str):
     return np.gradient(centre, dt, axis=0), centre[:, 1], np.gradient(kin.angles[f"{side}.foot"], dt)
 
 
-def _belt_speed(trial: Trial, motion: dict) -> float:
-    """The ground's backward speed (m/s; 0 overground): the foot cluster's median while it
-    rests (stance.at_rest: low, turning and moving up or down slowly for its own motion)."""
-    speeds = []
-    for v, height, omega in motion.values():
-        rest = at_rest(height, omega, v[:, 1])
-        if rest.sum() >= MIN_REST_FRAMES:
-            speeds.append(-float(np.median(v[rest, 0])))
+def _belt_speed(trial: Trial, cal: Calibration, motion: dict, notes: list) -> float:
+    """The ground's backward speed (m/s; 0 overground): the foot cluster's median over its
+    stances (stance.at_rest: measured, low, turning and moving up or down slowly for its own
+    motion; stance.stances), both feet's averaged, or the one foot's that has stances (the
+    other named in `notes` with what it failed); refused, naming both, when neither has."""
+    speeds, failed = [], []
+    for side, (v, height, omega) in motion.items():
+        measured = measured_frames(trial, [n for n in cal.points[f"{side}.heel"][0] if n in trial.markers])
+        found = stances(at_rest(height, omega, v[:, 1], measured), trial.rate)
+        if found:
+            speeds.append(-float(np.median(np.concatenate([v[a:b, 0] for a, b in found]))))
+        else:
+            failed.append(f"{'right' if side == 'R' else 'left'}: "
+                          f"{no_rest_reason(height, omega, v[:, 1], measured, trial.rate)}")
     if not speeds:
-        raise MocapError(f"{trial.source}: no stance found: the feet never rest on the ground "
-                         f"(is the rate, {trial.rate:g} Hz, right?)")
+        raise MocapError(f"{trial.source}: no stance found: neither foot rests on the ground ("
+                         f"{'; '.join(failed)}; is the rate, {trial.rate:g} Hz, right?)")
+    if failed:
+        notes.append(f"one foot never rests ({failed[0]}): the belt's speed from the other")
     return float(np.mean(speeds))
 
 
 def _jumps(steps: list[Touchdown]) -> list[Touchdown]:
     """Each touchdown whose foot, shank or thigh angle, or whose segment rate, lies far from
-    the median of its side's JUMP_NEIGHBOURS steps on each side (more than JUMP_SD robust
-    standard deviations of theirs and the floor of JUMP_FLOOR) marked unsound, the reason
-    named: a cluster that slipped or was relabelled for a step passes the rigidity test."""
+    the median of its side's JUMP_NEIGHBOURS steps on each side, or from the median of all its
+    side's other steps (more than JUMP_SD robust standard deviations of theirs and the floor of
+    JUMP_FLOOR), marked unsound, the reason named: a cluster that slipped or was relabelled for
+    a step passes the rigidity test, and one turned for many steps in a row passes the
+    neighbours' test (they moved with it) but not the trial's while most steps are sound."""
     out = list(steps)
     for side in SIDES:
         idx = [k for k, td in enumerate(steps) if td.side == side]
@@ -223,17 +254,19 @@ def _jumps(steps: list[Touchdown]) -> list[Touchdown]:
             kind, seg = key.split(".")
             values = np.degrees([getattr(steps[k], kind)[seg] for k in idx])
             for j, k in enumerate(idx):
-                near = np.delete(values[max(j - JUMP_NEIGHBOURS, 0):j + JUMP_NEIGHBOURS + 1],
-                                 min(j, JUMP_NEIGHBOURS))
-                if len(near) < 4:
-                    continue
-                med = float(np.median(near))
-                limit = max(floor, JUMP_SD * 1.4826 * float(np.median(np.abs(near - med))))
-                if abs(values[j] - med) > limit:
-                    td = out[k]
-                    why = (f"the {seg} {'angle' if kind == 'segments' else 'rate'} {values[j]:.0f} {unit} "
-                           f"is {values[j] - med:+.0f} from its neighbours' {med:.0f} (beyond {limit:.0f})")
-                    out[k] = replace(td, valid_data=False, problems=td.problems + (why,))
+                neighbours = np.delete(values[max(j - JUMP_NEIGHBOURS, 0):j + JUMP_NEIGHBOURS + 1],
+                                       min(j, JUMP_NEIGHBOURS))
+                for near, whose in ((neighbours, "its neighbours'"), (np.delete(values, j), "its side's")):
+                    if len(near) < 4:
+                        continue
+                    med = float(np.median(near))
+                    limit = max(floor, JUMP_SD * 1.4826 * float(np.median(np.abs(near - med))))
+                    if abs(values[j] - med) > limit:
+                        td = out[k]
+                        why = (f"the {seg} {'angle' if kind == 'segments' else 'rate'} {values[j]:.0f} {unit} "
+                               f"is {values[j] - med:+.0f} from {whose} {med:.0f} (beyond {limit:.0f})")
+                        out[k] = replace(td, valid_data=False, problems=td.problems + (why,))
+                        break
     return out
 
 
@@ -273,6 +306,24 @@ def _check_cadence(trial: Trial, kin: Kinematics, foot_low: dict, cadence: float
     notes.append(f"cadence {cadence:.1f} steps/min; the feet's rhythm {feet:.1f}")
 
 
+def _missed(trial: Trial, cal: Calibration, times, cadence: float) -> list[str]:
+    """Each stretch between one foot's touchdowns longer than MISSED_STRIDES strides (two
+    steps at `cadence`): how many touchdowns the rhythm expects there, and the share of its
+    frames where that foot's markers were not measured (clean: missing, frozen or spiked)."""
+    stride = 120.0 / cadence
+    out = []
+    for side in SIDES:
+        own = [t for t, s in times if s == side]
+        foot = [n for n in cal.points[f"{side}.heel"][0] if n in trial.markers]
+        measured = measured_frames(trial, foot)
+        for a, b in itertools.pairwise(own):
+            if b - a > MISSED_STRIDES * stride:
+                lost = 1.0 - measured[round(a * trial.rate):round(b * trial.rate)].mean()
+                out.append(f"{a:.3f}-{b:.3f} s ({side}): about {round((b - a) / stride) - 1} touchdowns "
+                           f"not found; the foot's markers not measured in {100 * lost:.0f} % of it")
+    return out
+
+
 def _separated(times, gap: float) -> np.ndarray:
     """`times` (sorted, s) without those within `gap` s after the last one kept."""
     out: list[float] = []
@@ -295,8 +346,7 @@ def _touchdown(kin: Kinematics, side: str, frame: int, time: float, belt: float,
     trunk = float(kin.angles["trunk"][frame])
     hip_p = kin.points[f"{side}.hip"]
     v = (hip_p[frame + 1] - hip_p[frame - 1]) / (2 * dt)
-    order, reach = contact_order(kin.points[f"{side}.heel"][:, 1], kin.points[f"{side}.forefoot"][:, 1],
-                                 frame, kin.rate)
+    order, reach = contact_order(kin.soles[f"{side}.heel"], kin.soles[f"{side}.forefoot"], frame, kin.rate)
     return Touchdown(time=time, side=side, frame=frame, strike=strike_pattern(a["foot"]),
                      foot_strike_angle=a["foot"], segments={"trunk": trunk, **a},
                      angles=joint_angles({"trunk": trunk, **a}),
@@ -315,39 +365,3 @@ def shifted(kin: Kinematics, td: Touchdown, frames: int, belt: float) -> Touchdo
     low = min(kin.points[f"{td.side}.{p}"][frame, 1] for p in ("heel", "forefoot"))
     return _touchdown(kin, td.side, frame, td.time + (frame - td.frame) / kin.rate, belt, low,
                       td.problems)
-
-
-IMPACT_SEARCH_S = (0.005, 0.060)  # s after a touchdown where an impact peak is sought
-IMPACT_DEFAULT_S = 0.030  # s: the impact window when the force has no distinct impact peak
-LOADING_BAND = (0.2, 0.8)  # of the impact peak: the loading rate's stretch (Milner et al. 2006)
-
-
-@dataclass(frozen=True)
-class PlateImpact:
-    """What the plate measured over one touchdown's impact: from the touchdown (the force
-    through its threshold) to the impact peak, the first local maximum of the low-passed
-    vertical force within IMPACT_SEARCH_S, or IMPACT_DEFAULT_S without one."""
-
-    window_s: float  # s, the impact window's length
-    peak: bool  # a distinct impact peak was found
-    impulse_ratio: float  # forward / vertical impulse over the window (braking negative)
-    impact_peak_bw: float  # vertical force at the window's end, body weights
-    loading_rate_bw_per_s: float  # mean slope from 20 to 80 % of it, BW/s
-
-
-def plate_impact(force, rate: float, forward, up, time: float, weight: float,
-                 source: str = "") -> PlateImpact:
-    """The plate's impact of the touchdown at `time` (s): force (samples, 3; N, the ground on
-    the runner), `forward`, `up` the lab axes (3,), `weight` the runner's (N)."""
-    f = lowpass(force, rate, min(FORCE_CUTOFF_HZ, 0.4 * rate), source)
-    vertical, horizontal = f @ up, f @ forward
-    k0 = round(time * rate)
-    lo, hi = k0 + int(IMPACT_SEARCH_S[0] * rate), min(k0 + int(IMPACT_SEARCH_S[1] * rate), len(vertical) - 1)
-    peaks = [k for k in range(lo, hi) if vertical[k] >= vertical[k - 1] and vertical[k] > vertical[k + 1]]
-    end = peaks[0] if peaks else min(k0 + round(IMPACT_DEFAULT_S * rate), len(vertical) - 1)
-    window = slice(k0, end + 1)
-    ratio = float(np.trapezoid(horizontal[window]) / np.trapezoid(vertical[window]))
-    top = float(vertical[end])
-    a, b = (k0 + int(np.flatnonzero(vertical[window] >= s * top)[0]) for s in LOADING_BAND)
-    rate_bw = (vertical[b] - vertical[a]) * rate / max(b - a, 1) / weight
-    return PlateImpact((end - k0) / rate, bool(peaks), ratio, top / weight, float(rate_bw))

@@ -43,6 +43,7 @@ GRAPHS = ("SX", "MX")
 # Relative tolerance of the validity checks: an optimum on a constraint (mu_c = friction,
 # normal impulse = 0) is valid, not a rounding error away from invalid.
 RTOL = 1e-6
+LEVEL_TOL_M = 1e-9  # m: the other point this far below the ground is on it (a sole put level, round-off)
 INPUTS = ("x", "friction", "slope")  # impact_function's inputs
 
 
@@ -400,7 +401,7 @@ class Impact:
         """The checks every law shares: the other point above the ground, each strike point
         approaching it."""
         found = []
-        if self.strike != "flat" and out["clearance"] < 0:
+        if self.strike != "flat" and out["clearance"] < -LEVEL_TOL_M:
             other = "heel" if points == ("forefoot",) else "forefoot"
             found.append((Check.BELOW_GROUND,
                           f"the {other} is {-out['clearance'] * 1e3:.1f} mm below the ground"))

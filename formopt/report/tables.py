@@ -10,11 +10,42 @@ import math
 from pathlib import Path
 
 from ..io.scene import Scene, touchdown_table
+from ..measure.plate import COP_WINDOW_S
 from ..mechanics.contact import LAWS
 from ..mechanics.impact import ImpactResult
 from ..optim.objective import UNITS
 from ..optim.solution import explain
 from ..studies.compare import JOINTS, Comparison
+
+
+def _mass_lines(im: dict | None, law: str) -> list[str]:
+    """A side's rigid effective mass and normal impulse beside the plate's two-mass fit."""
+    if not im:
+        return []
+    out = [f"  {'':22s} the rigid impact (medians): m_eff {im['m_eff_kg']:.2f} kg ({im['m_eff_pct_body_mass']:.1f} % of "
+           f"body mass; running's 5-8 %), approach {-im['v_n_mps']:.2f} m/s, p_n = m_eff v_n {im['p_n_Ns']:.2f} N s "
+           f"({law}: {im['p_n_law_Ns']:.2f})"]
+    pl = im.get("plate")
+    if pl:
+        pct = pl["J1_per_v_n_pct_body_mass"]
+        out.append(f"  {'':22s} the plate's two-mass fit (touchdown to 50 N; a half sine peaking at t1 within "
+                   f"5-60 ms + a half sine over the contact): J1 {pl['J1_Ns']:.1f} N s, J1/v_n "
+                   + (f"{pct:.0f} % of body mass" if pct is not None else "-")
+                   + f", t1 {pl['t1_ms']:.0f} ms (on its bound in {pl['t1_on_bound']}/{pl['steps']}); R^2 "
+                   f"{pl['r2_median']:.3f} (least {pl['r2_least']:.3f}; the body's half sine alone "
+                   f"{pl['r2_half_sine_alone']:.3f})")
+        share = 100 * im["p_n_Ns"] / pl["J1_Ns"] if pl["J1_Ns"] > 0 else float("inf")
+        if 2 * pl["t1_on_bound"] > pl["steps"]:
+            out.append(f"  {'':22s} read: the plate shows no impact pulse the fit separates (its first pulse runs to "
+                       f"the bound and takes up the stance's loading); the rigid p_n is {share:.0f} % of that J1: the "
+                       "plate and the map agree the impact is small, and the loading the fit sees is what the rigid "
+                       "map (an instant, free joints) does not model")
+        else:
+            out.append(f"  {'':22s} read: the rigid p_n is {share:.0f} % of the plate's J1, m_eff "
+                       f"{im['m_eff_pct_body_mass']:.1f} % against J1/v_n "
+                       + (f"{pl['J1_per_v_n_pct_body_mass']:.1f} %" if pl["J1_per_v_n_pct_body_mass"] is not None else "-")
+                       + " of body mass")
+    return out
 
 
 def impact_table(scene: Scene, r: ImpactResult) -> str:
@@ -205,9 +236,17 @@ def comparison_table(c: Comparison, rep: dict) -> str:
                      + (f"; {s['left_out']} left out (markers)" if s["left_out"] else ""))
         lines.append(f"  {'   sd':22s} {'':5s} {'':9s} " + " ".join(f"{sd[k]:7.1f}" for k in JOINTS)
                      + f" {s['foot_strike_angle_deg_sd']:7.1f}")
-        lines.append(f"  {'':22s} first down: the model's sole " + ", ".join(
-            f"{p} {n}" for p, n in s["impact_points"].items()) + "; the markers " + ", ".join(
-            f"{p} {n}" for p, n in s["contact_order"].items()))
+        lines.append(f"  {'':22s} impact point " + ", ".join(
+            f"{p} {n} ({100 * s['impact_point_share'][p]:.0f} %)" for p, n in s["impact_points"].items())
+            + "; the markers' contact order " + ", ".join(f"{p} {n}" for p, n in s["contact_order"].items())
+            + "; the model's sole " + ", ".join(f"{p} {n}" for p, n in s["model_sole"].items()))
+        cop = s.get("centre_of_pressure")
+        if cop:
+            lines.append(f"  {'':22s} the plate's centre of pressure over the first {COP_WINDOW_S * 1e3:.0f} ms (0 heel, 1 forefoot): "
+                         f"median {cop['index_median']:.2f} (10-90 %: {cop['index_10_90'][0]:.2f}-"
+                         f"{cop['index_10_90'][1]:.2f}); " + ", ".join(f"{p} {n}" for p, n in cop["points"].items())
+                         + f"; the markers agree in {cop['contact_order_agrees']}/{cop['steps']}, the model's sole in "
+                         f"{cop['model_sole_agrees']}/{cop['steps']}")
         pl = s.get("plate")
         if pl:
             laws = ", ".join(f"{law} {v:+.2f}" for law, v in pl["laws_impulse_ratio"].items() if v is not None)
@@ -216,6 +255,7 @@ def comparison_table(c: Comparison, rep: dict) -> str:
                          f"{pl['impulse_ratio_median']:+.2f} (sd {pl['impulse_ratio_sd']:.2f}) against the rigid impact's "
                          f"{laws}: nearest {pl['nearest_law']}; impact peak {pl['impact_peak_bw_mean']:.2f} BW, "
                          f"loading rate {pl['loading_rate_bw_per_s_mean']:.0f} BW/s")
+        lines += _mass_lines(s.get("impact_mass"), c.law)
     for side, o in rep["optimum"].items():
         lines += _side_lines(c, side, o, st.cadence_spm)
     lines += ["", f"  every touchdown under each contact law (T_c mean, J; valid touchdowns; * {c.law}, "

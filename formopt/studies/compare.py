@@ -1,8 +1,10 @@
 """Measured touchdowns against the optimum: the runner's own posture, indicators and the gap.
 
 For each touchdown of a trial (measure.measure), the impact on the paper's leg scaled to the
-runner (de Leva) at the point the model's sole puts down first (model_impact_point; the
-markers' contact order beside it), under the law asked (default Coulomb; every law kept), with
+runner (de Leva) at the point where the foot first pushes (impact_point: the plate's centre of
+pressure, else the markers' contact order; the model sole's lower point beside it), under the
+law asked (default Coulomb; every law kept), its effective mass beside the plate's two-mass fit
+(ImpactMass), with
 T_c's band over the measurement's variants (the markers' cut-off across FILTER_BAND_HZ, the
 touchdown TIME_SHIFTS frames off). Per side, never pooled: the gait-anchored optimum of the
 mean touchdown of that side's dominant impact point (the measured hip placement over the
@@ -26,7 +28,8 @@ from ..io import mocap
 from ..io.markerset import SIDES
 from ..measure import Measurement, Options, Steps, Touchdown, measure
 from ..measure.filters import effective_cutoff
-from ..measure.touchdowns import FLAT_S, PlateImpact, plate_impact, shifted
+from ..measure.plate import PlateImpact, TwoMassFit, cop_point, plate_impact, two_mass_fit
+from ..measure.touchdowns import FLAT_S, shifted
 from ..mechanics.body import Body, scaled_body
 from ..mechanics.contact import LAWS
 from ..mechanics.errors import InputError
@@ -158,6 +161,41 @@ def flat_sequence(lm: LandingModel, first: str, x, friction: float) -> FlatSeque
                         None if second is None else second * 1e3, tuple(landing.violations))
 
 
+@dataclass(frozen=True)
+class ImpactMass:
+    """The rigid map's effective mass at a touchdown's impact point beside the plate's
+    two-mass fit (measure.plate.two_mass_fit): the map stops m_eff = 1 / (n^T J M^-1 J^T n)
+    = 1 / W_nn (W_c the contact-space inverse inertia, mechanics.impact) in an instant with the
+    normal impulse p_n = m_eff |v_n| (frictionless; the law's own beside it); the plate's
+    stopped mass pushes J1 over a pulse of 2 t1, and J1 / |v_n| is the mass that impulse
+    stops from the same approach speed."""
+
+    m_eff: float  # kg
+    v_n: float  # m/s: the impact point's normal velocity before the impact (< 0 approaching)
+    p_n_law: float  # N s: the normal impulse under the comparison's law
+    fit: TwoMassFit | None  # None without a plate (or a contact cut by the record's end)
+
+    @property
+    def p_n(self) -> float:
+        return self.m_eff * -self.v_n
+
+    @property
+    def plate_mass(self) -> float | None:
+        """kg: J1 / |v_n|."""
+        return self.fit.impulse_1 / -self.v_n if self.fit is not None and self.v_n < 0 else None
+
+
+def impact_mass(impact: Impact, x, result: ImpactResult, fit: TwoMassFit | None) -> ImpactMass | None:
+    """The ImpactMass of one touchdown (state x, model.STATE) at `impact`'s point; None for a
+    flat strike (two points: no single normal direction's mass)."""
+    out = impact.evaluate(x)
+    W_nn = float(np.asarray(out["W_c"], float)[1, 1])
+    if not math.isfinite(W_nn):
+        return None
+    return ImpactMass(1.0 / W_nn, float(np.asarray(out["v_contact"], float).ravel()[1]),
+                      result.impulse_total[1], fit)
+
+
 @dataclass
 class Comparison:
     measurement: Measurement
@@ -173,6 +211,7 @@ class Comparison:
     plate: list[PlateImpact | None] = field(default_factory=list)  # per touchdown, trials with forces
     sequence: list[FlatSequence | None] = field(default_factory=list)  # per touchdown: flat steps'
     stride: StrideAnswer | None = None  # when asked (compare_stride.answer)
+    masses: list[ImpactMass | None] = field(default_factory=list)  # per touchdown
 
     def step_T_c(self, k: int) -> float:
         """The headline T_c (J) of touchdown k: a flat step's sequence total, else its impact's."""
@@ -277,19 +316,20 @@ def side_dict(c: Comparison, o: SideOptimum) -> dict:
 
 def impact_point(sole: ca.Function, td: Touchdown) -> tuple[str, str, float]:
     """(impact point, the model sole's first point, the other point's time to the ground, s)
-    of a measured touchdown. The model's sole (flat in the foot frame) at the measured foot
-    angle relative to standing puts its lower point down first; the other point would follow
-    after its height over the ground divided by its own approach speed (inf when it rises).
-    The step is "flat" when that time is within touchdowns.FLAT_S and the markers' contact
-    order says so too (both sources agree on both at once); otherwise the model's lower
-    point. (A rigid flat-foot impact stops the whole foot at once and absorbs an order of
-    magnitude more than either point alone: it is kept for the steps both sources call flat.)"""
+    of a measured touchdown. The impact point is where the foot first pushes: with a plate the
+    centre of pressure's class (measure.plate.cop_point), else the markers' contact order. The
+    model's sole (flat in the foot frame) at the measured foot angle relative to standing puts
+    its lower point down first, the other following after its height over the ground divided by
+    its own approach speed (inf when it rises): kept beside it, not trusted over it, because a
+    sagittal foot angle cannot see a foot landing on its lateral edge (RBDS001 lands on the
+    lateral metatarsal with a sagittal foot angle of 1-3 deg toe up: the model's sole says heel
+    for 80 of 85 steps of T35, the plate forefoot for all)."""
     z_heel, z_fore, v_heel, v_fore = np.asarray(sole(td.state()), float).ravel()
     lower, gap, speed = (("heel", z_fore - z_heel, -v_fore) if z_heel <= z_fore
                          else ("forefoot", z_heel - z_fore, -v_heel))
     follows = gap / speed if speed > 0 else math.inf
-    flat = follows <= FLAT_S and td.contact_order == "flat"
-    return ("flat" if flat else lower), lower, follows
+    point = cop_point(td.cop_index) if td.cop_index is not None else td.contact_order
+    return point, lower, follows
 
 
 def sole_function(body: Body) -> ca.Function:
@@ -301,10 +341,12 @@ def sole_function(body: Body) -> ca.Function:
 
 
 def modelled_state(td: Touchdown, point: str) -> np.ndarray:
-    """The touchdown state the impact takes: a flat step with its sole put on the ground (the
-    ankle turned by the foot angle, within the flat tolerance), the others as measured."""
+    """The touchdown state the impact takes: a flat step, and a step whose impact point the
+    measured foot angle holds above the other point (a foot landing on its edge, impact_point),
+    with its sole put level on the ground (the ankle turned by the foot strike angle); the
+    others as measured."""
     x = td.state()
-    if point == "flat":
+    if point == "flat" or (point == "forefoot") == (td.foot_strike_angle > 0):
         x[STATE.index("ankle")] -= td.foot_strike_angle
     return x
 
@@ -372,9 +414,9 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
             for a, col in zip(nominal, spread.T)]
     plate = plate_impacts(m, mass)
     return Comparison(m, results, points, band, sides, body, law, settings,
-                      [(lower, follows, r.T_c if p != "flat" else impacts[lower](td.state()).T_c)
+                      [(lower, follows, r.T_c if p == lower else impacts[lower](td.state()).T_c)
                        for (p, lower, follows), r, td in zip(firsts, results, steps.touchdowns)], plate,
-                      sequence)
+                      sequence, masses=impact_masses(m, points, results, impacts, plate))
 
 
 def plate_impacts(m: Measurement, mass: float) -> list[PlateImpact | None]:
@@ -384,6 +426,16 @@ def plate_impacts(m: Measurement, mass: float) -> list[PlateImpact | None]:
     return [plate_impact(t.force, t.force_rate, axes.forward, axes.up, td.time, mass * G, t.source)
             if m.steps.method == "force plate" and t.force_rate is not None else None
             for td in m.steps.touchdowns]
+
+
+def impact_masses(m: Measurement, points, results, impacts: dict, plate) -> list[ImpactMass | None]:
+    """Each touchdown's ImpactMass at its impact point, the plate's two-mass fit beside it
+    where the touchdown has a plate impact."""
+    t = m.trial
+    return [impact_mass(impacts[p], modelled_state(td, p), r,
+                        two_mass_fit(t.force, t.force_rate, m.calibration.axes.up, td.time, t.source)
+                        if pl is not None and t.force_rate is not None else None)
+            for td, p, r, pl in zip(m.steps.touchdowns, points, results, plate)]
 
 
 def headline_T_c(td: Touchdown, point: str, sole: ca.Function, impacts: dict, lm: LandingModel,
@@ -481,6 +533,7 @@ def touchdown_row(c: Comparison, k: int) -> dict:
     row = {"time": td.time, "side": td.side, "frame": td.frame, "method": c.steps.method,
            "strike": td.strike, "foot_strike_angle_deg": math.degrees(td.foot_strike_angle),
            "impact_point": p, "contact_order": td.contact_order,
+           "cop_index": td.cop_index, "cop_point": None if td.cop_index is None else cop_point(td.cop_index),
            "model_sole": {"first": c.sole[k][0], "other_down_ms": _finite(c.sole[k][1] * 1e3),
                           "T_c_first_alone": c.sole[k][2]},
            "reach_ms": {"heel": td.reach_s[0] * 1e3, "forefoot": td.reach_s[1] * 1e3},
@@ -503,6 +556,15 @@ def touchdown_row(c: Comparison, k: int) -> dict:
         row.update({"plate_impulse_ratio": pl.impulse_ratio, "impact_peak_bw": pl.impact_peak_bw,
                     "loading_rate_bw_per_s": pl.loading_rate_bw_per_s,
                     "impact_window_ms": pl.window_s * 1e3, "impact_peak_found": pl.peak})
+    im = c.masses[k] if c.masses else None
+    if im is not None:
+        row["rigid_impact"] = {"m_eff_kg": im.m_eff, "m_eff_pct_body_mass": 100 * im.m_eff / c.body.mass,
+                               "v_n_mps": im.v_n, "p_n_Ns": im.p_n, "p_n_law_Ns": im.p_n_law}
+        if im.fit is not None:
+            f = im.fit
+            row["plate_two_mass"] = {"J1_Ns": f.impulse_1, "t1_ms": f.t1 * 1e3, "t1_on_bound": f.bounded,
+                                     "J2_Ns": f.impulse_2, "contact_ms": f.contact * 1e3, "r2": f.r2,
+                                     "r2_half_sine_alone": f.r2_half_sine, "J1_per_v_n_kg": im.plate_mass}
     side = c.sides.get(td.side)
     if side is not None and k in side.per_step:
         o = side.per_step[k]
@@ -548,12 +610,16 @@ def summary(c: Comparison) -> dict:
         patterns = [td.strike for td, _ in rows]
         mine = [c.points[k] for k, td in enumerate(c.steps.touchdowns) if td.side == side and td.valid_data]
         orders = [td.contact_order for td, _ in rows]
+        firsts = [c.sole[k][0] for k, td in enumerate(c.steps.touchdowns) if td.side == side and td.valid_data]
         out[side] = {"steps": len(rows),
                      "left_out": sum(td.side == side and not td.valid_data for td in c.steps.touchdowns),
                      "strike": max(set(patterns), key=patterns.count),
                      "patterns": {p: patterns.count(p) for p in ("heel", "midfoot", "forefoot")},
                      "impact_points": {p: mine.count(p) for p in STRIKES},
+                     "impact_point_share": {p: mine.count(p) / len(mine) for p in STRIKES},
                      "contact_order": {p: orders.count(p) for p in STRIKES},
+                     "model_sole": {p: firsts.count(p) for p in STRIKES},
+                     "centre_of_pressure": cop_summary([td for td, _ in rows], firsts),
                      "angles_deg_mean": dict(zip(JOINTS, angles[0])),
                      "angles_deg_sd": dict(zip(JOINTS, angles[1])),
                      "segment_angles_deg_mean": dict(zip(SEGMENTS, segments[0])),
@@ -561,10 +627,53 @@ def summary(c: Comparison) -> dict:
                      "foot_strike_angle_deg_mean": float(fsa[0]), "foot_strike_angle_deg_sd": float(fsa[1]),
                      "T_c_point": point, "T_c_mean": float(T_c[0]), "T_c_sd": float(T_c[1]),
                      "plate": plate_summary(c, side),
+                     "impact_mass": mass_summary(c, side),
                      "laws": {law: {"T_c_mean": float(np.mean([r.contact_laws[law].T_c for _, r in rows])),
                                     "impulse_ratio_median": _median([impulse_ratio(r.contact_laws[law]) for _, r in rows]),
                                     "valid": sum(r.contact_laws[law].valid for _, r in rows)}
                               for law in LAWS}}
+    return out
+
+
+def cop_summary(tds: list[Touchdown], firsts: list[str]) -> dict | None:
+    """A side's impact points by the plate's centre of pressure (valid steps; None without a
+    plate): the count of each class, its index's median and 10-90 % range, and how many steps
+    the markers' contact order and the model sole's lower point put in the same class."""
+    index = [td.cop_index for td in tds if td.cop_index is not None]
+    if not index:
+        return None
+    ref = [cop_point(td.cop_index) for td in tds if td.cop_index is not None]
+    orders = [td.contact_order for td in tds if td.cop_index is not None]
+    soles = [f for f, td in zip(firsts, tds) if td.cop_index is not None]
+    return {"points": {p: ref.count(p) for p in STRIKES}, "index_median": float(np.median(index)),
+            "index_10_90": [float(v) for v in np.percentile(index, [10, 90])], "steps": len(ref),
+            "contact_order_agrees": sum(a == b for a, b in zip(orders, ref)),
+            "model_sole_agrees": sum(a == b for a, b in zip(soles, ref)),
+            "contact_order_by_cop": {r: {p: sum(o == p for o, q in zip(orders, ref) if q == r) for p in STRIKES}
+                                     for r in STRIKES if r in ref}}
+
+
+def mass_summary(c: Comparison, side: str) -> dict | None:
+    """A side's rigid effective mass and normal impulse (valid steps with a single impact
+    point; medians) beside the plate's two-mass fit where there is one: J1, J1 / |v_n|, t1
+    (and how many fits put it on its bound: no separate impact pulse), R^2 (median, least)
+    and the half sine's alone."""
+    rows = [im for im, td in zip(c.masses, c.steps.touchdowns) if im is not None and td.side == side and td.valid_data]
+    if not rows:
+        return None
+    mass = c.body.mass
+    out: dict = {"steps": len(rows), "m_eff_kg": float(np.median([r.m_eff for r in rows])),
+           "m_eff_pct_body_mass": float(np.median([100 * r.m_eff / mass for r in rows])),
+           "v_n_mps": float(np.median([r.v_n for r in rows])),
+           "p_n_Ns": float(np.median([r.p_n for r in rows])), "p_n_law_Ns": float(np.median([r.p_n_law for r in rows]))}
+    fits = [(r.fit, r.plate_mass) for r in rows if r.fit is not None]
+    if fits:
+        out["plate"] = {"steps": len(fits), "J1_Ns": float(np.median([f.impulse_1 for f, _ in fits])),
+                        "J1_per_v_n_pct_body_mass": _median([None if m is None else 100 * m / mass for _, m in fits]),
+                        "t1_ms": float(np.median([f.t1 for f, _ in fits]) * 1e3),
+                        "t1_on_bound": sum(f.bounded for f, _ in fits),
+                        "r2_median": float(np.median([f.r2 for f, _ in fits])), "r2_least": min(f.r2 for f, _ in fits),
+                        "r2_half_sine_alone": float(np.median([f.r2_half_sine for f, _ in fits]))}
     return out
 
 

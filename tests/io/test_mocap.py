@@ -25,6 +25,10 @@ def test_files_read_with_their_units_and_rates(run35):
     assert 0.5 < np.nanmedian(run35.markers["R.ASIS"][:, 1]) < 1.5  # metres, not millimetres
     assert np.max(np.abs(run35.force)) > 1000.0  # N, from ezc3d's force-plate calibration
     assert run35.units == "mm" and run25.units == "mm" and not run35.suspect  # read, not cleaned
+    # the centre of pressure in m, within the plate (RBDS: 1.25-3.05 m along X) while loaded
+    for run in (run35, run25):
+        loaded = run.force[:, 1] > 500.0
+        assert run.cop.shape == run.force.shape and np.all((run.cop[loaded, 0] > 1.2) & (run.cop[loaded, 0] < 3.1))
 
 
 def test_marker_maps_are_recognised(run35):
@@ -36,8 +40,8 @@ def test_marker_maps_are_recognised(run35):
 
 
 def test_the_text_writer_read_back_gives_the_trial(run35, tmp_path):
-    """RBDS text layout (mm, 10 significant digits): the same rates, markers and force
-    (tests/measure/test_pipeline.py: and the same touchdowns)."""
+    """RBDS text layout (mm, 10 significant digits): the same rates, markers, force and centre
+    of pressure (tests/measure/test_pipeline.py: and the same touchdowns)."""
     mocap.write_text(run35, tmp_path / "m.txt", tmp_path / "f.txt")
     text = mocap.read(tmp_path / "m.txt", tmp_path / "f.txt")
     assert text.rate == pytest.approx(run35.rate) and text.force_rate == pytest.approx(run35.force_rate)
@@ -45,6 +49,7 @@ def test_the_text_writer_read_back_gives_the_trial(run35, tmp_path):
     for name, xyz in run35.markers.items():  # NaN where the C3D has none (equal_nan)
         np.testing.assert_allclose(text.markers[name], xyz, rtol=1e-9, atol=1e-12)
     np.testing.assert_allclose(text.force, run35.force, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(text.cop, run35.cop, rtol=1e-9, atol=1e-12)
 
 
 def test_require_names_the_missing_markers(run35):

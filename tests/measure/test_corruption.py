@@ -223,7 +223,8 @@ def test_empty_columns_and_cells_are_missing_values(short, static, sound, tmp_pa
 
 
 def test_a_wrong_rate_is_refused_by_the_speed(short, static):
-    refused(damaged(short, rate=1500.0, force_rate=3000.0), static, "never rest on the ground .is the rate, 1500 Hz")
+    refused(damaged(short, rate=1500.0, force_rate=3000.0), static,
+            "neither foot rests on the ground .right: measured 100 %.*is the rate, 1500 Hz")
     # a third of the rate: a third of the true cadence, 171.4 / 3 = 57 steps/min
     refused(damaged(short, rate=50.0, force_rate=100.0), static, "the touchdowns give a cadence of 57 steps/min")
 

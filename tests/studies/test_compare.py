@@ -22,17 +22,18 @@ from formopt.studies.compare import (
 BODY = scaled_body(62.0, 1.81)
 
 
-def touchdown(foot_deg: float, order: str, omega_foot: float = 0.0) -> Touchdown:
-    """A touchdown with the foot at foot_deg relative to standing (shank vertical)."""
+def touchdown(foot_deg: float, order: str, omega_foot: float = 0.0, cop: float | None = None) -> Touchdown:
+    """A touchdown with the foot at foot_deg relative to standing (shank vertical); `cop`:
+    the plate's strike index, None without a plate."""
     foot = math.radians(foot_deg)
     segments = {"trunk": 0.1, "thigh": 0.3, "shank": 0.0, "foot": foot}
     angles = {"trunk": 0.1, "hip": 0.4, "knee": 0.3, "ankle": foot}
     return Touchdown(0.0, "R", 10, "midfoot", foot, segments, angles,
                      {"thigh": 0.0, "shank": 0.0, "foot": omega_foot}, (3.5, -0.6), 0.9,
-                     {"heel": (0.0, 0.9), "forefoot": (0.0, 0.9)}, contact_order=order)
+                     {"heel": (0.0, 0.9), "forefoot": (0.0, 0.9)}, contact_order=order, cop_index=cop)
 
 
-def test_the_lower_point_of_the_model_sole_is_the_impact_point():
+def test_the_model_sole_puts_its_lower_point_first():
     sole = sole_function(BODY)
     heel, fore = (np.array(BODY["foot"].landmarks[p]) for p in ("heel", "forefoot"))
     length = float(np.linalg.norm(fore - heel))  # the sole, heel to metatarsal heads
@@ -40,21 +41,28 @@ def test_the_lower_point_of_the_model_sole_is_the_impact_point():
         z_heel, z_fore, _, _ = np.asarray(sole(touchdown(deg, "heel").state()), float).ravel()
         # by hand: the forefoot stands L sin(foot angle) above the heel (sole flat in the foot)
         assert z_fore - z_heel == pytest.approx(length * math.sin(math.radians(deg)), abs=1e-12)
-        point, first, _ = impact_point(sole, touchdown(deg, "heel"))
-        assert point == first == ("heel" if deg > 0 else "forefoot")
+        assert impact_point(sole, touchdown(deg, "heel"))[1] == ("heel" if deg > 0 else "forefoot")
 
 
-def test_flat_only_when_the_model_and_the_markers_agree():
+def test_the_impact_point_is_the_plate_s_where_there_is_one_else_the_markers():
     sole = sole_function(BODY)
-    # 0.3 deg: the forefoot 1 mm above the heel, approaching at 0.6 m/s: down in under 2 ms
-    point, first, follows = impact_point(sole, touchdown(0.3, "flat"))
-    assert first == "heel" and follows < FLAT_S and point == "flat"
-    assert impact_point(sole, touchdown(0.3, "heel"))[0] == "heel"  # the markers disagree
-    assert impact_point(sole, touchdown(12.0, "flat"))[0] == "heel"  # the model disagrees
-    # a flat step is modelled with its sole on the ground
-    x = modelled_state(touchdown(0.3, "flat"), "flat")
-    z_heel, z_fore, _, _ = np.asarray(sole(x), float).ravel()
-    assert z_heel == pytest.approx(z_fore, abs=1e-12)
+    # a foot 3 deg toe up that lands on its lateral metatarsal: the model's sole says heel
+    assert impact_point(sole, touchdown(3.0, "forefoot"))[:2] == ("forefoot", "heel")
+    assert impact_point(sole, touchdown(3.0, "flat"))[0] == "flat"
+    # the plate's centre of pressure wins over the markers: thirds of the heel-forefoot line
+    for cop, point in ((0.9, "forefoot"), (0.5, "flat"), (0.1, "heel")):
+        assert impact_point(sole, touchdown(3.0, "heel", cop=cop))[0] == point
+
+
+def test_a_step_is_modelled_with_its_impact_point_on_the_ground():
+    """A flat step, or a forefoot step whose sagittal foot angle holds the forefoot above the
+    heel, is modelled with its sole level; a step whose point is the model's lower one as
+    measured."""
+    sole = sole_function(BODY)
+    for deg, point, level in ((0.3, "flat", True), (3.0, "forefoot", True), (3.0, "heel", False),
+                              (-5.0, "forefoot", False), (-5.0, "heel", True)):
+        z_heel, z_fore, _, _ = np.asarray(sole(modelled_state(touchdown(deg, point), point)), float).ravel()
+        assert (abs(z_heel - z_fore) < 1e-12) == level
 
 
 def side(saving: float, uncertainty: float, valid: bool = True) -> SideOptimum:
@@ -99,21 +107,23 @@ def t35():
 
 
 def test_the_coulomb_mode_is_followed_past_its_boundary(t35):
-    """RBDS001 T35, left: the optimum in the reference's mode is held by that mode's region;
-    solved again across it, the kept optimum is lower and its T_c is the true Coulomb law's
-    (the checked impact, mode switches and all), not a mode's closed form extrapolated."""
+    """RBDS001 T35, left, read as a heel strike (its model sole's lower point; the plate says
+    forefoot): the optimum in the reference's mode is held by that mode's region; solved again
+    across it, the kept optimum is lower and its T_c is the true Coulomb law's (the checked
+    impact, mode switches and all), not a mode's closed form extrapolated."""
+    from formopt.mechanics.impact import Impact
     from formopt.optim.posture import PostureProblem
     o = t35.sides["L"]
-    law = t35.results[o.steps[0]].law
-    pp = PostureProblem(_model(t35), o.point, o.reference,
-                        o.problem, 0.0, 0.8, law=law)
-    fixed = pp.solve_fixed()
+    reference = np.mean([modelled_state(t35.steps.touchdowns[k], "heel") for k in o.steps], axis=0)
+    pp = PostureProblem(_model(t35), "heel", reference, o.problem, 0.0, 0.8, law="coulomb")
+    fixed, optimum = pp.solve_fixed(), pp.solve()
     assert any(c.name.startswith("coulomb_mode_") for c in fixed.held_by)
-    assert o.optimum.objective < fixed.objective - 1e-3
-    assert not any(c.name.startswith("coulomb_mode_") for c in o.optimum.held_by)
-    assert o.optimum.impact.T_c == pytest.approx(o.optimum.objective, rel=1e-6)
+    assert optimum.objective < fixed.objective - 1e-3
+    assert not any(c.name.startswith("coulomb_mode_") for c in optimum.held_by)
+    assert optimum.impact.T_c == pytest.approx(optimum.objective, rel=1e-6)
     # the saving is measured against the reference's T_c under the law itself
-    assert o.optimum.reference_objective == pytest.approx(o.checked.T_c, rel=1e-6)
+    checked = Impact(_model(t35), "heel", 0.0, 0.8, law="coulomb")(reference)
+    assert optimum.reference_objective == pytest.approx(checked.T_c, rel=1e-6)
 
 
 def _model(c):
@@ -131,8 +141,7 @@ def test_each_side_is_its_own_and_every_step_has_its_impact_point(t35):
 
 
 def test_a_flat_step_is_its_sequence_below_the_rigid_flat_impact():
-    """RBDS001 T25's flat steps (the model and the markers agree both points are down within
-    FLAT_S): the landing from each step's state puts the first point down (its T_c the impact
+    """RBDS001 T25's steps whose model sole puts both points down within FLAT_S: the landing from each step's state puts the first point down (its T_c the impact
     map's at that point), the second within a few ms, and absorbs in all no more than the
     rigid flat impact (both points pinned at once) and no less than the first impact."""
     from helpers import DATA
@@ -150,7 +159,8 @@ def test_a_flat_step_is_its_sequence_below_the_rigid_flat_impact():
     body = scaled_body(62.0, 1.81)
     model, sole = build_model(body, "leg"), sole_function(body)
     lm = LandingModel(model, law="coulomb", compiled=False)
-    flats = [(td, first) for td in m.steps.valid for p, first, _ in [impact_point(sole, td)] if p == "flat"][:6]
+    flats = [(td, first) for td in m.steps.valid for _, first, follows in [impact_point(sole, td)]
+             if follows <= FLAT_S][:6]
     assert len(flats) == 6
     for td, first in flats:
         seq = flat_sequence(lm, first, td.state(), 0.8)
@@ -158,3 +168,16 @@ def test_a_flat_step_is_its_sequence_below_the_rigid_flat_impact():
         assert seq.first_J == pytest.approx(Impact(model, first, 0.0, 0.8, law="coulomb")(td.state()).T_c, rel=1e-6)
         assert 0 < seq.second_ms < 5.0
         assert seq.first_J < seq.total_J <= rigid * 1.01
+
+
+def test_the_effective_mass_gives_the_frictionless_impact(t35):
+    """Each touchdown's m_eff = 1 / W_nn and approach v_n against the projection's own
+    frictionless impact (a normal-only contact: p_n = m_eff |v_n|, T_c = m_eff v_n^2 / 2);
+    the plate's two-mass fit beside every step of the trial with forces, its R^2 above the
+    body's half sine alone."""
+    assert len(t35.masses) == len(t35.results)
+    for im, r in zip(t35.masses, t35.results):
+        free = r.contact_laws["frictionless"]
+        assert im.p_n == pytest.approx(sum(v[1] for v in free.impulse.values()), rel=1e-6)
+        assert free.T_c == pytest.approx(0.5 * im.m_eff * im.v_n ** 2, rel=1e-6)
+        assert im.fit is not None and im.fit.r2 >= im.fit.r2_half_sine
