@@ -4,6 +4,8 @@ what is wrong, or succeeds (or exits 1 with its reason) with finite numbers."""
 
 import copy
 import dataclasses
+import errno
+import io
 import json
 import math
 import os
@@ -221,6 +223,52 @@ def test_a_torn_last_row_is_repaired_on_resume(tmp_path, capsys):
     assert main(sweep_args(torn)) == 0
     assert "torn last row" in capsys.readouterr().err
     assert sorted(rows(torn)) == sorted(rows(whole))
+
+
+class FullDisk(io.RawIOBase):
+    """A file whose disk fills after `flushes` whole writes: the next is cut halfway (a torn
+    row), then ENOSPC."""
+
+    def __init__(self, fd, flushes):
+        self.file, self.flushes = io.FileIO(fd, "w"), flushes
+
+    def writable(self):
+        return True
+
+    def write(self, data):
+        if self.flushes < 0:
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        self.flushes -= 1
+        return self.file.write(data if self.flushes >= 0 else bytes(data)[:len(data) // 2])
+
+    def close(self):
+        self.file.close()
+        super().close()
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_a_full_disk_ends_the_sweep_in_one_line_and_the_same_command_resumes(tmp_path, capsys,
+                                                                           monkeypatch, workers):
+    """ENOSPC while rows are appended: exit 2 in one line, the pool ended, the rows written
+    kept; the same command on a disk with room repairs the torn row and finishes (issue 37)."""
+    out = tmp_path / "sweep.csv"
+    opened = sweep.append_csv
+
+    def full(path, header):
+        fh, done, torn = opened(path, header)
+        fd = os.dup(fh.fileno())  # the same open file (and lock), written through a full disk
+        fh.close()
+        return io.TextIOWrapper(io.BufferedWriter(FullDisk(fd, 1)), newline=""), done, torn
+
+    monkeypatch.setattr(sweep, "append_csv", full)
+    assert main(sweep_args(out, points=12, workers=workers)) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "No space left on device" in err[0], err
+    written = rows(out)
+    assert 1 < len(written) < 13 and not out.read_text().endswith("\n")  # some rows, the last torn
+    monkeypatch.setattr(sweep, "append_csv", opened)
+    assert main(sweep_args(out, points=12, workers=workers)) == 0
+    assert len(rows(out)) == 13 and len(set(rows(out))) == 13
 
 
 def test_ctrl_c_ends_with_one_line_and_the_same_command_resumes(tmp_path, capsys, monkeypatch):
@@ -472,3 +520,22 @@ def test_an_empty_out_is_refused_not_taken_for_the_default(tmp_path, capsys, mon
     monkeypatch.chdir(tmp_path)
     assert check([*argv, "--out", ""], capsys, json_out=False) == 2
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("name, content", [("s.png", None), ("s", None), ("binary.csv", bytes(range(256)) * 8)])
+def test_a_sweep_writes_only_a_csv_it_owns(tmp_path, capsys, name, content):
+    """A figure's name is the CSV's with the figure's suffix: --out s.png would write the CSV,
+    then the figure over it; a binary file is not a sweep to resume (issue 37)."""
+    out = tmp_path / name
+    if content is not None:
+        out.write_bytes(content)
+    assert check(sweep_args(out, points=2), capsys, json_out=False) == 2
+    assert (out.read_bytes() if content is not None else out.exists()) == (content or False)
+
+
+@pytest.mark.parametrize("redirect", [">/dev/full", ">&-"])
+def test_a_full_or_closed_stdout_is_one_line_and_exit_2(redirect):
+    """Nowhere to print the answer: one line on stderr, exit 2, no traceback (issue 37)."""
+    done = subprocess.run(f"{sys.executable} -m formopt.cli impact heel_strike {redirect}", shell=True,
+                          stderr=subprocess.PIPE, text=True)
+    assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1, done.stderr

@@ -140,7 +140,11 @@ def append_csv(path, header: list[str]):
     try:
         _lock(fh, path)
         fh.seek(0)
-        text = fh.read()
+        try:
+            text = fh.read()
+        except UnicodeDecodeError:  # a binary file (an image, an archive): not a sweep's CSV
+            raise OutputError(f"{path}: holds something else than this sweep (not text); give "
+                              "another --out or remove it") from None
         first = text.split("\n", 1)[0]
         if text and ("\n" not in text or next(csv.reader([first]), []) != list(header)):
             first = first.rstrip("\r")[:80]
@@ -180,6 +184,8 @@ def append_rows(fh, path, rows) -> None:
         csv.writer(fh).writerows(rows)
         fh.flush()
     except OSError as err:
+        with contextlib.suppress(OSError):  # the rows still buffered cannot be written either:
+            fh.close()  # closed now (raw file closed), so the caller's close does not raise again
         raise OutputError(f"{path}: cannot append ({err.strerror}); the rows written so far "
                           "are kept and the same command resumes") from None
 
