@@ -8,7 +8,9 @@ import errno
 import io
 import json
 import math
+import multiprocessing
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -226,8 +228,8 @@ def test_a_torn_last_row_is_repaired_on_resume(tmp_path, capsys):
 
 
 class FullDisk(io.RawIOBase):
-    """A file whose disk fills after `flushes` whole writes: the next is cut halfway (a torn
-    row), then ENOSPC."""
+    """A file whose disk fills after `flushes` whole writes: the next loses its last bytes (a
+    torn row), then ENOSPC."""
 
     def __init__(self, fd, flushes):
         self.file, self.flushes = io.FileIO(fd, "w"), flushes
@@ -239,7 +241,7 @@ class FullDisk(io.RawIOBase):
         if self.flushes < 0:
             raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
         self.flushes -= 1
-        return self.file.write(data if self.flushes >= 0 else bytes(data)[:len(data) // 2])
+        return self.file.write(data if self.flushes >= 0 else bytes(data)[:-3])
 
     def close(self):
         self.file.close()
@@ -264,8 +266,9 @@ def test_a_full_disk_ends_the_sweep_in_one_line_and_the_same_command_resumes(tmp
     assert main(sweep_args(out, points=12, workers=workers)) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "No space left on device" in err[0], err
+    assert not multiprocessing.active_children()  # the pool ended with the sweep
     written = rows(out)
-    assert 1 < len(written) < 13 and not out.read_text().endswith("\n")  # some rows, the last torn
+    assert len(written) > 1 and not out.read_bytes().endswith(b"\n")  # some rows, the last torn
     monkeypatch.setattr(sweep, "append_csv", opened)
     assert main(sweep_args(out, points=12, workers=workers)) == 0
     assert len(rows(out)) == 13 and len(set(rows(out))) == 13
@@ -410,6 +413,18 @@ def test_mutated_marker_maps_load_or_are_refused_in_one_line(tmp_path, path, act
         assert "\n" not in str(err) and "map.toml" in str(err)
 
 
+@pytest.mark.parametrize("table, key, value, error", [
+    ("leg", "thigh", MAP["leg"]["shank"], "leg.shank: 'R.Shank.Top.Lateral' (side R) is in leg.thigh"),
+    ("sides", "L", "R.", "leg.thigh: 'R.Thigh.Top.Lateral' (side L) is in leg.thigh (side R)")])
+def test_a_marker_shared_by_two_segments_is_refused(tmp_path, table, key, value, error):
+    """A thigh cluster that is the shank's markers gave angles (issue 37): a marker tracks one
+    segment (both legs under one prefix share every marker)."""
+    data = copy.deepcopy(MAP)
+    data[table][key] = value
+    with pytest.raises(InputError, match=re.escape(error)):
+        markerset.load(write(tmp_path, data, "shared.toml"))
+
+
 # -- the numeric API and sweep parameters: the same acceptance rule (issue 25) ---------------
 
 NUMBERS = st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integers(-10**6, 10**6),
@@ -539,3 +554,40 @@ def test_a_full_or_closed_stdout_is_one_line_and_exit_2(redirect):
     done = subprocess.run(f"{sys.executable} -m formopt.cli impact heel_strike {redirect}", shell=True,
                           stderr=subprocess.PIPE, text=True)
     assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1, done.stderr
+
+
+@pytest.mark.parametrize("argv, use", [
+    (["impact", "stride"], "formopt stride"), (["simulate", "stride"], "formopt stride"),
+    (["solve", "stride"], "formopt stride"), (["solve", "heel_strike"], "formopt simulate"),
+    (["sweep", "stride", "--landings", "--param", "speed_mps=3:3.5:2"], "formopt stride"),
+    (["stride", "demo"], "formopt solve"), (["stride", "landing_spring"], "formopt simulate"),
+    (["bench", "stride"], "unrecognized arguments: stride")])
+def test_a_command_refuses_a_scene_it_cannot_take_naming_the_one_to_use(tmp_path, capsys, argv, use):
+    """Every command takes every scene kind or refuses it in one line, before any work (issue 37)."""
+    monkey_out = ["--out", str(tmp_path / ("s.csv" if argv[0] == "sweep" else "o"))]
+    assert main([*argv, *(monkey_out if argv[0] != "impact" else [])]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and use in err[0], err
+    assert not list(tmp_path.iterdir())  # refused before anything is written
+
+
+def test_an_objective_weight_beyond_its_range_is_refused(tmp_path, capsys):
+    """1e308 overflowed the objective to inf and its JSON report to a traceback (issue 37)."""
+    data = copy.deepcopy(SCENES["demo.toml"])
+    data["optimize"]["objective"]["T_c"] = 1e308
+    assert check(["solve", str(write(tmp_path, data)), "--json", "--out", str(tmp_path / "o")], capsys) == 2
+
+
+@pytest.mark.parametrize("argv, option", [
+    (["stride", "stride", "--speed", "abc"], "argument --speed: invalid float value: 'abc'"),
+    (["sweep", "demo", "--param", "knee_deg=0:1:2", "--workers", "two"], "argument --workers"),
+    (["compare", "--mass"], "argument --mass: expected one argument"),
+    (["solve"], "required: scene"), (["nosuch"], "invalid choice: 'nosuch'"),
+    (["sweep", "landing_spring", "--param", "ankle_deg=-12:-8:2", "--scheduler", " "], "--scheduler ''")])
+def test_an_option_argparse_refuses_is_one_line_naming_it(tmp_path, monkeypatch, capsys, argv, option):
+    """No usage dump: one line naming the option, exit 2, before any work (issue 37)."""
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("formopt: error: ") and option in err[0], err
+    assert not list(tmp_path.iterdir())

@@ -40,8 +40,18 @@ COMMANDS = ("impact", "solve", "simulate", "sweep", "compare", "bench", "stride"
 SCENE_COMMANDS = ("impact", "solve", "simulate", "sweep", "stride")  # SCENE: a file or a shipped name
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's own errors (an unknown option, `--speed abc`) in one line naming the option
+    and exit 2, as every bad input; the usage is what `--help` shows."""
+
+    def error(self, message: str):
+        from ..mechanics.errors import InputError
+
+        raise InputError(f"{message} (`{self.prog} --help` lists the options)")
+
+
 def parser() -> argparse.ArgumentParser:
-    top = argparse.ArgumentParser(prog="formopt", description="The running form that wastes "
+    top = _Parser(prog="formopt", description="The running form that wastes "
                                   "the least energy at foot strike.")
     top.add_argument("--version", action="version", version=f"formopt {__version__}")
     commands = top.add_subparsers(dest="command", required=True)
@@ -148,15 +158,18 @@ def _watchdog(ended: threading.Event) -> None:
 
 
 def _run(argv) -> int:
-    from ..api import scene_path
+    from ..api import load, scene_path
     from ..io.files import OutputError
     from ..mechanics.errors import InputError
     from ..mechanics.landing import Diverged
+    from .common import check_kind
 
-    args = parser().parse_args(argv)
+    args = None
     try:
-        if args.command in SCENE_COMMANDS:
+        args = parser().parse_args(argv)
+        if args.command in SCENE_COMMANDS:  # a scene the command cannot take: refused here
             args.scene = str(scene_path(args.scene))
+            check_kind(args.command, load(args.scene), getattr(args, "landings", False))
         status = import_module(f".{args.command}", __name__).run(args)
         sys.stdout.flush()  # a closed pipe or a full disk shows here, not at the interpreter's exit
         return status

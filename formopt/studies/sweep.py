@@ -190,6 +190,9 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
     """
     path = Path(path)
     check_grid(params)
+    if scheduler is not None and not scheduler.strip():  # not "no scheduler": a missing address
+        raise InputError("--scheduler '': give the Dask scheduler's address (e.g. tcp://10.0.0.5:8786), "
+                         "or leave the option out to run on local processes")
     names = [n for n, _ in params]
     kind = kind_of(scene, params, landings)
     work, size = kind.work, kind.chunk
