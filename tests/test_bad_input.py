@@ -5,6 +5,7 @@ what is wrong, or succeeds (or exits 1 with its reason) with finite numbers."""
 import copy
 import dataclasses
 import errno
+import functools
 import io
 import json
 import math
@@ -25,7 +26,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from formopt.cli import main
-from formopt.io import markerset
+from formopt.io import markerset, mocap
 from formopt.mechanics.errors import InputError
 from formopt.studies import sweep
 
@@ -323,6 +324,7 @@ def test_a_newline_in_a_file_name_stays_on_one_line(tmp_path, capsys):
 # -- compare scenes and marker maps: the same vocabulary as scenes (issue 25) -------------------
 
 RUN35, STATIC = DATA / "rbds" / "RBDS001runT35.c3d", DATA / "rbds" / "RBDS001static.c3d"
+RUN25, FORCES25 = DATA / "rbds" / "RBDS001runT25markers.txt", DATA / "rbds" / "RBDS001runT25forces.txt"
 COMPARE = f'[compare]\nmass = 62\nheight = 1.81\nstatic = "{STATIC}"\n'
 ONE_TRIAL = f'[[trial]]\ntrial = "{RUN35}"\n'
 
@@ -591,3 +593,117 @@ def test_an_option_argparse_refuses_is_one_line_naming_it(tmp_path, monkeypatch,
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("formopt: error: ") and option in err[0], err
     assert not list(tmp_path.iterdir())
+
+
+# -- the command line's own options, damaged trial files (issue 37) ---------------------------
+
+BAD_VALUES = st.sampled_from(["abc", "", " ", "nan", "inf", "-inf", "1e999", "-5", "ü\nx"])
+
+
+def typed_options() -> dict[str, list[str]]:
+    """Each command's options that take a typed or chosen value (argparse's own parser)."""
+    from formopt.cli import parser
+
+    top = parser()
+    commands = next(a for a in top._actions if isinstance(a.choices, dict)).choices
+    return {name: [a.option_strings[-1] for a in cmd._actions if a.option_strings and (a.type or a.choices)]
+            for name, cmd in commands.items()}
+
+
+def base_argv(command: str, folder, trial: str = "no_trial.c3d") -> list[str]:
+    """A command line that would run, with a bad option to come (compare: `trial`)."""
+    return {"impact": ["impact", "heel_strike", "--json"],
+            "solve": ["solve", "demo", "--out", str(folder / "o")],
+            "simulate": ["simulate", "landing_spring", "--out", str(folder / "o")],
+            "sweep": ["sweep", "landing_spring", "--param", "ankle_deg=-12:-8:2", "--no-progress",
+                      "--out", str(folder / "s.csv")],
+            "compare": ["compare", "--trial", trial, "--static", str(STATIC), "--mass", "62", "--height",
+                        "1.81", "--no-per-step", "--no-stride", "--starts", "1", "--out", str(folder / "o")],
+            "bench": ["bench", "--quick", "--out", str(folder / "o")],
+            "stride": ["stride", "stride", "--out", str(folder / "o")],
+            "scenes": ["scenes"]}[command]
+
+
+@st.composite
+def bad_options(draw, folder_name="f"):
+    """(command, the option and its bad value): a typed option with a value it cannot take, an
+    unknown option, an option without its value, or sweep's --scheduler without an address."""
+    options = typed_options()
+    command = draw(st.sampled_from(sorted(options)))
+    kind = draw(st.sampled_from(["typed", "typed", "unknown", "dangling", "scheduler"]))
+    if kind == "typed" and options[command]:
+        return command, [draw(st.sampled_from(options[command])), draw(BAD_VALUES)]
+    if kind == "scheduler" and command == "sweep":
+        return command, ["--scheduler", draw(st.sampled_from(["", " ", "\t"]))]
+    return command, ["--nosuch", "1"] if kind != "dangling" or not options[command] else [options[command][-1]]
+
+
+@FAST
+@given(case=bad_options())
+def test_a_bad_option_is_one_line_naming_it_before_any_work(tmp_path, capsys, case):
+    """argparse's own errors (`--speed abc`) and the options' ranges: exit 2 in one line, no
+    usage dump, before any work (compare's trial is missing: nothing is read)."""
+    command, bad = case
+    assert check([*base_argv(command, tmp_path), *bad], capsys, json_out=False) == 2
+
+
+@st.composite
+def damaged_text_trial(draw):
+    """(file, damage, column, rows): one column of RBDS001 T25's first 300 frames (markers) or
+    600 samples (forces) damaged in some rows, or the file cut."""
+    which = draw(st.sampled_from(["markers", "forces"]))
+    damage = draw(st.sampled_from(["nan", "empty", "text", "huge", "inf", "zero", "negative",
+                                   "times 1e-3", "times 1e3", "cut rows", "cut columns", "no rows"]))
+    return which, damage, draw(st.integers(0, 30)), draw(st.sampled_from(["all", "half", "one"]))
+
+
+def write_damaged(folder, case) -> tuple:
+    """The damaged pair of text files (markers, forces) of `case` (damaged_text_trial)."""
+    which, damage, column, rows = case
+    out = []
+    for name, source, count in (("markers", RUN25, 301), ("forces", FORCES25, 601)):
+        cells = [line.split("\t") for line in source.read_text().splitlines()[:count]]
+        if name == which:
+            k = column % len(cells[0])
+            chosen = range(1, len(cells)) if rows == "all" else range(1, len(cells), 2) if rows == "half" else [50]
+            for r in chosen:
+                cell = cells[r][k]
+                cells[r][k] = {"nan": "nan", "empty": "", "text": "x", "huge": "1e300", "inf": "inf",
+                               "zero": "0", "negative": f"-{cell}",
+                               "times 1e-3": f"{float(cell or 'nan') * 1e-3:g}",
+                               "times 1e3": f"{float(cell or 'nan') * 1e3:g}"}.get(damage, cell)
+            cells = cells[:len(cells) // 3] if damage == "cut rows" else cells[:1] if damage == "no rows" \
+                else [c[:k] for c in cells] if damage == "cut columns" else cells
+        path = folder / f"{name}.txt"
+        path.write_text("\n".join("\t".join(c) for c in cells) + "\n")
+        out.append(path)
+    return tuple(out)
+
+
+def measured_or_refused(folder, case, static) -> str:
+    """Read and measure a damaged trial: "measured", or the refusal's class (one line naming
+    one of its files, or not)."""
+    from formopt.measure import measure
+
+    markers, forces = write_damaged(folder, case)
+    try:
+        measure(mocap.read(markers, forces), static, 1.81)
+    except InputError as refusal:
+        named = str(refusal).startswith((str(markers), str(forces), static.source))
+        return "refused one line" if named and "\n" not in str(refusal) else "refused, not naming its file"
+    return "measured"
+
+
+@settings(FAST, max_examples=15)
+@given(case=damaged_text_trial())
+def test_a_damaged_text_trial_is_measured_or_refused_naming_its_file(tmp_path, case):
+    """No traceback, no numpy warning, a refusal names the file (issue 37)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert measured_or_refused(tmp_path, case, standing()) in ("measured", "refused one line")
+
+
+@functools.cache
+def standing():
+    """RBDS001's standing trial, read once."""
+    return mocap.read(STATIC)

@@ -28,6 +28,9 @@ UNITS = {"mm": 1e-3, "millimeters": 1e-3, "millimetres": 1e-3, "cm": 1e-2, "dm":
 # A force plate's samples beyond 100 kN are not a runner's (peak vertical forces are 2-3 body
 # weights, about 2-3 kN; RBDS001: 25.2 N/kg at 4.5 m/s): the file's unit or its data is wrong.
 FORCE_LIMIT_N = 1e5
+# A marker coordinate beyond 1000 km (or 1000 km in mm, for a file without units) is not a
+# lab's: a damaged file (1e300 overflowed the cluster sizes to inf, after numpy's warnings).
+MARKER_LIMIT = 1e6
 
 
 class MocapError(InputError):
@@ -57,12 +60,16 @@ class Trial:
     def check(self) -> None:
         """Refuse, naming the file, a marker rate (or a force rate, with a force) that is not a
         finite number > 0 Hz (every time derivative divides by it), and a force beyond
-        FORCE_LIMIT_N."""
+        FORCE_LIMIT_N or a marker coordinate beyond MARKER_LIMIT."""
         rates = {"marker": self.rate, **({"force": self.force_rate} if self.force is not None else {})}
         for what, rate in rates.items():
             if isinstance(rate, bool) or not isinstance(rate, (int, float, np.number)) or not (math.isfinite(rate)
                                                                                    and rate > 0):
                 raise MocapError(f"{self.source}: the {what} rate {rate!r} Hz must be a finite number > 0")
+        far = [name for name, xyz in self.markers.items() if np.any(np.abs(xyz) > MARKER_LIMIT)]
+        if far:
+            raise MocapError(f"{self.source}: marker {far[0]} lies beyond {MARKER_LIMIT:g} (in the file's "
+                             "unit, or m): a damaged file")
         beyond = np.abs(self.force)[np.abs(self.force) > FORCE_LIMIT_N] if self.force is not None else ()
         if len(beyond):
             top = float(np.max(beyond))
@@ -88,7 +95,12 @@ def read(path, forces=None) -> Trial:
     path = Path(path)
     if not path.exists():
         raise MocapError(f"{path}: no such file")
-    return read_c3d(path) if path.suffix.lower() == ".c3d" else read_text(path, forces)
+    if path.suffix.lower() != ".c3d":
+        return read_text(path, forces)
+    if forces is not None:  # not silently ignored: the C3D's own plates are what is read
+        raise MocapError(f"{path}: a C3D file holds its force plates; a force file ({forces}) goes "
+                         "with a text trial only")
+    return read_c3d(path)
 
 
 def read_c3d(path) -> Trial:
