@@ -550,6 +550,18 @@ def test_a_sweep_writes_only_a_csv_it_owns(tmp_path, capsys, name, content):
     assert (out.read_bytes() if content is not None else out.exists()) == (content or False)
 
 
+@pytest.mark.parametrize("dangling", [True, False])
+def test_a_sweep_never_writes_through_a_link(tmp_path, capsys, dangling):
+    """--out a symbolic link: appending would write to the file it points to, outside the
+    user's choice (a dangling link's target created, issue 37's campaign)."""
+    outside, out = tmp_path / "outside.csv", tmp_path / "s.csv"
+    if not dangling:
+        outside.write_text("mine\n")
+    out.symlink_to(outside)
+    assert check(sweep_args(out, points=2), capsys, json_out=False) == 2
+    assert (outside.read_text() == "mine\n") if not dangling else not outside.exists()
+
+
 @pytest.mark.parametrize("redirect", [">/dev/full", ">&-"])
 def test_a_full_or_closed_stdout_is_one_line_and_exit_2(redirect):
     """Nowhere to print the answer: one line on stderr, exit 2, no traceback (issue 37)."""
