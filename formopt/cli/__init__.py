@@ -51,8 +51,8 @@ class _Parser(argparse.ArgumentParser):
 
 
 def parser() -> argparse.ArgumentParser:
-    top = _Parser(prog="formopt", description="The running form that wastes "
-                                  "the least energy at foot strike.")
+    top = _Parser(prog="formopt", description="The running form that wastes the least energy at "
+                                              "foot strike.")
     top.add_argument("--version", action="version", version=f"formopt {__version__}")
     commands = top.add_subparsers(dest="command", required=True)
     for name in COMMANDS:

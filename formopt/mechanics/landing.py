@@ -54,9 +54,9 @@ DIVERGED = 1e-4  # energy-balance drift, relative to the touchdown kinetic energ
 # and contact constraints within DRIFT_M (10 um, a hundredth of a marker's precision; the
 # adaptive integrator keeps them within 1e-10 m, rk4 within 2e-6 m up to dt 5 ms, midpoint
 # drifts 1.4e-5 m at dt 2 ms on landing_heel, issue 37), and the energy balance within BUDGET of
-# the energy the impacts absorbed
-# (the balance's error bounds how much of T_c_total is the integrator's, not the body's; 1 %
-# is below the 6-20 % by which the segment rates' filter moves T_c; design.md section 6).
+# the energy the impacts absorbed (the balance's error bounds how much of T_c_total is the
+# integrator's, not the body's; 1 % is below the 6-20 % by which the segment rates' filter
+# moves T_c, design.md section 6).
 DRIFT_M = 1e-5
 BUDGET = 0.01
 SINK = 1e-7  # m: how far below the ground a point let go where it stood strikes again
