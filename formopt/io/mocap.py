@@ -174,7 +174,8 @@ def read_text(path, forces=None) -> Trial:
     if header[0] != "Time" or (len(header) - 1) % 3 or data.shape[1] != len(header) or len(data) < 2:
         raise MocapError(f"{path}: expected 'Time' then NAMEX NAMEY NAMEZ columns and at least 2 rows")
     time = data[:, 0]
-    step = np.diff(time)
+    with np.errstate(invalid="ignore"):  # inf - inf: refused just below, without numpy's warning
+        step = np.diff(time)
     if not np.all(np.isfinite(time)) or np.any(step <= 0):
         bad = int(np.flatnonzero(~(step > 0))[0]) + 2 if np.any(~(step > 0)) else 1
         raise MocapError(f"{path}: the Time column does not increase (row {bad})")
