@@ -2,9 +2,13 @@
 outcome. Classes: scenes through every command, compare scenes (`formopt compare --scene`),
 marker maps (io.markerset.load), sweep parameters (sweep.parse_param and check_grid, the
 checks a sweep makes before any work) and the numeric API (solve's settings, simulate_state,
-Impact on any ground).
+Impact on any ground); and (issue 37) the command line's own options (a typed option's bad
+value, an unknown or dangling option, --scheduler without an address), every scene command on
+every shipped scene kind, a sweep's --out and `scenes copy`'s DIR holding a binary file, a
+folder or a dangling link (a data file replaced or a write through a link counted apart), and
+RBDS001's text trial files damaged (read and measured).
 
-    python benchmarks/fuzz_campaign.py [--scale 1.0] [--only scenes,compare,maps,params,api]
+    python benchmarks/fuzz_campaign.py [--scale 1.0] [--only scenes,compare,maps,params,api,options,kinds,outputs,mocap]
     python benchmarks/fuzz_campaign.py --only scenes:solve   # one command's scene mutants
 
 Counts per class: "exit 2 one line" (a command) or "refused one line" (a function's
@@ -21,6 +25,7 @@ import io
 import signal
 import sys
 import tempfile
+import time
 import traceback
 import warnings
 from pathlib import Path
@@ -80,6 +85,8 @@ def counted(label, count, strategy, run):
             signal.setitimer(signal.ITIMER_REAL, 0)
         if outcome == "exit 2":
             outcome = "exit 2 one line" if len(err.getvalue().strip().splitlines()) == 1 else "exit 2, several lines"
+        if outcome.startswith(("exit 2", "refused")) and w:  # a warning printed before the refusal
+            outcome = "refused after a warning"
         outcomes[outcome] += 1
 
     one()
@@ -135,8 +142,80 @@ def numeric_api(n, folder):
             lambda call: attack.call_api(*call, context) is not None and "success")
 
 
+def options(n, folder):
+    """A typed option with a bad value, an unknown or dangling option, --scheduler without an
+    address, on a command line that would otherwise run (compare on RBDS001 T35)."""
+    counted("options", n(600), attack.bad_options(), lambda case: command(
+        [*attack.base_argv(case[0], folder, str(attack.RUN35)), *case[1]]))
+
+
+def scene_kinds(n, folder):
+    """Every scene command on every shipped scene (a stride's own solve left out: minutes)."""
+    pairs = [(cmd, name) for cmd in ("impact", "simulate", "solve", "sweep --landings", "stride")
+             for name in sorted(attack.SCENES) if not (cmd == "stride" and "stride" in attack.SCENES[name])]
+
+    def run(pair):
+        cmd, name = pair
+        extra = (["--param", "friction=0.7:0.8:2", "--no-progress", "--workers", "1", "--out",
+                  str(folder / f"k{time.monotonic_ns()}.csv")] if cmd.startswith("sweep") else
+                 ["--json"] if cmd == "impact" else ["--json", "--out", str(folder / "k")])
+        return command([*cmd.split(), str(attack.SHIPPED / name), *extra,
+                        *(["--starts", "1"] if cmd == "solve" else [])])
+    counted("scene kinds", min(n(len(pairs)), len(pairs)), st.sampled_from(pairs), run)
+
+
+def outputs(n, folder):
+    """What a sweep's --out and `scenes copy`'s DIR may hold: the data file is never replaced
+    by a figure, nothing is written through a link (counted as "destroyed" or "escaped")."""
+    def sweep_out(case):
+        name, holds = case
+        out = folder / f"o{time.monotonic_ns()}" / name
+        out.parent.mkdir()
+        outside = folder / f"outside{time.monotonic_ns()}"
+        if holds == "binary":
+            out.write_bytes(bytes(range(256)) * 4)
+        elif holds == "dangling link":
+            out.symlink_to(outside)
+        outcome = command(["sweep", str(attack.SPRING), "--param", "ankle_deg=-12:-8:2", "--no-progress",
+                           "--workers", "1", "--out", str(out)])
+        if outside.exists():
+            return "success, wrote through a link"
+        if outcome == "exit 0" and not out.read_bytes().startswith(b"ankle_deg,"):
+            return "success, the data replaced"
+        return outcome
+
+    def copy(case):
+        name, holds = case
+        folder_ = folder / f"d{time.monotonic_ns()}"
+        folder_.mkdir()
+        outside = folder / f"outside{time.monotonic_ns()}"
+        target = folder_ / f"{name}.toml"
+        if holds == "dangling link":
+            target.symlink_to(outside)
+        elif holds == "folder":
+            target.mkdir()
+        elif holds == "file":
+            target.write_text("mine")
+        outcome = command(["scenes", "copy", name, str(folder_)])
+        return "success, wrote through a link" if outside.exists() else outcome
+
+    names = st.sampled_from(["s.csv", "s.png", "s.PNG", "s.svg", "s", "s.csv.png", "s.CSV", "s.pdf"])
+    counted("sweep --out", n(60), st.tuples(names, st.sampled_from(["nothing", "binary", "dangling link"])),
+            sweep_out)
+    counted("scenes copy", n(40), st.tuples(st.sampled_from(sorted(p.removesuffix(".toml") for p in attack.SCENES)),
+                                            st.sampled_from(["nothing", "dangling link", "folder", "file"])), copy)
+
+
+def mocap_files(n, folder):
+    """RBDS001 T25's text files damaged (tests' damaged_text_trial) through read and measure."""
+    static = attack.standing()
+    counted("damaged trial files", n(300), attack.damaged_text_trial(),
+            lambda case: attack.measured_or_refused(folder, case, static))
+
+
 CLASSES = {"scenes": scenes, "compare": compare_scenes, "maps": marker_maps, "params": sweep_params,
-           "api": numeric_api}
+           "api": numeric_api, "options": options, "kinds": scene_kinds, "outputs": outputs,
+           "mocap": mocap_files}
 
 
 def main_():

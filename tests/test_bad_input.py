@@ -4,9 +4,14 @@ what is wrong, or succeeds (or exits 1 with its reason) with finite numbers."""
 
 import copy
 import dataclasses
+import errno
+import functools
+import io
 import json
 import math
+import multiprocessing
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -21,7 +26,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from formopt.cli import main
-from formopt.io import markerset
+from formopt.io import markerset, mocap
 from formopt.mechanics.errors import InputError
 from formopt.studies import sweep
 
@@ -223,6 +228,53 @@ def test_a_torn_last_row_is_repaired_on_resume(tmp_path, capsys):
     assert sorted(rows(torn)) == sorted(rows(whole))
 
 
+class FullDisk(io.RawIOBase):
+    """A file whose disk fills after `flushes` whole writes: the next loses its last bytes (a
+    torn row), then ENOSPC."""
+
+    def __init__(self, fd, flushes):
+        self.file, self.flushes = io.FileIO(fd, "w"), flushes
+
+    def writable(self):
+        return True
+
+    def write(self, data):
+        if self.flushes < 0:
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        self.flushes -= 1
+        return self.file.write(data if self.flushes >= 0 else bytes(data)[:-3])
+
+    def close(self):
+        self.file.close()
+        super().close()
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_a_full_disk_ends_the_sweep_in_one_line_and_the_same_command_resumes(tmp_path, capsys,
+                                                                           monkeypatch, workers):
+    """ENOSPC while rows are appended: exit 2 in one line, the pool ended, the rows written
+    kept; the same command on a disk with room repairs the torn row and finishes (issue 37)."""
+    out = tmp_path / "sweep.csv"
+    opened = sweep.append_csv
+
+    def full(path, header):
+        fh, done, torn = opened(path, header)
+        fd = os.dup(fh.fileno())  # the same open file (and lock), written through a full disk
+        fh.close()
+        return io.TextIOWrapper(io.BufferedWriter(FullDisk(fd, 1)), newline=""), done, torn
+
+    monkeypatch.setattr(sweep, "append_csv", full)
+    assert main(sweep_args(out, points=12, workers=workers)) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "No space left on device" in err[0], err
+    assert not multiprocessing.active_children()  # the pool ended with the sweep
+    written = rows(out)
+    assert len(written) > 1 and not out.read_bytes().endswith(b"\n")  # some rows, the last torn
+    monkeypatch.setattr(sweep, "append_csv", opened)
+    assert main(sweep_args(out, points=12, workers=workers)) == 0
+    assert len(rows(out)) == 13 and len(set(rows(out))) == 13
+
+
 def test_ctrl_c_ends_with_one_line_and_the_same_command_resumes(tmp_path, capsys, monkeypatch):
     out = tmp_path / "sweep.csv"
     calls = []
@@ -272,6 +324,7 @@ def test_a_newline_in_a_file_name_stays_on_one_line(tmp_path, capsys):
 # -- compare scenes and marker maps: the same vocabulary as scenes (issue 25) -------------------
 
 RUN35, STATIC = DATA / "rbds" / "RBDS001runT35.c3d", DATA / "rbds" / "RBDS001static.c3d"
+RUN25, FORCES25 = DATA / "rbds" / "RBDS001runT25markers.txt", DATA / "rbds" / "RBDS001runT25forces.txt"
 COMPARE = f'[compare]\nmass = 62\nheight = 1.81\nstatic = "{STATIC}"\n'
 ONE_TRIAL = f'[[trial]]\ntrial = "{RUN35}"\n'
 
@@ -360,6 +413,18 @@ def test_mutated_marker_maps_load_or_are_refused_in_one_line(tmp_path, path, act
         markerset.load(write(tmp_path, mutant(MAP, path, action, replacement), "map.toml"))
     except InputError as err:
         assert "\n" not in str(err) and "map.toml" in str(err)
+
+
+@pytest.mark.parametrize("table, key, value, error", [
+    ("leg", "thigh", MAP["leg"]["shank"], "leg.shank: 'R.Shank.Top.Lateral' (side R) is in leg.thigh"),
+    ("sides", "L", "R.", "leg.thigh: 'R.Thigh.Top.Lateral' (side L) is in leg.thigh (side R)")])
+def test_a_marker_shared_by_two_segments_is_refused(tmp_path, table, key, value, error):
+    """A thigh cluster that is the shank's markers gave angles (issue 37): a marker tracks one
+    segment (both legs under one prefix share every marker)."""
+    data = copy.deepcopy(MAP)
+    data[table][key] = value
+    with pytest.raises(InputError, match=re.escape(error)):
+        markerset.load(write(tmp_path, data, "shared.toml"))
 
 
 # -- the numeric API and sweep parameters: the same acceptance rule (issue 25) ---------------
@@ -472,3 +537,185 @@ def test_an_empty_out_is_refused_not_taken_for_the_default(tmp_path, capsys, mon
     monkeypatch.chdir(tmp_path)
     assert check([*argv, "--out", ""], capsys, json_out=False) == 2
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("name, content", [("s.png", None), ("s", None), ("binary.csv", bytes(range(256)) * 8)])
+def test_a_sweep_writes_only_a_csv_it_owns(tmp_path, capsys, name, content):
+    """A figure's name is the CSV's with the figure's suffix: --out s.png would write the CSV,
+    then the figure over it; a binary file is not a sweep to resume (issue 37)."""
+    out = tmp_path / name
+    if content is not None:
+        out.write_bytes(content)
+    assert check(sweep_args(out, points=2), capsys, json_out=False) == 2
+    assert (out.read_bytes() if content is not None else out.exists()) == (content or False)
+
+
+@pytest.mark.parametrize("dangling", [True, False])
+def test_a_sweep_never_writes_through_a_link(tmp_path, capsys, dangling):
+    """--out a symbolic link: appending would write to the file it points to, outside the
+    user's choice (a dangling link's target created, issue 37's campaign)."""
+    outside, out = tmp_path / "outside.csv", tmp_path / "s.csv"
+    if not dangling:
+        outside.write_text("mine\n")
+    out.symlink_to(outside)
+    assert check(sweep_args(out, points=2), capsys, json_out=False) == 2
+    assert (outside.read_text() == "mine\n") if not dangling else not outside.exists()
+
+
+@pytest.mark.parametrize("redirect", [">/dev/full", ">&-"])
+def test_a_full_or_closed_stdout_is_one_line_and_exit_2(redirect):
+    """Nowhere to print the answer: one line on stderr, exit 2, no traceback (issue 37)."""
+    done = subprocess.run(f"{sys.executable} -m formopt.cli impact heel_strike {redirect}", shell=True,
+                          stderr=subprocess.PIPE, text=True)
+    assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1, done.stderr
+
+
+@pytest.mark.parametrize("argv, use", [
+    (["impact", "stride"], "formopt stride"), (["simulate", "stride"], "formopt stride"),
+    (["solve", "stride"], "formopt stride"), (["solve", "heel_strike"], "formopt simulate"),
+    (["sweep", "stride", "--landings", "--param", "speed_mps=3:3.5:2"], "formopt stride"),
+    (["stride", "demo"], "formopt solve"), (["stride", "landing_spring"], "formopt simulate"),
+    (["bench", "stride"], "unrecognized arguments: stride")])
+def test_a_command_refuses_a_scene_it_cannot_take_naming_the_one_to_use(tmp_path, capsys, argv, use):
+    """Every command takes every scene kind or refuses it in one line, before any work (issue 37)."""
+    monkey_out = ["--out", str(tmp_path / ("s.csv" if argv[0] == "sweep" else "o"))]
+    assert main([*argv, *(monkey_out if argv[0] != "impact" else [])]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and use in err[0], err
+    assert not list(tmp_path.iterdir())  # refused before anything is written
+
+
+def test_an_objective_weight_beyond_its_range_is_refused(tmp_path, capsys):
+    """1e308 overflowed the objective to inf and its JSON report to a traceback (issue 37)."""
+    data = copy.deepcopy(SCENES["demo.toml"])
+    data["optimize"]["objective"]["T_c"] = 1e308
+    assert check(["solve", str(write(tmp_path, data)), "--json", "--out", str(tmp_path / "o")], capsys) == 2
+
+
+@pytest.mark.parametrize("argv, option", [
+    (["stride", "stride", "--speed", "abc"], "argument --speed: invalid float value: 'abc'"),
+    (["sweep", "demo", "--param", "knee_deg=0:1:2", "--workers", "two"], "argument --workers"),
+    (["compare", "--mass"], "argument --mass: expected one argument"),
+    (["solve"], "required: scene"), (["nosuch"], "invalid choice: 'nosuch'"),
+    (["sweep", "landing_spring", "--param", "ankle_deg=-12:-8:2", "--scheduler", " "], "--scheduler ''")])
+def test_an_option_argparse_refuses_is_one_line_naming_it(tmp_path, monkeypatch, capsys, argv, option):
+    """No usage dump: one line naming the option, exit 2, before any work (issue 37)."""
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("formopt: error: ") and option in err[0], err
+    assert not list(tmp_path.iterdir())
+
+
+# -- the command line's own options, damaged trial files (issue 37) ---------------------------
+
+BAD_VALUES = st.sampled_from(["abc", "", " ", "nan", "inf", "-inf", "1e999", "-5", "ü\nx"])
+
+
+def typed_options() -> dict[str, list[str]]:
+    """Each command's options that take a typed or chosen value (argparse's own parser)."""
+    from formopt.cli import parser
+
+    top = parser()
+    commands = next(a for a in top._actions if isinstance(a.choices, dict)).choices
+    return {name: [a.option_strings[-1] for a in cmd._actions if a.option_strings and (a.type or a.choices)]
+            for name, cmd in commands.items()}
+
+
+def base_argv(command: str, folder, trial: str = "no_trial.c3d") -> list[str]:
+    """A command line that would run, with a bad option to come (compare: `trial`)."""
+    return {"impact": ["impact", "heel_strike", "--json"],
+            "solve": ["solve", "demo", "--out", str(folder / "o")],
+            "simulate": ["simulate", "landing_spring", "--out", str(folder / "o")],
+            "sweep": ["sweep", "landing_spring", "--param", "ankle_deg=-12:-8:2", "--no-progress",
+                      "--out", str(folder / "s.csv")],
+            "compare": ["compare", "--trial", trial, "--static", str(STATIC), "--mass", "62", "--height",
+                        "1.81", "--no-per-step", "--no-stride", "--starts", "1", "--out", str(folder / "o")],
+            "bench": ["bench", "--quick", "--out", str(folder / "o")],
+            "stride": ["stride", "stride", "--out", str(folder / "o")],
+            "scenes": ["scenes"]}[command]
+
+
+@st.composite
+def bad_options(draw, folder_name="f"):
+    """(command, the option and its bad value): a typed option with a value it cannot take, an
+    unknown option, an option without its value, or sweep's --scheduler without an address."""
+    options = typed_options()
+    command = draw(st.sampled_from(sorted(options)))
+    kind = draw(st.sampled_from(["typed", "typed", "unknown", "dangling", "scheduler"]))
+    if kind == "typed" and options[command]:
+        return command, [draw(st.sampled_from(options[command])), draw(BAD_VALUES)]
+    if kind == "scheduler" and command == "sweep":
+        return command, ["--scheduler", draw(st.sampled_from(["", " ", "\t"]))]
+    return command, ["--nosuch", "1"] if kind != "dangling" or not options[command] else [options[command][-1]]
+
+
+@FAST
+@given(case=bad_options())
+def test_a_bad_option_is_one_line_naming_it_before_any_work(tmp_path, capsys, case):
+    """argparse's own errors (`--speed abc`) and the options' ranges: exit 2 in one line, no
+    usage dump, before any work (compare's trial is missing: nothing is read)."""
+    command, bad = case
+    assert check([*base_argv(command, tmp_path), *bad], capsys, json_out=False) == 2
+
+
+@st.composite
+def damaged_text_trial(draw):
+    """(file, damage, column, rows): one column of RBDS001 T25's first 300 frames (markers) or
+    600 samples (forces) damaged in some rows, or the file cut."""
+    which = draw(st.sampled_from(["markers", "forces"]))
+    damage = draw(st.sampled_from(["nan", "empty", "text", "huge", "inf", "zero", "negative",
+                                   "times 1e-3", "times 1e3", "cut rows", "cut columns", "no rows"]))
+    return which, damage, draw(st.integers(0, 30)), draw(st.sampled_from(["all", "half", "one"]))
+
+
+def write_damaged(folder, case) -> tuple:
+    """The damaged pair of text files (markers, forces) of `case` (damaged_text_trial)."""
+    which, damage, column, rows = case
+    out = []
+    for name, source, count in (("markers", RUN25, 301), ("forces", FORCES25, 601)):
+        cells = [line.split("\t") for line in source.read_text().splitlines()[:count]]
+        if name == which:
+            k = column % len(cells[0])
+            chosen = range(1, len(cells)) if rows == "all" else range(1, len(cells), 2) if rows == "half" else [50]
+            for r in chosen:
+                cell = cells[r][k]
+                cells[r][k] = {"nan": "nan", "empty": "", "text": "x", "huge": "1e300", "inf": "inf",
+                               "zero": "0", "negative": f"-{cell}",
+                               "times 1e-3": f"{float(cell or 'nan') * 1e-3:g}",
+                               "times 1e3": f"{float(cell or 'nan') * 1e3:g}"}.get(damage, cell)
+            cells = cells[:len(cells) // 3] if damage == "cut rows" else cells[:1] if damage == "no rows" \
+                else [c[:k] for c in cells] if damage == "cut columns" else cells
+        path = folder / f"{name}.txt"
+        path.write_text("\n".join("\t".join(c) for c in cells) + "\n")
+        out.append(path)
+    return tuple(out)
+
+
+def measured_or_refused(folder, case, static) -> str:
+    """Read and measure a damaged trial: "measured", or the refusal's class (one line naming
+    one of its files, or not)."""
+    from formopt.measure import measure
+
+    markers, forces = write_damaged(folder, case)
+    try:
+        measure(mocap.read(markers, forces), static, 1.81)
+    except InputError as refusal:
+        named = str(refusal).startswith((str(markers), str(forces), static.source))
+        return "refused one line" if named and "\n" not in str(refusal) else "refused, not naming its file"
+    return "measured"
+
+
+@settings(FAST, max_examples=15)
+@given(case=damaged_text_trial())
+def test_a_damaged_text_trial_is_measured_or_refused_naming_its_file(tmp_path, case):
+    """No traceback, no numpy warning, a refusal names the file (issue 37)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert measured_or_refused(tmp_path, case, standing()) in ("measured", "refused one line")
+
+
+@functools.cache
+def standing():
+    """RBDS001's standing trial, read once."""
+    return mocap.read(STATIC)

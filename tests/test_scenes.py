@@ -43,6 +43,18 @@ def test_copy_writes_once_and_refuses_to_overwrite(tmp_path, capsys):
     assert main(["scenes", "copy", "nosuch", str(tmp_path)]) == 2
 
 
+def test_copy_refuses_a_link_or_a_folder_in_its_place(tmp_path, capsys):
+    """A dangling DIR/demo.toml link would take the copy outside DIR; a folder is not a file."""
+    outside, folder = tmp_path / "outside.toml", tmp_path / "mine"
+    folder.mkdir()
+    (folder / "demo.toml").symlink_to(outside)
+    (folder / "stride.toml").mkdir()
+    for name in ("demo", "stride"):
+        assert main(["scenes", "copy", name, str(folder)]) == 2
+        assert len(capsys.readouterr().err.strip().splitlines()) == 1
+    assert not outside.exists() and (folder / "demo.toml").is_symlink()
+
+
 def test_commands_take_a_shipped_name(capsys):
     assert main(["impact", "heel_strike", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["strike"] == "heel"

@@ -12,8 +12,9 @@
 SCENE is a scene file (TOML) or the name of a shipped scene (`formopt solve demo`).
 
 Exit status: 0 success; 1 a run that did not reach its goal (no start converged, a diverged
-landing), with the reason; 2 bad input (scene, data, option or output path), in one line
-naming the file, key or path; 130 interrupted. Any other error is a bug in formopt and shows
+landing), with the reason; 2 bad input (scene, data, option or output path) or an output that
+cannot be written (a full disk, a closed standard output), in one line naming the file, key or
+path; 130 interrupted; 141 (quietly) a closed pipe. Any other error is a bug in formopt and shows
 its traceback.
 """
 
@@ -39,9 +40,19 @@ COMMANDS = ("impact", "solve", "simulate", "sweep", "compare", "bench", "stride"
 SCENE_COMMANDS = ("impact", "solve", "simulate", "sweep", "stride")  # SCENE: a file or a shipped name
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's own errors (an unknown option, `--speed abc`) in one line naming the option
+    and exit 2, as every bad input; the usage is what `--help` shows."""
+
+    def error(self, message: str):
+        from ..mechanics.errors import InputError
+
+        raise InputError(f"{message} (`{self.prog} --help` lists the options)")
+
+
 def parser() -> argparse.ArgumentParser:
-    top = argparse.ArgumentParser(prog="formopt", description="The running form that wastes "
-                                  "the least energy at foot strike.")
+    top = _Parser(prog="formopt", description="The running form that wastes the least energy at "
+                                              "foot strike.")
     top.add_argument("--version", action="version", version=f"formopt {__version__}")
     commands = top.add_subparsers(dest="command", required=True)
     for name in COMMANDS:
@@ -54,20 +65,23 @@ def main(argv=None) -> int:
     exit (141, as a shell reports SIGPIPE). From a shell (argv None, on the main thread) Ctrl-C
     goes through `_interrupted`; called with argv (a test, a script) it is Python's
     KeyboardInterrupt."""
+    if sys.stdout is None:  # started with it closed (formopt ... >&-): nowhere to print the answer
+        print("formopt: error: standard output is closed; redirect it (> FILE, or > /dev/null)",
+              file=sys.stderr)
+        return 2
     INTERRUPTED.clear()
     ended = threading.Event()
     if argv is None and threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGINT, _interrupted)
         threading.Thread(target=_watchdog, args=(ended,), daemon=True).start()
+    stdout, sys.stdout = sys.stdout, _Stdout(sys.stdout)
     try:
-        status = _run(argv)
-        sys.stdout.flush()  # a closed pipe shows here, not at the interpreter's exit
-        return status
+        return _run(argv)
     except KeyboardInterrupt as err:
         print("formopt: interrupted" + (f": {err}" if str(err) else ""), file=sys.stderr)
         return 130
     except BrokenPipeError:  # the reader went away (formopt ... | head): stop quietly
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        _drop_stdout(stdout)
         return 141
     except Exception:
         if not INTERRUPTED.is_set():
@@ -75,7 +89,48 @@ def main(argv=None) -> int:
         print("formopt: interrupted", file=sys.stderr)  # a KeyboardInterrupt CasADi turned into another error
         return 130
     finally:
+        sys.stdout = stdout
         ended.set()
+
+
+class _Stdout:
+    """Standard output while a command runs: a write that fails (a full disk, a device that
+    refuses it) is an OutputError (one line, exit 2; the files already written stay whole)
+    and what is still buffered is dropped, so that the interpreter's exit does not report it
+    again. A closed pipe stays a BrokenPipeError (main's quiet exit)."""
+
+    def __init__(self, stream):
+        self._stream = stream
+
+    def write(self, text: str) -> int:
+        try:
+            return self._stream.write(text)
+        except OSError as err:
+            raise _lost(err, self._stream) from None
+
+    def flush(self) -> None:
+        try:
+            self._stream.flush()
+        except OSError as err:
+            raise _lost(err, self._stream) from None
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
+def _lost(err: OSError, stream) -> OSError:
+    """The error that stands for a failed write to standard output (see _Stdout)."""
+    from ..io.files import OutputError
+
+    if isinstance(err, BrokenPipeError):
+        return err
+    _drop_stdout(stream)
+    return OutputError(f"standard output: cannot write ({err.strerror})")
+
+
+def _drop_stdout(stream) -> None:
+    """Standard output (`stream`) to /dev/null: what is still buffered goes nowhere, quietly."""
+    os.dup2(os.open(os.devnull, os.O_WRONLY), stream.fileno())
 
 
 def _interrupted(signum, frame) -> None:
@@ -103,16 +158,21 @@ def _watchdog(ended: threading.Event) -> None:
 
 
 def _run(argv) -> int:
-    from ..api import scene_path
+    from ..api import load, scene_path
     from ..io.files import OutputError
     from ..mechanics.errors import InputError
     from ..mechanics.landing import Diverged
+    from .common import check_kind
 
-    args = parser().parse_args(argv)
+    args = None
     try:
-        if args.command in SCENE_COMMANDS:
+        args = parser().parse_args(argv)
+        if args.command in SCENE_COMMANDS:  # a scene the command cannot take: refused here
             args.scene = str(scene_path(args.scene))
-        return import_module(f".{args.command}", __name__).run(args)
+            check_kind(args.command, load(args.scene), getattr(args, "landings", False))
+        status = import_module(f".{args.command}", __name__).run(args)
+        sys.stdout.flush()  # a closed pipe or a full disk shows here, not at the interpreter's exit
+        return status
     except (InputError, OutputError) as err:
         where = getattr(args, "scene", None)
         prefix = f"{where}: " if where and isinstance(err, InputError) and \

@@ -6,6 +6,8 @@ import json
 from pathlib import Path
 
 from ..io.files import output_folder, write_json
+from ..io.stride_scene import StrideScene
+from ..mechanics.errors import InputError
 
 
 def out_folder(args, default_name: str) -> Path:
@@ -14,6 +16,26 @@ def out_folder(args, default_name: str) -> Path:
     command checks where its output goes before it computes anything."""
     out = getattr(args, "out", None)
     return output_folder(out if out is not None else Path("out") / Path(default_name).stem)
+
+
+def check_kind(command: str, scene, landings: bool = False) -> None:
+    """Refuse, in one line naming the command to use, a scene `command` cannot take: a stride
+    scene anywhere but stride and sweep (its --landings too: a stride has no touchdown to
+    land from), a touchdown scene in stride, a scene without [optimize] in solve."""
+    if isinstance(scene, StrideScene):
+        if command in ("impact", "simulate", "solve") or landings:
+            what = "sweep --landings" if landings else command
+            raise InputError(f"a stride scene (a [stride] table): run `formopt stride` on it, or "
+                             f"`formopt sweep` over its stride values; `formopt {what}` needs a "
+                             "[touchdown] table")
+    elif command == "stride":
+        use = "`formopt solve`" if scene.problem is not None else "`formopt simulate` or `formopt impact`"
+        raise InputError(f"not a stride scene (no [stride] table): run {use} on it; `formopt stride` "
+                         "needs a [stride] table (`formopt scenes copy stride DIR` copies one)")
+    elif command == "solve" and scene.problem is None:
+        raise InputError("no [optimize] table, nothing to optimise: run `formopt simulate` or "
+                         "`formopt impact` on it, or add an [optimize] table (`formopt scenes copy "
+                         "demo DIR` copies one)")
 
 
 FORMATS = ("png", "svg", "pdf")

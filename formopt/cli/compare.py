@@ -254,10 +254,23 @@ def trial_rows(rep: dict) -> list[list]:
 
 
 def trial_folders(trials: list[dict]) -> list[str]:
-    """One output folder name per trial: the trial file's stem, numbered where two trials
-    share it (run.c3d of two runners), so no trial overwrites another's files."""
+    """One output folder name per trial, unique for any set of trial paths (compared without
+    case, as a case-insensitive file system does): the trial file's stem, and where two trials
+    share it (run.c3d of two runners) the stem and the trial's number, lengthened while another
+    trial's name holds it (x/a.c3d, y/a.c3d, x/a-1.c3d: a-1-1, a-2, a-1)."""
     stems = [Path(s["trial"]).stem for s in trials]
-    return [stem if stems.count(stem) == 1 else f"{stem}-{k}" for k, stem in enumerate(stems, 1)]
+    keys = [stem.casefold() for stem in stems]
+    taken = {key for key in keys if keys.count(key) == 1}
+    names = []
+    for k, (stem, key) in enumerate(zip(stems, keys), 1):
+        name = stem
+        if keys.count(key) > 1:
+            name = f"{stem}-{k}"
+            while name.casefold() in taken:
+                name += f"-{k}"
+            taken.add(name.casefold())
+        names.append(name)
+    return names
 
 
 def run(args) -> int:

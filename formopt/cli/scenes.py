@@ -3,7 +3,6 @@ of one to edit (every command also takes a shipped scene's name in place of a fi
 
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
 
 from .. import api
@@ -30,9 +29,18 @@ def run(args) -> int:
     if source.parent != api.SCENES:
         raise api.SceneError("", f"{args.name}: not a shipped scene ({', '.join(api.scenes())})")
     target = output_folder(args.dir) / source.name
-    if target.exists():
-        raise OutputError(f"{target}: exists already (remove it or copy into another folder)")
-    shutil.copyfile(source, target)
+    try:  # "x": a new file only; a file, folder or symbolic link (even a dangling one) is refused
+        fh = target.open("xb")
+    except FileExistsError:
+        raise OutputError(f"{target}: exists already (remove it or copy into another folder)") from None
+    except OSError as err:
+        raise OutputError(f"{target}: cannot write ({err.strerror})") from None
+    try:
+        with fh:
+            fh.write(source.read_bytes())
+    except OSError as err:  # a full disk: the file this copy created goes
+        target.unlink()
+        raise OutputError(f"{target}: cannot write ({err.strerror})") from None
     print(f"wrote {target}  (run it: formopt {command(source)} {target})")
     return 0
 

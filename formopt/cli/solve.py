@@ -33,8 +33,7 @@ def run(args) -> int:
         scene = dataclasses.replace(scene, numerics=dataclasses.replace(scene.numerics, compiled=True))
     if args.starts is not None and args.starts < 1:
         raise InputError("--starts must be at least 1")
-    if scene.problem is None:
-        raise InputError("no [optimize] table: nothing to optimise")
+    assert scene.problem is not None  # a scene without [optimize]: refused by cli.common.check_kind
     seed = args.seed if args.seed is not None else scene.problem.seed
 
     def progress(k, n, start):

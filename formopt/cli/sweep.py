@@ -28,7 +28,8 @@ def add_parser(commands):
                           + ". Choose a range the scene can take: a forefoot strike needs the "
                           "heel above the ground at touchdown. On a [stride] scene NAME one of "
                           + ", ".join(f"{n} ({u})" for n, u in stride_map.PARAMETERS.items()))
-    cmd.add_argument("--out", help="CSV file (default out/<scene>/sweep.csv); an existing one is resumed")
+    cmd.add_argument("--out", help="CSV file, its name ending in .csv (default out/<scene>/sweep.csv; "
+                     "the figures take its name); an existing one is resumed")
     cmd.add_argument("--no-progress", action="store_true", help="no progress bar")
     cmd.add_argument("--landings", action="store_true",
                      help="sweep the landing even when the scene has an [optimize] table "
@@ -42,11 +43,14 @@ def add_parser(commands):
 def run(args) -> int:
     from pathlib import Path
 
-    from ..io.files import check_target
+    from ..io.files import OutputError, check_target
 
     scene = load(args.scene)
     params = [sweep.parse_param(p, scene) for p in args.param]
     out = check_target(args.out) if args.out is not None else Path("out") / Path(scene.path).stem / "sweep.csv"
+    if out.suffix.lower() != ".csv":  # the figures take the CSV's name with their own suffix
+        raise OutputError(f"{out}: a sweep writes CSV; give a file name ending in .csv (its figures "
+                          f"are named after it, e.g. {out.stem}.{args.format})")
     if args.workers < 1:
         raise InputError("--workers must be at least 1")
     rows = sweep.run(scene, params, out, progress=not args.no_progress, workers=args.workers,

@@ -3,8 +3,9 @@
 Every output of formopt (JSON, CSV, figures) is written to a uniquely named temporary file in
 the target folder and renamed over the target, so a crash, a full disk or a second process
 writing the same file never leaves a torn or mixed file, and no temporary file is left behind.
-A target that exists must be a regular file (never a device node, FIFO, socket or folder: the
-rename would replace it); a new file gets the user's umask, a replaced one keeps its mode.
+A target that exists must be a regular file (never a device node, FIFO, socket, folder or
+symbolic link: the rename would replace it); a new file gets the user's umask, a replaced one
+keeps its mode.
 Sweeps append to a CSV (`append_csv`) that must be formopt's, with the same header.
 """
 
@@ -27,16 +28,21 @@ class OutputError(OSError):
 def check_target(path) -> Path:
     """`path` as a place for an output file: empty, or an existing regular file.
 
-    OutputError for an empty path, a folder, a device node, a FIFO or a socket."""
+    OutputError for an empty path, a folder, a device node, a FIFO, a socket or a symbolic link
+    (a sweep would append through it to a file elsewhere, even a dangling link's target; a
+    rename would replace the user's link)."""
     if str(path).strip() == "":
         raise OutputError("an empty output path: give a file or folder name")
     path = Path(path)
     try:
-        mode = path.stat().st_mode
+        mode = path.lstat().st_mode
     except FileNotFoundError:
         return path
     except OSError as err:
         raise OutputError(f"{path}: cannot use it ({err.strerror})") from None
+    if stat.S_ISLNK(mode):
+        raise OutputError(f"{path}: is a symbolic link; formopt writes only regular files it owns "
+                          "(give the file it points to, or another name)")
     if stat.S_ISDIR(mode):
         raise OutputError(f"{path}: is a folder, not a file")
     if not stat.S_ISREG(mode):
@@ -140,7 +146,11 @@ def append_csv(path, header: list[str]):
     try:
         _lock(fh, path)
         fh.seek(0)
-        text = fh.read()
+        try:
+            text = fh.read()
+        except UnicodeDecodeError:  # a binary file (an image, an archive): not a sweep's CSV
+            raise OutputError(f"{path}: holds something else than this sweep (not text); give "
+                              "another --out or remove it") from None
         first = text.split("\n", 1)[0]
         if text and ("\n" not in text or next(csv.reader([first]), []) != list(header)):
             first = first.rstrip("\r")[:80]
@@ -180,6 +190,8 @@ def append_rows(fh, path, rows) -> None:
         csv.writer(fh).writerows(rows)
         fh.flush()
     except OSError as err:
+        with contextlib.suppress(OSError):  # the rows still buffered cannot be written either:
+            fh.close()  # closed now (raw file closed), so the caller's close does not raise again
         raise OutputError(f"{path}: cannot append ({err.strerror}); the rows written so far "
                           "are kept and the same command resumes") from None
 

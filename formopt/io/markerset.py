@@ -18,8 +18,9 @@ or recognised from a trial's labels):
     hip = [...]                             # "landmark" hips
     heel, forefoot = [...]                  # optional; else from the foot's geometry
 
-A cluster needs three different points (a map is refused naming the file and the key); that
-they do not lie on a line is checked on the standing trial.
+A cluster needs three different points, and a marker tracks one segment (a map is refused
+naming the file and the key); that a cluster's points do not lie on a line is checked on the
+standing trial.
 """
 
 from __future__ import annotations
@@ -130,13 +131,28 @@ def _parse(data: dict, path: Path) -> MarkerSet:
                                                     f"{JOINT_OF[seg]}, the joint centre above it")
     if ("heel" in parsed) != ("forefoot" in parsed):
         raise val.ValidationError("leg.heel", "leg.heel and leg.forefoot go together")
+    _one_segment_each(cluster, sides, parsed)
     return MarkerSet(val.string(data, "name", "", path.stem), val.string(data, "title", "", path.stem),
                      str(path), dict(sides), cluster, hip, asis, psis, parsed)
 
 
-def recognise(labels) -> MarkerSet:
+def _one_segment_each(pelvis: tuple[str, ...], sides: dict, leg: dict) -> None:
+    """A marker tracks one segment: two segments sharing a marker (a thigh cluster that is the
+    shank's markers, both legs under one prefix) move as one and give no angle between them.
+    ValidationError naming the second segment's key and the shared label."""
+    owner = dict.fromkeys(pelvis, "pelvis.cluster")
+    for side, prefix in sides.items():
+        for seg in SEGMENTS:
+            for label in (prefix + name for name in leg[seg] if not name.startswith("@")):
+                if label in owner:
+                    raise val.ValidationError(f"leg.{seg}", f"{label!r} (side {side}) is in {owner[label]} "
+                                              "too: a marker tracks one segment (give each its own cluster)")
+                owner[label] = f"leg.{seg} (side {side})"
+
+
+def recognise(labels, source: str = "") -> MarkerSet:
     """The shipped map whose running markers a trial's labels hold, or an error naming the
-    closest map and what it misses."""
+    trial's file (`source`), the closest map and what it misses."""
     labels = set(labels)
     best = None
     for name in shipped():
@@ -148,6 +164,7 @@ def recognise(labels) -> MarkerSet:
             best = (ms, missing)
     assert best is not None  # shipped() is never empty
     ms, missing = best
-    raise InputError(f"the markers match no shipped marker map: closest {ms.name}, which misses "
+    where = f"{source}: " if source else ""
+    raise InputError(f"{where}the markers match no shipped marker map: closest {ms.name}, which misses "
                      f"{', '.join(missing[:6])}{' ...' if len(missing) > 6 else ''}; "
                      f"give one with --markers FILE")

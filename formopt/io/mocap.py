@@ -14,6 +14,7 @@ is a marker the lab removed (dropped, with a note); missing force samples are in
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -23,6 +24,14 @@ from ..mechanics.errors import InputError
 
 UNITS = {"mm": 1e-3, "millimeters": 1e-3, "millimetres": 1e-3, "cm": 1e-2, "dm": 0.1,
          "m": 1.0, "meters": 1.0, "metres": 1.0}
+
+
+# A force plate's samples beyond 100 kN are not a runner's (peak vertical forces are 2-3 body
+# weights, about 2-3 kN; RBDS001: 25.2 N/kg at 4.5 m/s): the file's unit or its data is wrong.
+FORCE_LIMIT_N = 1e5
+# A marker coordinate beyond 1000 km (or 1000 km in mm, for a file without units) is not a
+# lab's: a damaged file (1e300 overflowed the cluster sizes to inf, after numpy's warnings).
+MARKER_LIMIT = 1e6
 
 
 class MocapError(InputError):
@@ -50,14 +59,24 @@ class Trial:
     def frames(self) -> int:
         return len(next(iter(self.markers.values())))
 
-    def check_rates(self) -> None:
+    def check(self) -> None:
         """Refuse, naming the file, a marker rate (or a force rate, with a force) that is not a
-        finite number > 0 Hz: every time derivative divides by it."""
+        finite number > 0 Hz (every time derivative divides by it), and a force beyond
+        FORCE_LIMIT_N or a marker coordinate beyond MARKER_LIMIT."""
         rates = {"marker": self.rate, **({"force": self.force_rate} if self.force is not None else {})}
         for what, rate in rates.items():
             if isinstance(rate, bool) or not isinstance(rate, (int, float, np.number)) or not (math.isfinite(rate)
                                                                                    and rate > 0):
                 raise MocapError(f"{self.source}: the {what} rate {rate!r} Hz must be a finite number > 0")
+        far = [name for name, xyz in self.markers.items() if np.any(np.abs(xyz) > MARKER_LIMIT)]
+        if far:
+            raise MocapError(f"{self.source}: marker {far[0]} lies beyond {MARKER_LIMIT:g} (in the file's "
+                             "unit, or m): a damaged file")
+        beyond = np.abs(self.force)[np.abs(self.force) > FORCE_LIMIT_N] if self.force is not None else ()
+        if len(beyond):
+            top = float(np.max(beyond))
+            raise MocapError(f"{self.source}: a ground force of {top:.3g} N, beyond {FORCE_LIMIT_N:g} N: "
+                             "not a runner's (the force file's unit?)")
 
     def require(self, names, what: str) -> None:
         """Refuse, naming the file and `what` needs them, when markers `names` are missing."""
@@ -78,7 +97,12 @@ def read(path, forces=None) -> Trial:
     path = Path(path)
     if not path.exists():
         raise MocapError(f"{path}: no such file")
-    return read_c3d(path) if path.suffix.lower() == ".c3d" else read_text(path, forces)
+    if path.suffix.lower() != ".c3d":
+        return read_text(path, forces)
+    if forces is not None:  # not silently ignored: the C3D's own plates are what is read
+        raise MocapError(f"{path}: a C3D file holds its force plates; a force file ({forces}) goes "
+                         "with a text trial only")
+    return read_c3d(path)
 
 
 def read_c3d(path) -> Trial:
@@ -108,7 +132,7 @@ def read_c3d(path) -> Trial:
         plate = platforms[0]
         scale = UNITS.get(str(plate.get("unit_position", "")).strip().lower())
         _set_force(trial, np.asarray(plate["force"], float).T,
-                   float(c3d["header"]["analogs"]["frame_rate"]), Path(path).name,
+                   float(c3d["header"]["analogs"]["frame_rate"]), str(path),
                    None if scale is None else np.asarray(plate["center_of_pressure"], float).T * scale)
     return _drop_empty(trial)
 
@@ -135,9 +159,12 @@ def _table(path, what: str) -> tuple[list[str], np.ndarray]:
     try:
         with path.open() as fh:
             header = fh.readline().rstrip("\r\n").split("\t")
-        data = np.genfromtxt(path, skip_header=1, delimiter="\t", ndmin=2, invalid_raise=True)
-    except (OSError, ValueError, UnicodeDecodeError) as err:
-        raise MocapError(f"{path}: not a {what} text file in the RBDS layout ({one_reason(err)})") from None
+        with warnings.catch_warnings():  # numpy's warning (an empty file): the refusal's reason
+            warnings.simplefilter("error")
+            data = np.genfromtxt(path, skip_header=1, delimiter="\t", ndmin=2, invalid_raise=True)
+    except (OSError, ValueError, UnicodeDecodeError, Warning) as err:
+        reason = "no data rows" if isinstance(err, Warning) else one_reason(err)
+        raise MocapError(f"{path}: not a {what} text file in the RBDS layout ({reason})") from None
     return header, data
 
 
@@ -152,13 +179,17 @@ def read_text(path, forces=None) -> Trial:
     if header[0] != "Time" or (len(header) - 1) % 3 or data.shape[1] != len(header) or len(data) < 2:
         raise MocapError(f"{path}: expected 'Time' then NAMEX NAMEY NAMEZ columns and at least 2 rows")
     time = data[:, 0]
-    step = np.diff(time)
+    with np.errstate(invalid="ignore"):  # inf - inf: refused just below, without numpy's warning
+        step = np.diff(time)
     if not np.all(np.isfinite(time)) or np.any(step <= 0):
         bad = int(np.flatnonzero(~(step > 0))[0]) + 2 if np.any(~(step > 0)) else 1
         raise MocapError(f"{path}: the Time column does not increase (row {bad})")
     # the column is rounded to the millisecond: the span over the whole trial gives the rate
     # to about 0.003 Hz, so it is rounded to 0.01 Hz
     rate = round((len(time) - 1) / float(time[-1] - time[0]), 2)
+    if not rate > 0:
+        raise MocapError(f"{path}: the Time column spans {time[-1] - time[0]:.4g} s for {len(time)} "
+                         f"rows: a marker rate of {rate:g} Hz (Time in s?)")
     markers = {header[k][:-1]: data[:, k:k + 3] * 1e-3 for k in range(1, len(header), 3)}
     trial = Trial(markers, rate, source=str(path), units="mm")
     if forces is not None:
@@ -167,18 +198,22 @@ def read_text(path, forces=None) -> Trial:
         if fdata.shape[1] < 4 or len(fdata) < 2:
             raise MocapError(f"{fpath}: expected frame, Fx, Fy, Fz columns")
         cop = [fheader.index(f"COP{a}") for a in "xyz" if f"COP{a}" in fheader]
-        _set_force(trial, fdata[:, 1:4], round(len(fdata) / (len(time) / rate), 2), fpath.name,
+        _set_force(trial, fdata[:, 1:4], round(len(fdata) / (len(time) / rate), 2), str(fpath),
                    fdata[:, cop] * 1e-3 if len(cop) == 3 else None)
     return _drop_empty(trial)
 
 
 def _set_force(trial: Trial, force, rate: float, name: str, cop=None):
     """The plate's force and its centre of pressure (m; None: not in the file), unless the
-    force is empty (then touchdowns come from the kinematics)."""
-    if force.size and np.nanmax(np.abs(force)) > 50.0:
+    force is empty (then touchdowns come from the kinematics); `name`, the file, names it in
+    the notes and refusals."""
+    finite = np.abs(force[np.isfinite(force)])
+    if finite.size and finite.max() > 50.0:
         trial.cop = cop if cop is not None and cop.shape == force.shape else None
-        if not np.all(np.isfinite(force)):
-            good = np.all(np.isfinite(force), axis=1)
+        good = np.all(np.isfinite(force), axis=1)
+        if not good.any():
+            raise MocapError(f"{name}: no force sample has finite Fx, Fy and Fz")
+        if not good.all():
             for axis in range(3):
                 force[~good, axis] = np.interp(np.flatnonzero(~good), np.flatnonzero(good), force[good, axis])
             trial.notes.append(f"{name}: {int((~good).sum())} missing force samples interpolated")

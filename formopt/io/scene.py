@@ -404,7 +404,8 @@ def _objective(objective) -> dict:
         objective = {val.choice(objective, "optimize.objective", OBJECTIVES): 1.0}
     elif isinstance(objective, dict):
         val.keys(objective, "optimize.objective", set(OBJECTIVES), set())
-        objective = {k: val.number(objective, k, "optimize.objective") for k in objective}
+        objective = {k: val.number(objective, k, "optimize.objective", limit=limits.OBJECTIVE_WEIGHT)
+                     for k in objective}
         if not any(objective.values()):
             raise SceneError("optimize.objective", "needs at least one non-zero weight")
     else:

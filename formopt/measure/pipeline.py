@@ -45,11 +45,11 @@ def measure(trial: Trial, static: Trial, height: float, options: Options = Optio
     limits.check("height", height, limits.BODY_HEIGHT_M)
     trial, static = copy.deepcopy(trial), copy.deepcopy(static)
     for t in (static, trial):
-        t.check_rates()
+        t.check()
     for t in (static, trial):  # a trial without units is cleaned once they are known
         if t.units:
             clean(t)
-    ms = msets.load(options.markers) if options.markers else msets.recognise(trial.markers)
+    ms = msets.load(options.markers) if options.markers else msets.recognise(trial.markers, trial.source)
     resolve_units(static, trial, height, ms)
     check_static(static, ms)
     trial.require(ms.running(), f"the running trial ({ms.name} markers)")

@@ -109,6 +109,11 @@ SEED = Range(0, 2**32 - 1)  # numpy's default_rng seeds
 # precision, 2.2e-16 relative, times the NLP's scale); above 1e-2 an optimum is not resolved.
 TOLERANCE = Range(1e-14, 1e-2)
 MAX_ITERATIONS = Range(1, 100000)  # IPOPT's max_iter: a solve stays finite
+# An objective term's weight: the terms are of order 1 in SI (T_c in J, a velocity change in
+# m/s, the support in J), so a weight beyond 1e6 either way makes one term all of the objective
+# (weighting the others by 0 says that plainly) and leaves IPOPT's scaling meaningless; 1e308
+# overflowed the objective to inf and its report to a traceback (issue 37).
+OBJECTIVE_WEIGHT = Range(-1e6, 1e6)
 
 # -- the landing (simulate_state, a scene's [landing] table) -----------------------------
 # A landing lasts 1 ms to 2 s (a stance at the slowest jog is about 0.4 s); its step 0.1 us

@@ -63,10 +63,10 @@ def runs(pp, p, progress=None) -> list[Run]:
     out = []
     for k, w0 in enumerate(starts(pp)):
         sol, stats, elapsed = pp.solve_from(w0, p)
-        w, x, impact, converged = pp.accept(sol, stats, p)
+        w, x, impact, why = pp.accept(sol, stats, p)
         start = Start(k + 1, pp.posture.degrees(pp.to_state(w0, p)), stats["return_status"],
-                      converged, float(pp.objective_function(w, p)), pp.posture.degrees(x),
-                      int(stats["iter_count"]))
+                      why == "", float(pp.objective_function(w, p)), pp.posture.degrees(x),
+                      int(stats["iter_count"]), why or "")
         out.append(Run(sol, stats, w, x, impact, start, elapsed))
         if progress:
             progress(k + 1, pp.problem.starts, start)
@@ -87,8 +87,9 @@ def solve(pp, progress=None) -> Optimum:
     converged = [r for r in found if r.start.converged]
     notes = []
     if not converged:
-        statuses = sorted({r.start.status for r in found})
-        notes.append(f"no start converged: {'; '.join(f'{s}: {explain(s)}' for s in statuses)}. "
+        statuses = sorted({(r.start.rejected and f"{r.start.status}, rejected: {r.start.rejected}")
+                           or f"{r.start.status}: {explain(r.start.status)}" for r in found})
+        notes.append(f"no start converged: {'; '.join(statuses)}. "
                      "The state shown is the best last iterate, not an optimum")
     if pp.mode is not None:
         mode, direction = pp.mode

@@ -39,7 +39,7 @@ from ..mechanics.model import STRIKES, Model, ground_axes, positions
 from . import multistart
 from .constraints import posture_constraints, stack
 from .objective import STANCE_PEAK_BW, normalised, support
-from .solution import CONVERGED, Optimum, active_set, is_active
+from .solution import AGREE, CONVERGED, FEASIBLE, Optimum, active_set, is_active
 from .variables import FRICTION, PARAMETERS, SLOPE, Posture
 
 LANDING_STEPS = 40  # RK4 steps over the contact phase between the two impacts
@@ -293,11 +293,17 @@ class PostureProblem:
         L = self._simulate(x, 5e-4)
         return L.impacts[1].time if self._two_impacts(L) else None
 
-    def landing_agrees(self, w, x, p, rtol=1e-3) -> bool:
-        """The event-driven simulation from x gives the same two-impact landing and T_c_total."""
+    def landing_disagrees(self, w, x, p) -> str:
+        """Why the event-driven simulation from x does not give the NLP's two-impact landing
+        and its T_c_total within solution.AGREE ("" when it does)."""
         L = self._simulate(x, 2e-4, float(p[FRICTION]))
         nlp = float(self._T_c_total(w, p))
-        return self._two_impacts(L) and abs(L.T_c_total - nlp) <= rtol * max(1.0, abs(nlp))
+        if not self._two_impacts(L):
+            return "the event-driven landing from it is not the NLP's two impacts"
+        if abs(L.T_c_total - nlp) > AGREE * max(1.0, abs(nlp)):
+            return (f"its landing's T_c_total {nlp:.6g} J differs from the event-driven "
+                    f"simulation's {L.T_c_total:.6g} J by more than {AGREE:g} (relative)")
+        return ""
 
     def checked(self, x, p=None) -> ImpactResult:
         """The checked impact map at touchdown state x on the ground of p (default p0)."""
@@ -315,18 +321,32 @@ class PostureProblem:
                              f"for {self.slope!r} rad (build the problem for the other slope)")
         return p
 
-    def accept(self, sol, stats, p=None) -> tuple[np.ndarray, np.ndarray, ImpactResult, bool]:
-        """(w, touchdown state, checked impact, whether it counts as an optimum) of an IPOPT
-        solution: converged by IPOPT's status, every constraint record within tolerance, a
-        valid checked impact and, for a landing, the event-driven simulation agreeing."""
+    def accept(self, sol, stats, p=None) -> tuple[np.ndarray, np.ndarray, ImpactResult, str | None]:
+        """(w, touchdown state, checked impact, verdict) of an IPOPT solution; the verdict is
+        "" for an optimum (converged by IPOPT's status and its checks hold: every constraint
+        record within solution.FEASIBLE, a valid checked impact whose T_c is the NLP's within
+        solution.AGREE and, for a landing, the event-driven simulation agreeing), why not when
+        IPOPT converged but a check fails, None when IPOPT did not converge."""
         p = self.p0 if p is None else p
         w = np.asarray(sol["x"], float).ravel()
         x = self.to_state(w, p)
         impact = self.checked(x, p)
-        ok = stats["return_status"] in CONVERGED and self.feasible(w, p) and impact.valid
-        if ok and self.landing:
-            ok = self.landing_agrees(w, x, p)
-        return w, x, impact, ok
+        if stats["return_status"] not in CONVERGED:
+            return w, x, impact, None
+        return w, x, impact, self.rejection(w, x, impact, p)
+
+    def rejection(self, w, x, impact: ImpactResult, p) -> str:
+        """Why a converged solution w (touchdown state x, checked impact) is not an optimum:
+        the checks of `accept`, the cheap ones first; "" when they hold."""
+        if not self.feasible(w, p):
+            return f"a constraint is violated by more than {FEASIBLE:g}"
+        if not impact.valid:
+            return "the checked impact is invalid (" + "; ".join(impact.warnings) + ")"
+        T_c = float(self.terms_function(w, p)[self.term_names.index("T_c")])
+        if abs(T_c - impact.T_c) > AGREE * max(1.0, abs(T_c)):
+            return (f"its T_c {T_c:.6g} J differs from the checked impact's {impact.T_c:.6g} J by "
+                    f"more than {AGREE:g} (relative)")
+        return self.landing_disagrees(w, x, p) if self.landing else ""
 
     def hip_from_strike(self, x) -> tuple[float, float]:
         """The hip's place over the strike point (m): along and normal to the ground."""
@@ -391,7 +411,7 @@ class PostureProblem:
         return active_set(self.records, self.constraint_function(w, p), sol["lam_g"], sol["lam_x"],
                           self.posture, w, self.scale, self.weight)
 
-    def feasible(self, w, p=None, tol=1e-6) -> bool:
+    def feasible(self, w, p=None, tol=FEASIBLE) -> bool:
         """Every constraint within tol (equalities of the gait within 1e-9 m)."""
         g = np.asarray(self.constraint_function(w, self.p0 if p is None else p), float).ravel()
         tight = np.array([min(tol, 1e-9) if r.equality else tol for r in self.records])

@@ -41,6 +41,17 @@ STATUS_EXPLAINED = {
     "Diverging_Iterates": "the iterates ran off to very large values",
     "Maximum_CpuTime_Exceeded": "stopped at the time limit before converging",
 }
+# An IPOPT solution is an optimum only when its own checks hold (PostureProblem.accept):
+# every constraint record within FEASIBLE of its bounds (its own units, m or rad: IPOPT's
+# constr_viol_tol is 1e-4, looser than a posture needs; the gait's equalities within 1e-9 m);
+# and within AGREE, relative to max(1 J, |T_c|), the NLP's T_c against the checked impact map
+# at the same state, and a landing problem's T_c_total against the event-driven simulation.
+# The NLP evaluates the same map (under Coulomb one mode's closed form; through a landing a
+# fixed-step chain), so a larger difference means the state left the mode's region or the
+# chain missed an event: the NLP's number is not the model's. 1e-3 is far above round-off
+# (accepted optima agree to 1e-12) and below the 1 % that any comparison of optima reports.
+FEASIBLE = 1e-6
+AGREE = 1e-3
 ACTIVE = 1e-6  # relative distance to a bound under which a constraint counts as active
 # |multiplier| of the normalised objective (sum of |weights| 1) above which a constraint at
 # its bound holds the optimum; below it the bound is touched, not pushed against
@@ -75,6 +86,7 @@ class Start:
     objective: float
     final: dict[str, float]
     iterations: int
+    rejected: str = ""  # why a solution IPOPT called converged is not an optimum (accept's checks)
 
 
 @dataclass(frozen=True)
@@ -127,7 +139,10 @@ class Optimum:
     @property
     def verdict(self) -> str:
         """One line for a table's headline: interior, held by named limits, or no optimum."""
-        return verdict_of(self.active) if self.success else f"NO OPTIMUM ({self.status})"
+        if self.success:
+            return verdict_of(self.active)
+        why = next((s.rejected for s in self.starts if s.rejected), "")
+        return f"NO OPTIMUM (IPOPT converged, but {why})" if why else f"NO OPTIMUM ({self.status})"
 
     def to_dict(self) -> dict:
         """JSON-ready dictionary: the outcome, indicators at the optimum and at the reference

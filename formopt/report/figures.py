@@ -231,7 +231,7 @@ def sweep_figure(rows: list[dict], params: list[str]) -> Figure:
                     color="red", ms=5, label="failed (no landing)")
         ax.set_xlabel(_axis_label(px))
         ax.set_ylabel(_axis_label(py))
-        if bad or failed:
+        if invalid or failed:
             ax.legend(fontsize=7, loc="lower right", bbox_to_anchor=(1.0, 1.0), ncol=2, frameon=False)
     fig.suptitle(counts + (f"; further parameters ({', '.join(params[2:])}) overlaid" if len(params) > 2 else ""),
                  fontsize=9)

@@ -396,7 +396,9 @@ def joints_text(joints) -> str:
 
 def landing_table(scene: Scene, landing) -> str:
     """The impacts of a landing, what it absorbed, and the checks of its assumptions."""
+    verdict = "valid" if landing.valid else "INVALID: " + "; ".join(landing.violations)
     lines = [f"{scene.name}  ({scene.path})",
+             f"landing: T_c_total {landing.T_c_total:.4f} J, {verdict}",
              f"model {scene.kind}; {scene.strike} strike; friction {scene.friction:g}; slope "
              f"{math.degrees(scene.slope):+.1f} deg; contact law {landing.law}; integrator "
              f"{scene.numerics.integrator} (dt {scene.integration.dt * 1e3:g} ms)",
@@ -412,7 +414,6 @@ def landing_table(scene: Scene, landing) -> str:
         if landing.no_slip_held else \
         (f"no: mu_c exceeds the friction at {len(landing.slip_at)} instants, first at "
          f"{landing.slip_at[0] * 1e3:.2f} ms")
-    verdict = "valid" if landing.valid else "INVALID: " + "; ".join(landing.violations)
     lines += ["", f"  absorbed in all      T_c_total {landing.T_c_total:.4f} J ({verdict})",
               f"  largest mu_c         {landing.mu_c_max:.3f} (friction {scene.friction:g})",
               f"  no-slip held         {held}",

@@ -37,7 +37,7 @@ from ..mechanics.impact import Impact, ImpactResult
 from ..mechanics.landing import Diverged, LandingModel, simulate_state
 from ..mechanics.model import STATE, STRIKES, build_model, landmarks
 from ..optim.posture import Gait, PostureProblem, Problem
-from ..optim.solution import CONVERGED, Optimum
+from ..optim.solution import Optimum
 from ..optim.variables import RANGE_OF_MOTION_DEG
 
 if TYPE_CHECKING:  # a type only: the stride section loads the stride solver when asked
@@ -498,11 +498,10 @@ def step_optimum(pp: PostureProblem, state, start, friction: float) -> StepOptim
     mean step's optimum): one IPOPT run of the same NLP, the step in its parameters."""
     p = pp.posture.parameters(friction=friction, reference=state)
     sol, stats, _ = pp.solve_from(pp.start(start), p)
-    w, x, _impact, ok = pp.accept(sol, stats, p)
+    w, x, _impact, why = pp.accept(sol, stats, p)
     post = pp.posture
     own = (np.asarray(state)[post.index] - post.lower) / (post.upper - post.lower)  # unclipped
-    return StepOptimum(ok, stats["return_status"] if stats["return_status"] not in CONVERGED or ok
-                       else "rejected: a constraint or the checked impact fails",
+    return StepOptimum(why == "", f"rejected: {why}" if why else stats["return_status"],
                        x, float(pp.objective_function(w, p)), float(pp.objective_function(own, p)))
 
 

@@ -143,12 +143,15 @@ def _solve(pp, p, previous):
     if warm:
         _, w0, lam_x, lam_g = previous
         sol, stats, _ = pp.solve_from(w0, p, lam_x, lam_g, options=WARM)
-        w, x, impact, ok = pp.accept(sol, stats, p)
-    if not warm or not ok:
+        w, x, impact, why = pp.accept(sol, stats, p)
+    if not warm or why != "":
         warm = False
         run = multistart.best(multistart.runs(pp, p))
-        sol, stats, w, x, impact, ok = run.sol, run.stats, run.w, run.x, run.impact, run.start.converged
-    verdict = verdict_of(pp.active(w, p, sol)) if ok else f"NO OPTIMUM ({stats['return_status']})"
+        sol, stats, w, x, impact = run.sol, run.stats, run.w, run.x, run.impact
+        why = "" if run.start.converged else run.start.rejected or None
+    ok = why == ""
+    verdict = verdict_of(pp.active(w, p, sol)) if ok else \
+        f"NO OPTIMUM ({f'IPOPT converged, but {why}' if why else stats['return_status']})"
     row = OptimumRow(impact.friction, math.degrees(impact.slope),
                      dict(zip(pp.problem.variables, map(float, np.degrees(x[pp.index])))),
                      stats["return_status"], ok, verdict, float(pp.objective_function(w, p)),

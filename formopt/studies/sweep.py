@@ -20,6 +20,7 @@ scene (studies.stride_map); the last two are warm-started chains along a serpent
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import itertools
 import math
@@ -210,6 +211,9 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
     """
     path = Path(path)
     check_grid(params)
+    if scheduler is not None and not scheduler.strip():  # not "no scheduler": a missing address
+        raise InputError("--scheduler '': give the Dask scheduler's address (e.g. tcp://10.0.0.5:8786), "
+                         "or leave the option out to run on local processes")
     names = [n for n, _ in params]
     kind = kind_of(scene, params, landings)
     work = kind.work
@@ -234,12 +238,16 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
             bar = tqdm(total=len(grid), initial=len(grid) - len(todo), unit=kind.unit, desc="sweep")
         written = len(grid) - len(todo)
         try:
-            for chunk, rows in _results(work, scene, chunks, workers, scheduler):
-                new = [(values, row) for values, row in zip(chunk, rows) if _key(values, names) not in done]
-                append_rows(fh, path, ([{**row, **values}[c] for c in header] for values, row in new))
-                written += len(new)
-                if bar:
-                    bar.update(len(new))
+            # closing: an error in this loop (a full disk) ends the pool now, not when the
+            # traceback that holds the generator goes
+            with contextlib.closing(_results(work, scene, chunks, workers, scheduler)) as results:
+                for chunk, rows in results:
+                    new = [(values, row) for values, row in zip(chunk, rows)
+                           if _key(values, names) not in done]
+                    append_rows(fh, path, ([{**row, **values}[c] for c in header] for values, row in new))
+                    written += len(new)
+                    if bar:
+                        bar.update(len(new))
         except KeyboardInterrupt:
             raise KeyboardInterrupt(f"{written} of {len(grid)} rows written to {path}; the same "
                                     "command resumes") from None

@@ -57,3 +57,45 @@ def test_require_names_the_missing_markers(run35):
     with pytest.raises(mocap.MocapError, match=r"RBDS001runT35.c3d: the test needs markers that are "
                                                "missing: R.Nose, L.Nose"):
         run35.require(["R.ASIS", "R.Nose", "L.Nose"], "the test")
+
+
+def short_text(tmp_path, change_markers=None, change_forces=None):
+    """The first 300 frames of T25 as text files, a column of each changed: (markers, forces)."""
+    paths = []
+    for source, rows, change, name in ((RUN25, 301, change_markers, "m.txt"),
+                                       (FORCES25, 601, change_forces, "f.txt")):
+        lines = source.read_text().splitlines()[:rows]
+        cells = [line.split("\t") for line in lines]
+        for row in cells[1:]:
+            if callable(change):
+                change(row)
+        path = tmp_path / name
+        path.write_text("\n".join("\t".join(c) for c in cells) + "\n" if change != "empty" else "")
+        paths.append(path)
+    return paths
+
+
+@pytest.mark.parametrize("change_markers, change_forces, needle", [
+    (None, lambda r: r.__setitem__(1, "nan"), "f.txt: no force sample has finite Fx, Fy and Fz"),
+    (None, lambda r: r.__setitem__(3, "1e300"), "m.txt: a ground force of 1e+300 N, beyond 100000 N"),
+    (lambda r: r.__setitem__(0, str(float(r[0]) * 1e9)), None, "m.txt: the Time column spans"),
+    ("empty", None, "m.txt: not a marker text file in the RBDS layout (no data rows)"),
+    (None, "empty", "f.txt: not a force text file in the RBDS layout (no data rows)")])
+def test_a_damaged_text_trial_is_refused_in_one_line_naming_its_file(tmp_path, change_markers,
+                                                                     change_forces, needle):
+    """Before (issue 37): a traceback (a force column of NaN, a Time in ns), numpy's warning
+    before the refusal (an empty file)."""
+    import warnings
+
+    markers, forces = short_text(tmp_path, change_markers, change_forces)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(mocap.MocapError) as err:
+            mocap.read(markers, forces).check()
+    assert "\n" not in str(err.value) and str(err.value).startswith(str(tmp_path)), err.value
+    assert needle in str(err.value)
+
+
+def test_labels_no_map_fits_are_refused_naming_the_trial(run35):
+    with pytest.raises(mocap.InputError, match=r"^run\.c3d: the markers match no shipped marker map"):
+        markerset.recognise({k: v for k, v in run35.markers.items() if k != "R.ASIS"}, "run.c3d")

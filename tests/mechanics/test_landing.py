@@ -144,6 +144,22 @@ def test_bad_joint_tables(joints, key):
     assert err.value.key == key
 
 
+def test_a_landing_whose_numerics_fail_is_not_valid_and_exits_1(tmp_path, capsys, monkeypatch):
+    """The midpoint rule at 2 ms drifts 1.4e-5 m off landing_heel's constraints (beyond
+    landing.DRIFT_M): not valid, said in the headline, exit 1 (issue 37). No figures: the
+    numbers are the test."""
+    from formopt.cli import simulate
+
+    monkeypatch.setattr(simulate, "landing_figures", lambda *args: {})
+    scene = tmp_path / "coarse.toml"
+    scene.write_text((SHIPPED / "landing_heel.toml").read_text().replace("[landing]", "[landing]\ndt_ms = 2.0")
+                     + '\n[numerics]\nintegrator = "midpoint"\n')
+    assert main(["simulate", str(scene), "--out", str(tmp_path / "o")]) == 1
+    headline = capsys.readouterr().out.splitlines()[1]
+    assert headline.startswith("landing: T_c_total") and "INVALID: constraint drift" in headline
+    assert "beyond 1e-05 m" in headline
+
+
 def test_cli_simulate_json(tmp_path, capsys):
     assert main(["simulate", str(SPRING), "--json", "--out", str(tmp_path)]) == 0
     data = json.loads(capsys.readouterr().out)

@@ -118,6 +118,23 @@ def test_infeasible_scene_reports_its_status_and_no_optimum():
     assert any("not an optimum" in n for n in opt.notes)
 
 
+def test_a_converged_solution_whose_checks_fail_is_no_optimum_and_says_why(monkeypatch):
+    """IPOPT's status is not enough: a solution whose T_c is not the checked impact's within
+    solution.AGREE (here the tolerance made negative: every solution fails it) is not a
+    success, and the verdict (the headline of `formopt solve`, exit 1) names the check."""
+    from formopt.optim import posture
+
+    monkeypatch.setattr(posture, "AGREE", -1.0)
+    data = tomllib.loads(BOUNDED.read_text())
+    data["optimize"]["starts"] = 1
+    opt = solve(parse(data, "bounded.toml"))
+    assert not opt.success and opt.status == "Solve_Succeeded"
+    assert opt.verdict.startswith("NO OPTIMUM (IPOPT converged, but its T_c ")
+    assert "differs from the checked impact's" in opt.verdict
+    assert opt.starts[0].rejected and not opt.starts[0].converged
+    assert any("rejected: its T_c" in n for n in opt.notes)
+
+
 def test_cli_solve_json(tmp_path, capsys):
     code = main(["solve", str(DEMO), "--json", "--out", str(tmp_path), "--starts", "3"])
     data = json.loads(capsys.readouterr().out)

@@ -1,0 +1,23 @@
+"""Figures drawn from the rows a command writes (report/figures.py)."""
+
+import matplotlib.pyplot as plt
+
+from formopt.report.figures import sweep_figure
+
+
+def landing_row(ankle, knee, error="", valid=True):
+    """A row of a landing sweep's CSV (the strings the CSV holds)."""
+    values = {"T_c_first": "", "T_c_total": "", "f_n_max_N": ""} if error else \
+        {"T_c_first": f"{1 + ankle / 100:.3f}", "T_c_total": f"{2 + knee / 100:.3f}", "f_n_max_N": "900"}
+    return {"ankle_deg": str(ankle), "knee_deg": str(knee), "error": error, "valid": str(valid), **values}
+
+
+def test_a_two_parameter_landing_sweep_draws_its_maps():
+    """Valid, invalid and failed points on a 3 x 2 grid (issue 37: the two-parameter branch read
+    a name only the one-parameter branch set)."""
+    rows = [landing_row(a, k, valid=(a, k) != (-10, 20)) for a in (-12, -10, -8) for k in (10, 20)]
+    rows[0] = landing_row(-12, 10, error="Diverged: the landing did not end")
+    fig = sweep_figure(rows, ["ankle_deg", "knee_deg"])
+    assert len(fig.axes) == 4  # two maps and their colour bars
+    assert "4 valid, 1 invalid, 1 failed of 6" in fig._suptitle.get_text()
+    plt.close(fig)
