@@ -56,7 +56,8 @@ def main(argv=None) -> int:
     KeyboardInterrupt."""
     INTERRUPTED.clear()
     ended = threading.Event()
-    if argv is None and threading.current_thread() is threading.main_thread():
+    shell = argv is None and threading.current_thread() is threading.main_thread()
+    if shell:
         signal.signal(signal.SIGINT, _interrupted)
         threading.Thread(target=_watchdog, args=(ended,), daemon=True).start()
     try:
@@ -65,7 +66,7 @@ def main(argv=None) -> int:
         return status
     except KeyboardInterrupt as err:
         print("formopt: interrupted" + (f": {err}" if str(err) else ""), file=sys.stderr)
-        return 130
+        return _end_interrupted(shell)
     except BrokenPipeError:  # the reader went away (formopt ... | head): stop quietly
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 141
@@ -73,9 +74,24 @@ def main(argv=None) -> int:
         if not INTERRUPTED.is_set():
             raise
         print("formopt: interrupted", file=sys.stderr)  # a KeyboardInterrupt CasADi turned into another error
-        return 130
+        return _end_interrupted(shell)
     finally:
         ended.set()
+
+
+def _end_interrupted(shell: bool) -> int:
+    """130, an interrupted run's status. From a shell the process ends here (streams flushed,
+    os._exit): a Ctrl-C that came while CasADi's libraries were loading could otherwise still
+    kill the interpreter by SIGINT as it exits (status -2 instead of 130, 1 run in 10 with the
+    signal in the first 0.6 s after CasADi loads, on a loaded machine, 2026-11-25)."""
+    if shell:
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):  # a closed pipe or stream: nothing more to say
+                pass
+        os._exit(130)
+    return 130
 
 
 def _interrupted(signum, frame) -> None:
