@@ -8,6 +8,7 @@
     formopt bench             time and accuracy of each model level and numerical option
     formopt stride SCENE      the periodic running half stride: cadence, placement, budget
     formopt scenes            the shipped scenes; `formopt scenes copy NAME DIR` copies one
+    formopt data              the shipped trial (RBDS001); `formopt data copy DIR` copies it
 
 SCENE is a scene file (TOML) or the name of a shipped scene (`formopt solve demo`).
 
@@ -35,7 +36,7 @@ INTERRUPTED = threading.Event()  # set by the first Ctrl-C from a shell (`_inter
 GRACE_S = 2.0  # s: how long an interrupted run has to end by itself
 
 # One module per command, imported when the command line is parsed (inside main's handlers).
-COMMANDS = ("impact", "solve", "simulate", "sweep", "compare", "bench", "stride", "scenes")
+COMMANDS = ("impact", "solve", "simulate", "sweep", "compare", "bench", "stride", "scenes", "data")
 SCENE_COMMANDS = ("impact", "solve", "simulate", "sweep", "stride")  # SCENE: a file or a shipped name
 
 
