@@ -166,6 +166,12 @@ def test_readme_is_a_front_page():
     text = (ROOT / "README.md").read_text()
     assert len(text.splitlines()) <= 200
     assert "make demo" in text and "make test" in text
+    # the package index shows the README without the repository: no link or image into it
+    assert not re.findall(r"\]\((?!https?://)[^)]*\)", text), "a relative link or image"
+    # it leads with the runner's question, then the stride, then the impact
+    order = [text.index(s) for s in ("What does my running form cost", "formopt stride", "formopt compare",
+                                     "## The impact in detail")]
+    assert order == sorted(order)
 
 
 def test_readme_python_names_exist():

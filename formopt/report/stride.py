@@ -63,13 +63,20 @@ def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
     return fig
 
 
+SINKS = {"negative_work_J": "negative work", "impacts_J": "impacts (T_c)",
+         "spring_J": "tendons let go at toe-off", "friction_J": "friction", "passive_J": "passive limits",
+         "climb_J": "climb"}  # where the positive work goes: every term the budget balances
+
+
 def budget_figure(stride) -> Figure:
-    """The energy budget of the half stride (J): positive work against where it goes."""
+    """The energy budget of the half stride (J): positive work against every term it balances
+    (SINKS; a budget term not named there is drawn under its own key), the balance the bars'
+    own difference."""
     b = stride.budget
-    fig = new_figure((6, 3.6))
+    fig = new_figure((7, 3.6))
     ax = fig.add_subplot()
-    sinks = [("negative work", b["negative_work_J"]), ("impacts", b["impacts_J"]),
-             ("friction", b["friction_J"]), ("passive", b["passive_J"]), ("climb", b["climb_J"])]
+    sinks = [(SINKS.get(k, k), v) for k, v in b.items()
+             if k not in ("positive_work_J", "balance_J", "metabolic_J")]
     bottom = 0.0
     for k, (name, value) in enumerate(sinks):
         ax.bar(1, value, bottom=bottom, color=f"C{k + 1}", label=f"{name} {value:.1f} J")
@@ -77,9 +84,10 @@ def budget_figure(stride) -> Figure:
     ax.bar(0, b["positive_work_J"], color="C0", label=f"positive work {b['positive_work_J']:.1f} J")
     ax.set_xticks([0, 1], ["in", "out"])
     ax.set_ylabel("J per half stride")
-    ax.set_title(f"balance {b['balance_J']:.2f} J, CoT {stride.cost_of_transport:.3f}, "
+    ax.set_title(f"in - out {b['positive_work_J'] - bottom:+.2f} J, CoT {stride.cost_of_transport:.3f}, "
                  f"{stride.mechanical_power_W:.0f} W")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0))
+    fig.tight_layout()
     return fig
 
 
