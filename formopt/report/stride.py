@@ -41,23 +41,40 @@ def stick_figures(stride, js: JointSpace, every: int = 3) -> Figure:
     return fig
 
 
+MEASURED_MASS_KG = 62.0  # RBDS001, whose mean cycle studies.stride.measured_cycle reads
+MEASURED_SPEEDS = (2.5, 3.5, 4.5)  # m/s: its trials
+
+
+def measured_applies(stride) -> bool:
+    """Whether RBDS001's measured cycle belongs beside this stride: the runner's body mass and
+    one of the runner's speeds (another body at 3.5 m/s is not RBDS001)."""
+    return abs(stride.mass_kg - MEASURED_MASS_KG) < 0.5 and round(stride.speed_mps, 2) in MEASURED_SPEEDS
+
+
 def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
-    """Right-leg joint angles (deg) or moments (N m/kg) over the gait cycle, or the vertical
-    ground force (N/kg); the measured mean beside them (dashed) when given."""
+    """Right-leg joint angles (deg) or active joint moments (N m/kg: the actuators' only, the
+    tendons' spring moments not included) over the gait cycle, or the ground force (N/kg:
+    vertical and fore-aft, "vertical"); the measured mean beside them (dashed) when given (the
+    measured force: vertical only)."""
     predicted = predicted_cycle(stride)
     fig = new_figure((10, 3.2))
-    panels = CYCLE_JOINTS if quantity != "vertical" else ("vertical",)
+    if quantity == "vertical":
+        predicted = {**predicted, "horizontal": np.r_[stride.force[:, :, 0].sum(axis=1),  # as predicted_cycle
+                                                      np.zeros(len(stride.t))] / stride.mass_kg}
+    panels = CYCLE_JOINTS if quantity not in ("vertical",) else ("vertical", "horizontal")
     unit = {"angles": "deg", "moments": "N m/kg", "vertical": "N/kg"}[quantity]
+    label = "predicted, active moment" if quantity == "moments" else "predicted"
     for k, name in enumerate(panels):
         ax = fig.add_subplot(1, len(panels), k + 1)
         order = np.argsort(predicted["percent"], kind="stable")
-        values = predicted[quantity] if quantity == "vertical" else predicted[quantity][name]
-        ax.plot(predicted["percent"][order], values[order], "C0", label="predicted")
-        if measured is not None:
+        values = predicted[name] if quantity == "vertical" else predicted[quantity][name]
+        ax.plot(predicted["percent"][order], values[order], "C0", label=label)
+        if measured is not None and name != "horizontal":
             data = measured[quantity] if quantity == "vertical" else measured[quantity][name]
-            ax.plot(measured["percent"], data, "k--", label="RBDS001 measured")
+            ax.plot(measured["percent"], data, "k--",
+                    label="RBDS001 measured" + (", net moment" if quantity == "moments" else ""))
         ax.set_xlabel("gait cycle (%)")
-        ax.set_title(f"{name} ({unit})")
+        ax.set_title(f"{name if name != 'horizontal' else 'fore-aft (forward +)'} ({unit})")
     fig.axes[0].legend(fontsize=8)
     fig.tight_layout()
     return fig
@@ -92,6 +109,9 @@ def budget_figure(stride) -> Figure:
 
 
 def stride_figures(stride, js: JointSpace, measured: dict | None) -> dict[str, Figure]:
+    """The stride's figures; `measured` (RBDS001's mean cycle) drawn only where it applies
+    (measured_applies)."""
+    measured = measured if measured is not None and measured_applies(stride) else None
     return {"stick": stick_figures(stride, js), "angles": cycle_figure(stride, measured, "angles"),
             "moments": cycle_figure(stride, measured, "moments"),
             "grf": cycle_figure(stride, measured, "vertical"), "budget": budget_figure(stride)}

@@ -17,3 +17,30 @@ def test_the_budget_chart_draws_every_term_it_balances():
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
     assert any("tendons" in s and "29.3" in s for s in labels) and len(labels) == 7
     assert "in - out +0.00 J" in ax.get_title()
+
+
+def synthetic(mass_kg=62.0, speed_mps=3.5, n=11):
+    import numpy as np
+
+    t = np.linspace(0.0, 0.18, n)
+    force = np.zeros((n, 2, 2))
+    force[:6, 0] = [[-100.0, 1200.0]] * 6  # heel: braking, pushing
+    return SimpleNamespace(t=t, half_period_s=0.18, mass_kg=mass_kg, speed_mps=speed_mps,
+                           theta=np.zeros((n, 9)), tau=np.zeros((n, 6)), force=force)
+
+
+def test_the_force_figure_draws_both_components():
+    from formopt.report.stride import cycle_figure
+
+    fig = cycle_figure(synthetic(), None, "vertical")
+    titles = [ax.get_title() for ax in fig.axes]
+    assert titles == ["vertical (N/kg)", "fore-aft (forward +) (N/kg)"]
+    fore_aft = fig.axes[1].lines[0].get_ydata()
+    assert min(fore_aft) == pytest.approx(-100.0 / 62.0)
+
+
+@pytest.mark.parametrize("mass, speed, drawn", [(62.0, 3.5, True), (73.0, 3.5, False), (62.0, 3.0, False)])
+def test_the_measured_runner_is_drawn_only_beside_its_own_body_and_speed(mass, speed, drawn):
+    from formopt.report.stride import measured_applies
+
+    assert measured_applies(synthetic(mass, speed)) is drawn
