@@ -5,7 +5,7 @@ The periodic running half stride of the paper's body at 3.5 m/s with a heel stri
 (formopt/scenes/stride.toml): cadence, step length, contact and flight, the ground force, and
 the energy budget of one step, which closes to round-off.
 
-    python examples/stride.py [OUT] [--quick]    (--quick: 20 collocation nodes, not 40)
+    python examples/stride.py [OUT] [--quick]    (``--quick``: 20 collocation nodes, not 40)
 """
 
 import sys
