@@ -13,7 +13,7 @@ from typing import Any
 
 from ..io import markerset, mocap
 from ..io import validate as val
-from ..io.export import write_mot, write_trc
+from ..io.export import write_mot, write_osim, write_trc
 from ..io.files import output_folder, save_figure, write_csv
 from ..io.progress import Stages
 from ..measure import Options
@@ -222,7 +222,7 @@ def run_one(s: dict, args, out: Path, show: bool = True):
     files = [rep["figure"], *([rep["stride"]["figure"]] if "stride" in rep else []),
              write_csv(out / "touchdowns.csv", rows),
              write_trc(out / "markers.trc", m.kinematics, m.calibration),
-             write_mot(out / "angles.mot", m.kinematics)]
+             write_mot(out / "angles.mot", m.kinematics), write_osim(out / "model.osim", result.body)]
     emit(args, rep, comparison_table(result, rep), out / "comparison.json", files, show)
     return rep, result
 
