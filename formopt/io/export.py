@@ -139,3 +139,24 @@ def write_osim(path, body, name: str = "formopt_planar_body"):
     with atomic(path) as fh:
         fh.write(text)
     return Path(path)
+
+
+def write_grf(path, t, force, points, side: str = "r"):
+    """The ground force on one foot as OpenSim external loads (.sto, SI): `force` (N, 2 points,
+    x and z, N) on the heel and forefoot at `points` (N, 2 points, x and z, m, formopt's axes),
+    one resultant per row applied at the centre of pressure (the points weighted by their
+    normal force; the heel when no force), no free moment (both points on the ground). Columns
+    `{side}_ground_force_v{x,y,z}`, `_p{x,y,z}`, `{side}_ground_torque_{x,y,z}` in OpenSim's
+    frame (Y up, Z right: z is 0 in the plane), for an ExternalLoads file to apply to the foot."""
+    force, points = np.asarray(force, float), np.asarray(points, float)
+    total = force.sum(axis=1)  # (N, 2)
+    normal = force[:, :, 1]
+    share = np.divide(normal, normal.sum(axis=1, keepdims=True), out=np.zeros_like(normal),
+                      where=normal.sum(axis=1, keepdims=True) > 0)
+    share[share.sum(axis=1) == 0, 0] = 1.0  # no force: the heel
+    cop = np.einsum("np,npk->nk", share, points)
+    zero = np.zeros(len(total))
+    values = np.column_stack([total[:, 0], total[:, 1], zero, cop[:, 0], cop[:, 1], zero, zero, zero, zero])
+    columns = [f"{side}_ground_force_v{a}" for a in "xyz"] + [f"{side}_ground_force_p{a}" for a in "xyz"] \
+        + [f"{side}_ground_torque_{a}" for a in "xyz"]
+    return write_storage(path, t, columns, values, degrees=False)

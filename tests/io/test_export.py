@@ -49,3 +49,16 @@ def test_opensim_loads_it_with_formopts_signs(tmp_path):
     out = subprocess.run([sys.executable, "-c", OPENSIM_CHECK, str(write_osim(tmp_path / "m.osim", BODY))],
                          capture_output=True, text=True, check=True).stdout.split()
     assert float(out[-3]) == pytest.approx(62.0) and out[-2:] == ["True", "True"]
+
+
+def test_the_ground_force_is_applied_at_the_centre_of_pressure(tmp_path):
+    from formopt.io.export import write_grf
+
+    force = [[[-50.0, 300.0], [20.0, 100.0]], [[0.0, 0.0], [0.0, 0.0]]]  # heel, forefoot; x, z
+    points = [[[-0.05, 0.0], [0.15, 0.0]], [[0.0, 0.0], [0.2, 0.0]]]
+    lines = write_grf(tmp_path / "grf.sto", [0.0, 0.01], force, points).read_text().splitlines()
+    header = lines[6].split("\t")
+    row = dict(zip(header, map(float, lines[7].split("\t"))))
+    assert row["r_ground_force_vx"] == -30.0 and row["r_ground_force_vy"] == 400.0
+    assert row["r_ground_force_px"] == pytest.approx(0.75 * -0.05 + 0.25 * 0.15)  # by the normal force
+    assert dict(zip(header, map(float, lines[8].split("\t"))))["r_ground_force_px"] == 0.0  # none: the heel
