@@ -10,6 +10,9 @@ import shutil
 import sys
 from pathlib import Path
 
+from docutils import nodes
+from docutils.parsers.rst import Directive
+
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
@@ -20,26 +23,64 @@ author = "the formopt developers"
 copyright = "2026, the formopt developers"  # Sphinx's name for it
 release = formopt.__version__
 
+# sphinx-mathjax-offline (its import name has hyphens) copies MathJax 3 from its own package
+# into _static/mathjax and points Sphinx there: the math renders with no network
 extensions = ["myst_parser", "numpydoc", "sphinx.ext.autodoc", "sphinx.ext.autosummary",
-              "sphinx.ext.mathjax", "sphinx_gallery.gen_gallery"]
+              "sphinx.ext.mathjax", "sphinx-mathjax-offline", "sphinx_gallery.gen_gallery"]
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 myst_enable_extensions = ["dollarmath", "amsmath"]
 myst_heading_anchors = 3
-exclude_patterns = ["_build", "gallery/*.csv", "auto_examples/*.ipynb", "auto_examples/*.py",
+exclude_patterns = ["_build", "generated/*.csv", "gallery/*.csv", "auto_examples/*.ipynb", "auto_examples/*.py",
                     "auto_examples/*.zip", "auto_examples/*.json", "auto_examples/*.md5",
                     "sg_execution_times.rst"]
 # the gallery's hooks are functions, which Sphinx cannot pickle into its environment cache
 # (sphinx-gallery's documented set-up); no intersphinx, so the build needs no network
 suppress_warnings = ["config.cache"]
 html_theme = "alabaster"
-html_static_path: list = []
+html_static_path = ["_static"]
+html_css_files = ["formopt.css"]  # wide console blocks scroll instead of being cut
 html_theme_options = {"description": "The running form that wastes the least energy at foot strike",
                       "fixed_sidebar": True}
 
 numpydoc_show_class_members = False
 numpydoc_validation_checks: set = set()
 autodoc_typehints = "none"
-autosummary_generate = False
+autosummary_generate = True  # one page per module of the API table (docs/generated, rebuilt)
+templates_path = ["_templates"]  # autosummary/module.rst: the page of a module (`module-text`)
+
+class ModuleText(Directive):
+    """`.. module-text:: NAME`: a module's docstring and each public name's signature and
+    docstring, as written (plain text with equations, not reStructuredText)."""
+
+    required_arguments = 1
+
+    def run(self):
+        import importlib
+        import inspect
+
+        def text(obj):  # wrapped, not highlighted
+            return nodes.literal_block(text=inspect.getdoc(obj) or "", language="text", classes=["docstring"])
+
+        module = importlib.import_module(self.arguments[0])
+        out = [text(module)]
+        for name, obj in vars(module).items():
+            if name.startswith("_") or getattr(obj, "__module__", None) != module.__name__ or \
+                    not (inspect.isclass(obj) or inspect.isfunction(obj)):
+                continue
+            try:
+                head = f"{name}{inspect.signature(obj)}"
+            except (TypeError, ValueError):
+                head = name
+            section = nodes.section(ids=[f"{module.__name__}.{name}"])
+            section += nodes.title("", "", nodes.literal(text=("class " if inspect.isclass(obj) else "") + head))
+            section += text(obj)
+            out.append(section)
+        return out
+
+
+def setup(app):
+    app.add_directive("module-text", ModuleText)
+
 
 OUT = ROOT / "docs" / "_build" / "gallery-out"  # where the examples write their files
 

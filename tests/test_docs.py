@@ -31,6 +31,8 @@ from dataclasses import dataclass
 import pytest
 from helpers import ROOT
 
+import formopt
+
 PAGES = [ROOT / "README.md"] + sorted(p for p in (ROOT / "docs").rglob("*.md")
                                       if "_build" not in p.parts and "auto_examples" not in p.parts)
 SHELL = ("console", "sh", "shell", "bash")
@@ -164,6 +166,12 @@ def test_readme_is_a_front_page():
     text = (ROOT / "README.md").read_text()
     assert len(text.splitlines()) <= 200
     assert "make demo" in text and "make test" in text
+    # the package index shows the README without the repository: no link or image into it
+    assert not re.findall(r"\]\((?!https?://)[^)]*\)", text), "a relative link or image"
+    # it leads with the runner's question, then the stride, then the impact
+    order = [text.index(s) for s in ("What does my running form cost", "formopt stride", "formopt compare",
+                                     "## The impact in detail")]
+    assert order == sorted(order)
 
 
 def test_readme_python_names_exist():
@@ -193,3 +201,10 @@ def test_compare_reads_file_paths():
     c = formopt.compare(str(ric / "20160226T120637_run.c3d"), ric / "20160226T120637_static.c3d",
                         mass=79, height=1.77, friction=0.8, starts=1, per_step=False)
     assert isinstance(c, formopt.Comparison) and c.strike == "heel" and c.optimum.success
+
+
+def test_the_api_reference_documents_every_public_name():
+    """docs/api.rst has a directive for each name of formopt.__all__ (the version aside)."""
+    text = (ROOT / "docs" / "api.rst").read_text()
+    missing = [n for n in formopt.__all__ if n != "__version__" and f":: formopt.{n}\n" not in text]
+    assert not missing, f"docs/api.rst leaves out {missing}"

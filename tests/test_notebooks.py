@@ -20,4 +20,5 @@ def test_notebook_runs_top_to_bottom(path):
 
 
 def test_there_are_notebooks():
-    assert {p.name for p in NOTEBOOKS} >= {"own_scene.ipynb", "paper.ipynb"}
+    assert {p.name for p in NOTEBOOKS} >= {"own_scene.ipynb", "paper.ipynb", "stride.ipynb", "own_runner.ipynb",
+                                            "sweep.ipynb"}

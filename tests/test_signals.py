@@ -27,19 +27,32 @@ def loaded(pid: int, library: str) -> bool:
         return False
 
 
-@pytest.mark.parametrize("delay", [0.0, 1.0])  # s after CasADi loads: while importing, computing
+def test_casadi_loads_only_once_main_answers_ctrl_c():
+    """The readiness marker of the test below: `import formopt.cli` loads no CasADi, so CasADi
+    in a process's maps means main has installed its Ctrl-C handler."""
+    code = "import sys\nimport formopt.cli\nprint('casadi' in sys.modules)"
+    assert subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=True).stdout.strip() == "False"
+
+
+@pytest.mark.parametrize("delay", [0.0, 0.3, 1.0])  # s after CasADi loads: while importing, computing
 def test_ctrl_c_is_one_line_and_exit_130(tmp_path, delay):
+    """Timing decides only when the signal comes, never the verdict: the signal waits for the
+    readiness marker however slow the machine (a signal before main's handler is Python's own
+    KeyboardInterrupt, exit -2: not formopt's contract), and a run that ends first passes."""
     p = subprocess.Popen(COMMAND + [str(tmp_path)], cwd=ROOT, stdout=subprocess.DEVNULL,
                          stderr=subprocess.PIPE, text=True)
-    deadline = time.monotonic() + 60
-    while not loaded(p.pid, "casadi") and p.poll() is None and time.monotonic() < deadline:
-        time.sleep(0.005)  # formopt's main is running (the interpreter's own start is not ours)
+    deadline = time.monotonic() + 600  # generous: a loaded machine starts Python slowly
+    while not loaded(p.pid, "casadi") and p.poll() is None:
+        assert time.monotonic() < deadline, "formopt did not load CasADi within 600 s"
+        time.sleep(0.005)
     time.sleep(delay)
-    p.send_signal(signal.SIGINT)
-    _, err = p.communicate(timeout=60)
+    if p.poll() is None:
+        p.send_signal(signal.SIGINT)
+    _, err = p.communicate(timeout=600)
     if p.returncode == 0:  # finished before the signal came: nothing to check
         return
-    assert p.returncode == 130 and "Traceback" not in err
+    assert p.returncode == 130 and "Traceback" not in err, err
     assert err.strip().splitlines()[-1].startswith("formopt: interrupted")
 
 

@@ -8,6 +8,7 @@
     formopt bench             time and accuracy of each model level and numerical option
     formopt stride SCENE      the periodic running half stride: cadence, placement, budget
     formopt scenes            the shipped scenes; `formopt scenes copy NAME DIR` copies one
+    formopt data              the shipped trial (RBDS001); `formopt data copy DIR` copies it
 
 SCENE is a scene file (TOML) or the name of a shipped scene (`formopt solve demo`).
 
@@ -36,7 +37,7 @@ INTERRUPTED = threading.Event()  # set by the first Ctrl-C from a shell (`_inter
 GRACE_S = 2.0  # s: how long an interrupted run has to end by itself
 
 # One module per command, imported when the command line is parsed (inside main's handlers).
-COMMANDS = ("impact", "solve", "simulate", "sweep", "compare", "bench", "stride", "scenes")
+COMMANDS = ("impact", "solve", "simulate", "sweep", "compare", "bench", "stride", "scenes", "data")
 SCENE_COMMANDS = ("impact", "solve", "simulate", "sweep", "stride")  # SCENE: a file or a shipped name
 
 
@@ -71,7 +72,8 @@ def main(argv=None) -> int:
         return 2
     INTERRUPTED.clear()
     ended = threading.Event()
-    if argv is None and threading.current_thread() is threading.main_thread():
+    shell = argv is None and threading.current_thread() is threading.main_thread()
+    if shell:
         signal.signal(signal.SIGINT, _interrupted)
         threading.Thread(target=_watchdog, args=(ended,), daemon=True).start()
     stdout, sys.stdout = sys.stdout, _Stdout(sys.stdout)
@@ -79,7 +81,7 @@ def main(argv=None) -> int:
         return _run(argv)
     except KeyboardInterrupt as err:
         print("formopt: interrupted" + (f": {err}" if str(err) else ""), file=sys.stderr)
-        return 130
+        return _end_interrupted(shell)
     except BrokenPipeError:  # the reader went away (formopt ... | head): stop quietly
         _drop_stdout(stdout)
         return 141
@@ -87,7 +89,7 @@ def main(argv=None) -> int:
         if not INTERRUPTED.is_set():
             raise
         print("formopt: interrupted", file=sys.stderr)  # a KeyboardInterrupt CasADi turned into another error
-        return 130
+        return _end_interrupted(shell)
     finally:
         sys.stdout = stdout
         ended.set()
@@ -131,6 +133,21 @@ def _lost(err: OSError, stream) -> OSError:
 def _drop_stdout(stream) -> None:
     """Standard output (`stream`) to /dev/null: what is still buffered goes nowhere, quietly."""
     os.dup2(os.open(os.devnull, os.O_WRONLY), stream.fileno())
+
+
+def _end_interrupted(shell: bool) -> int:
+    """130, an interrupted run's status. From a shell the process ends here (streams flushed,
+    os._exit): a Ctrl-C that came while CasADi's libraries were loading could otherwise still
+    kill the interpreter by SIGINT as it exits (status -2 instead of 130, 1 run in 10 with the
+    signal in the first 0.6 s after CasADi loads, on a loaded machine, 2026-11-25)."""
+    if shell:
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):  # a closed pipe or stream: nothing more to say
+                pass
+        os._exit(130)
+    return 130
 
 
 def _interrupted(signum, frame) -> None:

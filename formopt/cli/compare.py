@@ -13,8 +13,9 @@ from typing import Any
 
 from ..io import markerset, mocap
 from ..io import validate as val
-from ..io.export import write_mot, write_trc
+from ..io.export import write_mot, write_osim, write_trc
 from ..io.files import output_folder, save_figure, write_csv
+from ..io.progress import Stages
 from ..measure import Options
 from ..mechanics import limits
 from ..mechanics.body import DE_LEVA
@@ -22,7 +23,7 @@ from ..mechanics.contact import LAWS
 from ..mechanics.errors import InputError
 from ..report.figures import comparison_figure, stride_cadence_figure
 from ..report.tables import comparison_table, trials_table
-from ..studies.compare import BOUNDS_DEG, JOINTS, SUPPORT, compare
+from ..studies.compare import BOUNDS_DEG, JOINTS, SIDES, SUPPORT, compare
 from ..studies.compare_stride import answer
 from .common import add_format, emit, out_folder
 
@@ -199,14 +200,15 @@ def run_one(s: dict, args, out: Path, show: bool = True):
     trial = mocap.read(s["trial"], s["forces"])
     static = mocap.read(s["static"])
     options = Options(s["markers"], s["cutoff"], s["force_threshold"], s["foot_speed_fraction"])
-    quiet = args.json or not show or not sys.stderr.isatty()  # progress only to a person
-    result = compare(trial, static, s["mass"], s["height"], s["sex"], friction=s["friction"],
-                     starts=s["starts"], seed=s["seed"], law=s["contact"], bounds_deg=s["bounds"],
-                     support=s["support"], options=options, per_step=s["per_step"],
-                     progress=None if quiet else lambda text: print(f"  {text}", file=sys.stderr))
+    quiet = args.json or not show  # the bars themselves show only on a terminal (io.progress)
+    with Stages(2 + len(SIDES), "compare") as say:  # measuring, the band, each side
+        result = compare(trial, static, s["mass"], s["height"], s["sex"], friction=s["friction"],
+                         starts=s["starts"], seed=s["seed"], law=s["contact"], bounds_deg=s["bounds"],
+                         support=s["support"], options=options, per_step=s["per_step"],
+                         progress=None if quiet else say)
     if s["stride"]:
-        result.stride = answer(result, progress=None if quiet else
-                               lambda text: print(f"  {text}", file=sys.stderr))
+        with Stages(None, "compare: stride") as say:  # its stages' count is compare_stride's
+            result.stride = answer(result, progress=None if quiet else say)
     rep = result.to_dict()
     rep["figure"] = str(save_figure(comparison_figure(result, rep), out / f"comparison.{args.format}"))
     rows = [TOUCHDOWN_COLUMNS]
@@ -229,7 +231,7 @@ def run_one(s: dict, args, out: Path, show: bool = True):
     files = [rep["figure"], *([rep["stride"]["figure"]] if "stride" in rep else []),
              write_csv(out / "touchdowns.csv", rows),
              write_trc(out / "markers.trc", m.kinematics, m.calibration),
-             write_mot(out / "angles.mot", m.kinematics)]
+             write_mot(out / "angles.mot", m.kinematics), write_osim(out / "model.osim", result.body)]
     emit(args, rep, comparison_table(result, rep), out / "comparison.json", files, show)
     return rep, result
 

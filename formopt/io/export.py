@@ -64,3 +64,99 @@ def write_storage(path, t, columns, values, degrees: bool = True):
             fh.write(f"{time:.6f}\t" + "\t".join(f"{v:.5f}" for v in row) + "\n")
     return Path(path)
 
+
+
+# The planar body as an OpenSim 4 model (write_osim): each coordinate's axis in OpenSim's frame
+# (X forward, Y up, Z right) so that its sign is formopt's, the .mot's. pelvis_tilt: the trunk's
+# tilt, about +Z (anterior negative, as gait2392 and Rajagopal 2016); hip_flexion about +Z
+# (flexion positive, as both); knee_angle about -Z: flexion POSITIVE, as Rajagopal 2016 and
+# opposite to gait2392 (whose knee_angle is flexion negative); ankle_angle about +Z
+# (dorsiflexion positive, as both; 0 with the foot perpendicular to the shank).
+OSIM_AXES = {"hip": "0 0 0", "knee": "3.14159265358979 0 0", "ankle": "0 0 0"}  # frame orientation:
+# a PinJoint turns about its frames' Z; rotated by pi about X that is -Z (both frames alike, so
+# the body does not move at 0)
+LEG_WIDTH_M = 0.09  # each hip's offset along Z: only for the view, the model is planar
+
+
+def _osim_body(name: str, mass: float, com, inertia: float) -> str:
+    # planar: the sagittal inertia (about Z) is formopt's; X and Y get the same (a placeholder
+    # that keeps the inertia valid; nothing moves about them)
+    return (f'<Body name="{name}"><mass>{mass:.6g}</mass><mass_center>{com[0]:.6g} {com[1]:.6g} 0'
+            f'</mass_center><inertia>{inertia:.6g} {inertia:.6g} {inertia:.6g} 0 0 0</inertia></Body>')
+
+
+def _osim_joint(kind: str, name: str, parent: str, child: str, at, coords: list[tuple[str, str, float]],
+                orientation: str = "0 0 0") -> str:
+    frames = (f'<PhysicalOffsetFrame name="{parent.split("/")[-1]}_offset"><socket_parent>{parent}'
+              f'</socket_parent><translation>{at[0]:.6g} {at[1]:.6g} {at[2]:.6g}</translation>'
+              f'<orientation>{orientation}</orientation></PhysicalOffsetFrame>'
+              f'<PhysicalOffsetFrame name="{child.split("/")[-1]}_offset"><socket_parent>{child}'
+              f'</socket_parent><translation>0 0 0</translation><orientation>{orientation}</orientation>'
+              f'</PhysicalOffsetFrame>')
+    coordinates = "".join(f'<Coordinate name="{c}"><default_value>{d:.6g}</default_value><range>{r}</range>'
+                          '</Coordinate>' for c, r, d in coords)
+    return (f'<{kind} name="{name}"><socket_parent_frame>{parent.split("/")[-1]}_offset</socket_parent_frame>'
+            f'<socket_child_frame>{child.split("/")[-1]}_offset</socket_child_frame>'
+            f'<coordinates>{coordinates}</coordinates><frames>{frames}</frames></{kind}>')
+
+
+def write_osim(path, body, name: str = "formopt_planar_body"):
+    """The planar body (mechanics.body.Body with trunk, thigh, shank and foot; two legs alike) as
+    an OpenSim 4 model: a trunk on a planar joint to the ground (pelvis_tilt, pelvis_tx,
+    pelvis_ty), hips, knees and ankles as pin joints named as the .mot's columns (MOT_COLUMNS),
+    each with formopt's sign (OSIM_AXES); masses, centres of mass and sagittal inertias are the
+    body's, the segment frames formopt's (origin at the proximal joint, x forward, y up); the
+    heel and forefoot contact points are markers (heel_r, forefoot_r, ...); pelvis_ty's default
+    stands the heels on the ground (y = 0)."""
+    trunk, thigh, shank, foot = (body[k] for k in ("trunk", "thigh", "shank", "foot"))
+    bodies = [_osim_body("torso", trunk.mass, trunk.com, trunk.inertia_com)]
+    standing = -(thigh.landmarks["knee"][1] + shank.landmarks["ankle"][1] + foot.landmarks["heel"][1])
+    joints = [_osim_joint("PlanarJoint", "ground_pelvis", "/ground", "/bodyset/torso", (0.0, 0.0, 0.0),
+                          [("pelvis_tilt", "-1.5708 1.5708", 0.0), ("pelvis_tx", "-100 100", 0.0),
+                           ("pelvis_ty", "-1 3", standing)])]  # the hip's height, m: standing at 0
+    markers = []
+    for side, z in (("r", LEG_WIDTH_M), ("l", -LEG_WIDTH_M)):
+        knee, ankle = thigh.landmarks["knee"], shank.landmarks["ankle"]
+        for seg in (thigh, shank, foot):
+            bodies.append(_osim_body(f"{seg.name}_{side}", seg.mass, seg.com, seg.inertia_com))
+        joints += [
+            _osim_joint("PinJoint", f"hip_{side}", "/bodyset/torso", f"/bodyset/thigh_{side}", (0.0, 0.0, z),
+                        [(f"hip_flexion_{side}", "-2.0944 2.0944", 0.0)], OSIM_AXES["hip"]),
+            _osim_joint("PinJoint", f"knee_{side}", f"/bodyset/thigh_{side}", f"/bodyset/shank_{side}",
+                        (knee[0], knee[1], 0.0), [(f"knee_angle_{side}", "-0.1745 2.0944", 0.0)], OSIM_AXES["knee"]),
+            _osim_joint("PinJoint", f"ankle_{side}", f"/bodyset/shank_{side}", f"/bodyset/foot_{side}",
+                        (ankle[0], ankle[1], 0.0), [(f"ankle_angle_{side}", "-1.0472 0.8727", 0.0)], OSIM_AXES["ankle"])]
+        markers += [f'<Marker name="{p}_{side}"><socket_parent_frame>/bodyset/foot_{side}</socket_parent_frame>'
+                    f'<location>{foot.landmarks[p][0]:.6g} {foot.landmarks[p][1]:.6g} 0</location></Marker>'
+                    for p in ("heel", "forefoot")]
+    text = ('<?xml version="1.0" encoding="UTF-8" ?>\n<OpenSimDocument Version="40000">'
+            f'<Model name="{name}"><credits>formopt: {body.source}</credits>'
+            '<gravity>0 -9.80665 0</gravity><Ground name="ground"/>'
+            f'<BodySet name="bodyset"><objects>{"".join(bodies)}</objects></BodySet>'
+            f'<JointSet name="jointset"><objects>{"".join(joints)}</objects></JointSet>'
+            f'<MarkerSet name="markerset"><objects>{"".join(markers)}</objects></MarkerSet>'
+            '</Model></OpenSimDocument>\n')
+    with atomic(path) as fh:
+        fh.write(text)
+    return Path(path)
+
+
+def write_grf(path, t, force, points, side: str = "r"):
+    """The ground force on one foot as OpenSim external loads (.sto, SI): `force` (N, 2 points,
+    x and z, N) on the heel and forefoot at `points` (N, 2 points, x and z, m, formopt's axes),
+    one resultant per row applied at the centre of pressure (the points weighted by their
+    normal force; the heel when no force), no free moment (both points on the ground). Columns
+    `{side}_ground_force_v{x,y,z}`, `_p{x,y,z}`, `{side}_ground_torque_{x,y,z}` in OpenSim's
+    frame (Y up, Z right: z is 0 in the plane), for an ExternalLoads file to apply to the foot."""
+    force, points = np.asarray(force, float), np.asarray(points, float)
+    total = force.sum(axis=1)  # (N, 2)
+    normal = force[:, :, 1]
+    share = np.divide(normal, normal.sum(axis=1, keepdims=True), out=np.zeros_like(normal),
+                      where=normal.sum(axis=1, keepdims=True) > 0)
+    share[share.sum(axis=1) == 0, 0] = 1.0  # no force: the heel
+    cop = np.einsum("np,npk->nk", share, points)
+    zero = np.zeros(len(total))
+    values = np.column_stack([total[:, 0], total[:, 1], zero, cop[:, 0], cop[:, 1], zero, zero, zero, zero])
+    columns = [f"{side}_ground_force_v{a}" for a in "xyz"] + [f"{side}_ground_force_p{a}" for a in "xyz"] \
+        + [f"{side}_ground_torque_{a}" for a in "xyz"]
+    return write_storage(path, t, columns, values, degrees=False)

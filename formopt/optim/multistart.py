@@ -110,7 +110,7 @@ def solve(pp, progress=None) -> Optimum:
                    sensitivity=sensitivity, starts=tuple(r.start for r in found),
                    local_optima=distinct([r.x[pp.index] for r in converged]),
                    seed=pp.problem.seed, solve_time=float(np.median([r.elapsed for r in found])),
-                   build_time=pp.build_time, terms=terms(chosen.w),
+                   build_time=pp.build_time, terms=terms(chosen.w), weights=dict(pp.problem.objective),
                    reference_objective=float(pp.objective_function(first, p)),
                    reference_terms=terms(first),
                    cadence_spm=pp.problem.gait.cadence_spm if pp.problem.gait else None,

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..mechanics.impact import ImpactResult
+from .objective import UNITS
 from .variables import RANGE_OF_MOTION_DEG
 
 CONVERGED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
@@ -115,6 +116,7 @@ class Optimum:
     solve_time: float  # s, median over the starts
     build_time: float  # s
     terms: dict = field(default_factory=dict)  # objective term -> value at the optimum (unweighted)
+    weights: dict = field(default_factory=dict)  # the objective: term -> weight
     reference_objective: float = float("nan")  # the objective at the reference posture
     reference_terms: dict = field(default_factory=dict)  # and its terms
     cadence_spm: float | None = None  # the gait's, when given: J per step to W
@@ -122,14 +124,27 @@ class Optimum:
     notes: tuple[str, ...] = field(default=())
 
     @property
+    def quantity(self) -> str | None:
+        """The term the headline reports: T_c when the objective weighs it, else the objective's
+        first term (None without weights). A weighted objective's drop is never called a saving."""
+        return "T_c" if "T_c" in self.weights else next(iter(self.weights), None)
+
+    @property
     def saving(self) -> float:
-        """The objective at the reference minus at the optimum (J per step for energies)."""
-        return self.reference_objective - self.objective
+        """The headline quantity at the reference minus at the optimum, unweighted (J per step
+        for energies; negative when the optimum costs more of it); without terms, the
+        objective's drop."""
+        q = self.quantity
+        if q not in self.terms or q not in self.reference_terms:
+            return self.reference_objective - self.objective
+        return self.reference_terms[q] - self.terms[q]
 
     @property
     def power(self) -> float | None:
-        """The saving at the gait's cadence, W (J per step * steps per s)."""
-        return self.saving * self.cadence_spm / 60.0 if self.cadence_spm else None
+        """The saving at the gait's cadence, W (J per step * steps per s); None unless the
+        quantity is an energy (J) and the gait gives a cadence."""
+        energy = UNITS.get(self.quantity or "T_c") == "J"
+        return self.saving * self.cadence_spm / 60.0 if self.cadence_spm and energy else None
 
     @property
     def held_by(self) -> tuple[Constraint, ...]:
@@ -158,7 +173,7 @@ class Optimum:
             "reference": {"indicators": self.reference.to_dict()},
             "verdict": self.verdict, "terms": self.terms,
             "reference_objective": self.reference_objective, "reference_terms": self.reference_terms,
-            "saving_per_step": self.saving, "saving_W": self.power,
+            "saving_of": self.quantity, "saving_per_step": self.saving, "saving_W": self.power,
             "active": [asdict(c) for c in self.active], "held_by": [c.name for c in self.held_by],
             "local": asdict(self.local) if self.local else None, "sensitivity": self.sensitivity,
             "starts": [asdict(s) for s in self.starts], "local_optima": self.local_optima,

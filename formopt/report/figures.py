@@ -308,24 +308,27 @@ FONT_PT = 6  # the names' font size; a character about 0.6 of it wide
 def stride_cadence_figure(s: dict) -> Figure:
     """compare's stride section (compare_stride.StrideAnswer.to_dict): mechanical power and
     impact loss (W) against the imposed cadence, one line per variant of the band (the nominal
-    bold), the runner's own cadence marked (dashed) and each variant's free optimum (star)."""
+    bold), the runner's own cadence marked (dashed) and, on the power panel, each variant's free
+    optimum (star) where it has one; a panel's title names the stars only when it draws them."""
     fig, axes = _subplots(1, 2, figsize=(12, 4.4))
     for key, ax, title in (("mechanical_power_W", axes[0], "mechanical power W+ / T"),
                            ("impact_loss_W", axes[1], "impact loss (T_c per step x step rate)")):
+        stars = 0
         for k, c in enumerate(s["curves"]):
             if not c["converged"]:
                 continue
             order = np.argsort(c["cadence_spm"])
             x, y = np.asarray(c["cadence_spm"])[order], np.asarray(c[key])[order]
             line, = ax.plot(x, y, "o-", lw=2.2 if k == 0 else 0.9, ms=3, label=c["name"])
-            if key == "mechanical_power_W":
-                ax.plot(c["free_cadence_spm"], c["free_mechanical_power_W"], "*", ms=10,
-                        color=line.get_color())
+            free = (c.get("free_cadence_spm"), c.get("free_mechanical_power_W"))
+            if key == "mechanical_power_W" and None not in free:
+                ax.plot(*free, "*", ms=10, color=line.get_color())
+                stars += 1
         ax.axvline(s["measured_cadence_spm"], color="0.3", ls="--", lw=1,
                    label=f"the runner, {s['measured_cadence_spm']:.0f} steps/min")
         ax.set_xlabel("imposed cadence (steps/min)")
         ax.set_ylabel(f"{title} (W)")
-        ax.set_title(f"{title}; star: the free optimum", fontsize=9)
+        ax.set_title(title + ("; star: the free optimum" if stars else ""), fontsize=9)  # only stars drawn
     axes[0].legend(fontsize=7)
     fig.suptitle(f"the stride of this body at {s['speed_mps']:.2f} m/s, {s['measured_strike']} strike",
                  fontsize=10)

@@ -41,35 +41,59 @@ def stick_figures(stride, js: JointSpace, every: int = 3) -> Figure:
     return fig
 
 
+MEASURED_MASS_KG = 62.0  # RBDS001, whose mean cycle studies.stride.measured_cycle reads
+MEASURED_SPEEDS = (2.5, 3.5, 4.5)  # m/s: its trials
+
+
+def measured_applies(stride) -> bool:
+    """Whether RBDS001's measured cycle belongs beside this stride: the runner's body mass and
+    one of the runner's speeds (another body at 3.5 m/s is not RBDS001)."""
+    return abs(stride.mass_kg - MEASURED_MASS_KG) < 0.5 and round(stride.speed_mps, 2) in MEASURED_SPEEDS
+
+
 def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
-    """Right-leg joint angles (deg) or moments (N m/kg) over the gait cycle, or the vertical
-    ground force (N/kg); the measured mean beside them (dashed) when given."""
+    """Right-leg joint angles (deg) or active joint moments (N m/kg: the actuators' only, the
+    tendons' spring moments not included) over the gait cycle, or the ground force (N/kg:
+    vertical and fore-aft, "vertical"); the measured mean beside them (dashed) when given (the
+    measured force: vertical only)."""
     predicted = predicted_cycle(stride)
     fig = new_figure((10, 3.2))
-    panels = CYCLE_JOINTS if quantity != "vertical" else ("vertical",)
+    if quantity == "vertical":
+        predicted = {**predicted, "horizontal": np.r_[stride.force[:, :, 0].sum(axis=1),  # as predicted_cycle
+                                                      np.zeros(len(stride.t))] / stride.mass_kg}
+    panels = CYCLE_JOINTS if quantity not in ("vertical",) else ("vertical", "horizontal")
     unit = {"angles": "deg", "moments": "N m/kg", "vertical": "N/kg"}[quantity]
+    label = "predicted, active moment" if quantity == "moments" else "predicted"
     for k, name in enumerate(panels):
         ax = fig.add_subplot(1, len(panels), k + 1)
         order = np.argsort(predicted["percent"], kind="stable")
-        values = predicted[quantity] if quantity == "vertical" else predicted[quantity][name]
-        ax.plot(predicted["percent"][order], values[order], "C0", label="predicted")
-        if measured is not None:
+        values = predicted[name] if quantity == "vertical" else predicted[quantity][name]
+        ax.plot(predicted["percent"][order], values[order], "C0", label=label)
+        if measured is not None and name != "horizontal":
             data = measured[quantity] if quantity == "vertical" else measured[quantity][name]
-            ax.plot(measured["percent"], data, "k--", label="RBDS001 measured")
+            ax.plot(measured["percent"], data, "k--",
+                    label="RBDS001 measured" + (", net moment" if quantity == "moments" else ""))
         ax.set_xlabel("gait cycle (%)")
-        ax.set_title(f"{name} ({unit})")
+        ax.set_title(f"{name if name != 'horizontal' else 'fore-aft (forward +)'} ({unit})")
     fig.axes[0].legend(fontsize=8)
     fig.tight_layout()
     return fig
 
 
+SINKS = {"negative_work_J": "negative work", "impacts_J": "impacts (T_c)",
+         "spring_J": "tendons let go at toe-off", "friction_J": "friction", "passive_J": "passive limits",
+         "climb_J": "climb"}  # where the positive work goes: every term the budget balances
+
+
 def budget_figure(stride) -> Figure:
-    """The energy budget of the half stride (J): positive work against where it goes."""
+    """The energy budget of the half stride (J): positive work against every term it balances
+    (SINKS; a budget term not named there is drawn under its own key), the balance the bars'
+    own difference."""
     b = stride.budget
-    fig = new_figure((6, 3.6))
+    fig = new_figure((7, 3.6))
     ax = fig.add_subplot()
-    sinks = [("negative work", b["negative_work_J"]), ("impacts", b["impacts_J"]),
-             ("friction", b["friction_J"]), ("passive", b["passive_J"]), ("climb", b["climb_J"])]
+    sinks = [(SINKS.get(k, k), v) for k, v in b.items()
+             if k not in ("positive_work_J", "balance_J", "metabolic_J")]
     bottom = 0.0
     for k, (name, value) in enumerate(sinks):
         ax.bar(1, value, bottom=bottom, color=f"C{k + 1}", label=f"{name} {value:.1f} J")
@@ -77,13 +101,17 @@ def budget_figure(stride) -> Figure:
     ax.bar(0, b["positive_work_J"], color="C0", label=f"positive work {b['positive_work_J']:.1f} J")
     ax.set_xticks([0, 1], ["in", "out"])
     ax.set_ylabel("J per half stride")
-    ax.set_title(f"balance {b['balance_J']:.2f} J, CoT {stride.cost_of_transport:.3f}, "
+    ax.set_title(f"in - out {b['positive_work_J'] - bottom:+.2f} J, CoT {stride.cost_of_transport:.3f}, "
                  f"{stride.mechanical_power_W:.0f} W")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0))
+    fig.tight_layout()
     return fig
 
 
 def stride_figures(stride, js: JointSpace, measured: dict | None) -> dict[str, Figure]:
+    """The stride's figures; `measured` (RBDS001's mean cycle) drawn only where it applies
+    (measured_applies)."""
+    measured = measured if measured is not None and measured_applies(stride) else None
     return {"stick": stick_figures(stride, js), "angles": cycle_figure(stride, measured, "angles"),
             "moments": cycle_figure(stride, measured, "moments"),
             "grf": cycle_figure(stride, measured, "vertical"), "budget": budget_figure(stride)}

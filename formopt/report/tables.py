@@ -174,7 +174,7 @@ def gait_lines(problem, opt) -> list[str]:
 
 def optimum_lines(opt) -> list[str]:
     """What the optimum is and what it is worth: the objective's terms, what holds it (with
-    multipliers), the local mode's marginal values, the sensitivities."""
+    multipliers), the headline, the local mode's marginal values, the sensitivities."""
     lines = []
     if opt.terms:
         lines.append("per step, reference -> optimum: " + ", ".join(
@@ -192,11 +192,7 @@ def optimum_lines(opt) -> list[str]:
             for c in fixed:
                 lines.append(f"  {c.name:22s} = {c.bound:+.4g}  multiplier {c.multiplier:+.4g}: {c.meaning}")
     if opt.success:
-        where = f"within {opt.local.radius_deg:g} deg of the reference" if opt.local else "against the reference"
-        units = {UNITS[k] for k in opt.terms if k in opt.reference_terms and k != "T_c"} or {"J"}
-        unit = units.pop() if len(units) == 1 else "(objective units)"
-        lines += ["", f"{where}: the optimum saves {opt.saving:.4g} {unit} per step"
-                      + (f", {opt.power:.3g} W at {opt.cadence_spm:g} steps/min" if opt.power is not None else "")]
+        lines += ["", headline(opt)]
     if opt.local:
         lines.append("  marginal value at the reference (objective per deg, the other angles held): "
                      + ", ".join(f"{k} {v:+.4g}" for k, v in opt.local.marginal.items()))
@@ -209,6 +205,25 @@ def optimum_lines(opt) -> list[str]:
                 moves = ", ".join(f"{k} {v:+.3g}" for k, v in s[f"d_posture_d_{name}_deg"].items())
                 lines.append(f"  posture per {unit}: {moves} deg")
     return lines
+
+
+def headline(opt) -> str:
+    """The optimum's headline: the quantity it optimised (Optimum.quantity, unweighted) at the
+    reference and the optimum, per step and in W at the gait's cadence; a weighted objective's
+    drop is named as such, never a saving."""
+    where = f"within {opt.local.radius_deg:g} deg of the reference" if opt.local else "against the reference"
+    q, s = opt.quantity, opt.saving
+    if q not in opt.terms or q not in opt.reference_terms:
+        return f"{where}: the objective falls by {s:.4g} per step"
+    unit = UNITS.get(q, "")
+    text = (f"{where}: {q} per step {opt.reference_terms[q]:.4g} -> {opt.terms[q]:.4g} {unit}, "
+            f"{abs(s):.4g} {unit} {'less' if s >= 0 else 'more'}")
+    if opt.power is not None:
+        text += f" ({abs(opt.power):.3g} W at {opt.cadence_spm:g} steps/min)"
+    if len(opt.weights) > 1 or set(opt.weights.values()) - {1.0}:
+        text += (f"; the objective {_objective_text(opt.weights)} falls by "
+                 f"{opt.reference_objective - opt.objective:.4g}, a weighted sum, not an energy saved")
+    return text
 
 
 def _objective_text(terms: dict) -> str:

@@ -35,6 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io.files import OutputError, append_csv, append_rows, write_csv
+from ..io.progress import bar as progress_bar
 from ..io.stride_scene import StrideScene
 from ..mechanics import limits
 from ..mechanics.errors import InputError
@@ -234,8 +235,7 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
                   if any(_key(g, names) not in done for g in c)]
         bar = None
         if progress:
-            from tqdm import tqdm
-            bar = tqdm(total=len(grid), initial=len(grid) - len(todo), unit=kind.unit, desc="sweep")
+            bar = progress_bar(len(grid), "sweep", kind.unit, initial=len(grid) - len(todo))
         written = len(grid) - len(todo)
         try:
             # closing: an error in this loop (a full disk) ends the pool now, not when the

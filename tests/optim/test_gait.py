@@ -1,4 +1,4 @@
-"""The gait-anchored optimum (formopt/scenes/demo.toml): the gait held to 1e-9 m, the optimum
+"""The gait-anchored optimum (formopt/scenes/demo_support.toml): the gait held to 1e-9 m, the optimum
 interior and confirmed by a brute-force scan and 3,000 feasible perturbations, its
 multipliers and sensitivities against re-solves, its posture free of the weights' scale."""
 
@@ -16,7 +16,7 @@ from formopt import load, solve
 from formopt.io.scene import parse
 from formopt.mechanics.model import STATE
 
-DEMO = SHIPPED / "demo.toml"
+DEMO = SHIPPED / "demo_support.toml"
 HIP, KNEE, ANKLE = (STATE.index(k) for k in ("hip", "knee", "ankle"))
 
 

@@ -15,7 +15,7 @@ from formopt import load, solve
 from formopt.cli import main
 from formopt.io.scene import parse
 
-DEMO = SHIPPED / "demo.toml"
+DEMO = SHIPPED / "demo_support.toml"
 BOUNDED = Path(__file__).with_name("bounded.toml")  # a vertex optimum: multipliers on bounds
 
 

@@ -1,0 +1,46 @@
+"""report.stride: the budget chart draws every term the budget balances."""
+
+from types import SimpleNamespace
+
+import pytest
+
+from formopt.report.stride import budget_figure
+
+
+def test_the_budget_chart_draws_every_term_it_balances():
+    budget = {"positive_work_J": 138.4, "negative_work_J": 106.0, "impacts_J": 3.1, "friction_J": 0.0,
+              "passive_J": 0.0, "spring_J": 29.3, "climb_J": 0.0, "balance_J": 0.0, "metabolic_J": 642.0}
+    fig = budget_figure(SimpleNamespace(budget=budget, cost_of_transport=0.15, mechanical_power_W=376.0))
+    ax = fig.axes[0]
+    out = sum(p.get_height() for p in ax.patches if p.get_x() > 0.5)
+    assert out == pytest.approx(138.4)  # the tendons' 29.3 J included
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert any("tendons" in s and "29.3" in s for s in labels) and len(labels) == 7
+    assert "in - out +0.00 J" in ax.get_title()
+
+
+def synthetic(mass_kg=62.0, speed_mps=3.5, n=11):
+    import numpy as np
+
+    t = np.linspace(0.0, 0.18, n)
+    force = np.zeros((n, 2, 2))
+    force[:6, 0] = [[-100.0, 1200.0]] * 6  # heel: braking, pushing
+    return SimpleNamespace(t=t, half_period_s=0.18, mass_kg=mass_kg, speed_mps=speed_mps,
+                           theta=np.zeros((n, 9)), tau=np.zeros((n, 6)), force=force)
+
+
+def test_the_force_figure_draws_both_components():
+    from formopt.report.stride import cycle_figure
+
+    fig = cycle_figure(synthetic(), None, "vertical")
+    titles = [ax.get_title() for ax in fig.axes]
+    assert titles == ["vertical (N/kg)", "fore-aft (forward +) (N/kg)"]
+    fore_aft = fig.axes[1].lines[0].get_ydata()
+    assert min(fore_aft) == pytest.approx(-100.0 / 62.0)
+
+
+@pytest.mark.parametrize("mass, speed, drawn", [(62.0, 3.5, True), (73.0, 3.5, False), (62.0, 3.0, False)])
+def test_the_measured_runner_is_drawn_only_beside_its_own_body_and_speed(mass, speed, drawn):
+    from formopt.report.stride import measured_applies
+
+    assert measured_applies(synthetic(mass, speed)) is drawn
