@@ -634,7 +634,7 @@ def base_argv(command: str, folder, trial: str = "no_trial.c3d") -> list[str]:
                         "1.81", "--no-per-step", "--no-stride", "--starts", "1", "--out", str(folder / "o")],
             "bench": ["bench", "--quick", "--out", str(folder / "o")],
             "stride": ["stride", "stride", "--out", str(folder / "o")],
-            "scenes": ["scenes"]}[command]
+            "scenes": ["scenes"], "data": ["data"]}[command]
 
 
 @st.composite

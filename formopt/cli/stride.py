@@ -2,14 +2,14 @@
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import numpy as np
 
 from .. import api
-from ..io.export import write_storage
+from ..io.export import write_grf, write_osim, write_storage
 from ..io.files import save_figure, write_csv
+from ..io.progress import Stages
 from ..io.scene import load
 from ..io.stride_scene import STRIDE_STRIKES, StrideScene
 from ..mechanics.errors import InputError
@@ -45,13 +45,21 @@ def stride_rows(stride):
                *stride.force[k].ravel()]
 
 
+def foot_points(stride, js: JointSpace) -> np.ndarray:
+    """The leading leg's heel and forefoot (n, 2, x and z, m) at each node (OpenSim's points of
+    application of the ground force)."""
+    return np.array([[np.asarray(js.points[p](th, np.zeros(9), stride.slope)[0], float).ravel()[:2]
+                      for p in FOOT_POINTS] for th in stride.theta])
+
+
 def run(args) -> int:
     scene = load(args.scene)
     if not isinstance(scene, StrideScene):
         raise InputError(f"{args.scene}: not a stride scene (it has no [stride] table)")
     out = out_folder(args, scene.path or scene.name)
-    say = None if args.json or not sys.stderr.isatty() else lambda text: print(f"  {text}", file=sys.stderr)
-    study = api.stride(scene, args.speed, args.strike, progress=say)
+    strikes = 3 if (args.strike or scene.strike) == "best" else 1
+    with Stages(None if args.json else strikes, "stride") as say:
+        study = api.stride(scene, args.speed, args.strike, progress=say)
     best = study.best
     measured = measured_cycle(RBDS, best.speed_mps) if RBDS.exists() else None
     files = [save_figure(fig, out / f"stride_{name}.{args.format}")
@@ -59,10 +67,8 @@ def run(args) -> int:
     files.append(write_csv(out / "stride.csv", stride_rows(best)))
     angles = np.degrees(np.column_stack([-best.theta[:, 2], best.theta[:, 3:]]))
     files.append(write_storage(out / "stride.mot", best.t, MOT_NAMES, angles))
-    forces = best.force.reshape(len(best.t), -1)
-    files.append(write_storage(out / "stride_grf.sto", best.t,
-                               [f"{p}_force_v{a}" for p in FOOT_POINTS for a in "xy"], forces,
-                               degrees=False))
+    files.append(write_osim(out / "stride.osim", scene.body))
+    files.append(write_grf(out / "stride_grf.sto", best.t, best.force, foot_points(best, JointSpace(scene.body))))
     report = {**study.to_dict(), "files": [str(f) for f in files]}
     emit(args, report, stride_table(study), out / "stride.json", files)
     return 0 if best.valid else 1

@@ -52,8 +52,8 @@ def measured_applies(stride) -> bool:
 
 
 def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
-    """Right-leg joint angles (deg) or active joint moments (N m/kg: the actuators' only, the
-    tendons' spring moments not included) over the gait cycle, or the ground force (N/kg:
+    """Right-leg joint angles (deg) or net joint moments (N m/kg: the actuators' and the
+    tendons', as the measured net moments) over the gait cycle, or the ground force (N/kg:
     vertical and fore-aft, "vertical"); the measured mean beside them (dashed) when given (the
     measured force: vertical only)."""
     predicted = predicted_cycle(stride)
@@ -63,7 +63,7 @@ def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
                                                       np.zeros(len(stride.t))] / stride.mass_kg}
     panels = CYCLE_JOINTS if quantity not in ("vertical",) else ("vertical", "horizontal")
     unit = {"angles": "deg", "moments": "N m/kg", "vertical": "N/kg"}[quantity]
-    label = "predicted, active moment" if quantity == "moments" else "predicted"
+    label = "predicted, net moment (active + tendons)" if quantity == "moments" else "predicted"
     for k, name in enumerate(panels):
         ax = fig.add_subplot(1, len(panels), k + 1)
         order = np.argsort(predicted["percent"], kind="stable")

@@ -88,13 +88,15 @@ def measured_cycle(path, speed: float) -> dict | None:
 
 def predicted_cycle(stride: Stride) -> dict:
     """The right leg over a whole gait cycle from the half stride (its left leg gives the second
-    half, by symmetry): percent, angles (deg), moments (N m/kg), vertical force (N/kg)."""
+    half, by symmetry): percent, angles (deg), net moments (N m/kg: the active moments and the
+    tendons'), vertical force (N/kg)."""
     T = stride.half_period_s
     percent = np.r_[stride.t / T * 50.0, 50.0 + stride.t / T * 50.0]
     m = stride.mass_kg
     angles = {j: np.degrees(np.r_[stride.theta[:, 3 + k], stride.theta[:, 6 + k]])
               for k, j in enumerate(CYCLE_JOINTS)}
-    moments = {j: np.r_[stride.tau[:, k], stride.tau[:, 3 + k]] / m for k, j in enumerate(CYCLE_JOINTS)}
+    net = stride.tau + (stride.tau_spring if stride.tau_spring is not None else 0.0)
+    moments = {j: np.r_[net[:, k], net[:, 3 + k]] / m for k, j in enumerate(CYCLE_JOINTS)}
     vertical = np.r_[stride.force[:, :, 1].sum(axis=1), np.zeros(len(stride.t))] / m
     return {"percent": percent, "angles": angles, "moments": moments, "vertical": vertical}
 

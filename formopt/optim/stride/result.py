@@ -84,6 +84,7 @@ class Stride:
     tau: np.ndarray = field(repr=False)  # (n, 6) N m, JOINTS, extensor positive
     force: np.ndarray = field(repr=False)  # (n, 2, 2) N, world (x, z) per FOOT_POINTS
     solved: Solved | None = field(repr=False, default=None)  # the raw solution (a warm start)
+    tau_spring: np.ndarray | None = field(repr=False, default=None)  # (n, 6) N m, the tendons' moments
 
     @property
     def failed_checks(self) -> list[str]:
@@ -105,7 +106,7 @@ class Stride:
 
     def to_dict(self) -> dict:
         """JSON-ready summary (no histories), with `valid` and `failed_checks`."""
-        skip = {"t", "phase", "theta", "thetad", "tau", "force", "solved"}
+        skip = {"t", "phase", "theta", "thetad", "tau", "force", "solved", "tau_spring"}
         out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k not in skip}
         return {**out, "valid": self.valid, "failed_checks": self.failed_checks}
 
@@ -136,6 +137,14 @@ def histories(nlp: StrideNLP, blocks: dict, slope: float):
         start += T
     states = np.hstack(X).T
     return np.concatenate(t), names, states[:, :NX], states[:, NX:], np.hstack(U).T, np.concatenate(force)
+
+
+def spring_moments(nlp: StrideNLP, theta: np.ndarray, names: list) -> np.ndarray:
+    """The actuation's passive moments (the tendons', N m, n x 6, JOINTS) at each node: with
+    `tau` (the active ones) the net joint moments."""
+    models = {model.phase.name: model for model in nlp.ocp.models}
+    return np.array([np.asarray(models[p].actuation.passive(theta[k], theta[0], bool(models[p].phase.points)),
+                                float).ravel() for k, p in enumerate(names)])
 
 
 def budget(nlp: StrideNLP, solved: Solved, impacts: float) -> dict:
@@ -289,7 +298,8 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
         peak_vertical_grf_bw=float(vertical.max() / (m * GRAVITY)), touchdown=touchdown,
         impacts=found, budget=energy, cost_of_transport=positive / (m * GRAVITY * step),
         mechanical_power_W=positive / T, checks=checks, phases=durations, mass_kg=m,
-        t=t, phase=names, theta=theta, thetad=thetad, tau=tau, force=force, solved=solved)
+        t=t, phase=names, theta=theta, thetad=thetad, tau=tau, force=force, solved=solved,
+        tau_spring=spring_moments(nlp, theta, names))
 
 
 def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
