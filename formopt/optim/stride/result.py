@@ -122,14 +122,14 @@ def histories(nlp: StrideNLP, blocks: dict, slope: float):
     t, names, X, U, force = [], [], [], [], []
     start = 0.0
     tangent, normal = np.array([np.cos(slope), np.sin(slope)]), np.array([-np.sin(slope), np.cos(slope)])
-    for phase, n in zip(nlp.phases, nlp.split):
+    for phase, c in zip(nlp.phases, nlp.columns):
         T = blocks[f"T_{phase.name}"].item()
-        t.append(start + np.linspace(0.0, T, n + 1))
-        names += [phase.name] * (n + 1)
+        t.append(start + np.linspace(0.0, T, c))
+        names += [phase.name] * (c)
         X.append(blocks[f"X_{phase.name}"])
         U.append(m * blocks[f"U_{phase.name}"])
         F = m * GRAVITY * blocks[f"F_{phase.name}"]
-        f = np.zeros((n + 1, len(FOOT_POINTS), 2))
+        f = np.zeros((c, len(FOOT_POINTS), 2))
         for k, (point, axis) in enumerate(phase.rows):
             f[:, FOOT_POINTS.index(point)] += np.outer(F[k], tangent if axis == "t" else normal)
         force.append(f)
@@ -211,17 +211,16 @@ def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> list[dict]
 def slide(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> dict:
     """The slide after a sliding touchdown (phase 0): its duration `slide_s` (s), the distance
     the point slid along the ground `slide_m` (m, signed), its slip sign `slip`, the least
-    s v_t at its nodes (m/s), the friction work `slide_friction_J` (J, trapezoidal:
-    mu f_n |v_t| integrated) and `stick_friction_ratio` of the sticking phases after it."""
-    phase, n, slip = nlp.phases[0], nlp.split[0], nlp.settings.slip
+    s v_t at its nodes (m/s), the friction work `slide_friction_J` (J, mu f_n |v_t| integrated
+    by the transcription's quadrature) and `stick_friction_ratio` of the sticking phases after it."""
+    phase, n, c, slip = nlp.phases[0], nlp.split[0], nlp.columns[0], nlp.settings.slip
     X, T = blocks[f"X_{phase.name}"], blocks[f"T_{phase.name}"].item()
     point = nlp.js.points[phase.sliding]
     tangent = np.array([np.cos(slope), np.sin(slope)])
     r0, r1 = (np.asarray(point(X[:NX, k], np.zeros(NX), slope)[0], float).ravel() for k in (0, -1))
-    v_t = np.array([float(point(X[:NX, k], X[NX:, k], slope)[1][0]) for k in range(n + 1)])
+    v_t = np.array([float(point(X[:NX, k], X[NX:, k], slope)[1][0]) for k in range(c)])
     f = blocks[f"F_{phase.name}"][phase.rows.index((phase.sliding, "t"))] * nlp.mass * GRAVITY
-    w = np.full(n + 1, T / n)
-    w[[0, -1]] *= 0.5
+    w = np.asarray(nlp.transcription.weights(n, T / n), float).ravel()
     return {"slide_s": T, "slide_m": float((r1 - r0) @ tangent), "slip": int(slip),
             "slip_min_mps": float((slip * v_t).min()),
             "slide_friction_J": float(-np.sum(w * f * v_t)),
