@@ -9,7 +9,8 @@
               and starts - 1 perturbations of it, the best kept; default 4),
               [stride.duration_s] heel/flat/forefoot/flight = [low, high] (s),
               [stride.tendons] hip/knee/ankle = stiffness (N m/rad per kg; the stance leg's
-              springs, optim.stride.problem.TENDON_JOINTS)
+              springs, optim.stride.problem.TENDON_JOINTS), transcription ("trapezoid", the
+              default, or "hermite-simpson": optim.stride.collocation)
 
 Every error names its key (SceneError, one line); degrees at this edge, SI inside.
 """
@@ -22,7 +23,14 @@ from dataclasses import dataclass, replace
 from ..mechanics.body import Body
 from ..mechanics.errors import InputError
 from ..optim.stride.collocation import StrideNLP, build
-from ..optim.stride.problem import NODE_SHARE, OBJECTIVES, STRIKES, TENDON_JOINTS, StrideSettings
+from ..optim.stride.problem import (
+    NODE_SHARE,
+    OBJECTIVES,
+    STRIKES,
+    TENDON_JOINTS,
+    TRANSCRIPTIONS,
+    StrideSettings,
+)
 from ..optim.stride.ranges import RANGES, point
 from . import validate as val
 from .scene import SceneError, _body
@@ -30,7 +38,8 @@ from .scene import SceneError, _body
 STRIDE_STRIKES = (*STRIKES, "best")
 STRIDE_LAWS = ("no-slip", "coulomb")
 STRIDE_KEYS = {"speed_mps", "strike", "objective", "nodes", "impact_weight",
-               "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts", "tendons"}
+               "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts", "tendons",
+               "transcription"}
 
 
 @dataclass(frozen=True)
@@ -83,6 +92,7 @@ def parse(data: dict, path: str = "") -> StrideScene:
     speed = val.number(stride, "speed_mps", "stride", limit=RANGES["speed_mps"])
     strike = val.choice(stride.get("strike", "heel"), "stride.strike", STRIDE_STRIKES)
     objective = val.choice(stride.get("objective", "effort"), "stride.objective", OBJECTIVES)
+    transcription = val.choice(stride.get("transcription", "trapezoid"), "stride.transcription", TRANSCRIPTIONS)
     nodes = val.integer(stride, "nodes", "stride", 40, *_whole("nodes"))
     weight = val.number(stride, "impact_weight", "stride", default=0.0, limit=RANGES["impact_weight"])
     torque = val.number(stride, "torque_limit_nm_per_kg", "stride", default=4.0,
@@ -110,7 +120,8 @@ def parse(data: dict, path: str = "") -> StrideScene:
     try:
         settings = StrideSettings(strike="heel" if strike == "best" else strike, objective=objective,
                                   nodes=nodes, law=law, impact_weight=weight, torque_limit=torque,
-                                  duration=duration, max_iter=max_iter, tendons=tendons)
+                                  duration=duration, max_iter=max_iter, tendons=tendons,
+                                  transcription=transcription)
     except InputError as err:  # what only the settings check (e.g. a strike's least nodes)
         raise SceneError("stride", str(err)) from None
     return StrideScene(name, body, speed, math.radians(slope), friction, strike, settings,

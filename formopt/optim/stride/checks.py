@@ -132,11 +132,11 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
     errors: list[np.ndarray] = []
     reset: list[np.ndarray] = []
     slips: dict = {}
-    for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
+    for i, phase in enumerate(nlp.phases):
         X, U, T = blocks[f"X_{phase.name}"], m * blocks[f"U_{phase.name}"], blocks[f"T_{phase.name}"].item()
         if nlp.impact_before(i):  # an impact starts the phase
             state[NX:] = joint_impact(js, phase.rows, state[:NX], state[NX:], slope)[0]
-        times = np.linspace(0.0, T, n + 1)
+        times = np.linspace(0.0, T, X.shape[1])
         acc = accelerations(nlp, i)
 
         def rhs(t, x, U=U, times=times, acc=acc):

@@ -2,25 +2,22 @@
 parameters p = [speed (m/s), slope (rad), mu]; an imposed cadence through the bounds of the
 half-period's row.
 
-Decision variables, per phase (nodes k = 0..N): X = (theta, theta') (18 x N+1), A = theta''
-(9 x N+1), U the actuation's controls, F the contact forces (one per contact row), S the power
-split (work objectives), T the duration; per impact the impulse P (one per contact row after
-it; the touchdown's also its post-impact velocity V_touchdown).
+Decision variables, per phase of N intervals, one column per collocation point (N + 1 for the
+trapezoid, 2N + 1 for Hermite-Simpson): X = (theta, theta') (18 rows), A = theta'' (9), U the
+actuation's controls, F the contact forces (one per contact row), S the power split (work
+objectives); the phase's duration T; per impact the impulse P (one per contact row after it;
+the touchdown's also its post-impact velocity V_touchdown).
 
-The transcription (trapezoidal): each phase's node model is one CasADi Function of SX (ocp.
-NodeModel), mapped over the phase's nodes (an MX graph; IPOPT's derivatives assembled node by
-node, derivatives.py); on every interval the defects of x' = (theta', theta''),
+Each phase's node model is one CasADi Function of SX (ocp.NodeModel), mapped over its columns
+(an MX graph; IPOPT's derivatives assembled node by node, derivatives.py); the transcription
+(`Trapezoid`, `HermiteSimpson`: settings.transcription) gives the defects of x' = (theta',
+theta'') and the quadrature of the integrands. Neither sees accelerations that alternate column
+to column (problem.SMOOTHING says how that is closed).
 
-    x_k+1 - x_k = h/2 (x'_k + x'_k+1)       (second order: the energy balance closes to O(h^2)),
-
-and the integrands by the same rule (weights h/2, h, ..., h, h/2). The trapezoid cannot see
-accelerations that alternate node to node (problem.SMOOTHING says how that is closed).
-
-Why trapezoidal: it converges from the generic guess in about a hundred iterations. A
-Hermite-Simpson version (separated form, the equations of motion and contact accelerations
-also at the midpoints) was tried and stalled from the same guess (dual infeasibility 1e14 after
-200 iterations), so it is not shipped. The forward simulation (`Stride.checks`) measures the
-transcription's error, the drift of the held contact points too.
+Both converge from the generic guess in about 50-150 iterations (a Hermite-Simpson tried before
+the node derivatives, with CasADi's own, stalled at dual infeasibility 1e14). The forward
+simulation (`Stride.checks`) measures the transcription's error, the drift of the held contact
+points too.
 """
 
 from __future__ import annotations
@@ -36,6 +33,7 @@ import casadi as ca
 import numpy as np
 
 from ...mechanics.joint_space import GRAVITY, JOINTS, LIMIT_MARGIN, RANGES, THETA, JointSpace
+from . import problem
 from .derivatives import functions as node_derivatives
 from .layout import Blocks, Rows, Solved
 from .ocp import INTEGRANDS, Impact, StrideProblem, periodicity, step_length
@@ -65,11 +63,58 @@ WARM_START = {"warm_start_init_point": "yes", "mu_strategy": "monotone", "mu_ini
 # expanded to SX 7.3 s, about 0.2 / 4 / 10.7; in MX 0.9 s, but 35 ms (jac_g) and 89 ms
 # (hess_lag); the node derivatives inlined into one SX graph 1.7 s, 0.16 / 3.4 / 4.5.
 
-def trapezoid_weights(n: int, h):
-    """The trapezoidal rule's weights (n + 1, a row) on n intervals of length h."""
-    w = np.ones((1, n + 1))
-    w[0, [0, -1]] = 0.5
-    return h * ca.DM(w)
+class Trapezoid:
+    """The trapezoidal rule: n + 1 columns (the mesh points), on each interval of length h
+
+        x_k+1 - x_k = h/2 (x'_k + x'_k+1),   quadrature weights h (1/2, 1, ..., 1, 1/2)
+
+    (second order: the energy balance closes to O(h^2))."""
+
+    @staticmethod
+    def columns(n: int) -> int:
+        return n + 1
+
+    @staticmethod
+    def weights(n: int, h):
+        """The quadrature's weights (a row of `columns(n)`)."""
+        w = np.ones((1, n + 1))
+        w[0, [0, -1]] = 0.5
+        return h * ca.DM(w)
+
+    @staticmethod
+    def defects(X, D, h):
+        """The rows that tie states X to their rates D = x' (one column per column)."""
+        return X[:, 1:] - X[:, :-1] - 0.5 * h * (D[:, :-1] + D[:, 1:])
+
+
+class HermiteSimpson:
+    """Hermite-Simpson collocation, separated form: 2n + 1 columns (mesh points at even
+    columns, interval midpoints at odd ones: the node model holds at both), on each interval
+
+        x_m = (x_k + x_k+1)/2 + h/8 (x'_k - x'_k+1),   x_k+1 - x_k = h/6 (x'_k + 4 x'_m + x'_k+1),
+
+    quadrature weights h/6 (1, 4, 2, 4, ..., 2, 4, 1) (Simpson's rule: fourth order)."""
+
+    @staticmethod
+    def columns(n: int) -> int:
+        return 2 * n + 1
+
+    @staticmethod
+    def weights(n: int, h):
+        w = np.full((1, 2 * n + 1), 2.0)
+        w[0, 1::2] = 4.0
+        w[0, [0, -1]] = 1.0
+        return h / 6 * ca.DM(w)
+
+    @staticmethod
+    def defects(X, D, h):
+        x0, xm, x1 = X[:, :-2:2], X[:, 1::2], X[:, 2::2]
+        d0, dm, d1 = D[:, :-2:2], D[:, 1::2], D[:, 2::2]
+        return ca.vertcat(xm - 0.5 * (x0 + x1) - h / 8 * (d0 - d1), x1 - x0 - h / 6 * (d0 + 4 * dm + d1))
+
+
+TRANSCRIPTIONS: dict[str, type[Trapezoid] | type[HermiteSimpson]] = dict(
+    zip(problem.TRANSCRIPTIONS, (Trapezoid, HermiteSimpson)))
 
 
 class StrideNLP:
@@ -83,6 +128,8 @@ class StrideNLP:
         self.ocp = StrideProblem(js, settings)
         self.mass, self.phases = self.ocp.mass, self.ocp.phases
         self.split = settings.node_split()
+        self.transcription = TRANSCRIPTIONS[settings.transcription]
+        self.columns = [self.transcription.columns(n) for n in self.split]  # per phase
         self.split_power = self.ocp.models[0].split
         self.touchdown_rows = self.ocp.touchdown.contact.rows
         self.blocks, self.rows = Blocks(), Rows()
@@ -93,7 +140,7 @@ class StrideNLP:
         self.node_functions = [self._node_function(i) for i in range(len(self.phases))]
         self.terms: dict = dict.fromkeys((*INTEGRANDS, "impacts", "smoothing"), 0)
         # the node integrands' values, one column per node (ell: their stack, node by node)
-        self.ell_sizes = [len(INTEGRANDS) * (n + 1) for n in self.split]
+        self.ell_sizes = [len(INTEGRANDS) * c for c in self.columns]
         self.ell = ca.MX.sym("ell", sum(self.ell_sizes))
         self.node_rows = Rows()
         self.node_integrands: list = []  # per phase, its nodes' integrands (MX, stacked)
@@ -145,15 +192,15 @@ class StrideNLP:
         lo_th = np.r_[-np.inf, 0.4, TRUNK[0], [lo - LIMIT_MARGIN for lo, _ in joints]]  # m, rad
         hi_th = np.r_[np.inf, 1.4, TRUNK[1], [hi + LIMIT_MARGIN for _, hi in joints]]
         x_lo, x_hi = np.r_[lo_th, [-STATE_RATE] * NX][:, None], np.r_[hi_th, [STATE_RATE] * NX][:, None]
-        for model, n in zip(self.ocp.models, self.split):
+        for model, c in zip(self.ocp.models, self.columns):
             k, act = model.phase.name, model.actuation
-            b.add(f"X_{k}", (2 * NX, n + 1), x_lo, x_hi)
-            b.add(f"A_{k}", (NX, n + 1), -ACCELERATION, ACCELERATION)
-            b.add(f"U_{k}", (act.controls, n + 1), *act.bounds())  # N m / kg
-            b.add(f"F_{k}", (len(model.contact.rows), n + 1), *model.contact.force_bounds())  # BW
+            b.add(f"X_{k}", (2 * NX, c), x_lo, x_hi)
+            b.add(f"A_{k}", (NX, c), -ACCELERATION, ACCELERATION)
+            b.add(f"U_{k}", (act.controls, c), *act.bounds())  # N m / kg
+            b.add(f"F_{k}", (len(model.contact.rows), c), *model.contact.force_bounds())  # BW
             b.add(f"T_{k}", (1, 1), *s.duration[k])
             if model.split:  # joint power split: [positive; negative] parts, W/kg
-                b.add(f"S_{k}", (2 * NU, n + 1), 0.0, np.inf)
+                b.add(f"S_{k}", (2 * NU, c), 0.0, np.inf)
         for i, transition in enumerate(self.ocp.transitions, 1):
             if isinstance(transition, Impact):
                 b.add(f"P_{self.phases[i].name}", (len(transition.contact.rows), 1),
@@ -185,24 +232,22 @@ class StrideNLP:
     def _phase(self, i):
         """Phase i: its node model at every node (mapped), the interval defects, the
         integrals of its integrands and the smoothing term (trapezoidal)."""
-        name, n = self.phases[i].name, self.split[i]
+        name, n, c = self.phases[i].name, self.split[i], self.columns[i]
         X, A, U, F, T = (self.v[f"{key}_{name}"] for key in "XAUFT")
-        S = self.v.get(f"S_{name}", ca.MX(0, n + 1))
+        S = self.v.get(f"S_{name}", ca.MX(0, c))
         td = self.v[f"X_{self.phases[0].name}"][:NX, 0]
-        G, L = self.node_functions[i].map(n + 1)(X, A, U, F, S, ca.repmat(td, 1, n + 1),
-                                                  ca.repmat(self.p, 1, n + 1))
+        G, L = self.node_functions[i].map(c)(X, A, U, F, S, ca.repmat(td, 1, c), ca.repmat(self.p, 1, c))
         lower, upper = self.node_bounds[i]
-        self.node_rows.add(G, np.tile(lower, n + 1), np.tile(upper, n + 1))
+        self.node_rows.add(G, np.tile(lower, c), np.tile(upper, c))
         self.node_integrands.append(ca.vec(L))
         h = T / n
-        D = ca.vertcat(X[NX:, :], A)
-        self.rows.add(X[:, 1:] - X[:, :-1] - 0.5 * h * (D[:, :-1] + D[:, 1:]))
+        self.rows.add(self.transcription.defects(X, ca.vertcat(X[NX:, :], A), h))
         start = sum(self.ell_sizes[:i])
-        ell = ca.reshape(self.ell[start:start + self.ell_sizes[i]], len(INTEGRANDS), n + 1)
-        integrals = ell @ trapezoid_weights(n, h).T
+        ell = ca.reshape(self.ell[start:start + self.ell_sizes[i]], len(INTEGRANDS), c)
+        integrals = ell @ self.transcription.weights(n, h).T
         for k, key in enumerate(INTEGRANDS):
             self.terms[key] += integrals[k]
-        self.terms["smoothing"] += h * ca.sumsqr(A[:, 1:] - A[:, :-1])
+        self.terms["smoothing"] += h * (n / (c - 1)) * ca.sumsqr(A[:, 1:] - A[:, :-1])
 
     def _transition(self, i):
         """Phase i-1 -> i: the same configuration, then an impact or a release (ocp)."""
@@ -242,13 +287,13 @@ class StrideNLP:
         out = []
         td = blocks[f"X_{self.phases[0].name}"][:NX, 0]
         p = np.array([parameters["speed"], parameters["slope"], parameters["mu"]])
-        for i, (phase, n) in enumerate(zip(self.phases, self.split)):
+        for i, (phase, n, c) in enumerate(zip(self.phases, self.split, self.columns)):
             name = phase.name
-            S = blocks.get(f"S_{name}", np.zeros((0, n + 1)))
-            _, L = self.node_functions[i].map(n + 1)(blocks[f"X_{name}"], blocks[f"A_{name}"], blocks[f"U_{name}"],
-                                                    blocks[f"F_{name}"], S, np.repeat(td[:, None], n + 1, 1),
-                                                    np.repeat(p[:, None], n + 1, 1))
-            w = np.asarray(trapezoid_weights(n, blocks[f"T_{name}"].item() / n), float).ravel()
+            S = blocks.get(f"S_{name}", np.zeros((0, c)))
+            _, L = self.node_functions[i].map(c)(blocks[f"X_{name}"], blocks[f"A_{name}"], blocks[f"U_{name}"],
+                                                blocks[f"F_{name}"], S, np.repeat(td[:, None], c, 1),
+                                                np.repeat(p[:, None], c, 1))
+            w = np.asarray(self.transcription.weights(n, blocks[f"T_{name}"].item() / n), float).ravel()
             out.append((np.asarray(L, float), w))
         return out
 

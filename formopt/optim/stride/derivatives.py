@@ -80,19 +80,19 @@ def functions(nlp) -> dict:
     n_node = sum(e.shape[0] for e in nlp.node_rows.expr)
     G, ells, jac_nz, hess_nz, phases = [], [], [], [], []
     row, col = 0, 0  # the node rows and integrands before this phase
-    for i, (node, n) in enumerate(zip(nlp.node_functions, nlp.split)):
+    for i, (node, m) in enumerate(zip(nlp.node_functions, nlp.columns)):
         d = NodeDerivatives(node)
-        idx = np.column_stack([node_indices(nlp, i, k) for k in range(n + 1)])
-        Z = ca.reshape(x[ca.DM(idx.ravel(order="F").tolist())], idx.shape[0], n + 1)
-        out, J = d.jacobian.map(n + 1)(Z, ca.repmat(p, 1, n + 1))
+        idx = np.column_stack([node_indices(nlp, i, k) for k in range(m)])
+        Z = ca.reshape(x[ca.DM(idx.ravel(order="F").tolist())], idx.shape[0], m)
+        out, J = d.jacobian.map(m)(Z, ca.repmat(p, 1, m))
         G.append(ca.vec(out[:d.rows, :]))
         ells.append(ca.vec(out[d.rows:, :]))
         nz, r, c = _nonzeros(J)
         k, j = c // idx.shape[0], c % idx.shape[0]
         out_rows = np.where(r < d.rows, row + k * d.rows + r, n_node + col + k * len(INTEGRANDS) + r - d.rows)
         jac_nz.append((nz, out_rows, idx[j, k]))
-        phases.append((d, idx, Z, n, row, col))
-        row, col = row + d.rows * (n + 1), col + len(INTEGRANDS) * (n + 1)
+        phases.append((d, idx, Z, m, row, col))
+        row, col = row + d.rows * m, col + len(INTEGRANDS) * m
     ell = ca.vertcat(*ells)
     both = _scatter(ca.vertcat(*[t[0] for t in jac_nz]), np.concatenate([t[1] for t in jac_nz]),
                     np.concatenate([t[2] for t in jac_nz]), (n_node + n_ell, size))
@@ -101,10 +101,10 @@ def functions(nlp) -> dict:
     F_x, F_ell = grad_parts(x, ell, p)
     R_x, R_ell = rest_jac(x, ell, p)
     H_xx, H_xe, H_ee, dphi_dell = rest_hess(x, ell, p, lam_f, lam_g[n_node:])
-    for d, idx, Z, n, row, col in phases:
-        W = ca.vertcat(ca.reshape(lam_g[row:row + d.rows * (n + 1)], d.rows, n + 1),
-                       ca.reshape(dphi_dell[col:col + len(INTEGRANDS) * (n + 1)], len(INTEGRANDS), n + 1))
-        nz, r, c = _nonzeros(d.hessian.map(n + 1)(Z, ca.repmat(p, 1, n + 1), W))
+    for d, idx, Z, m, row, col in phases:
+        W = ca.vertcat(ca.reshape(lam_g[row:row + d.rows * m], d.rows, m),
+                       ca.reshape(dphi_dell[col:col + len(INTEGRANDS) * m], len(INTEGRANDS), m))
+        nz, r, c = _nonzeros(d.hessian.map(m)(Z, ca.repmat(p, 1, m), W))
         k = c // idx.shape[0]
         hess_nz.append((nz, idx[r, k], idx[c % idx.shape[0], k]))
     H_nodes = _scatter(ca.vertcat(*[t[0] for t in hess_nz]), np.concatenate([t[1] for t in hess_nz]),

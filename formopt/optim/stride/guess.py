@@ -44,13 +44,13 @@ def _leg_ik(js: JointSpace, hip, ankle, trunk):
 
 def ballistic(nlp: StrideNLP, speed: float) -> dict:
     """The generic guess (module docstring) for the NLP's phases and nodes, by block name."""
-    js, phases, split = nlp.js, nlp.phases, nlp.split
+    js, phases, columns = nlp.js, nlp.phases, nlp.columns
     lo_hi = nlp.settings.duration
     durations = [float(np.clip(DURATIONS[p.name], *lo_hi[p.name])) for p in phases]
     stance = sum(d for p, d in zip(phases, durations) if p.rows)
     period = sum(durations)
-    times = [np.linspace(0, d, n + 1) + sum(durations[:i])
-             for i, (d, n) in enumerate(zip(durations, split))]
+    times = [np.linspace(0, d, c) + sum(durations[:i])
+             for i, (d, c) in enumerate(zip(durations, columns))]
     t = np.concatenate(times)
     body = js.model.body
     ankle_height = -body["foot"].landmarks["heel"][1]
@@ -92,21 +92,21 @@ def _blocks(nlp, theta, thetad, durations, stance, period, speed) -> dict:
     """Blocks by name from node histories (stacked over the phases)."""
     guess, k = {}, 0
     weight = period / stance
-    for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
-        cols = slice(k, k + n + 1)
+    for i, (phase, c) in enumerate(zip(nlp.phases, nlp.columns)):
+        cols = slice(k, k + c)
         name = phase.name
         guess[f"X_{name}"] = np.vstack([theta[:, cols], thetad[:, cols]])
-        guess[f"A_{name}"] = np.zeros((NX, n + 1))
-        guess[f"U_{name}"] = np.zeros((nlp.ocp.models[i].actuation.controls, n + 1))
+        guess[f"A_{name}"] = np.zeros((NX, c))
+        guess[f"U_{name}"] = np.zeros((nlp.ocp.models[i].actuation.controls, c))
         normals = [a == "n" for _, a in phase.rows]
-        force = np.zeros((len(phase.rows), n + 1))
+        force = np.zeros((len(phase.rows), c))
         if any(normals):
             force[normals] = weight / sum(normals)
         guess[f"F_{name}"] = force
         guess[f"T_{name}"] = durations[i]
         if nlp.split_power:  # the power split of zero moments
-            guess[f"S_{name}"] = np.zeros((2 * NU, n + 1))
-        k += n + 1
+            guess[f"S_{name}"] = np.zeros((2 * NU, c))
+        k += c
     for i, phase in enumerate(nlp.phases[1:], 1):
         if nlp.impact_before(i):
             guess[f"P_{phase.name}"] = np.zeros((len(phase.rows), 1))
@@ -130,15 +130,15 @@ def slide_guess(nlp: StrideNLP, stick: dict, mu: float) -> dict:
     sticking start (state, moments and forces of its first node, the tangential force and the
     touchdown's tangential impulse on the cone's edge, -s mu times the normal), lasting
     DURATIONS["slide"]; every other block as solved (`fitted` onto this NLP's nodes)."""
-    phase, n, slip = nlp.phases[0], nlp.split[0], nlp.settings.slip
+    phase, c, slip = nlp.phases[0], nlp.columns[0], nlp.settings.slip
     first = nlp.phases[1].name
     guess = fitted(nlp, {k: v for k, v in stick.items() if not k.startswith("S_")})
     t, normal = phase.rows.index((phase.sliding, "t")), phase.rows.index((phase.sliding, "n"))
-    force = np.repeat(guess[f"F_{first}"][:, :1], n + 1, axis=1)
+    force = np.repeat(guess[f"F_{first}"][:, :1], c, axis=1)
     force[t] = -slip * mu * force[normal]
-    guess.update({f"X_{phase.name}": np.repeat(guess[f"X_{first}"][:, :1], n + 1, axis=1),
-                  f"A_{phase.name}": np.zeros((NX, n + 1)),
-                  f"U_{phase.name}": np.repeat(guess[f"U_{first}"][:, :1], n + 1, axis=1),
+    guess.update({f"X_{phase.name}": np.repeat(guess[f"X_{first}"][:, :1], c, axis=1),
+                  f"A_{phase.name}": np.zeros((NX, c)),
+                  f"U_{phase.name}": np.repeat(guess[f"U_{first}"][:, :1], c, axis=1),
                   f"F_{phase.name}": force,
                   f"T_{phase.name}": float(np.clip(DURATIONS["slide"], *nlp.settings.duration["slide"]))})
     guess["P_touchdown"][t] = -slip * mu * guess["P_touchdown"][normal]

@@ -68,6 +68,7 @@ TOUCHDOWN_MODES = ("stick", "slide")
 NODE_SHARE = {"slide": 0.12, "heel": 0.12, "landing": 0.12, "flat": 0.3, "forefoot": 0.25, "flight": 0.33}
 MIN_NODES = 4
 OBJECTIVES = ("effort", "work", "metabolic")
+TRANSCRIPTIONS = ("trapezoid", "hermite-simpson")  # collocation.py's
 # Margaria R. (1968) Int Z angew Physiol 25:339: efficiencies of positive and negative muscle work
 EFFICIENCY_POSITIVE = 0.25
 EFFICIENCY_NEGATIVE = 1.2
@@ -131,6 +132,7 @@ class StrideSettings:
     max_iter: int = 1000
     tolerance: float = 1e-6
     tendons: dict = field(default_factory=dict)  # joint ("hip", "knee", "ankle") -> N m/rad/kg
+    transcription: str = "trapezoid"  # or "hermite-simpson" (collocation.TRANSCRIPTIONS)
 
     def __post_init__(self):
         if self.strike not in STRIKE_PHASES:
@@ -142,6 +144,8 @@ class StrideSettings:
         if self.touchdown == "slide" and (self.law != "coulomb" or self.strike not in SLIDING_PHASES):
             raise InputError(f"touchdown 'slide': expected law coulomb and strike "
                              f"{' or '.join(SLIDING_PHASES)}, not {self.law} and {self.strike}")
+        if self.transcription not in TRANSCRIPTIONS:
+            raise InputError(f"transcription {self.transcription!r}: expected {' or '.join(TRANSCRIPTIONS)}")
         if self.slip not in (1, -1):
             raise InputError(f"slip = {self.slip}: expected 1 (forward) or -1 (back)")
         # under Coulomb the touchdown may need its sliding variant, one phase more

@@ -99,3 +99,22 @@ def test_impact_weight_lowers_the_impacts(js, uphill):
     plain = StrideNLP(js, dataclasses.replace(nlp.settings, impact_weight=0.0))
     free = optimum(plain, SPEED, SLOPE, guess=stride.solved.blocks, simulate=False)
     assert free.success and free.budget["impacts_J"] > stride.budget["impacts_J"]
+
+
+def test_hermite_simpson_solves_and_integrates_by_simpsons_rule(js):
+    """The second transcription (2N + 1 columns: mesh points and midpoints) converges from the
+    generic guess to a valid stride, and its objective is Simpson's rule on its columns, h/6
+    (1, 4, 2, ..., 4, 1), with the smoothing at the columns' spacing h/2."""
+    nlp = StrideNLP(js, StrideSettings(strike="heel", nodes=NODES, transcription="hermite-simpson"))
+    stride = optimum(nlp, SPEED, simulate=False)
+    assert stride.success and stride.valid, stride.failed_checks
+    m, b = stride.mass_kg, stride.solved.blocks
+    effort = smooth = 0.0
+    for phase, n in zip(nlp.phases, nlp.split):
+        h = b[f"T_{phase.name}"].item() / n
+        w = np.full(2 * n + 1, 2.0)
+        w[1::2], w[[0, -1]] = 4.0, 1.0
+        effort += h / 6 * w @ np.sum((m * b[f"U_{phase.name}"]) ** 2, axis=0)
+        smooth += h / 2 * np.sum(np.diff(b[f"A_{phase.name}"], axis=1) ** 2)
+    d = stride.step_length_m
+    assert stride.objective_value == pytest.approx(100 * effort / (m * G) ** 2 / d + 1e-6 * smooth / d, rel=1e-6)

@@ -16,9 +16,11 @@ from formopt.optim.stride.problem import RUNNER_TENDONS
 
 
 @pytest.fixture(scope="module", params=[{"strike": "heel", "tendons": RUNNER_TENDONS},
-                                        {"strike": "forefoot", "objective": "metabolic", "impact_weight": 1.0}])
+                                        {"strike": "forefoot", "objective": "metabolic", "impact_weight": 1.0},
+                                        {"strike": "heel", "transcription": "hermite-simpson", "nodes": 14 + 4,
+                                         "tendons": RUNNER_TENDONS, "objective": "work"}])
 def case(request):
-    nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(nodes=18, **request.param))
+    nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(**{"nodes": 18, **request.param}))
     rng = np.random.default_rng(SEED)
     x = nlp.blocks.join(nlp._with_power_split(perturbed(ballistic(nlp, 3.5), rng)))
     x += rng.uniform(-0.01, 0.01, x.size)
