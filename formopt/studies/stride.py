@@ -95,7 +95,7 @@ def predicted_cycle(stride: Stride) -> dict:
     m = stride.mass_kg
     angles = {j: np.degrees(np.r_[stride.theta[:, 3 + k], stride.theta[:, 6 + k]])
               for k, j in enumerate(CYCLE_JOINTS)}
-    net = stride.tau + (stride.tau_spring if stride.tau_spring is not None else 0.0)
+    net = stride.tau + (0.0 if stride.tau_spring is None else stride.tau_spring)
     moments = {j: np.r_[net[:, k], net[:, 3 + k]] / m for k, j in enumerate(CYCLE_JOINTS)}
     vertical = np.r_[stride.force[:, :, 1].sum(axis=1), np.zeros(len(stride.t))] / m
     return {"percent": percent, "angles": angles, "moments": moments, "vertical": vertical}

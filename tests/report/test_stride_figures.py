@@ -26,7 +26,7 @@ def synthetic(mass_kg=62.0, speed_mps=3.5, n=11):
     force = np.zeros((n, 2, 2))
     force[:6, 0] = [[-100.0, 1200.0]] * 6  # heel: braking, pushing
     return SimpleNamespace(t=t, half_period_s=0.18, mass_kg=mass_kg, speed_mps=speed_mps,
-                           theta=np.zeros((n, 9)), tau=np.zeros((n, 6)), force=force)
+                           theta=np.zeros((n, 9)), tau=np.zeros((n, 6)), tau_spring=np.zeros((n, 6)), force=force)
 
 
 def test_the_force_figure_draws_both_components():
