@@ -25,6 +25,7 @@ from helpers import DATA, SHIPPED
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+import formopt
 from formopt.cli import main
 from formopt.io import markerset, mocap
 from formopt.mechanics.errors import InputError
@@ -720,3 +721,45 @@ def test_a_damaged_text_trial_is_measured_or_refused_naming_its_file(tmp_path, c
 def standing():
     """RBDS001's standing trial, read once."""
     return mocap.read(STATIC)
+
+
+# -- stride scenes: every [stride] key (issue 37 item 7); parsed only, no solve ---------------
+
+STRIDE_EVERY_KEY = {**SCENES["stride.toml"], "stride": {
+    **SCENES["stride.toml"]["stride"], "cadence_spm": 170.0, "impact_weight": 0.5, "torque_limit_nm_per_kg": 4.0,
+    "max_iterations": 100, "starts": 2, "transcription": "hermite-simpson",
+    "duration_s": {"flight": [0.02, 0.3], "heel": [0.005, 0.1]}, "tendons": {"hip": 0.0, "knee": 2.5, "ankle": 4.0}}}
+
+
+@FAST
+@given(path=st.sampled_from(list(paths(STRIDE_EVERY_KEY))),
+       action=st.sampled_from(["delete", "misspell", "unicode key", "replace", "replace"]),
+       replacement=REPLACEMENTS)
+def test_mutated_stride_scenes_load_or_are_refused_in_one_line(path, action, replacement):
+    """Each key of a [stride] scene (and its ground and body) deleted, misspelt or replaced: the
+    scene loads as a StrideScene within the stride's ranges, or is refused in one line naming
+    the key, before any solve."""
+    from formopt.io.scene import SceneError, parse
+    from formopt.io.stride_scene import StrideScene
+    from formopt.optim.stride import ranges
+
+    try:
+        scene = parse(mutant(STRIDE_EVERY_KEY, path, action, replacement))
+    except (SceneError, InputError) as err:
+        assert "\n" not in str(err).strip() and len(str(err)) < 600, str(err)
+        return
+    assert isinstance(scene, StrideScene)
+    ranges.point(scene.speed, scene.cadence)
+    assert scene.settings.nodes in ranges.RANGES["nodes"] and scene.friction in ranges.RANGES["friction"]
+
+
+@FAST
+@given(speed=NUMBERS)
+def test_the_stride_api_refuses_a_speed_outside_its_range_before_any_solve(speed):
+    from formopt.optim.stride import ranges
+
+    if speed is None or (isinstance(speed, (int, float)) and not isinstance(speed, bool)
+                         and math.isfinite(speed) and speed in ranges.RANGES["speed_mps"]):
+        return  # the scene's or a runner's speed: a solve, not an attack
+    with pytest.raises(InputError, match="speed_mps"):
+        formopt.stride(formopt.load("stride"), speed=speed)
