@@ -110,15 +110,16 @@ if LoadFileScheduling is not None:
 
 # The slowest files (pytest -n 2 --durations=0, 2026-11-24, seconds of the file's tests): they are
 # handed out first. A stale list costs only balance, never a test.
-SLOW = ("optim/stride/test_collocation.py",  # 20 (2026-11-25, loaded machine)
-        "studies/test_stride_sweep.py",  # 16
+SLOW = ("studies/test_compare_stride.py",  # 17 (2026-11-25, a clean clone)
+        "test_notebooks.py",  # 22
+        "studies/test_stride_sweep.py",  # 21
+        "optim/stride/test_derivatives.py",  # 14
+        "optim/stride/test_collocation.py",  # 12
         "test_examples.py",  # 14
         "test_docs.py",  # 12
         "optim/test_stride.py",  # 12
         "test_bad_input.py",  # 10
-        "studies/test_compare_stride.py",  # 8
         "optim/test_stride_tendons.py",  # 8
         "cli/test_compare_command.py",  # 7
-        "test_notebooks.py",  # 7
         "optim/test_posture.py",  # 6
         "optim/test_gait.py")  # 6

@@ -17,7 +17,7 @@ from formopt.optim.stride.problem import RUNNER_TENDONS
 
 @pytest.fixture(scope="module", params=[{"strike": "heel", "tendons": RUNNER_TENDONS},
                                         {"strike": "forefoot", "objective": "metabolic", "impact_weight": 1.0},
-                                        {"strike": "heel", "transcription": "hermite-simpson", "nodes": 14 + 4,
+                                        {"strike": "flat", "transcription": "hermite-simpson", "nodes": 14,
                                          "tendons": RUNNER_TENDONS, "objective": "work"}])
 def case(request):
     nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(**{"nodes": 18, **request.param}))
