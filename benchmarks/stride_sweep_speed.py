@@ -52,7 +52,7 @@ def cpu_seconds() -> float:
 def cold_solves(scene, rows, count: int, seed: int = 0):
     """`count` grid points solved from the generic guess: (IPOPT seconds, CPU seconds,
     iterations, converged)."""
-    nlp = stride_map.nlp_of(scene)
+    nlp = scene.nlp()
     picks = np.random.default_rng(seed).choice(len(rows), count, replace=False)
     seconds, cpu, iterations, ok = [], [], [], 0
     for k in picks:

@@ -33,7 +33,7 @@ from ..mechanics.body import scaled_body
 from ..optim.stride import Stride, rank, summarise
 from ..optim.stride.problem import STRIKES
 from .stride_form import NODES, joint_work, placement_m, stride_scene, with_body
-from .stride_map import cadence_curve, free, nlp_of, warm
+from .stride_map import cadence_curve, free, warm
 
 WHAT_IF_PCT = (-10.0, -5.0, 5.0, 10.0)  # cadence changes asked (% of the runner's cadence)
 # the band: friction over the range of shod running on track and treadmill belts (0.6-1.0,
@@ -306,7 +306,7 @@ def _with(scene, **changes):
 
 def _at(scene, start: Stride, cadence: float | None) -> Stride:
     """The scene's stride at `cadence`, warm-started from `start`."""
-    nlp = nlp_of(scene)
+    nlp = scene.nlp()
     return summarise(nlp, warm(nlp, start, scene.speed, scene.slope, scene.friction, cadence), False)
 
 

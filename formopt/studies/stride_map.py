@@ -135,13 +135,6 @@ def point(scene: StrideScene, values: dict) -> tuple[float, float, float, float 
     return speed, math.radians(slope), friction, cadence
 
 
-def nlp_of(scene: StrideScene) -> StrideNLP:
-    """The scene's stride NLP (StrideScene.nlp); one strike, not "best"."""
-    if scene.strike == "best":
-        raise InputError("stride.strike = 'best': solve one strike (heel, forefoot or flat)")
-    return scene.nlp()
-
-
 def solution(stride: Stride, nlp: StrideNLP) -> dict:
     """The decision variables (blocks by name) of a stride solved here (summarise keeps them),
     fitted to `nlp`'s nodes (a Coulomb stride that slid has one phase more)."""
@@ -188,7 +181,7 @@ def row_of(nlp: StrideNLP, stride: Stride, start: str) -> StrideRow:
 def free(scene: StrideScene, speed: float, slope: float, mu: float) -> Stride:
     """The free optimum (cadence not imposed) at these parameters: the generic guess and
     scene.starts - 1 perturbations of it, the best kept (optim.stride.optimum)."""
-    return optimum(nlp_of(scene), speed, slope, mu, None, simulate=False, starts=scene.starts)
+    return optimum(scene.nlp(), speed, slope, mu, None, simulate=False, starts=scene.starts)
 
 
 def warm(nlp: StrideNLP, previous: Stride, speed, slope, mu, cadence) -> Solved:
@@ -206,7 +199,7 @@ def solve_point(scene: StrideScene, values: dict, previous: Stride | None) -> tu
     from the free optimum alone, a chain's first stride at 4 m/s and 203 steps/min fell into a
     local optimum 19 % costlier than the generic guess's (0.971 against 0.815, 40 nodes,
     2026-11-23), and its chain followed it. (the stride, how it was started)."""
-    nlp = nlp_of(scene)
+    nlp = scene.nlp()
     speed, slope, mu, cadence = point(scene, values)
     tries = []
     if previous is not None:
@@ -230,7 +223,7 @@ def rows(scene: StrideScene, chunk) -> list[dict]:
     for values in chunk:
         try:
             stride, start = solve_point(scene, values, previous)
-            row, previous = row_of(nlp_of(scene), stride, start), stride if stride.success else None
+            row, previous = row_of(scene.nlp(), stride, start), stride if stride.success else None
         except (InputError, RuntimeError) as err:
             speed, slope, mu, cadence = point(scene, values)
             row, previous = StrideRow(speed, math.degrees(slope), mu, cadence,
@@ -288,7 +281,7 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
     base = free(scene, speed, slope, mu) if start is None else start
     if not base.success:
         raise RuntimeError(f"no free stride optimum at {speed:g} m/s ({base.status})")
-    nlp = nlp_of(scene)
+    nlp = scene.nlp()
     kept: dict[float, tuple[Stride, str]] = {}
     tried: dict[float, list[float]] = {c: [] for c in values}
 

@@ -40,7 +40,7 @@ def grid(scene, tmp_path_factory):
 def test_rows_are_no_worse_than_a_fresh_solve(scene, grid):
     _, rows = grid
     assert [r["start"] for r in rows].count("neighbour") == 3  # one chain, its first from the free optimum
-    nlp = stride_map.nlp_of(scene)
+    nlp = scene.nlp()
     for r in rows:
         assert r["success"] == "True" and r["valid"] == "True"
         speed, cadence = float(r["speed_mps"]), float(r["cadence_spm"])
@@ -58,7 +58,7 @@ def test_the_objectives_and_impact_loss_are_the_nlps(scene, grid):
     """effort_value by numpy on the nodes against the NLP's CasADi graph of the same integral;
     the impact loss is the impacts' T_c times the step rate; the work objective is W+/(m g d)."""
     _, rows = grid
-    nlp = stride_map.nlp_of(scene)
+    nlp = scene.nlp()
     r = rows[0]
     speed, cadence = float(r["speed_mps"]), float(r["cadence_spm"])
     stride = summarise(nlp, nlp.solve(ballistic(nlp, speed), speed, 0.0, scene.friction, cadence), False)
@@ -121,7 +121,7 @@ def test_the_cadence_curve_is_the_least_costly_optimum_its_neighbours_reach(scen
         assert stride.success and stride.cadence_spm == pytest.approx(cadence, rel=1e-9)
         assert stride.objective_value >= curve.free.objective_value * (1 - 1e-6)
         assert stride.objective_value == pytest.approx(min(tried), rel=1e-6)
-    nlp = stride_map.nlp_of(scene)
+    nlp = scene.nlp()
     order = sorted([(c, s) for c, s in zip(cadences, curve.strides)] + [(curve.free.cadence_spm, curve.free)],
                    key=lambda cs: cs[0])
     for (c0, s0), (c1, s1) in pairwise(order):

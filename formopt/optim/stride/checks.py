@@ -23,6 +23,7 @@ from ...mechanics.compiled import Compiled
 from ...mechanics.impact import projection
 from ...mechanics.joint_space import POINTS, JointSpace
 from .collocation import NU, NX, StrideNLP
+from .contact import rows_kinematics
 from .layout import held_rows
 from .ocp import periodicity, step_length
 from .problem import other_leg
@@ -34,8 +35,7 @@ def force_directions(js: JointSpace, rows, theta, slope, sliding: tuple | None =
     numeric or symbolic theta. `sliding` = (point, s, mu): that point's "t" row is not held and
     its normal row's force acts along J_n - s mu J_t (on the cone's edge, against the slip s);
     without it G = D = J_c."""
-    Jc = ca.vertcat(*[js.points[point](theta, ca.DM.zeros(NX), slope)[2][0 if axis == "t" else 1, :]
-                      for point, axis in rows])
+    Jc = rows_kinematics(js, rows, theta, ca.DM.zeros(NX), slope)[0]
     point, slip, mu = sliding or ("", 0, 0.0)
     held = held_rows(rows, point)
     G = Jc[held, :]

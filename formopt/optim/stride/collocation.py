@@ -137,6 +137,7 @@ class StrideNLP:
         self._declare()
         self.v = self.blocks.finish()
         self.period = ca.sum1(ca.vertcat(*[self.v[f"T_{ph.name}"] for ph in self.phases]))
+        self.node_bounds: list = []  # per phase, its node rows' (lower, upper) (_node_function)
         self.node_functions = [self._node_function(i) for i in range(len(self.phases))]
         self.terms: dict = dict.fromkeys((*INTEGRANDS, "impacts", "smoothing"), 0)
         # the node integrands' values, one column per node (ell: their stack, node by node)
@@ -222,8 +223,6 @@ class StrideNLP:
         s = ca.SX.sym("s", 2 * NU if model.split else 0)
         td, p = ca.SX.sym("theta_td", NX), ca.SX.sym("p", len(PARAMETERS))
         rows, integrands = model(self.js, x, a, u, f, s, td, p)
-        if not hasattr(self, "node_bounds"):
-            self.node_bounds: list = []
         self.node_bounds.append((np.concatenate(rows.lower), np.concatenate(rows.upper)))
         return ca.Function(f"node_{model.phase.name}", [x, a, u, f, s, td, p],
                            [ca.vertcat(*rows.expr), ca.vertcat(*[integrands[k] for k in INTEGRANDS])],

@@ -62,15 +62,18 @@ def point(speed: float, cadence: float | None = None, step: float | None = None)
         raise InputError("cadence_spm and step_length_m: impose one of them at a given speed "
                          "(cadence = 60 speed / step length)")
     if step is not None:
-        check("step_length_m", step)
-        cadence = 60.0 * speed / step
-        if cadence not in RANGES["cadence_spm"]:
-            raise InputError(f"step_length_m = {step:g} at {speed:g} m/s: gives a cadence of "
-                             f"{cadence:.4g} steps/min, outside {RANGES['cadence_spm'].text()}")
+        cadence = _derived("step_length_m", step, speed, "cadence_spm")
     elif cadence is not None:
-        check("cadence_spm", cadence)
-        step = 60.0 * speed / cadence
-        if step not in RANGES["step_length_m"]:
-            raise InputError(f"cadence_spm = {cadence:g} at {speed:g} m/s: gives a step of "
-                             f"{step:.4g} m, outside {RANGES['step_length_m'].text()}")
+        _derived("cadence_spm", cadence, speed, "step_length_m")
     return speed, cadence
+
+
+def _derived(key: str, value: float, speed: float, other: str) -> float:
+    """The other of cadence and step length at `speed` (60 v / value: the relation is its own
+    inverse), `value` and the derived one each checked (InputError naming both)."""
+    check(key, value)
+    derived = 60.0 * speed / value
+    if derived not in RANGES[other]:
+        raise InputError(f"{key} = {value:g} at {speed:g} m/s: gives {other} = {derived:.4g}, outside "
+                         f"{RANGES[other].text()}")
+    return derived

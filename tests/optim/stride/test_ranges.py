@@ -21,8 +21,8 @@ def scene():
 
 @pytest.mark.parametrize("speed, cadence, step, words", [
     (0.0, None, None, "speed_mps"), (-3.5, None, None, "speed_mps"), (np.nan, None, None, "speed_mps"),
-    (3.5, 60.0, None, "step of 3.5 m"), (3.5, 1000.0, None, "cadence_spm"),
-    (1.0, None, 0.2, "step_length_m"), (8.0, None, 0.3, "cadence of 1600"),
+    (3.5, 60.0, None, "step_length_m = 3.5"), (3.5, 1000.0, None, "cadence_spm"),
+    (1.0, None, 0.2, "step_length_m"), (8.0, None, 0.3, "cadence_spm = 1600"),
     (3.5, 170.0, 1.2, "impose one of them")])
 def test_a_point_outside_the_ranges_is_refused(speed, cadence, step, words):
     with pytest.raises(InputError, match=words):
@@ -44,7 +44,7 @@ def test_the_api_refuses_what_the_command_line_refuses(scene, speed):
 def test_a_scene_whose_cadence_gives_no_run_is_refused():
     data = {"scene": {"name": "s"}, "ground": {"friction": 0.8},
             "stride": {"speed_mps": 3.5, "cadence_spm": 60.0}}
-    with pytest.raises(SceneError, match=r"stride\.cadence_spm.*step of 3\.5 m"):
+    with pytest.raises(SceneError, match=r"stride\.cadence_spm.*step_length_m = 3\.5"):
         formopt.io.scene.parse(data)
 
 
