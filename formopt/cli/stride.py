@@ -45,6 +45,15 @@ def stride_rows(stride):
                *stride.force[k].ravel()]
 
 
+def muscle_rows(stride):
+    """stride_muscles.csv: time, phase, each muscle's activation (0-1) and tendon force (N),
+    both legs."""
+    names = stride.muscles["names"]
+    yield ["t_s", "phase", *[f"{m}_activation" for m in names], *[f"{m}_force_N" for m in names]]
+    for k, t in enumerate(stride.t):
+        yield [t, stride.phase[k], *stride.muscles["activation"][k], *stride.muscles["tendon_force_N"][k]]
+
+
 def foot_points(stride, js: JointSpace) -> np.ndarray:
     """The leading leg's heel and forefoot (n, 2, x and z, m) at each node (OpenSim's points of
     application of the ground force)."""
@@ -65,6 +74,8 @@ def run(args) -> int:
     files = [save_figure(fig, out / f"stride_{name}.{args.format}")
              for name, fig in stride_figures(best, JointSpace(scene.body), measured).items()]
     files.append(write_csv(out / "stride.csv", stride_rows(best)))
+    if best.muscles is not None:
+        files.append(write_csv(out / "stride_muscles.csv", muscle_rows(best)))
     angles = np.degrees(np.column_stack([-best.theta[:, 2], best.theta[:, 3:]]))
     files.append(write_storage(out / "stride.mot", best.t, MOT_NAMES, angles))
     files.append(write_osim(out / "stride.osim", scene.body))

@@ -12,7 +12,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..mechanics.body import Body, stature
 from ..mechanics.errors import InputError
+from ..mechanics.joint_space import JointSpace
 from ..mechanics.muscles import MUSCLES, REFERENCE_HEIGHT, REFERENCE_MASS, Muscles, from_gait2d
 
 DATA = Path(__file__).resolve().parent / "data" / "gait2d_muscles.csv"
@@ -40,3 +42,9 @@ def gait2d_muscles(mass: float = REFERENCE_MASS, height: float = REFERENCE_HEIGH
                    path=DATA) -> Muscles:
     """One leg's gait2d muscles scaled to `mass` (kg) and `height` (m) (mechanics.muscles.from_gait2d)."""
     return from_gait2d(read_gait2d_table(path), mass, height)
+
+
+def body_muscles(body: Body, path=DATA) -> Muscles:
+    """One leg's gait2d muscles scaled to a body: its whole mass (both legs: the joint space's)
+    and the stature its leg stands for (mechanics.body.stature)."""
+    return gait2d_muscles(JointSpace(body).mass_total, stature(body), path)

@@ -3,13 +3,17 @@
     [scene]   name
     [body]    preset = "paper", or mass (kg) and height (m) (scene.py's [body])
     [ground]  friction, slope_deg, contact ("no-slip" or "coulomb": the impacts' law)
-    [stride]  speed_mps, strike ("heel", "forefoot", "flat" or "best"), objective ("effort",
-              "work", "metabolic"), nodes, impact_weight, torque_limit_nm_per_kg,
+    [stride]  speed_mps, strike ("heel", "forefoot", "flat" or "best"), actuation ("torque",
+              "torque+springs", the default with [stride.tendons], or "muscles":
+              optim.stride.problem.ACTUATIONS), objective ("effort", "work", "metabolic";
+              with muscles "metabolic", their default, or "activation"), nodes, impact_weight,
+              torque_limit_nm_per_kg (torque rungs),
               cadence_spm (imposed; absent: free), max_iterations, starts (the generic guess
               and starts - 1 perturbations of it, the best kept; default 4),
               [stride.duration_s] heel/flat/forefoot/flight = [low, high] (s),
               [stride.tendons] hip/knee/ankle = stiffness (N m/rad per kg; the stance leg's
-              springs, optim.stride.problem.TENDON_JOINTS), transcription ("trapezoid", the
+              springs, optim.stride.problem.TENDON_JOINTS; "torque+springs" without it takes
+              RUNNER_TENDONS), transcription ("trapezoid", the
               default, or "hermite-simpson": optim.stride.collocation)
 
 Every error names its key (SceneError, one line); degrees at this edge, SI inside.
@@ -22,10 +26,13 @@ from dataclasses import dataclass, replace
 
 from ..mechanics.body import Body
 from ..mechanics.errors import InputError
+from ..mechanics.muscles import Muscles
 from ..optim.stride.collocation import StrideNLP, build
 from ..optim.stride.problem import (
+    ACTUATIONS,
     NODE_SHARE,
     OBJECTIVES,
+    RUNNER_TENDONS,
     STRIKES,
     TENDON_JOINTS,
     TRANSCRIPTIONS,
@@ -33,13 +40,14 @@ from ..optim.stride.problem import (
 )
 from ..optim.stride.ranges import RANGES, point
 from . import validate as val
+from .muscle_table import body_muscles
 from .scene import SceneError, _body
 
 STRIDE_STRIKES = (*STRIKES, "best")
 STRIDE_LAWS = ("no-slip", "coulomb")
 STRIDE_KEYS = {"speed_mps", "strike", "objective", "nodes", "impact_weight",
                "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts", "tendons",
-               "transcription"}
+               "transcription", "actuation"}
 
 
 @dataclass(frozen=True)
@@ -78,6 +86,24 @@ def _whole(key: str) -> tuple[int, int]:
     return int(RANGES[key].low), int(RANGES[key].high)
 
 
+def _actuation(stride: dict, actuation: str, body: Body) -> tuple[dict, Muscles | None]:
+    """(tendons, muscles) of the [stride] table's rung (optim.stride.problem.ACTUATIONS):
+    "torque+springs" takes [stride.tendons] (default RUNNER_TENDONS), "muscles" gait2d's muscles
+    scaled to the body (io.muscle_table.body_muscles)."""
+    if "tendons" in stride and actuation != "torque+springs":
+        raise SceneError("stride.tendons", f"springs in parallel need actuation 'torque+springs', not {actuation!r}")
+    if actuation == "muscles":
+        if "torque_limit_nm_per_kg" in stride:
+            raise SceneError("stride.torque_limit_nm_per_kg", "the muscles' strength is their own "
+                                                              "(io/data/gait2d_muscles.csv): remove the key")
+        return {}, body_muscles(body)
+    if actuation == "torque":
+        return {}, None
+    given = val.table(stride, "tendons", set(TENDON_JOINTS), set(), "stride") if "tendons" in stride \
+        else dict(RUNNER_TENDONS)
+    return {j: val.number(given, j, "stride.tendons", limit=RANGES["tendon_nm_per_rad_kg"]) for j in given}, None
+
+
 def parse(data: dict, path: str = "") -> StrideScene:
     """Validate a stride scene given as a dictionary (the parsed TOML)."""
     val.keys(data, "", {"scene", "body", "ground", "stride"}, ("scene", "ground", "stride"))
@@ -91,7 +117,10 @@ def parse(data: dict, path: str = "") -> StrideScene:
     stride = val.table(data, "stride", STRIDE_KEYS, {"speed_mps"})
     speed = val.number(stride, "speed_mps", "stride", limit=RANGES["speed_mps"])
     strike = val.choice(stride.get("strike", "heel"), "stride.strike", STRIDE_STRIKES)
-    objective = val.choice(stride.get("objective", "effort"), "stride.objective", OBJECTIVES)
+    actuation = val.choice(stride.get("actuation", "torque+springs" if "tendons" in stride else "torque"),
+                           "stride.actuation", ACTUATIONS)
+    objective = val.choice(stride.get("objective", "metabolic" if actuation == "muscles" else "effort"),
+                           "stride.objective", OBJECTIVES)
     transcription = val.choice(stride.get("transcription", "trapezoid"), "stride.transcription", TRANSCRIPTIONS)
     nodes = val.integer(stride, "nodes", "stride", 40, *_whole("nodes"))
     weight = val.number(stride, "impact_weight", "stride", default=0.0, limit=RANGES["impact_weight"])
@@ -115,13 +144,12 @@ def parse(data: dict, path: str = "") -> StrideScene:
                 raise SceneError(f"stride.duration_s.{phase}", f"must be 0 < low < high, not "
                                                                f"[{low:g}, {high:g}]")
             duration[phase] = (low, high)
-    given = val.table(stride, "tendons", set(TENDON_JOINTS), set(), "stride") if "tendons" in stride else {}
-    tendons = {j: val.number(given, j, "stride.tendons", limit=RANGES["tendon_nm_per_rad_kg"]) for j in given}
+    tendons, muscles = _actuation(stride, actuation, body)
     try:
         settings = StrideSettings(strike="heel" if strike == "best" else strike, objective=objective,
                                   nodes=nodes, law=law, impact_weight=weight, torque_limit=torque,
                                   duration=duration, max_iter=max_iter, tendons=tendons,
-                                  transcription=transcription)
+                                  transcription=transcription, muscles=muscles)
     except InputError as err:  # what only the settings check (e.g. a strike's least nodes)
         raise SceneError("stride", str(err)) from None
     return StrideScene(name, body, speed, math.radians(slope), friction, strike, settings,

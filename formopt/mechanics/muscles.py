@@ -332,3 +332,17 @@ def leg_functions(muscles: Muscles) -> LegFunctions:
         metabolic_rate=ca.Function("metabolic_rate", state,
                                    [ca.sum1(metabolic_rate(muscles, act, length, velocity))]),
         activation_cost=ca.Function("activation_cost", [act], [activation_cost(muscles, act)]))
+
+
+def tendon_energy(muscles: Muscles, force) -> np.ndarray:
+    """The elastic energy (J, shape (n,) or (n, k)) a tendon holds at normalised force F, the
+    integral of De Groote's tendon curve from its slack length:
+
+        E = F_max l_Ts [(F + c3 - c1 exp(kT (1 - c2))) / kT - c3 (l~_T - 1)],  l~_T = tendon_length(F)
+    """
+    force = np.asarray(force, float)
+    shape = (-1,) + (1,) * (force.ndim - 1)
+    stretch = np.asarray(tendon_length(ca.DM(force)), float).reshape(force.shape) - 1.0
+    per_length = ((force + TENDON_C3 - TENDON_C1 * math.exp(TENDON_K * (1.0 - TENDON_C2))) / TENDON_K
+                  - TENDON_C3 * stretch)
+    return (muscles.max_force * muscles.tendon_slack_length).reshape(shape) * per_length

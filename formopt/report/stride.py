@@ -108,13 +108,40 @@ def budget_figure(stride) -> Figure:
     return fig
 
 
+def muscle_figure(stride) -> Figure:
+    """The right leg's muscle activations over the gait cycle (its left leg gives the second
+    half, by symmetry), each muscle's tendon energy stored per step in its title; the reserves'
+    largest moment and the metabolic energy in the figure's title."""
+    m = stride.muscles
+    percent = np.r_[stride.t / stride.half_period_s * 50.0, 50.0 + stride.t / stride.half_period_s * 50.0]
+    order = np.argsort(percent, kind="stable")
+    n = len(m["names"]) // 2
+    fig = new_figure((11, 4.6))
+    for k, name in enumerate(m["names"][:n]):
+        ax = fig.add_subplot(2, (n + 1) // 2, k + 1)
+        cycle = np.r_[m["activation"][:, k], m["activation"][:, n + k]]
+        ax.plot(percent[order], cycle[order], "C3")
+        ax.set_ylim(0.0, 1.02)
+        ax.set_title(f"{name[:-2].replace('_', ' ')}: {m['stored_J'][name] + m['stored_J'][m['names'][n + k]]:.1f} J",
+                     fontsize=9)
+        if k >= n - (n + 1) // 2:
+            ax.set_xlabel("gait cycle (%)")
+    fig.suptitle(f"activation (0-1) and tendon energy stored per stride; metabolic {m['metabolic_J']:.0f} J per step, "
+                 f"reserves up to {m['reserve_nm_per_kg']:.2f} N m/kg", fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
 def stride_figures(stride, js: JointSpace, measured: dict | None) -> dict[str, Figure]:
     """The stride's figures; `measured` (RBDS001's mean cycle) drawn only where it applies
-    (measured_applies)."""
+    (measured_applies); the muscles' where the stride has them."""
     measured = measured if measured is not None and measured_applies(stride) else None
-    return {"stick": stick_figures(stride, js), "angles": cycle_figure(stride, measured, "angles"),
-            "moments": cycle_figure(stride, measured, "moments"),
-            "grf": cycle_figure(stride, measured, "vertical"), "budget": budget_figure(stride)}
+    out = {"stick": stick_figures(stride, js), "angles": cycle_figure(stride, measured, "angles"),
+           "moments": cycle_figure(stride, measured, "moments"),
+           "grf": cycle_figure(stride, measured, "vertical"), "budget": budget_figure(stride)}
+    if stride.muscles is not None:
+        out["muscles"] = muscle_figure(stride)
+    return out
 
 
 def stride_table(study: StrideStudy) -> str:
@@ -134,6 +161,13 @@ def stride_table(study: StrideStudy) -> str:
         lines.append("no valid stride: " + ("none of the strikes gives one; the first above ranks best "
                                             "(converged, then the least objective)" if len(study.strides) > 1
                                             else "read its numbers as the model's, not a runner's"))
+    for s in study.strides:
+        if s.muscles is not None:
+            m = s.muscles
+            lines.append(f"muscles {s.strike}: metabolic {m['metabolic_J']:.0f} J per step "
+                         f"({m['metabolic_J'] / (s.mass_kg * s.step_length_m):.2f} J/kg/m), tendons store "
+                         f"{m['tendon_stored_J']:.1f} J (soleus and gastrocnemius {m['achilles_stored_J']:.1f} J) "
+                         f"and return {m['tendon_returned_J']:.1f} J, reserves up to {m['reserve_nm_per_kg']:.3f} N m/kg")
     for s in study.strides:
         if not s.valid:
             why = s.failed_checks if s.success else [f"IPOPT: {s.status}", *s.failed_checks]

@@ -64,3 +64,33 @@ def test_stride_command_writes_its_report(tmp_path, capsys):
     names = {p.split("/")[-1] for p in report["files"]}
     assert {"stride.csv", "stride.mot", "stride_grf.sto", "stride_stick.png",
             "stride_angles.png", "stride_budget.png"} <= names
+
+
+def test_the_actuation_ladder_is_one_key():
+    data = tomllib.loads(STRIDE_SCENES[0].read_text())  # the paper body's scene, its tendons taken out
+    data["stride"].pop("tendons")
+    data["stride"].pop("objective")
+    rungs = {}
+    for rung in ("torque", "torque+springs", "muscles"):
+        data["stride"]["actuation"] = rung
+        rungs[rung] = parse(data).settings
+    assert rungs["torque"].actuation == "torque" and not rungs["torque"].tendons
+    assert rungs["torque+springs"].tendons == {"knee": 2.5, "ankle": 4.0}  # RUNNER_TENDONS
+    muscles = rungs["muscles"]
+    assert muscles.actuation == "muscles" and muscles.objective == "metabolic"  # the calibrated cost
+    assert muscles.muscles.max_force[0] == pytest.approx(1500.0 * (73.0 / 75.0) ** (2 / 3))  # iliopsoas
+
+
+@pytest.mark.parametrize("edit, key", [({"actuation": "springs"}, "stride.actuation"),
+                                       ({"actuation": "muscles", "tendons": {"ankle": 4.0}}, "stride.tendons"),
+                                       ({"actuation": "torque", "tendons": {"ankle": 4.0}}, "stride.tendons"),
+                                       ({"actuation": "muscles", "torque_limit_nm_per_kg": 3.0},
+                                        "stride.torque_limit_nm_per_kg"),
+                                       ({"actuation": "muscles", "objective": "effort"}, "stride"),
+                                       ({"objective": "activation"}, "stride")])
+def test_bad_actuation_is_named(edit, key):
+    data = tomllib.loads(STRIDE_SCENES[0].read_text())
+    data["stride"].pop("tendons")
+    data["stride"].update(edit)
+    with pytest.raises(SceneError, match=key.replace(".", r"\.")):
+        parse(data)

@@ -1,21 +1,37 @@
-"""Actuation models of the stride: what moves the joints at a node.
+"""Actuation models of the stride: what moves the joints at a node (problem.ACTUATIONS, the ladder).
 
-An actuation model has `controls` (per node, with bounds) and gives the joint moments (N m,
-JOINTS order, extensor positive) that enter the equations of motion,
+An actuation model has `controls` u and `states` z (per node, with bounds; z' = rates(z, u),
+linear in u, collocated like the body's states; rows(...) = 0 its algebraic rows at a node) and
+gives the joint moments (N m, JOINTS order, extensor positive) that enter the equations of motion,
 
-    tau = tau_active(u) + tau_passive(theta, theta_td),
+    tau = tau_active(z, u) + tau_passive(theta, theta_td),
 
 with the active part's power P_j = -tau_j phi_j' (W; what W+ and W- count) apart from the
-passive elements' (the budget's `spring_J`). Symbolic (SX) or numeric arguments.
+passive elements' (the budget's `spring_J`), and its own cost integrands (`OWN_INTEGRANDS`).
+Symbolic (SX) or numeric arguments.
+
+- "torque": joint torque sources (`Torques`);
+- "torque+springs": the same with springs in parallel at the stance leg (`TorquesWithSprings`);
+- "muscles": gait2d's eight Hill-type muscle-tendon units per leg (`MuscleDriven`,
+  mechanics.muscles) in De Groote et al. 2016's form: states a and F (normalised tendon force),
+  controls the excitation e, a' and F'/10, rows the activation dynamics and the Hill equilibrium.
 """
 
 from __future__ import annotations
 
 import casadi as ca
+import numpy as np
 
+from ...mechanics import muscles as hill
 from ...mechanics.joint_space import JOINTS
 
 NU = len(JOINTS)
+# |a'| (1/s) bound: the activation dynamics reach at most (e - a) / (tau_a (1/2 + 3a/2)) = 128 /s
+# (a = 0.01, e = 1) and 2 / tau_d = 33 /s down; the row ties a' to them, the bound only boxes it
+ACTIVATION_RATE = 200.0
+RESERVE_LIMIT = 1.0  # N m/kg: the muscles' reserve moments at each joint (MuscleDriven)
+MIN_FORCE_PENALTY = 5.0  # N m per unit F: the guess's least-squares split of a moment (MuscleDriven.initial)
+OWN_INTEGRANDS = ("activation", "muscle_metabolic", "muscle_rates", "reserves")  # zero for the torque rungs
 
 
 class Torques:
@@ -32,9 +48,36 @@ class Torques:
         """(lower, upper) of each control (N m/kg)."""
         return -self.limit, self.limit
 
-    def active(self, u):
+    @property
+    def states(self) -> int:
+        return 0
+
+    def state_bounds(self) -> tuple[float, float]:
+        return 0.0, 0.0
+
+    def active(self, z, u):
         """The active joint moments (N m, 6) of controls u (N m/kg, 6)."""
         return self.mass * u
+
+    def rates(self, U):
+        """z' of the controls (a column per node): no states."""
+        return U[:0, :]
+
+    def rows(self, rows, theta, thetad, z, u) -> None:
+        """The actuation's algebraic rows at a node: none."""
+
+    def integrands(self, theta, thetad, z, u) -> dict:
+        """Its own cost integrands (OWN_INTEGRANDS): none."""
+        return dict.fromkeys(OWN_INTEGRANDS, 0.0)
+
+    def swap(self, z):
+        """z with the legs exchanged (the periodicity): no states."""
+        return z
+
+    def initial(self, theta, thetad, tau) -> tuple[np.ndarray, np.ndarray]:
+        """(z, u) of a guess that makes the active moments tau (N m, 6 x c) at node angles and
+        rates theta, theta' (9 x c)."""
+        return np.zeros((0, tau.shape[1])), tau / self.mass
 
     def passive(self, theta, theta_td, stance: bool):
         """The passive elements' joint moments (N m, 6): none."""
@@ -63,6 +106,118 @@ class TorquesWithSprings(Torques):
         return ca.vertcat(*out)
 
 
-def actuation(mass: float, limit: float, tendons: dict) -> Torques:
-    """The actuation model of a stride's settings: torques, with springs where tendons are set."""
+class MuscleDriven(Torques):
+    """Eight Hill-type muscle-tendon units per leg (mechanics.muscles; n = 8 per leg):
+
+        z = [a_R, F_R, a_L, F_L]   (4n)   activations in [0.01, 1], tendon forces (F_max) in [0, 5]
+        u = [e_R, b_R, g_R, e_L, b_L, g_L, r]   (6n + 6)   excitations in [0, 1], b = a'/100,
+            g = F'/10, r the reserve moments (N m/kg, within +-RESERVE_LIMIT)
+        z' = [100 b_R, 10 g_R, 100 b_L, 10 g_L]
+        rows:  a'/100 - da/dt(e, a)/100 = 0,   Hill equilibrium(theta, theta', a, F, F') = 0
+        tau = [tau_R(F_R); tau_L(F_L)] + m r,   tau_leg = -r^T F_max F (mechanics.muscles.joint_moments)
+
+    The reserves (as OpenSim Moco's and PredSim's reserve actuators) keep the NLP feasible where
+    the muscles cannot make a motion of the search (their cost, costs.RESERVE_WEIGHT, makes them
+    a last resort); a stride reports their largest moment (`Stride.checks["reserve_nm_per_kg"]`)
+    and is invalid beyond TOLERANCES["reserve_nm_per_kg"].
+
+    a' is a control tied to the activation dynamics by a row (the defects stay linear: the
+    node model holds every nonlinearity). The joints' passive moments (mechanics.joint_space's
+    walls) stay; the muscles' tendons are in series, so there are no parallel springs.
+    """
+
+    RATE_SCALE = 10.0  # F' = 10 g (De Groote et al. 2016 scale the rate so)
+    ACTIVATION_SCALE = 100.0  # a' = 100 b: the controls of order one
+
+    def __init__(self, mass: float, muscles: hill.Muscles):
+        super().__init__(mass, 0.0)
+        self.muscles, self.leg, self.n = muscles, hill.leg_functions(muscles), len(muscles.names)
+
+    @property
+    def states(self) -> int:
+        return 4 * self.n
+
+    @property
+    def controls(self) -> int:
+        return 6 * self.n + NU
+
+    def state_bounds(self):
+        n = self.n
+        return np.tile(np.r_[[0.01] * n, [0.0] * n], 2), np.tile(np.r_[[1.0] * n, [5.0] * n], 2)
+
+    def bounds(self):
+        n = self.n
+        bound = ACTIVATION_RATE / self.ACTIVATION_SCALE
+        return (np.r_[np.tile(np.r_[[0.0] * n, [-bound] * n, [-10.0] * n], 2), [-RESERVE_LIMIT] * NU],
+                np.r_[np.tile(np.r_[[1.0] * n, [bound] * n, [10.0] * n], 2), [RESERVE_LIMIT] * NU])
+
+    def _legs(self, z, u):
+        """Per leg (R, L): (a, F, e, a', F') slices."""
+        n = self.n
+        for k in range(2):
+            zz, uu = z[2 * n * k:2 * n * (k + 1)], u[3 * n * k:3 * n * (k + 1)]
+            yield zz[:n], zz[n:], uu[:n], self.ACTIVATION_SCALE * uu[n:2 * n], self.RATE_SCALE * uu[2 * n:]
+
+    def active(self, z, u):
+        return ca.vertcat(*[self.leg.moments(F) for _, F, _, _, _ in self._legs(z, u)]) + self.mass * u[6 * self.n:]
+
+    def rates(self, U):
+        n = self.n
+        return ca.vertcat(*[ca.vertcat(self.ACTIVATION_SCALE * U[3 * n * k + n:3 * n * k + 2 * n, :],
+                                       self.RATE_SCALE * U[3 * n * k + 2 * n:3 * n * (k + 1), :])
+                            for k in range(2)])
+
+    def _joint(self, theta, k):
+        return theta[3 + 3 * k:6 + 3 * k]
+
+    def rows(self, rows, theta, thetad, z, u) -> None:
+        for k, (a, F, e, ad, Fd) in enumerate(self._legs(z, u)):
+            rows.add((ad - self.leg.activation_rate(e, a)) / self.ACTIVATION_SCALE)
+            rows.add(self.leg.residual(self._joint(theta, k), self._joint(thetad, k), a, F, Fd))
+
+    def integrands(self, theta, thetad, z, u) -> dict:
+        legs = list(self._legs(z, u))
+        return {"activation": sum(self.leg.activation_cost(a) for a, *_ in legs),
+                "muscle_metabolic": sum(self.leg.metabolic_rate(self._joint(theta, k), self._joint(thetad, k), a, F, Fd)
+                                        for k, (a, F, _, _, Fd) in enumerate(legs)),
+                "muscle_rates": sum(ca.sumsqr(Fd / self.RATE_SCALE) for *_, Fd in legs),
+                "reserves": ca.sumsqr(u[6 * self.n:])}
+
+    def swap(self, z):
+        return ca.vertcat(z[2 * self.n:], z[:2 * self.n])
+
+    def initial(self, theta, thetad, tau):
+        """(z, u) of a guess that makes the moments tau (N m, 6 x c) at node angles and rates
+        theta, theta' (9 x c): per node the least-squares tendon forces F >= 0 with
+        moments(F) = tau (scipy's nnls, a small penalty MIN_FORCE_PENALTY |F|^2), then the
+        activation that holds the Hill equilibrium with them (F' = 0), in [0.01, 1]; e = a."""
+        from scipy.optimize import nnls  # here: scipy.optimize costs 0.3 s at every CLI start
+
+        n, c = self.n, theta.shape[1]
+        arm = -np.asarray(self.muscles.moment_arms).T * self.muscles.max_force  # (3, n) N m per F
+        system = np.vstack([arm, MIN_FORCE_PENALTY * np.eye(n)])
+        z, u = np.zeros((4 * n, c)), np.zeros((6 * n + NU, c))
+        for k in range(2):
+            joints = slice(3 + 3 * k, 6 + 3 * k)
+            F = np.column_stack([nnls(system, np.r_[tau[3 * k:3 * k + 3, j], np.zeros(n)])[0] for j in range(c)])
+            F = np.clip(F, 0.0, 1.5)
+            a = np.column_stack([self._holding(theta[joints, j], thetad[joints, j], F[:, j]) for j in range(c)])
+            z[2 * n * k:2 * n * (k + 1)] = np.vstack([a, F])
+            u[3 * n * k:3 * n * k + n] = a
+        return z, u
+
+    def _holding(self, angles, rates, force) -> np.ndarray:
+        """The activation (n) that holds the Hill equilibrium at tendon forces F (F' = 0)."""
+        m = self.muscles
+        length, velocity = (np.asarray(v, float).ravel() for v in hill.fibre_state(m, angles, rates, force, 0.0))
+        passive = np.asarray(hill.passive_force_length(length, m.passive_slack, m.passive_stiffness), float).ravel()
+        active = np.asarray(hill.active_force_length(length, m.width) * hill.force_velocity(velocity), float).ravel()
+        return np.clip((force - passive - hill.DAMPING * velocity) / np.maximum(active, 1e-3), 0.01, 1.0)
+
+
+def actuation(mass: float, limit: float, tendons: dict, muscles: hill.Muscles | None = None) -> Torques:
+    """The actuation model of a stride's settings: muscles where given, else torques, with
+    springs where tendons are set."""
+    if muscles is not None:
+        return MuscleDriven(mass, muscles)
     return TorquesWithSprings(mass, limit, tendons) if any(tendons.values()) else Torques(mass, limit)

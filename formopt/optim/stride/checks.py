@@ -125,7 +125,7 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
     `parameters`: speed, slope, mu (Solved.parameters)."""
     from scipy.integrate import solve_ivp  # here: scipy.integrate costs 0.2 s at every CLI start
 
-    js, m = nlp.js, nlp.mass
+    js = nlp.js
     slope, mu, slip = parameters["slope"], parameters["mu"], nlp.settings.slip
     X0 = blocks[f"X_{nlp.phases[0].name}"]
     state = X0[:, 0].copy()
@@ -133,7 +133,7 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
     reset: list[np.ndarray] = []
     slips: dict = {}
     for i, phase in enumerate(nlp.phases):
-        X, U, T = blocks[f"X_{phase.name}"], m * blocks[f"U_{phase.name}"], blocks[f"T_{phase.name}"].item()
+        X, U, T = blocks[f"X_{phase.name}"], nlp.moments(blocks, i), blocks[f"T_{phase.name}"].item()
         if nlp.impact_before(i):  # an impact starts the phase
             state[NX:] = joint_impact(js, phase.rows, state[:NX], state[NX:], slope)[0]
         times = np.linspace(0.0, T, X.shape[1])

@@ -4,7 +4,8 @@ half-period's row.
 
 Decision variables, per phase of N intervals, one column per collocation point (N + 1 for the
 trapezoid, 2N + 1 for Hermite-Simpson): X = (theta, theta') (18 rows), A = theta'' (9), U the
-actuation's controls, F the contact forces (one per contact row), S the power split (work
+actuation's controls, Z its states (the muscles': collocated with X, rates actuation.rates(U);
+continuous across the transitions, periodic with the legs swapped), F the contact forces (one per contact row), S the power split (work
 objectives); the phase's duration T; per impact the impulse P (one per contact row after it;
 the touchdown's also its post-impact velocity V_touchdown).
 
@@ -47,6 +48,10 @@ TRUNK = (math.radians(-20.0), math.radians(45.0))  # rad, the trunk's lean (forw
 STATE_RATE = 15.0  # m/s and rad/s: bound on theta'
 IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive",
                   "nlp_scaling_method": "gradient-based", "linear_solver": "mumps"}
+# The muscles' NLP with IPOPT's adaptive barrier: the barrier rose to 1e5 and the dual
+# infeasibility to 1e13 in 100 iterations (RBDS001, heel, 40 nodes, from the torque rung's
+# optimum); with a monotone barrier from 0.01 it converges (24 nodes: 270 iterations).
+MUSCLE_IPOPT = {"mu_strategy": "monotone", "mu_init": 1e-2}
 # IPOPT's warm start from a neighbouring solution's primal and dual values (StrideNLP.resolve):
 # the barrier starts small and decreases monotonically. Along a cadence chain (paper body, 30
 # nodes, tendons, 165-180 steps/min at 3.5 m/s) 12-20 iterations instead of 43-52, the same
@@ -165,8 +170,8 @@ class StrideNLP:
         f, g = self.rest(x, ca.vertcat(*self.node_integrands), self.p)
         self.problem = {"x": x, "p": self.p, "f": f,
                         "g": ca.vertcat(*self.node_rows.expr, g)}  # the NLP's expressions
-        self.options = {**IPOPT_DEFAULTS, "max_iter": settings.max_iter, "tol": settings.tolerance,
-                        **(ipopt or {})}
+        self.options = {**IPOPT_DEFAULTS, **(MUSCLE_IPOPT if settings.muscles is not None else {}),
+                        "max_iter": settings.max_iter, "tol": settings.tolerance, **(ipopt or {})}
         self.serial = next(StrideNLP._serial)
         self._solver: ca.Function | None = None
         self._warm_solver: ca.Function | None = None
@@ -197,7 +202,9 @@ class StrideNLP:
             k, act = model.phase.name, model.actuation
             b.add(f"X_{k}", (2 * NX, c), x_lo, x_hi)
             b.add(f"A_{k}", (NX, c), -ACCELERATION, ACCELERATION)
-            b.add(f"U_{k}", (act.controls, c), *act.bounds())  # N m / kg
+            b.add(f"U_{k}", (act.controls, c), *_column(act.bounds()))  # torques: N m / kg
+            if act.states:
+                b.add(f"Z_{k}", (act.states, c), *_column(act.state_bounds()))
             b.add(f"F_{k}", (len(model.contact.rows), c), *model.contact.force_bounds())  # BW
             b.add(f"T_{k}", (1, 1), *s.duration[k])
             if model.split:  # joint power split: [positive; negative] parts, W/kg
@@ -221,12 +228,13 @@ class StrideNLP:
         x, a = ca.SX.sym("x", 2 * NX), ca.SX.sym("a", NX)
         u, f = ca.SX.sym("u", model.actuation.controls), ca.SX.sym("f", len(model.contact.rows))
         s = ca.SX.sym("s", 2 * NU if model.split else 0)
+        z = ca.SX.sym("z", model.actuation.states)
         td, p = ca.SX.sym("theta_td", NX), ca.SX.sym("p", len(PARAMETERS))
-        rows, integrands = model(self.js, x, a, u, f, s, td, p)
+        rows, integrands = model(self.js, x, a, u, f, s, z, td, p)
         self.node_bounds.append((np.concatenate(rows.lower), np.concatenate(rows.upper)))
-        return ca.Function(f"node_{model.phase.name}", [x, a, u, f, s, td, p],
+        return ca.Function(f"node_{model.phase.name}", [x, a, u, f, s, z, td, p],
                            [ca.vertcat(*rows.expr), ca.vertcat(*[integrands[k] for k in INTEGRANDS])],
-                           ["x", "a", "u", "f", "s", "theta_td", "p"], ["rows", "integrands"])
+                           ["x", "a", "u", "f", "s", "z", "theta_td", "p"], ["rows", "integrands"])
 
     def _phase(self, i):
         """Phase i: its node model at every node (mapped), the interval defects, the
@@ -234,13 +242,15 @@ class StrideNLP:
         name, n, c = self.phases[i].name, self.split[i], self.columns[i]
         X, A, U, F, T = (self.v[f"{key}_{name}"] for key in "XAUFT")
         S = self.v.get(f"S_{name}", ca.MX(0, c))
+        Z = self.v.get(f"Z_{name}", ca.MX(0, c))
         td = self.v[f"X_{self.phases[0].name}"][:NX, 0]
-        G, L = self.node_functions[i].map(c)(X, A, U, F, S, ca.repmat(td, 1, c), ca.repmat(self.p, 1, c))
+        G, L = self.node_functions[i].map(c)(X, A, U, F, S, Z, ca.repmat(td, 1, c), ca.repmat(self.p, 1, c))
         lower, upper = self.node_bounds[i]
         self.node_rows.add(G, np.tile(lower, c), np.tile(upper, c))
         self.node_integrands.append(ca.vec(L))
         h = T / n
-        self.rows.add(self.transcription.defects(X, ca.vertcat(X[NX:, :], A), h))
+        rates = ca.vertcat(X[NX:, :], A, self.ocp.models[i].actuation.rates(U))
+        self.rows.add(self.transcription.defects(ca.vertcat(X, Z), rates, h))
         start = sum(self.ell_sizes[:i])
         ell = ca.reshape(self.ell[start:start + self.ell_sizes[i]], len(INTEGRANDS), c)
         integrals = ell @ self.transcription.weights(n, h).T
@@ -253,6 +263,8 @@ class StrideNLP:
         before, after = self.phases[i - 1].name, self.phases[i].name
         X0, X1 = self.v[f"X_{before}"][:, -1], self.v[f"X_{after}"][:, 0]
         self.rows.add(X1[:NX] - X0[:NX])
+        if f"Z_{after}" in self.v:  # the actuation's states are continuous
+            self.rows.add(self.v[f"Z_{after}"][:, 0] - self.v[f"Z_{before}"][:, -1])
         transition = self.ocp.transitions[i - 1]
         if isinstance(transition, Impact):
             T_c = transition.rows(self.rows, self.js, X0[:NX], X0[NX:], X1[NX:], self.v[f"P_{after}"],
@@ -271,6 +283,9 @@ class StrideNLP:
         self.terms["impacts"] += T_c
         self.terms["balance"] -= T_c
         self.rows.add(periodicity(end[:NX], V, start, step_length(self.p[0], self.period), self.p[1]))
+        first, last = self.phases[0].name, self.phases[-1].name
+        if f"Z_{first}" in self.v:  # the actuation's states, legs swapped
+            self.rows.add(self.ocp.models[0].actuation.swap(self.v[f"Z_{last}"][:, -1]) - self.v[f"Z_{first}"][:, 0])
         self.rows.add(start[0])
 
     def integral(self, key: str) -> ca.MX:
@@ -289,12 +304,21 @@ class StrideNLP:
         for i, (phase, n, c) in enumerate(zip(self.phases, self.split, self.columns)):
             name = phase.name
             S = blocks.get(f"S_{name}", np.zeros((0, c)))
+            Z = blocks.get(f"Z_{name}", np.zeros((0, c)))
             _, L = self.node_functions[i].map(c)(blocks[f"X_{name}"], blocks[f"A_{name}"], blocks[f"U_{name}"],
-                                                blocks[f"F_{name}"], S, np.repeat(td[:, None], c, 1),
+                                                blocks[f"F_{name}"], S, Z, np.repeat(td[:, None], c, 1),
                                                 np.repeat(p[:, None], c, 1))
             w = np.asarray(self.transcription.weights(n, blocks[f"T_{name}"].item() / n), float).ravel()
             out.append((np.asarray(L, float), w))
         return out
+
+    def moments(self, blocks: dict, i: int) -> np.ndarray:
+        """The active joint moments (N m, 6 x columns, JOINTS) of phase i in a numeric solution."""
+        act, name = self.ocp.models[i].actuation, self.phases[i].name
+        c = self.columns[i]
+        z, u = ca.SX.sym("z", act.states), ca.SX.sym("u", act.controls)
+        moments = ca.Function("moments", [z, u], [act.active(z, u)]).map(c)
+        return np.asarray(moments(blocks.get(f"Z_{name}", np.zeros((0, c))), blocks[f"U_{name}"]), float)
 
     def variant(self, **changes) -> StrideNLP:
         """The NLP of the same body and IPOPT options with settings changed (e.g. touchdown=
@@ -371,6 +395,11 @@ class StrideNLP:
                       lam_g=np.asarray(out["lam_g"], float).ravel(),
                       parameters={"speed": speed, "slope": slope, "mu": mu, "cadence": cadence},
                       lam_x=np.asarray(out["lam_x"], float).ravel(), layout=self.layout)
+
+
+def _column(bounds) -> tuple[np.ndarray, np.ndarray]:
+    """(lower, upper), each a scalar or one value per row, as columns (broadcast over nodes)."""
+    return tuple(np.asarray(b, float).reshape(-1, 1) for b in bounds)  # type: ignore[return-value]
 
 
 _BUILT: dict[str, StrideNLP] = {}  # the last NLPS_KEPT NLPs built, by what they hold

@@ -42,10 +42,10 @@ class NodeDerivatives:
 
 
 def node_indices(nlp, i: int, k: int) -> np.ndarray:
-    """The decision vector's indices of node k of phase i's z (x, a, u, f, s, theta_td)."""
+    """The decision vector's indices of node k of phase i's z (x, a, u, f, s, z, theta_td)."""
     b, name = nlp.blocks, nlp.phases[i].name
     out = []
-    for key in ("X", "A", "U", "F", "S"):
+    for key in ("X", "A", "U", "F", "S", "Z"):
         block = f"{key}_{name}"
         if block in b.offsets:
             rows = b.shapes[block][0]

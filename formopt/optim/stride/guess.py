@@ -97,7 +97,10 @@ def _blocks(nlp, theta, thetad, durations, stance, period, speed) -> dict:
         name = phase.name
         guess[f"X_{name}"] = np.vstack([theta[:, cols], thetad[:, cols]])
         guess[f"A_{name}"] = np.zeros((NX, c))
-        guess[f"U_{name}"] = np.zeros((nlp.ocp.models[i].actuation.controls, c))
+        act = nlp.ocp.models[i].actuation
+        z, guess[f"U_{name}"] = act.initial(theta[:, cols], thetad[:, cols], np.zeros((NU, c)))
+        if act.states:
+            guess[f"Z_{name}"] = z
         normals = [a == "n" for _, a in phase.rows]
         force = np.zeros((len(phase.rows), c))
         if any(normals):
@@ -138,7 +141,8 @@ def slide_guess(nlp: StrideNLP, stick: dict, mu: float) -> dict:
     force[t] = -slip * mu * force[normal]
     guess.update({f"X_{phase.name}": np.repeat(guess[f"X_{first}"][:, :1], c, axis=1),
                   f"A_{phase.name}": np.zeros((NX, c)),
-                  f"U_{phase.name}": np.repeat(guess[f"U_{first}"][:, :1], c, axis=1),
+                  **{f"{key}_{phase.name}": np.repeat(guess[f"{key}_{first}"][:, :1], c, axis=1)
+                     for key in "UZ" if f"{key}_{first}" in guess},
                   f"F_{phase.name}": force,
                   f"T_{phase.name}": float(np.clip(DURATIONS["slide"], *nlp.settings.duration["slide"]))})
     guess["P_touchdown"][t] = -slip * mu * guess["P_touchdown"][normal]
@@ -165,3 +169,23 @@ def _resampled(values: np.ndarray, count: int) -> np.ndarray:
     """Node histories (rows x k) linearly interpolated onto `count` evenly spaced nodes."""
     old, new = np.linspace(0, 1, values.shape[1]), np.linspace(0, 1, count)
     return np.array([np.interp(new, old, row) for row in values]).reshape(values.shape[0], count)
+
+
+def from_torques(nlp: StrideNLP, torques: StrideNLP, solved) -> dict:
+    """A guess for `nlp` (another actuation, e.g. the muscles) from a solution of `torques` (a
+    torque rung's NLP of the same phases; its nodes `fitted` to nlp's): its motion, forces and durations, and the
+    actuation's states and controls that make the same net joint moments (active plus springs;
+    the actuation's `initial`)."""
+    blocks = solved.blocks
+    out = {k: v for k, v in blocks.items() if not k.startswith(("S_", "U_"))}
+    td = blocks[f"X_{torques.phases[0].name}"][:NX, 0]
+    for i, phase in enumerate(nlp.phases):
+        X = blocks[f"X_{phase.name}"]
+        spring = torques.ocp.models[i].actuation
+        tau = torques.moments(blocks, i) + np.column_stack(
+            [np.asarray(spring.passive(X[:NX, k], td, bool(phase.points)), float).ravel() for k in range(X.shape[1])])
+        act = nlp.ocp.models[i].actuation
+        z, out[f"U_{phase.name}"] = act.initial(X[:NX], X[NX:], tau)
+        if act.states:
+            out[f"Z_{phase.name}"] = z
+    return fitted(nlp, out)

@@ -5,13 +5,16 @@ the touchdown with the periodicity, and the cost terms.
 Node model (per phase, at every node; x = (theta, theta'), a = theta'', u the actuation's
 controls, f the contact forces, theta_td the touchdown state, p = (speed, slope, mu)):
 
-    M(theta) a + c(theta, theta') - g(theta) - tau_walls(theta) + [0; tau(theta, u)] - J_c^T m g f = 0
+    M(theta) a + c(theta, theta') - g(theta) - tau_walls(theta) + [0; tau(z, u)] - J_c^T m g f = 0
 
 with the contact model's rows (contact.RigidContact) and, for the work objectives, the power
-split P_j = P_j+ - P_j- (W/kg, P+- >= 0; problem.py says why). Its integrands (`INTEGRANDS`):
-effort sum tau_active^2, the split's sums, the held contacts' power (`ground`), the power the
-budget balances (`balance`: active joints, walls, tendons and contacts), a slide's friction
-power, each active joint's power (6), the walls', the tendons' and the contacts' power.
+split P_j = P_j+ - P_j- (W/kg, P+- >= 0; problem.py says why), and the actuation's own rows
+(the muscles' activation dynamics and Hill equilibrium; actuation.py). Its integrands
+(`INTEGRANDS`): effort sum tau_active^2, the split's sums, the held contacts' power (`ground`),
+the power the budget balances (`balance`: active joints, walls, tendons and contacts), a slide's
+friction power, each active joint's power (6), the walls', the tendons' and the contacts' power,
+and the actuation's own (actuation.OWN_INTEGRANDS: the muscles' activation cost, metabolic rate
+(W) and squared tendon-force rates).
 
 Transitions (phase i-1 -> i): `Impact` where phase i adds a point (it reaches the ground
 moving into it; contact.RigidContact.impact), `Release` where it drops one (the dropped point's
@@ -29,14 +32,14 @@ import numpy as np
 
 from ...mechanics.joint_space import JOINTS, THETA, JointSpace, swap_legs
 from . import costs
-from .actuation import Torques, actuation
+from .actuation import OWN_INTEGRANDS, Torques, actuation
 from .contact import RigidContact, height, normal_velocity
 from .layout import Rows
 from .problem import Phase, StrideSettings, other_leg
 
 NX, NU = len(THETA), len(JOINTS)
 INTEGRANDS = ("effort", "positive", "negative", "ground", "balance", "slide", *[f"power_{j}" for j in JOINTS],
-              "walls", "spring", "contact")
+              "walls", "spring", "contact", *OWN_INTEGRANDS)
 
 
 def shift(step, slope):
@@ -60,13 +63,14 @@ class NodeModel:
     contact: RigidContact
     split: bool  # the power split's slack variables (work objectives)
 
-    def __call__(self, js: JointSpace, x, a, u, f, s, theta_td, p):
-        """(rows, {integrand: value}) at one node (module docstring)."""
+    def __call__(self, js: JointSpace, x, a, u, f, s, z, theta_td, p):
+        """(rows, {integrand: value}) at one node (module docstring); z the actuation's states."""
         slope, mu = p[1], p[2]
         theta, thetad = x[:NX], x[NX:]
         m = self.actuation.mass
         rows = Rows()
-        active = self.actuation.active(u)
+        active = self.actuation.active(z, u)
+        self.actuation.rows(rows, theta, thetad, z, u)
         spring = self.actuation.passive(theta, theta_td, bool(self.phase.points))
         walls = js.passive(theta)
         ground_force = self.contact.node(rows, theta, thetad, a, f, slope, mu, m)
@@ -76,7 +80,8 @@ class NodeModel:
         contact, held, slide = self.contact.power(theta, thetad, f, slope, m)
         out = {"effort": ca.sumsqr(active), "positive": 0.0, "negative": 0.0, "ground": held,
                "slide": -slide, "walls": ca.dot(walls, thetad), "spring": ca.dot(spring, thetad[3:]),
-               "contact": contact, **{f"power_{j}": power[k] for k, j in enumerate(JOINTS)}}
+               "contact": contact, **{f"power_{j}": power[k] for k, j in enumerate(JOINTS)},
+               **self.actuation.integrands(theta, thetad, z, u)}
         out["balance"] = ca.sum1(power) + out["walls"] - out["spring"] + contact
         if self.split:
             rows.add(power / m - (s[:NU] - s[NU:]))
@@ -123,7 +128,7 @@ class StrideProblem:
     def __init__(self, js: JointSpace, settings: StrideSettings):
         self.js, self.settings, self.mass = js, settings, js.mass_total
         self.phases = settings.phases
-        act = actuation(self.mass, settings.torque_limit, settings.tendons)
+        act = actuation(self.mass, settings.torque_limit, settings.tendons, settings.muscles)
         split = costs.needs_power_split(settings)
         self.models = [NodeModel(ph, act, RigidContact(js, ph.rows, ph.sliding, settings.slip), split)
                        for ph in self.phases]

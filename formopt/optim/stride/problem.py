@@ -33,6 +33,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ...mechanics.errors import InputError
+from ...mechanics.muscles import Muscles
 from .ranges import check
 
 
@@ -67,7 +68,12 @@ TOUCHDOWN_MODES = ("stick", "slide")
 # MIN_NODES each, since a short phase still needs its start and end conditions.
 NODE_SHARE = {"slide": 0.12, "heel": 0.12, "landing": 0.12, "flat": 0.3, "forefoot": 0.25, "flight": 0.33}
 MIN_NODES = 4
-OBJECTIVES = ("effort", "work", "metabolic")
+OBJECTIVES = ("effort", "work", "metabolic", "activation")
+# The actuation ladder (actuation.py): torque sources, with springs in parallel (`tendons`), or
+# muscles (`muscles`). The muscles take "metabolic" (their own energy, Bhargava et al. 2004, plus
+# ACTIVATION_WEIGHT times their activation) or "activation"; the torque rungs the others.
+ACTUATIONS = ("torque", "torque+springs", "muscles")
+MUSCLE_OBJECTIVES = ("metabolic", "activation")
 TRANSCRIPTIONS = ("trapezoid", "hermite-simpson")  # collocation.py's
 # Margaria R. (1968) Int Z angew Physiol 25:339: efficiencies of positive and negative muscle work
 EFFICIENCY_POSITIVE = 0.25
@@ -87,6 +93,10 @@ WORK_REGULARISATION = 1e-2
 # on the squared change of the accelerations between nodes, SMOOTHING * sum h |A_k+1 - A_k|^2
 # per distance (s^3/m), removes it; it costs under 1 % of the objective of a smooth motion.
 SMOOTHING = 1e-6
+# The one weight of the muscles' "metabolic" objective: ACTIVATION_WEIGHT times the activation
+# term (costs.ACTIVATION_SCALE) beside the muscles' metabolic energy per distance (per m g).
+# Calibrated once on RBDS001 at 3.5 m/s (docs/concepts/muscles.md says how) and frozen.
+ACTIVATION_WEIGHT = 1.0
 
 
 # Tendons: a spring in parallel with the stance leg's joint, engaged unloaded at the touchdown
@@ -133,6 +143,7 @@ class StrideSettings:
     tolerance: float = 1e-6
     tendons: dict = field(default_factory=dict)  # joint ("hip", "knee", "ankle") -> N m/rad/kg
     transcription: str = "trapezoid"  # or "hermite-simpson" (collocation.TRANSCRIPTIONS)
+    muscles: Muscles | None = None  # one leg's muscles scaled to the body: the "muscles" rung
 
     def __post_init__(self):
         if self.strike not in STRIKE_PHASES:
@@ -144,6 +155,12 @@ class StrideSettings:
         if self.touchdown == "slide" and (self.law != "coulomb" or self.strike not in SLIDING_PHASES):
             raise InputError(f"touchdown 'slide': expected law coulomb and strike "
                              f"{' or '.join(SLIDING_PHASES)}, not {self.law} and {self.strike}")
+        if self.muscles is not None and (self.tendons or self.objective not in MUSCLE_OBJECTIVES):
+            raise InputError(f"actuation 'muscles': expected objective {' or '.join(MUSCLE_OBJECTIVES)} and no "
+                             f"tendons (the muscles' tendons are in series), not {self.objective!r}"
+                             + (f" and tendons {self.tendons}" if self.tendons else ""))
+        if self.muscles is None and self.objective == "activation":
+            raise InputError("objective 'activation': expected actuation 'muscles'")
         if self.transcription not in TRANSCRIPTIONS:
             raise InputError(f"transcription {self.transcription!r}: expected {' or '.join(TRANSCRIPTIONS)}")
         if self.slip not in (1, -1):
@@ -169,6 +186,11 @@ class StrideSettings:
                 check("duration_s", bound, name=f"duration {name}")
             if not lo < hi:
                 raise InputError(f"duration {name} = ({lo}, {hi}): expected low < high")
+
+    @property
+    def actuation(self) -> str:
+        """The rung of ACTUATIONS these settings build."""
+        return "muscles" if self.muscles is not None else "torque+springs" if any(self.tendons.values()) else "torque"
 
     @property
     def phases(self) -> tuple[Phase, ...]:

@@ -22,13 +22,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...mechanics import muscles as hill
 from ...mechanics.joint_space import GRAVITY, JOINTS
+from .actuation import MuscleDriven
 from .checks import drift, forward, half_period, impact_check
 from .collocation import NX, StrideNLP
-from .guess import ballistic, fitted, perturbed, slide_guess
+from .guess import ballistic, fitted, from_torques, perturbed, slide_guess
 from .layout import Solved
 from .ocp import INTEGRANDS, Impact, periodicity, step_length
-from .problem import SLIDING_PHASES, metabolic, other_leg
+from .problem import RUNNER_TENDONS, SLIDING_PHASES, metabolic, other_leg
 
 FOOT_POINTS = ("heel_R", "forefoot_R")
 # What a stride's own checks may show and still be the stride it claims (`Stride.failed_checks`),
@@ -43,6 +45,9 @@ TOLERANCES = {
     "impact_map_J": 1e-6,  # the joint-space impact against formopt's natural-coordinate map
     "impact_nlp_J": 1e-5,  # the NLP's T_c against the exact impact at its state (IPOPT's tol)
     "periodicity": 1e-6,  # m or rad: the touchdown equals the start (a constraint of the NLP)
+    # the muscles' reserve moments (N m per kg): 0.1 is 6 N m at 62 kg, a tenth of the hip
+    # flexors' toe-off moment; beyond it the muscles do not make the stride they are credited with
+    "reserve_nm_per_kg": 0.1,
 }
 
 
@@ -85,6 +90,9 @@ class Stride:
     force: np.ndarray = field(repr=False)  # (n, 2, 2) N, world (x, z) per FOOT_POINTS
     solved: Solved | None = field(repr=False, default=None)  # the raw solution (a warm start)
     tau_spring: np.ndarray | None = field(repr=False, default=None)  # (n, 6) N m, the tendons' moments
+    # the muscles (actuation "muscles"): names (both legs, "<muscle>_R", ...), activation and
+    # tendon force (N) histories (n, 16), per muscle the tendon energy stored and returned (J)
+    muscles: dict | None = field(repr=False, default=None)
 
     @property
     def failed_checks(self) -> list[str]:
@@ -106,8 +114,10 @@ class Stride:
 
     def to_dict(self) -> dict:
         """JSON-ready summary (no histories), with `valid` and `failed_checks`."""
-        skip = {"t", "phase", "theta", "thetad", "tau", "force", "solved", "tau_spring"}
+        skip = {"t", "phase", "theta", "thetad", "tau", "force", "solved", "tau_spring", "muscles"}
         out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k not in skip}
+        if self.muscles is not None:  # the per-muscle figures, not the histories
+            out["muscles"] = {k: v for k, v in self.muscles.items() if k not in ("activation", "tendon_force_N")}
         return {**out, "valid": self.valid, "failed_checks": self.failed_checks}
 
 
@@ -119,17 +129,16 @@ def rank(stride: Stride) -> tuple:
 
 def histories(nlp: StrideNLP, blocks: dict, slope: float):
     """Node histories (t, phase, theta, theta', tau, force) over the half stride."""
-    m = nlp.mass
     t, names, X, U, force = [], [], [], [], []
     start = 0.0
     tangent, normal = np.array([np.cos(slope), np.sin(slope)]), np.array([-np.sin(slope), np.cos(slope)])
-    for phase, c in zip(nlp.phases, nlp.columns):
+    for i, (phase, c) in enumerate(zip(nlp.phases, nlp.columns)):
         T = blocks[f"T_{phase.name}"].item()
         t.append(start + np.linspace(0.0, T, c))
         names += [phase.name] * (c)
         X.append(blocks[f"X_{phase.name}"])
-        U.append(m * blocks[f"U_{phase.name}"])
-        F = m * GRAVITY * blocks[f"F_{phase.name}"]
+        U.append(nlp.moments(blocks, i))
+        F = nlp.mass * GRAVITY * blocks[f"F_{phase.name}"]
         f = np.zeros((c, len(FOOT_POINTS), 2))
         for k, (point, axis) in enumerate(phase.rows):
             f[:, FOOT_POINTS.index(point)] += np.outer(F[k], tangent if axis == "t" else normal)
@@ -298,7 +307,38 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
         impacts=found, budget=energy, cost_of_transport=positive / (m * GRAVITY * step),
         mechanical_power_W=positive / T, checks=checks, phases=durations, mass_kg=m,
         t=t, phase=names, theta=theta, thetad=thetad, tau=tau, force=force, solved=solved,
-        tau_spring=spring_moments(nlp, theta, names))
+        tau_spring=spring_moments(nlp, theta, names), muscles=muscle_outputs(nlp, solved, checks))
+
+
+def muscle_outputs(nlp: StrideNLP, solved: Solved, checks: dict) -> dict | None:
+    """The muscles' histories and energies per step (Stride.muscles), None for the torque rungs:
+    their metabolic energy (J, the NLP's integral), the tendons' stored and returned energy (J:
+    the sums of the rises and of the falls of each tendon's elastic energy,
+    mechanics.muscles.tendon_energy; `achilles`: soleus and gastrocnemius); adds the reserves'
+    largest moment to `checks`."""
+    act, blocks = nlp.ocp.models[0].actuation, solved.blocks
+    if not isinstance(act, MuscleDriven):
+        return None
+    n = act.n
+    k = INTEGRANDS.index("muscle_metabolic")
+    metabolic_J = sum(float(L[k] @ w) for L, w in nlp.integrands(blocks, solved.parameters))
+    Z = np.hstack([blocks[f"Z_{p.name}"] for p in nlp.phases])
+    U = np.hstack([blocks[f"U_{p.name}"] for p in nlp.phases])
+    legs = [Z[2 * n * k:2 * n * (k + 1)] for k in range(2)]
+    activation = np.vstack([z[:n] for z in legs])
+    force = np.vstack([z[n:] for z in legs])
+    stored = np.diff(np.vstack([hill.tendon_energy(act.muscles, f) for f in (force[:n], force[n:])]), axis=1)
+    names = [f"{m}_{side}" for side in "RL" for m in act.muscles.names]
+    rises, falls = np.maximum(stored, 0).sum(axis=1), np.maximum(-stored, 0).sum(axis=1)
+    checks["reserve_nm_per_kg"] = float(np.abs(U[6 * n:]).max())
+    achilles = [k for k, name in enumerate(names) if name.split("_")[0] in ("soleus", "gastrocnemius")]
+    return {"metabolic_J": metabolic_J, "tendon_stored_J": float(rises.sum()),
+            "tendon_returned_J": float(falls.sum()), "achilles_stored_J": float(rises[achilles].sum()),
+            "reserve_nm_per_kg": checks["reserve_nm_per_kg"], "names": names, "activation": activation.T,
+            "tendon_force_N": (force * np.tile(act.muscles.max_force, 2)[:, None]).T,
+            "peak_activation": dict(zip(names, activation.max(axis=1).round(4).tolist())),
+            "stored_J": dict(zip(names, rises.round(3).tolist())),
+            "returned_J": dict(zip(names, falls.round(3).tolist()))}
 
 
 def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
@@ -316,6 +356,8 @@ def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
         # iterations at 40; from the trapezoid's optimum at 40, in 166 (heel, 3.5 m/s, 2026-11-25)
         base = nlp.variant(transcription="trapezoid")
         guess = base.solve(ballistic(base, speed), speed, slope, mu, cadence).blocks
+    if guess is None and nlp.settings.muscles is not None:
+        guess = muscle_start(nlp, speed, slope, mu, cadence)
     first = fitted(nlp, guess) if guess is not None else ballistic(nlp, speed)
     rng = np.random.default_rng(seed)
     solves = [nlp.solve(first if k == 0 else perturbed(first, rng), speed, slope, mu, cadence)
@@ -333,6 +375,15 @@ def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
             break
     assert best is not None  # starts >= 1
     return best
+
+
+def muscle_start(nlp: StrideNLP, speed: float, slope: float, mu: float, cadence: float | None) -> dict:
+    """The muscles' start: the torque+springs rung's optimum (effort, problem.RUNNER_TENDONS,
+    trapezoid) of the same strike and mesh from the generic guess, its net moments split among
+    the muscles (guess.from_torques). From the generic guess itself the muscle NLP did not
+    converge in 600 iterations (RBDS001, heel, 40 nodes, 3.5 m/s, 2026-11-25)."""
+    base = nlp.variant(muscles=None, objective="effort", tendons=RUNNER_TENDONS, transcription="trapezoid")
+    return from_torques(nlp, base, base.solve(ballistic(base, speed), speed, slope, mu, cadence))
 
 
 def touchdown_mode(nlp: StrideNLP, stick: Solved) -> tuple[StrideNLP, Solved, list]:

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 from helpers import SEED
 
+from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import paper_body
 from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings
@@ -18,9 +19,13 @@ from formopt.optim.stride.problem import RUNNER_TENDONS
 @pytest.fixture(scope="module", params=[{"strike": "heel", "tendons": RUNNER_TENDONS},
                                         {"strike": "forefoot", "objective": "metabolic", "impact_weight": 1.0},
                                         {"strike": "flat", "transcription": "hermite-simpson", "nodes": 14,
-                                         "tendons": RUNNER_TENDONS, "objective": "work"}])
+                                         "tendons": RUNNER_TENDONS, "objective": "work"},
+                                        {"strike": "flat", "objective": "metabolic", "muscles": "gait2d", "nodes": 14}])
 def case(request):
-    nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(**{"nodes": 18, **request.param}))
+    settings = dict(request.param)
+    if settings.get("muscles"):  # the muscle rung: its states, rows, reserves and costs
+        settings["muscles"] = body_muscles(paper_body())
+    nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(**{"nodes": 18, **settings}))
     rng = np.random.default_rng(SEED)
     x = nlp.blocks.join(nlp._with_power_split(perturbed(ballistic(nlp, 3.5), rng)))
     x += rng.uniform(-0.01, 0.01, x.size)

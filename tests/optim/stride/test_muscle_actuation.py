@@ -1,0 +1,68 @@
+"""optim.stride.actuation.MuscleDriven: the muscle rung's guess makes the moments it is given
+and holds the Hill equilibrium, its settings refuse what the muscles cannot take, and its
+states are periodic with the legs swapped."""
+
+import casadi as ca
+import numpy as np
+import pytest
+
+from formopt.io.muscle_table import body_muscles
+from formopt.mechanics import muscles as hill
+from formopt.mechanics.body import paper_body, scaled_body
+from formopt.mechanics.errors import InputError
+from formopt.optim.stride.actuation import MuscleDriven
+from formopt.optim.stride.layout import Rows
+from formopt.optim.stride.problem import StrideSettings
+
+BODY = scaled_body(62.0, 1.81)
+
+
+@pytest.fixture(scope="module")
+def rung():
+    return MuscleDriven(62.0, body_muscles(BODY))
+
+
+def test_guess_makes_the_moments_and_holds_the_equilibrium(rung):
+    """At a mid-stance posture at rest, moments within the muscles' reach (N m): the guess's
+    muscle moments are the ones asked for (the least-squares split's small penalty aside) and
+    its Hill rows vanish where the activation is not clipped."""
+    theta = np.r_[0.0, 0.9, 0.1, 0.3, 0.6, 0.2, -0.2, 1.2, 0.0][:, None]
+    tau = np.array([[40.0], [90.0], [110.0], [-20.0], [-15.0], [-5.0]])
+    z, u = rung.initial(theta, np.zeros((9, 1)), tau)
+    moments = np.asarray(rung.active(ca.DM(z[:, 0]), ca.DM(u[:, 0])), float)
+    np.testing.assert_allclose(moments, tau, atol=3.0)
+    rows = Rows()
+    rung.rows(rows, ca.DM(theta[:, 0]), ca.DM.zeros(9), ca.DM(z[:, 0]), ca.DM(u[:, 0]))
+    hill_rows = np.r_[np.asarray(rows.expr[1], float).ravel(), np.asarray(rows.expr[3], float).ravel()]
+    a = np.r_[z[:8, 0], z[16:24, 0]]
+    free = (a > 0.011) & (a < 0.999)
+    assert free.sum() >= 4
+    np.testing.assert_allclose(hill_rows[free], 0.0, atol=1e-9)
+
+
+def test_states_swap_legs(rung):
+    z = np.arange(32.0)
+    swapped = np.asarray(rung.swap(ca.DM(z)), float).ravel()
+    np.testing.assert_array_equal(swapped, np.r_[z[16:], z[:16]])
+
+
+def test_reserves_are_moments_per_kg(rung):
+    u = np.zeros(rung.controls)
+    u[-6:] = [0.1, 0, 0, 0, 0, -0.2]
+    moments = np.asarray(rung.active(ca.DM.zeros(rung.states), ca.DM(u)), float).ravel()
+    np.testing.assert_allclose(moments, [6.2, 0, 0, 0, 0, -12.4])
+
+
+@pytest.mark.parametrize("changes", [{"objective": "effort"}, {"tendons": {"ankle": 4.0}}])
+def test_muscle_settings_refuse_torque_costs_and_parallel_springs(changes):
+    with pytest.raises(InputError, match="actuation 'muscles'"):
+        StrideSettings(muscles=body_muscles(paper_body()), **{"objective": "metabolic", **changes})
+
+
+def test_tendon_energy_is_the_integral_of_its_force():
+    leg = body_muscles(BODY)
+    force = np.linspace(0.0, 1.2, 4001)
+    length = np.asarray(hill.tendon_length(ca.DM(force)), float).ravel() * leg.tendon_slack_length[6]
+    numeric = leg.max_force[6] * np.trapezoid(force, length)
+    start = hill.tendon_energy(leg, np.zeros(8))[6]
+    assert hill.tendon_energy(leg, np.full(8, 1.2))[6] - start == pytest.approx(numeric, rel=1e-6)
