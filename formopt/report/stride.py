@@ -63,7 +63,8 @@ def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
                                                       np.zeros(len(stride.t))] / stride.mass_kg}
     panels = CYCLE_JOINTS if quantity not in ("vertical",) else ("vertical", "horizontal")
     unit = {"angles": "deg", "moments": "N m/kg", "vertical": "N/kg"}[quantity]
-    label = "predicted, net moment (active + tendons)" if quantity == "moments" else "predicted"
+    label = "predicted" if quantity != "moments" else "predicted, net moment (" + (
+        "muscles + reserves)" if stride.muscles is not None else "active + tendons)")
     for k, name in enumerate(panels):
         ax = fig.add_subplot(1, len(panels), k + 1)
         order = np.argsort(predicted["percent"], kind="stable")

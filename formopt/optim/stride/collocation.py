@@ -323,7 +323,7 @@ class StrideNLP:
     def variant(self, **changes) -> StrideNLP:
         """The NLP of the same body and IPOPT options with settings changed (e.g. touchdown=
         "slide"), built once and kept."""
-        key = tuple(sorted(changes.items()))
+        key = tuple(sorted((k, repr(v)) for k, v in changes.items()))  # values may be dicts
         if not hasattr(self, "_variants"):
             self._variants: dict = {}
         if key not in self._variants:

@@ -1,0 +1,113 @@
+"""The actuation ladder on RBDS001 (issue 33): torque, torque+springs and muscles, each at the
+runner's speeds, against the runner's processed mean cycle and measured cadence.
+
+    python problems/stride_ladder.py [--speeds 2.5 3.5 4.5] [--rungs torque torque+springs muscles]
+                                     [--strike heel] [--nodes 40] [--mass 62] [--weight W]
+
+Prints per rung and speed: cadence (steps/min; measured 156.5 at 2.5 and 171.4 at 3.5 m/s,
+runners choose about 175-183 at 4.5), stance (s), peak vertical force (N/kg), the joint angles'
+RMS against the mean cycle (deg), the peak ankle power (W/kg, positive), the tendons' energy
+stored per step (J: soleus and gastrocnemius, all), the swing foot's least height (m, before
+the last fifth of the half stride), reserves, validity, iterations and seconds (build, solve).
+`--mass` scales the body to another mass at the same height (a heavier runner); `--weight`
+sets the muscles' activation weight (problem.ACTIVATION_WEIGHT) for a calibration run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from formopt.io.muscle_table import body_muscles
+from formopt.mechanics.body import scaled_body
+from formopt.mechanics.joint_space import JointSpace
+from formopt.optim.stride import problem
+from formopt.optim.stride.collocation import build
+from formopt.optim.stride.problem import RUNNER_TENDONS, StrideSettings
+from formopt.optim.stride.result import optimum
+from formopt.studies.stride import compare_cycle, measured_cycle, predicted_cycle
+
+RBDS = Path(__file__).resolve().parents[1] / "data" / "rbds" / "RBDS001processed.txt"
+MEASURED_CADENCE = {2.5: 156.5, 3.5: 171.4}  # steps/min, RBDS001's trials (formopt compare)
+# the cadence that times the mean cycle (its stance and ankle power): at 4.5 m/s, with no trial
+# of RBDS001's, the middle of the 175-183 steps/min runners choose there
+CYCLE_CADENCE = {**MEASURED_CADENCE, 4.5: 179.0}
+
+
+def settings(rung: str, body, strike: str, nodes: int) -> StrideSettings:
+    base = StrideSettings(strike=strike, nodes=nodes)
+    if rung == "torque+springs":
+        return replace(base, tendons=dict(RUNNER_TENDONS))
+    if rung == "muscles":
+        return replace(base, objective="metabolic", muscles=body_muscles(body))
+    return base
+
+
+def ankle_power(percent, moment, angle, period) -> float:
+    """Peak positive ankle power (W/kg) of a cycle: -M dtheta/dt (plantarflexor moment,
+    dorsiflexion angle), theta in deg over `period` s."""
+    t, first = np.unique(percent / 100.0 * period, return_index=True)  # a phase boundary's node once
+    rate = np.gradient(np.radians(angle[first]), t)
+    return float(np.max(-moment[first] * rate))
+
+
+def row(rung, speed, stride, measured, body) -> str:
+    cycle = compare_cycle(stride, measured) if measured else None
+    pred = predicted_cycle(stride)
+    power = ankle_power(pred["percent"], pred["moments"]["ankle"], pred["angles"]["ankle"], 2 * stride.half_period_s)
+    js = JointSpace(body)
+    late = stride.t < 0.8 * stride.half_period_s
+    swing = min(float(np.asarray(js.points[p](th, np.zeros(9), 0.0)[0], float).ravel()[1])
+                for th in stride.theta[late] for p in ("heel_L", "forefoot_L"))
+    text = (f"{rung:15s} {speed:4.1f} {stride.cadence_spm:7.1f} {MEASURED_CADENCE.get(speed, float('nan')):6.1f} "
+            f"{stride.stance_s:6.3f} {stride.peak_vertical_grf_bw * 9.81:6.1f}")
+    if cycle:
+        rms = cycle["angle_rms_deg"]
+        measured_stance = cycle["stance_share_measured"] * 120.0 / CYCLE_CADENCE[speed]
+        m_power = ankle_power(measured["percent"], measured["moments"]["ankle"], measured["angles"]["ankle"],
+                              120.0 / CYCLE_CADENCE[speed])
+        text += (f" {measured_stance:6.3f} {cycle['peak_vertical_n_per_kg']['measured']:6.1f}"
+                 f" {rms['hip']:5.1f} {rms['knee']:5.1f} {rms['ankle']:5.1f} {power:5.1f} {m_power:5.1f}")
+    m = stride.muscles
+    tendons = f"{m['achilles_stored_J']:5.1f} {m['tendon_stored_J']:5.1f} {m['reserve_nm_per_kg']:5.2f}" if m else " " * 17
+    return (text + f" {tendons} {swing:6.3f} {'yes' if stride.valid else 'NO':>5s} {stride.iterations:5d}"
+            f" {stride.build_s:5.1f} {stride.solve_s:6.1f}"
+            + ("" if stride.valid else f"  ({'; '.join(stride.failed_checks) or stride.status})"))
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--speeds", type=float, nargs="+", default=[2.5, 3.5, 4.5])
+    parser.add_argument("--rungs", nargs="+", default=list(problem.ACTUATIONS), choices=problem.ACTUATIONS)
+    parser.add_argument("--strike", default="heel", choices=problem.STRIKES)
+    parser.add_argument("--nodes", type=int, default=40)
+    parser.add_argument("--mass", type=float, default=62.0)
+    parser.add_argument("--weight", type=float, default=None)
+    args = parser.parse_args(argv)
+    if args.weight is not None:
+        problem.ACTIVATION_WEIGHT = args.weight  # a calibration run only
+        from formopt.optim.stride import costs
+        costs.ACTIVATION_WEIGHT = args.weight
+    body = scaled_body(args.mass, 1.81)
+    print(f"RBDS001's height (1.81 m), {args.mass:g} kg, {args.strike} strike, {args.nodes} nodes, one start, "
+          f"activation weight {problem.ACTIVATION_WEIGHT:g}", flush=True)
+    print(f"{'rung':15s} {'v':>4s} {'spm':>7s} {'meas':>6s} {'stance':>6s} {'GRF':>6s} {'m.st':>6s} {'m.GRF':>6s}"
+          f" {'hipRMS':>5s} {'knRMS':>5s} {'anRMS':>5s} {'P+ank':>5s} {'m.P+':>5s} {'Ach J':>5s} {'all J':>5s}"
+          f" {'res':>5s} {'swing':>6s} {'valid':>5s} {'iter':>5s} {'build':>5s} {'solve':>6s}", flush=True)
+    for rung in args.rungs:
+        for speed in args.speeds:
+            clock = time.perf_counter()
+            nlp = build(body, settings(rung, body, args.strike, args.nodes))
+            stride = optimum(nlp, speed)
+            stride.solve_s = time.perf_counter() - clock - nlp.build_s  # the torque start's solve too
+            print(row(rung, speed, stride, measured_cycle(RBDS, speed), body), flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
