@@ -275,17 +275,40 @@ def trial_folders(trials: list[dict]) -> list[str]:
     return names
 
 
+def readable(trials: list[dict]) -> None:
+    """Every trial's files read once before the first comparison, so that a file that cannot be
+    read (missing, damaged, of another format) is refused before any trial's work and output,
+    in one line naming the trial and the file (0.01-0.6 s a file: RBDS001's 3.5 m/s C3D)."""
+    for k, s in enumerate(trials, 1):
+        try:
+            mocap.read(s["trial"], s["forces"])
+            mocap.read(s["static"])
+        except InputError as err:
+            raise InputError(f"{_trial_name(k, trials)}: {err}") from None
+
+
+def _trial_name(k: int, trials: list[dict]) -> str:
+    return f"trial {k} of {len(trials)} ({trials[k - 1]['trial']})" if len(trials) > 1 else str(trials[0]["trial"])
+
+
 def run(args) -> int:
     trials = settings(args)
     many = len(trials) > 1
+    if many:
+        readable(trials)
     root = out_folder(args, args.scene or trials[0]["trial"])
     table, code = [TRIAL_COLUMNS], 0
     for k, (s, folder) in enumerate(zip(trials, trial_folders(trials)), 1):
         if many:
             if not args.json:
                 print(f"[{k}/{len(trials)}] {s['trial']}", file=sys.stderr, flush=True)
-            rep, result = run_one(s, args, output_folder(root / folder),
-                                  show=not args.json)  # --json: only the JSON below on stdout
+            try:
+                rep, result = run_one(s, args, output_folder(root / folder),
+                                      show=not args.json)  # --json: only the JSON below on stdout
+            except InputError as err:  # named by its trial; those before it stay in trials.csv
+                before = "" if k == 1 else "the trial before it is" if k == 2 else f"the {k - 1} trials before it are"
+                done = f"; {before} in {root / 'trials.csv'}" if before else ""
+                raise InputError(f"{_trial_name(k, trials)}: {err}{done}") from None
         else:
             rep, result = run_one(s, args, root)
         code = max(code, 0 if all(o.optimum is None or o.optimum.success

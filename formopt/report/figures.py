@@ -6,6 +6,7 @@ so importing this module never touches the user's backend or open windows.
 from __future__ import annotations
 
 import math
+import textwrap
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -251,35 +252,27 @@ def comparison_figure(c, rep: dict) -> Figure:
     """Per side, like against like: the mean touchdown of the side's impact point and its
     optimum overlaid, the joint differences with the step-to-step sd, and T_c per step of that
     impact point (each with its band over the measurement's variants) beside the optimum's;
-    `rep` the comparison's JSON report (Comparison.to_dict)."""
-    from ..studies.compare import JOINTS
-
+    `rep` the comparison's JSON report (Comparison.to_dict). A side without a valid optimum
+    shows its measurement alone and, where the joint differences would be, why there is none;
+    a side's headline is wrapped to its panel, never cut."""
     sides = [s for s in ("R", "L") if s in c.sides]
     fig, axes = _subplots(len(sides), 3, figsize=(14, 4.4 * len(sides)), squeeze=False,
                           gridspec_kw={"width_ratios": [1.1, 1, 1]})
     for row, side in zip(axes, sides):
         o, name = c.sides[side], "right" if side == "R" else "left"
+        optimum = o.optimum if o.optimum is not None and o.optimum.success else None
         ax = row[0]
         ground(ax, 0.0)
         stick_figure(ax, c.body, o.reference, o.point, 0.0, "0.5", f"measured (mean {o.point} touchdown)")
-        if o.optimum is not None:
-            stick_figure(ax, c.body, o.optimum.state, o.point, 0.0, "tab:blue", "optimum, same gait")
+        if optimum is not None:
+            stick_figure(ax, c.body, optimum.state, o.point, 0.0, "tab:blue", "optimum, same gait")
         ax.set_aspect("equal")
         ax.set_xlabel("x, forward from the strike point (m)")
         ax.set_ylabel("z, up (m)")
         ax.legend(fontsize=7, loc="upper left")
-        ax.set_title(f"{name}: {rep['optimum'][side]['headline']}"[:70], fontsize=8)
-        ax = row[1]
-        if o.optimum is not None:
-            sd = [rep["summary"][side]["angles_deg_sd"][k] for k in JOINTS]
-            ax.bar(JOINTS, [rep["optimum"][side]["difference_deg"][k] for k in JOINTS],
-                   color="tab:blue", label="optimum - measured")
-            ax.errorbar(JOINTS, np.zeros(4), yerr=sd, fmt="none", ecolor="0.3", capsize=4,
-                        label="measured step-to-step sd")
-            ax.legend(fontsize=7)
-        ax.axhline(0, color="0.3", lw=0.8)
-        ax.set_ylabel("optimum - measured joint angle (deg)")
-        ax.set_title(f"{name}: how far the optimum is, joint by joint", fontsize=10)
+        ax.set_title(_wrapped(f"{name}: {_side_title(rep['optimum'][side], optimum is not None)}", TITLE_CHARS),
+                     fontsize=8)
+        _joint_panel(row[1], name, rep, side, None if optimum is not None else _no_optimum_reason(o))
         ax = row[2]
         ks = o.steps
         t = [c.steps.touchdowns[k].time for k in ks]
@@ -287,14 +280,63 @@ def comparison_figure(c, rep: dict) -> Figure:
         values = np.array([c.step_T_c(k) for k in ks])
         ax.errorbar(t, values, yerr=[values - band[:, 0], band[:, 1] - values], fmt="o", ms=3,
                     color="0.4", ecolor="0.7", label=f"measured {o.point} steps (band: filter, frame)")
-        if o.optimum is not None:
-            ax.axhline(o.optimum.impact.T_c, color="tab:blue", ls="--", label=f"optimum ({o.point})")
+        if optimum is not None:
+            ax.axhline(optimum.impact.T_c, color="tab:blue", ls="--", label=f"optimum ({o.point})")
         ax.set_xlabel("time (s)")
         ax.set_ylabel(f"absorbed energy T_c (J, {c.law})")
         ax.legend(fontsize=7)
         ax.set_title(f"{name}: T_c per {o.point} step ({c.steps.cadence_spm:.0f} steps/min)", fontsize=10)
     fig.tight_layout()
     return fig
+
+
+TITLE_CHARS = 62  # characters of a line of a compare panel's 8-point title (14-inch figure, 3 panels)
+
+
+def _wrapped(text: str, width: int, lines: int = 5) -> str:
+    """`text` in lines of at most `width` characters (at most `lines`; beyond them " ..."):
+    a title or a note that fits its panel."""
+    return textwrap.fill(text, width, max_lines=lines, placeholder=" ...")
+
+
+def _side_title(side: dict, solved: bool) -> str:
+    """A compare side's headline (`side`: its JSON, studies.compare.side_dict); without a valid
+    optimum what the panel shows, and whether the measured impact holds its law."""
+    if solved:
+        return side["headline"]
+    ref = side["reference"]
+    invalid = "" if ref["valid"] else f"; the measured impact is INVALID under {side['law']} ({'; '.join(ref['warnings'])})"
+    return "measured only, no valid optimum" + invalid
+
+
+def _no_optimum_reason(o) -> str:
+    """Why a compare side (studies.compare.SideOptimum) has no valid optimum: none solved
+    (`why_not`), or the solve's verdict (IPOPT's status, or the check that rejected it)."""
+    if o.optimum is None:
+        return o.why_not
+    return o.optimum.verdict.removeprefix("NO OPTIMUM").strip(" ()")
+
+
+def _joint_panel(ax, name: str, rep: dict, side: str, missing: str | None) -> None:
+    """The optimum's joint angles minus the measured ones (deg) with the measured step-to-step
+    sd; `missing`: why there is no valid optimum, written in the panel instead."""
+    from ..studies.compare import JOINTS
+
+    if missing is not None:
+        ax.set_axis_off()
+        ax.text(0.5, 0.5, _wrapped(f"no valid optimum: {missing}", 48, 10), transform=ax.transAxes,
+                ha="center", va="center", fontsize=9, color="0.25")
+        ax.set_title(f"{name}: no optimum to compare joint by joint", fontsize=10)
+        return
+    sd = [rep["summary"][side]["angles_deg_sd"][k] for k in JOINTS]
+    ax.bar(JOINTS, [rep["optimum"][side]["difference_deg"][k] for k in JOINTS],
+           color="tab:blue", label="optimum - measured")
+    ax.errorbar(JOINTS, np.zeros(4), yerr=sd, fmt="none", ecolor="0.3", capsize=4,
+                label="measured step-to-step sd")
+    ax.legend(fontsize=7)
+    ax.axhline(0, color="0.3", lw=0.8)
+    ax.set_ylabel("optimum - measured joint angle (deg)")
+    ax.set_title(f"{name}: how far the optimum is, joint by joint", fontsize=10)
 
 
 PARETO_ERROR = {"impact": "max relative error of T_c (-)",

@@ -137,8 +137,9 @@ def map_figure(rows: list[dict], px: str, py: str) -> Figure:
             grid[ys.index(float(r[py])), xs.index(float(r[px]))] = _value(r, key)
         if len(xs) > 1 and len(ys) > 1 and np.isfinite(grid).sum() >= 3:
             filled = ax.contourf(xs, ys, np.ma.masked_invalid(grid), levels=14, cmap="viridis")
-        else:
-            filled = ax.pcolormesh(xs, ys, np.ma.masked_invalid(grid), shading="nearest", cmap="viridis")
+        else:  # too few points for contours (a pcolormesh of one column drew nothing): squares
+            filled = ax.scatter([float(r[px]) for r in ok], [float(r[py]) for r in ok],
+                                c=[_value(r, key) for r in ok], marker="s", s=150, cmap="viridis")
         fig.colorbar(filled, ax=ax, label=_label(key))
         ax.plot([float(r[px]) for r in stars], [float(r[py]) for r in stars], "*", ms=9,
                 color="white", mec="black", clip_on=False)

@@ -216,9 +216,10 @@ def solve_point(scene: StrideScene, values: dict, previous: Stride | None) -> tu
     return min(tries, key=lambda t: rank(t[0]))
 
 
-def rows(scene: StrideScene, chunk) -> list[dict]:
+def rows(scene: StrideScene, chunk, tick=None) -> list[dict]:
     """The rows ({column: CSV value}, StrideRow) of a chain of neighbouring points; a point
-    that fails seeds nothing."""
+    that fails seeds nothing. `tick()`, when given, after each point (a progress bar's step:
+    studies.sweep.Kind.ticks)."""
     out, previous = [], None
     for values in chunk:
         try:
@@ -229,6 +230,8 @@ def rows(scene: StrideScene, chunk) -> list[dict]:
             row, previous = StrideRow(speed, math.degrees(slope), mu, cadence,
                                       error=str(err).replace("\n", " ")), None
         out.append(row.to_dict())
+        if tick:
+            tick()
     return out
 
 

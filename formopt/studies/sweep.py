@@ -164,13 +164,17 @@ CHAIN_MIN = 16
 class Kind:
     """What a sweep computes at each grid point: `work(scene, chunk)` -> one row ({column:
     CSV value}) per point, `chunk` points per task; `chained`: the points of a chunk are
-    warm-started one from the next, so the grid is walked as a serpentine."""
+    warm-started one from the next, so the grid is walked as a serpentine; `ticks`:
+    `work(scene, chunk, tick)` calls tick() after each point, so that a chunk run in this
+    process moves the progress bar point by point (a stride map's chain of up to 120 strides
+    would otherwise show nothing, and no remaining time, until it ends)."""
 
     unit: str  # what a row is, for the progress bar
     columns: list[str]
     work: Callable
     chunk: int
     chained: bool
+    ticks: bool = False
 
 
 def kind_of(scene, params, landings: bool = False) -> Kind:
@@ -179,7 +183,7 @@ def kind_of(scene, params, landings: bool = False) -> Kind:
     `landings`), else landings."""
     if _is_stride(scene):
         stride_map.check(scene, params)
-        return Kind("stride", stride_map.COLUMNS, stride_map.rows, stride_map.CHUNK, True)
+        return Kind("stride", stride_map.COLUMNS, stride_map.rows, stride_map.CHUNK, True, ticks=True)
     if scene.problem is not None and not landings:
         optimum_map.check(scene, params)
         return Kind("optimum", optimum_map.columns(scene), optimum_map.rows, optimum_map.CHUNK, True)
@@ -233,21 +237,20 @@ def run(scene, params: list[tuple[str, np.ndarray]], path, progress: bool = True
         # missing rows kept), so its rows are that run's (optimum_map's docstring)
         chunks = [c for c in (grid[k:k + size] for k in range(0, len(grid), size))
                   if any(_key(g, names) not in done for g in c)]
-        bar = None
-        if progress:
-            bar = progress_bar(len(grid), "sweep", kind.unit, initial=len(grid) - len(todo))
+        bar = progress_bar(len(grid), "sweep", kind.unit, initial=len(grid) - len(todo)) if progress else None
+        meter = _Meter(bar, [sum(_key(g, names) not in done for g in c) for c in chunks])
         written = len(grid) - len(todo)
         try:
             # closing: an error in this loop (a full disk) ends the pool now, not when the
             # traceback that holds the generator goes
-            with contextlib.closing(_results(work, scene, chunks, workers, scheduler)) as results:
+            tick = meter.tick if bar and kind.ticks else None
+            with contextlib.closing(_results(work, scene, chunks, workers, scheduler, tick)) as results:
                 for chunk, rows in results:
                     new = [(values, row) for values, row in zip(chunk, rows)
                            if _key(values, names) not in done]
                     append_rows(fh, path, ([{**row, **values}[c] for c in header] for values, row in new))
                     written += len(new)
-                    if bar:
-                        bar.update(len(new))
+                    meter.chunk_done(len(new))
         except KeyboardInterrupt:
             raise KeyboardInterrupt(f"{written} of {len(grid)} rows written to {path}; the same "
                                     "command resumes") from None
@@ -273,8 +276,28 @@ def valid(row: dict) -> bool:
     return not row["error"] and row["valid"] == "True"
 
 
-def _results(work, scene, chunks, workers, scheduler):
-    """(chunk, rows) as each chunk finishes, wherever it ran; work(scene, chunk) -> rows."""
+class _Meter:
+    """A sweep's progress bar (None: no bar): rows as each chunk is written, and, for a chunk run
+    in this process by a `ticks` kind, its points as they are computed (`fresh[k]`: chunk k's
+    points not yet in the file, the most its ticks move the bar; in-process chunks run in order)."""
+
+    def __init__(self, bar, fresh: list[int]):
+        self.bar, self.fresh, self.chunk, self.ticked = bar, fresh, 0, 0
+
+    def tick(self) -> None:
+        if self.bar is not None and self.ticked < self.fresh[self.chunk]:
+            self.ticked += 1
+            self.bar.update(1)
+
+    def chunk_done(self, new: int) -> None:
+        if self.bar is not None:
+            self.bar.update(new - self.ticked)
+        self.chunk, self.ticked = self.chunk + 1, 0
+
+
+def _results(work, scene, chunks, workers, scheduler, tick=None):
+    """(chunk, rows) as each chunk finishes, wherever it ran; work(scene, chunk) -> rows
+    (work(scene, chunk, tick) in this process when `tick` is given: Kind.ticks)."""
     if scheduler:
         from dask.distributed import Client, as_completed
 
@@ -294,7 +317,7 @@ def _results(work, scene, chunks, workers, scheduler):
             pool.join()
     else:
         for chunk in chunks:
-            yield chunk, work(scene, chunk)
+            yield chunk, work(scene, chunk, tick) if tick else work(scene, chunk)
 
 
 WATCH = 0.1  # s: how often a pool worker looks for its parent where the kernel does not tell it

@@ -71,3 +71,20 @@ def test_scene_file_gives_one_table_across_trials(tmp_path, capsys):
     bad.write_text('[compare]\nmas = 62\n')
     assert main(["compare", "--scene", str(bad)]) == 2
     assert "unknown key 'mas'" in capsys.readouterr().err
+
+
+def test_a_trial_that_cannot_be_read_is_refused_before_any_other_runs(tmp_path, capsys):
+    """Issue 37: a scene whose second trial failed printed the first trial's progress and table,
+    then the error. Every trial's files are read first: one line naming the trial and its file,
+    and nothing written."""
+    broken = tmp_path / "broken.c3d"
+    broken.write_bytes(RUN35.read_bytes()[:5000])
+    scene = tmp_path / "two.toml"
+    scene.write_text(f'[compare]\nmass = 62\nheight = 1.81\nstatic = "{STATIC}"\nstride = false\n'
+                     f'[[trial]]\ntrial = "{RUN35}"\n[[trial]]\ntrial = "{broken}"\n')
+    out = tmp_path / "out"
+    assert main(["compare", "--scene", str(scene), "--out", str(out)]) == 2
+    printed = capsys.readouterr()
+    assert printed.out == "" and not out.exists()
+    [line] = printed.err.splitlines()
+    assert f"trial 2 of 2 ({broken}): {broken}: " in line

@@ -28,9 +28,12 @@ RANGES = {
     "slope_deg": Range(-20.0, 20.0, "deg"),
     "friction": limits.FRICTION,
     # collocation intervals over the half stride: 14 (problem.MIN_NODES per phase and two: a
-    # flat strike's three phases; StrideSettings asks each strike's own minimum) to 400 (a
-    # 400-node build and solve takes minutes; the mesh study needs 2N of 40-80).
-    "nodes": Range(14, 400),
+    # flat strike's three phases; StrideSettings asks each strike's own minimum) to 120, what
+    # solves. Measured on the shipped stride scene (heel, one start, the generic guess; a 2-core
+    # machine under a load of 5, 2026-11-25): 40 nodes 6 s wall (79 iterations), 80 nodes 17 s
+    # (142), 120 nodes 111 s (301); 160 nodes stopped at 1000 iterations after 287 s without
+    # converging, 240 and 400 gave no answer within 300 s. The mesh study's 2N of 40-60 fits.
+    "nodes": Range(14, 120),
     # weight (1/m) of the impacts' T_c per distance beside the objective: 0 to 1000 (at 1000
     # the impacts outweigh any stride's effort by orders of magnitude).
     "impact_weight": Range(0.0, 1e3),
