@@ -313,11 +313,28 @@ def _results(work, scene, chunks, workers, scheduler, tick=None):
             yield from pool.imap_unordered(_chunk_rows, [(work, scene, chunk) for chunk in chunks])
             pool.close()
         finally:  # Ctrl-C or an error: the workers end with the sweep
-            pool.terminate()
-            pool.join()
+            _end(pool)
     else:
         for chunk in chunks:
             yield chunk, work(scene, chunk, tick) if tick else work(scene, chunk)
+
+
+POOL_END_S = 5.0  # s: the most a sweep waits for its pool to end (`_end`)
+
+
+def _end(pool) -> None:
+    """Terminate a process pool, waiting at most POOL_END_S: CPython's Pool.terminate can wait
+    forever on the result queue's lock when it kills a worker that held it (seen once on a full
+    disk, the workers dead and the main thread in terminate's join). A terminate still waiting
+    then is left in a daemon thread, and the workers are killed here."""
+    import threading
+
+    ender = threading.Thread(target=lambda: (pool.terminate(), pool.join()), daemon=True)
+    ender.start()
+    ender.join(POOL_END_S)
+    if ender.is_alive():
+        for worker in pool._pool:
+            worker.kill()
 
 
 WATCH = 0.1  # s: how often a pool worker looks for its parent where the kernel does not tell it
