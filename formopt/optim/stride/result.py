@@ -12,7 +12,9 @@ Energy budget over the half stride (J), every integral by the trapezoidal rule o
     balance = W+ - W- - impacts - friction - passive - spring - m g d sin(slope)
 
 Kinetic and potential energy return to their start over a period, so `balance` is zero up to
-the transcription's error (O(h^2)). Cost of transport W+ / (m g d); mechanical power W+ / T
+the transcription's error (O(h^2)). With muscles, W+- are the joint-level work of the muscles'
+net moments (their reserves' included); their own metabolic energy and their tendons' stored
+and returned energy are in `Stride.muscles` (`muscle_outputs`), outside the balance. Cost of transport W+ / (m g d); mechanical power W+ / T
 (T the half-period, d = speed T the step length).
 """
 
