@@ -44,6 +44,16 @@ TOLERANCES = {
     "impact_nlp_J": 1e-5,  # the NLP's T_c against the exact impact at its state (IPOPT's tol)
     "periodicity": 1e-6,  # m or rad: the touchdown equals the start (a constraint of the NLP)
 }
+# A phase duration this close to one of its bounds (problem.StrideSettings.duration) is held
+# by the bound, not chosen by the mechanics (`Stride.on_bound`): IPOPT leaves a variable it holds
+# at a bound within about 1e-8 s of it; a free phase lies farther off (the closest seen on the
+# shipped scenes, 2026-11-25: 2.6 ms). 0.1 ms is 1 % of the shortest bound (the heel's 0.01 s).
+ON_BOUND_S = 1e-4
+# A touchdown impulse this close to the friction cone's edge (1 - mu_c / mu, relative) uses all
+# the friction (the impacts' `friction_margin` and `on_cone_edge`): IPOPT's tolerance puts such
+# an impulse at mu_c = mu (1 +- 3e-6); a margin of 1e-4 is well clear of that and of any
+# impulse inside the cone by design.
+CONE_EDGE = 1e-4
 
 
 @dataclass
@@ -85,6 +95,21 @@ class Stride:
     force: np.ndarray = field(repr=False)  # (n, 2, 2) N, world (x, z) per FOOT_POINTS
     solved: Solved | None = field(repr=False, default=None)  # the raw solution (a warm start)
     tau_spring: np.ndarray | None = field(repr=False, default=None)  # (n, 6) N m, the tendons' moments
+    # the phases held by a duration bound ({"phase", "duration_s", "side": "low" | "high",
+    # "bound_s"}, `on_bounds`): the bound, not the mechanics, sets them
+    on_bound: list = field(default_factory=list)
+
+    @property
+    def remarks(self) -> list[str]:
+        """What a valid stride's headline must say besides its numbers: each phase held by a
+        duration bound, and each sticking impact on the friction cone's edge (valid: the
+        no-slip condition is |p_t| <= mu p_n, and Coulomb's sticking mode ends there; but it
+        uses all the friction, so the friction sets the optimum there)."""
+        out = [f"{b['phase']} phase {b['duration_s'] * 1e3:.1f} ms on its {b['side']} bound "
+               f"({b['bound_s'] * 1e3:g} ms): set by the bound, not the mechanics" for b in self.on_bound]
+        return out + [f"{i['point']} impact of leg {i['leg']} on the friction cone's edge (mu_c "
+                      f"{i['mu_c']:.4f}, mu {self.friction:g}), solved sticking: valid under {i['law']}, "
+                      "but it uses all the friction" for i in self.impacts if i["on_cone_edge"]]
 
     @property
     def failed_checks(self) -> list[str]:
@@ -108,13 +133,20 @@ class Stride:
         """JSON-ready summary (no histories), with `valid` and `failed_checks`."""
         skip = {"t", "phase", "theta", "thetad", "tau", "force", "solved", "tau_spring"}
         out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k not in skip}
-        return {**out, "valid": self.valid, "failed_checks": self.failed_checks}
+        return {**out, "valid": self.valid, "failed_checks": self.failed_checks, "remarks": self.remarks}
 
 
 def rank(stride: Stride) -> tuple:
     """The one order of strides, wherever one is chosen (`min(strides, key=rank)`): valid
     before invalid, converged before not, then the least objective (per distance)."""
     return not stride.valid, not stride.success, stride.objective_value
+
+
+def on_bounds(durations: list, bounds: dict) -> list[dict]:
+    """The phases (name, duration s) within ON_BOUND_S of their (low, high) bounds (s)."""
+    return [{"phase": name, "duration_s": d, "side": side, "bound_s": bound}
+            for name, d in durations for side, bound in zip(("low", "high"), bounds[name])
+            if abs(d - bound) <= ON_BOUND_S]
 
 
 def histories(nlp: StrideNLP, blocks: dict, slope: float):
@@ -175,7 +207,8 @@ def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> list[dict]
     """Each impact of the half stride: the NLP's T_c and formopt's impact map at its state;
     `mode` the NLP's (stick, or slide for a sliding touchdown), `valid` when
     the point approaches, the ground pushes and the law agrees (no-slip: within the friction
-    cone; Coulomb: formopt's Coulomb map gives the same mode)."""
+    cone; Coulomb: formopt's Coulomb map gives the same mode); a sticking impact's
+    `friction_margin` 1 - mu_c / mu (None sliding) and `on_cone_edge` (under CONE_EDGE)."""
     out, time = [], 0.0
     transitions: list[tuple] = []
     for i, phase in enumerate(nlp.phases):
@@ -202,10 +235,12 @@ def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> list[dict]
         valid = check["impulse_n"] > 0 and approach < 0 and (
             check["mu_c"] is not None and check["mu_c"] <= mu * (1 + 1e-6) if law == "no-slip"
             else check["coulomb_mode"] == mode)
+        margin = None if check["mu_c"] is None or slides else float(1.0 - check["mu_c"] / mu)
         entry = {"point": "+".join(p.rsplit("_", 1)[0] for p in points),
                  "leg": points[0][-1], "time_s": t, "T_c": float(T_c), "law": law,
                  "mode": mode,
                  "mu_c": check["mu_c"], "valid": bool(valid),
+                 "friction_margin": margin, "on_cone_edge": bool(margin is not None and margin < CONE_EDGE),
                  "T_c_exact": check["T_c"], "T_c_formopt": check["T_c_formopt"],
                  "impact_map_difference_J": check["difference_J"],
                  "coulomb_mode": check["coulomb_mode"], "T_c_coulomb": check["T_c_coulomb"],
@@ -298,7 +333,7 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
         impacts=found, budget=energy, cost_of_transport=positive / (m * GRAVITY * step),
         mechanical_power_W=positive / T, checks=checks, phases=durations, mass_kg=m,
         t=t, phase=names, theta=theta, thetad=thetad, tau=tau, force=force, solved=solved,
-        tau_spring=spring_moments(nlp, theta, names))
+        tau_spring=spring_moments(nlp, theta, names), on_bound=on_bounds(durations, nlp.settings.duration))
 
 
 def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
@@ -346,8 +381,8 @@ def touchdown_mode(nlp: StrideNLP, stick: Solved) -> tuple[StrideNLP, Solved, li
     cost of transport, cadence; empty when only the sticking one was)."""
     first = summarise(nlp, stick, simulate=False)
     touchdown = first.impacts[-1]
-    edge = touchdown["mu_c"] is not None and touchdown["mu_c"] >= first.friction * (1 - 1e-4)
-    if nlp.settings.strike not in SLIDING_PHASES or not (touchdown["coulomb_mode"] != "stick" or edge):
+    if nlp.settings.strike not in SLIDING_PHASES or not (touchdown["coulomb_mode"] != "stick"
+                                                         or touchdown["on_cone_edge"]):
         return nlp, stick, []
     par = stick.parameters
     sliding = nlp.variant(touchdown="slide", slip=_slip_sign(nlp, stick))
