@@ -49,10 +49,12 @@ TOLERANCES = {
 # at a bound within about 1e-8 s of it; a free phase lies farther off (the closest seen on the
 # shipped scenes, 2026-11-25: 2.6 ms). 0.1 ms is 1 % of the shortest bound (the heel's 0.01 s).
 ON_BOUND_S = 1e-4
-# A touchdown impulse this close to the friction cone's edge (1 - mu_c / mu, relative) uses all
-# the friction (the impacts' `friction_margin` and `on_cone_edge`): IPOPT's tolerance puts such
-# an impulse at mu_c = mu (1 +- 3e-6); a margin of 1e-4 is well clear of that and of any
-# impulse inside the cone by design.
+# A sticking impulse this close to the friction cone's edge (|1 - mu_c / mu|) is on it (the
+# impacts' `friction_margin` and `on_cone_edge`): it uses all the friction. Valid under no-slip
+# up to mu_c = mu (1 + CONE_EDGE): the edge is the no-slip condition's own boundary (|p_t| <=
+# mu p_n), where Coulomb's sliding impulse equals the sticking one, and IPOPT's tolerance
+# leaves an optimum on it at mu (1 +- 2e-6) (the work objective's heel touchdown: 0.800001 at
+# mu 0.8, 2026-11-25); formopt's Coulomb map absorbs the same T_c there within 2e-8 J.
 CONE_EDGE = 1e-4
 
 
@@ -107,6 +109,9 @@ class Stride:
         uses all the friction, so the friction sets the optimum there)."""
         out = [f"{b['phase']} phase {b['duration_s'] * 1e3:.1f} ms on its {b['side']} bound "
                f"({b['bound_s'] * 1e3:g} ms): set by the bound, not the mechanics" for b in self.on_bound]
+        out += [f"{i['point']} impact of leg {i['leg']} solved sliding under {i['law']}: it slides "
+                f"{i['slide_s'] * 1e3:.0f} ms and {abs(i['slide_m']) * 100:.1f} cm"
+                for i in self.impacts if i["mode"] == "slide"]
         return out + [f"{i['point']} impact of leg {i['leg']} on the friction cone's edge (mu_c "
                       f"{i['mu_c']:.4f}, mu {self.friction:g}), solved sticking: valid under {i['law']}, "
                       "but it uses all the friction" for i in self.impacts if i["on_cone_edge"]]
@@ -233,14 +238,14 @@ def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> list[dict]
         approach = max(float(nlp.js.points[p](th, minus, slope)[1][1]) for p in points)
         mode = "slide" if slides else "stick"
         valid = check["impulse_n"] > 0 and approach < 0 and (
-            check["mu_c"] is not None and check["mu_c"] <= mu * (1 + 1e-6) if law == "no-slip"
+            check["mu_c"] is not None and check["mu_c"] <= mu * (1 + CONE_EDGE) if law == "no-slip"
             else check["coulomb_mode"] == mode)
         margin = None if check["mu_c"] is None or slides else float(1.0 - check["mu_c"] / mu)
         entry = {"point": "+".join(p.rsplit("_", 1)[0] for p in points),
                  "leg": points[0][-1], "time_s": t, "T_c": float(T_c), "law": law,
                  "mode": mode,
                  "mu_c": check["mu_c"], "valid": bool(valid),
-                 "friction_margin": margin, "on_cone_edge": bool(margin is not None and margin < CONE_EDGE),
+                 "friction_margin": margin, "on_cone_edge": bool(margin is not None and abs(margin) < CONE_EDGE),
                  "T_c_exact": check["T_c"], "T_c_formopt": check["T_c_formopt"],
                  "impact_map_difference_J": check["difference_J"],
                  "coulomb_mode": check["coulomb_mode"], "T_c_coulomb": check["T_c_coulomb"],

@@ -66,8 +66,16 @@ def test_the_default_duration_bounds_hold_a_runners_phases():
 
 def test_a_sticking_impact_on_the_cone_edge_is_valid_and_remarked():
     edge = {"point": "heel", "leg": "L", "law": "no-slip", "valid": True, "mu_c": 0.8000002,
-            "on_cone_edge": True}
+            "on_cone_edge": True, "mode": "stick"}
     inside = {**edge, "point": "forefoot", "mu_c": 0.4, "on_cone_edge": False}
     s = _checked({}, [edge, inside])
     s.on_bound, s.friction = [], 0.8
     assert s.valid and len(s.remarks) == 1 and "heel impact of leg L on the friction cone's edge" in s.remarks[0]
+
+
+def test_a_sliding_touchdown_says_how_far_it_slid():
+    slide = {"point": "forefoot", "leg": "L", "law": "coulomb", "valid": True, "mu_c": 0.8,
+             "on_cone_edge": False, "mode": "slide", "slide_s": 0.045, "slide_m": -0.18}
+    s = _checked({}, [slide])
+    s.on_bound, s.friction = [], 0.8
+    assert s.remarks == ["forefoot impact of leg L solved sliding under coulomb: it slides 45 ms and 18.0 cm"]
