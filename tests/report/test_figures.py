@@ -38,3 +38,15 @@ def test_the_cadence_figure_names_stars_only_where_it_draws_them():
     assert not [ln for ln in loss.lines if ln.get_marker() == "*"] and "star" not in loss.get_title()
     s["curves"] = [curve("nominal", (None, None))]
     assert "star" not in stride_cadence_figure(s).axes[0].get_title()
+
+
+def test_the_nominal_cadence_curve_passes_through_its_free_optimum():
+    """The envelope: the free optimum (161 steps/min, 379 W) is a point of the nominal's line."""
+    s = {"curves": [curve("nominal", (161.0, 379.0)), curve("8 Hz", (165.0, 300.0))],
+         "measured_cadence_spm": 171.4, "speed_mps": 3.5, "measured_strike": "heel"}
+    power = stride_cadence_figure(s).axes[0]
+    nominal, other = [ln for ln in power.lines if ln.get_marker() == "o"]
+    assert list(nominal.get_xdata()) == [150.0, 160.0, 161.0, 170.0]
+    assert list(nominal.get_ydata()) == [400.0, 380.0, 379.0, 390.0]
+    assert len(other.get_xdata()) == 3  # a variant's star stays off its line
+    plt.close("all")
