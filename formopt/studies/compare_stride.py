@@ -353,6 +353,7 @@ def optima_notes(curve: Curve) -> list[str]:
     invalid = [s for s in ([curve.free] if curve.free else []) + curve.strides if s.success and not s.valid]
     notes += [f"the stride at {s.cadence_spm:.0f} steps/min is INVALID ({'; '.join(s.failed_checks)}): "
               "read what it says as the model's, not a runner's" for s in invalid]
+    notes += [f"the stride at {s.cadence_spm:.0f} steps/min: {s.bound_text()}" for s in curve.strides if s.on_bound]
     return notes
 
 

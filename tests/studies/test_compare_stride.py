@@ -48,8 +48,8 @@ def test_what_ifs_span_every_converged_variant():
 
 def _curve(name, power, part="", objective=None):
     strides = [SimpleNamespace(mechanical_power_W=p, budget={"impacts_J": 1.0}, half_period_s=1.0,
-                               objective_value=o, success=True, valid=True)
-               for p, o in zip(power, objective or power)]
+                               objective_value=o, success=True, valid=True, on_bound=[], cadence_spm=c)
+               for p, o, c in zip(power, objective or power, [170.0, 153.0, 161.5, 178.5, 187.0])]
     return Curve(name, [170.0, 153.0, 161.5, 178.5, 187.0], None, strides, part=part)
 
 
@@ -72,12 +72,15 @@ def test_a_what_if_between_two_families_and_a_free_optimum_off_the_envelope_are_
     nominal = _curve("nominal", [100, 110, 104, 98, 97], objective=[1.0, 1.2, 1.1, 0.95, 0.97])
     nominal.family_gap = [0.0, None, 0.0, 0.05, 0.0]  # 153: no continuation; 178.5: a costlier one
     nominal.free = SimpleNamespace(objective_value=1.0, cadence_spm=170.0, success=True, valid=True)
+    nominal.strides[4].on_bound = [{"phase": "flat"}]
+    nominal.strides[4].bound_text = lambda: "flat phase 30.0 ms on its low bound (30 ms)"
     got = what_ifs([nominal], nominal.cadences)
     assert [w.same_family for w in got] == [False, True, False, True]
     notes = " ".join(optima_notes(nominal))
     assert "at 153, 178 steps/min the least costly stride found is of another family" in notes
     assert nominal.envelope_gap == pytest.approx(0.05) and nominal.envelope_gap > ENVELOPE
     assert "the free optimum lies 5.0 % above the least costly imposed stride" in notes
+    assert "the stride at 187 steps/min: flat phase 30.0 ms on its low bound" in notes
 
 
 @pytest.fixture(scope="module")

@@ -103,14 +103,19 @@ class Stride:
     # "bound_s"}, `on_bounds`): the bound, not the mechanics, sets them
     on_bound: list = field(default_factory=list)
 
+    def bound_text(self) -> str:
+        """The phases on a duration bound, in words ("" when none)."""
+        return "; ".join(f"{b['phase']} phase {b['duration_s'] * 1e3:.1f} ms on its {b['side']} bound "
+                         f"({b['bound_s'] * 1e3:g} ms)" for b in self.on_bound) + \
+            (": set by the bound, not the mechanics" if self.on_bound else "")
+
     @property
     def remarks(self) -> list[str]:
         """What a valid stride's headline must say besides its numbers: each phase held by a
         duration bound, and each sticking impact on the friction cone's edge (valid: the
         no-slip condition is |p_t| <= mu p_n, and Coulomb's sticking mode ends there; but it
         uses all the friction, so the friction sets the optimum there)."""
-        out = [f"{b['phase']} phase {b['duration_s'] * 1e3:.1f} ms on its {b['side']} bound "
-               f"({b['bound_s'] * 1e3:g} ms): set by the bound, not the mechanics" for b in self.on_bound]
+        out = [self.bound_text()] if self.on_bound else []
         out += [f"{i['point']} impact of leg {i['leg']} solved sliding under {i['law']}: it slides "
                 f"{i['slide_s'] * 1e3:.0f} ms and {abs(i['slide_m']) * 100:.1f} cm"
                 for i in self.impacts if i["mode"] == "slide"]
