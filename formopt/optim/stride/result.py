@@ -47,7 +47,7 @@ TOLERANCES = {
 # A phase duration this close to one of its bounds (problem.StrideSettings.duration) is held
 # by the bound, not chosen by the mechanics (`Stride.on_bound`): IPOPT leaves a variable it holds
 # at a bound within about 1e-8 s of it; a free phase lies farther off (the closest seen on the
-# shipped scenes, 2026-11-25: 2.6 ms). 0.1 ms is 1 % of the shortest bound (the heel's 0.01 s).
+# shipped scenes, 2026-11-25: 6.7 ms). 0.1 ms is 1 % of the shortest bound (the heel's 0.01 s).
 ON_BOUND_S = 1e-4
 # A sticking impulse this close to the friction cone's edge (|1 - mu_c / mu|) is on it (the
 # impacts' `friction_margin` and `on_cone_edge`): it uses all the friction. Valid up to mu_c =
@@ -55,7 +55,8 @@ ON_BOUND_S = 1e-4
 # round-off): the edge is the sticking condition's own boundary (|p_t| <= mu p_n), where
 # Coulomb's sliding impulse equals the sticking one with no slip after it, and IPOPT's
 # tolerance leaves an optimum on it at mu (1 +- 2e-6) (the work objective's heel touchdown:
-# 0.800001 at mu 0.8, 2026-11-25); formopt's Coulomb map absorbs the same T_c there within
+# 0.800001 at mu 0.8, 2026-11-25), and a small impulse further (a sliding forefoot strike's
+# heel drop of 8e-5 J: 0.800053); formopt's Coulomb map absorbs the same T_c there within
 # 2e-8 J on the shipped scenes.
 CONE_EDGE = 1e-4
 
