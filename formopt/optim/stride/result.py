@@ -59,6 +59,12 @@ ON_BOUND_S = 1e-4
 # heel drop of 8e-5 J: 0.800053); formopt's Coulomb map absorbs the same T_c there within
 # 2e-8 J on the shipped scenes.
 CONE_EDGE = 1e-4
+# A point that reaches the ground this slowly (m/s) touches it rather than leaves it, and is held
+# from the impact on like any other: a flat touchdown's second point, or a forefoot set down with
+# no collision of its own, arrives at 3e-9 to 5e-9 m/s (round-off; the paper body's flat
+# strike and its Hermite-Simpson heel strike at 80 nodes, 2026-11-25), which a strict sign test
+# called invalid.
+GRAZING_MPS = 1e-6
 
 
 @dataclass
@@ -219,7 +225,7 @@ def budget(nlp: StrideNLP, solved: Solved, impacts: float) -> dict:
 def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> list[dict]:
     """Each impact of the half stride: the NLP's T_c and formopt's impact map at its state;
     `mode` the NLP's (stick, or slide for a sliding touchdown), `valid` when
-    the point approaches, the ground pushes and the law agrees (no-slip: within the friction
+    the points approach (or graze: GRAZING_MPS), the ground pushes and the law agrees (no-slip: within the friction
     cone; Coulomb: formopt's Coulomb map gives the same mode); a sticking impact's
     `friction_margin` 1 - mu_c / mu (None sliding) and `on_cone_edge` (under CONE_EDGE)."""
     out, time = [], 0.0
@@ -250,7 +256,7 @@ def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> list[dict]
         # on the cone's edge the sticking impulse is Coulomb's sliding one too (no slip after it)
         agrees = (margin is not None and margin > -CONE_EDGE if law == "no-slip"
                   else check["coulomb_mode"] == mode or (mode == "stick" and edge))
-        valid = check["impulse_n"] > 0 and approach < 0 and agrees
+        valid = check["impulse_n"] > 0 and approach < GRAZING_MPS and agrees
         entry = {"point": "+".join(p.rsplit("_", 1)[0] for p in points),
                  "leg": points[0][-1], "time_s": t, "T_c": float(T_c), "law": law,
                  "mode": mode,
