@@ -110,7 +110,7 @@ if LoadFileScheduling is not None:
 
 # The slowest files (pytest -n 2 --durations=0, 2026-11-24, seconds of the file's tests): they are
 # handed out first. A stale list costs only balance, never a test.
-SLOW = ("studies/test_compare_stride.py",  # 17 (2026-11-25, a clean clone)
+SLOW = ("studies/test_compare_stride.py",  # 17 (2026-11-25, a clean clone); about 3 more for the family walk (issue 34)
         "test_notebooks.py",  # 22
         "studies/test_stride_sweep.py",  # 21
         "optim/stride/test_derivatives.py",  # 14

@@ -350,7 +350,7 @@ FONT_PT = 6  # the names' font size; a character about 0.6 of it wide
 def stride_cadence_figure(s: dict) -> Figure:
     """compare's stride section (compare_stride.StrideAnswer.to_dict): mechanical power and
     impact loss (W) against the imposed cadence, one line per variant of the band (the nominal
-    bold), the runner's own cadence marked (dashed) and, on the power panel, each variant's free
+    bold, through its free optimum: the envelope), the runner's own cadence marked (dashed) and, on the power panel, each variant's free
     optimum (star) where it has one; a panel's title names the stars only when it draws them."""
     fig, axes = _subplots(1, 2, figsize=(12, 4.4))
     for key, ax, title in (("mechanical_power_W", axes[0], "mechanical power W+ / T"),
@@ -359,10 +359,13 @@ def stride_cadence_figure(s: dict) -> Figure:
         for k, c in enumerate(s["curves"]):
             if not c["converged"]:
                 continue
-            order = np.argsort(c["cadence_spm"])
-            x, y = np.asarray(c["cadence_spm"])[order], np.asarray(c[key])[order]
-            line, = ax.plot(x, y, "o-", lw=2.2 if k == 0 else 0.9, ms=3, label=c["name"])
-            free = (c.get("free_cadence_spm"), c.get("free_mechanical_power_W"))
+            free = (c.get("free_cadence_spm"), c.get(f"free_{key}"))
+            own = (c.get("own_free_cadence_spm", free[0]), c.get(f"own_free_{key}", free[1]))
+            on = k == 0 and None not in own  # the nominal curve passes through its own free optimum
+            x, y = c["cadence_spm"] + [own[0]] * on, c[key] + [own[1]] * on
+            order = np.argsort(x)
+            line, = ax.plot(np.asarray(x)[order], np.asarray(y)[order], "o-", lw=2.2 if k == 0 else 0.9, ms=3,
+                            label=c["name"])
             if key == "mechanical_power_W" and None not in free:
                 ax.plot(*free, "*", ms=10, color=line.get_color())
                 stars += 1

@@ -173,4 +173,5 @@ def stride_table(study: StrideStudy) -> str:
         if not s.valid:
             why = s.failed_checks if s.success else [f"IPOPT: {s.status}", *s.failed_checks]
             lines.append(f"INVALID {s.strike}: {'; '.join(why)}")
+    lines += [f"NOTE {s.strike}: {remark}" for s in study.strides for remark in s.remarks]
     return "\n".join(lines)

@@ -312,9 +312,12 @@ def stride_lines(s: dict) -> list[str]:
                      f"cadence's least costly optimum found; band over {s['band']}):")
     for w in s["what_if"]:
         lo, hi = w["impact_loss_band_W"]
+        parts = ", ".join(f"{p} {share * 100:.0f} %" for p, share in w.get("band_shares", {}).items())
+        family = "" if w.get("same_family", True) else " (between two families of strides)"
         lines.append(f"      {w['cadence_change_pct']:+5.0f} % ({w['cadence_spm']:5.1f} steps/min): mechanical "
-                     f"power {w['mechanical_power_change_W']:+6.1f} W [{w['low_W']:+.1f}, {w['high_W']:+.1f}], "
-                     f"impact loss {w['impact_loss_change_W']:+6.1f} W [{lo:+.1f}, {hi:+.1f}]: {w['words']}")
+                     f"power {w['mechanical_power_change_W']:+6.1f} W [{w['low_W']:+.1f}, {w['high_W']:+.1f}]"
+                     f"{f' (band: {parts})' if parts else ''}, impact loss {w['impact_loss_change_W']:+6.1f} W "
+                     f"[{lo:+.1f}, {hi:+.1f}]: {w['words']}{family}")
     lines += [f"    note: {n}" for n in s["notes"]]
     return lines
 

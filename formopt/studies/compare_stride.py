@@ -14,12 +14,19 @@ distance to its own optimum):
 
 Each nominal stride is the least costly optimum found from several starts (cadence_curve: from
 the free optimum and from both neighbours, swept until nothing improves); where other starts
-ended in costlier local optima, `notes` says how much costlier. Its band [low_W, high_W] spans
-dP over the variants, each solved warm from the nominal's stride at the same cadence
-(variant_curve): the objective (effort, the nominal; metabolic: OBJECTIVE_BAND), the friction
-(FRICTION_BAND) and the body's scaling (MASS_BAND). A variant that fails to converge at any
-cadence is left out of the band and named in `notes`. A change whose band holds zero is "no
-change the model can resolve".
+ended in costlier local optima, `notes` says how much costlier. The curve is an envelope: the
+free optimum's objective is at most the least imposed stride's (ENVELOPE, relative); where
+cadence_curve finds a better free optimum from an imposed stride, the curve is solved again
+from it (at most ROUNDS times). The family: from the free optimum, each cadence solved warm
+from its neighbour towards it (a continuation, `family`); a curve's stride that this
+continuation reaches (FAMILY) is of the free optimum's family, and a what-if between strides of
+two families says so (`WhatIf.same_family`, `notes`). Its band [low_W, high_W] spans dP over
+the variants, each solved warm from the nominal's stride at the same cadence (variant_curve):
+the objective (effort, the nominal; metabolic: OBJECTIVE_BAND), the friction (FRICTION_BAND)
+and the body's scaling (MASS_BAND); `WhatIf.parts` is each part's own width (the span of dP
+over the nominal and that part's variants). A variant that fails to converge at any cadence is
+left out of the band and named in `notes`. A change whose band holds zero is "no change the
+model can resolve".
 """
 
 from __future__ import annotations
@@ -33,7 +40,7 @@ from ..mechanics.body import scaled_body
 from ..optim.stride import Stride, rank, summarise
 from ..optim.stride.problem import STRIKES
 from .stride_form import NODES, joint_work, placement_m, stride_scene, with_body
-from .stride_map import cadence_curve, free, warm
+from .stride_map import better, cadence_curve, free, warm
 
 WHAT_IF_PCT = (-10.0, -5.0, 5.0, 10.0)  # cadence changes asked (% of the runner's cadence)
 # the band: friction over the range of shod running on track and treadmill belts (0.6-1.0,
@@ -53,6 +60,13 @@ FAR = 0.2
 # other starts' optima this much costlier (fraction) than the one kept are named in the notes
 SPREAD_NOTE = 0.01
 STRIDE_LAWS = ("no-slip", "coulomb")  # the stride's impact laws; compare's others map to coulomb
+# the envelope: the free optimum's objective at most this (relative) above the least imposed
+# stride's; IPOPT's optima are exact to about 1e-6, so a larger gap is another local optimum
+ENVELOPE = 1e-3
+ROUNDS = 2  # the curve solved again from a better free optimum found on it, at most
+# one family: a continuation that reaches a curve's stride within this (relative objective)
+FAMILY = 1e-3
+BAND_PARTS = ("friction", "objective", "body")  # the band's parts, in `Curve.part`
 
 
 @dataclass
@@ -66,6 +80,34 @@ class Curve:
     why_not: str = ""  # empty when every stride converged
     spread: list[float] = field(default_factory=list)  # CadenceCurve.spread (nominal only)
     free_from: str = "free"  # CadenceCurve.free_from
+    part: str = ""  # the band's part a variant stands for (BAND_PARTS; "" the nominal)
+    # per cadence, how much costlier (relative) the continuation from the free optimum reached
+    # than the curve's stride (`family`; None: it did not converge there; nominal only)
+    family_gap: list = field(default_factory=list)
+    # under Coulomb, when the free optimum's touchdown slides and the imposed strides stick
+    # (cadence_curve solves them sticking): the sticking strides' own free optimum, solved warm
+    # from the least costly of them (`sticking_free`); the envelope and the family are theirs
+    own_free: Stride | None = None
+
+    @property
+    def envelope_free(self) -> Stride | None:
+        """The free optimum of the curve's own strides (`own_free`, else `free`)."""
+        return self.own_free or self.free
+
+    @property
+    def same_family(self) -> list[bool]:
+        """Per cadence, whether the curve's stride is of the free optimum's family (FAMILY)."""
+        return [g is not None and g <= FAMILY for g in self.family_gap]
+
+    @property
+    def envelope_gap(self) -> float:
+        """How far (relative) the free optimum's objective lies above the least imposed
+        stride's (<= 0: it is the curve's minimum)."""
+        free = self.envelope_free
+        if free is None or not self.strides:
+            return 0.0
+        least = min(s.objective_value for s in self.strides if s.success)
+        return (free.objective_value - least) / abs(free.objective_value)
 
     @property
     def ok(self) -> bool:
@@ -79,11 +121,19 @@ class Curve:
 
     def to_dict(self) -> dict:
         out = {"name": self.name, "converged": self.ok, "why_not": self.why_not,
-               "cadence_spm": self.cadences, "local_optima_spread": self.spread}
+               "cadence_spm": self.cadences, "local_optima_spread": self.spread, "part": self.part}
         if self.ok and self.free is not None:
             out.update(mechanical_power_W=self.power().tolist(), impact_loss_W=self.impact_loss().tolist(),
                        free_cadence_spm=self.free.cadence_spm,
-                       free_mechanical_power_W=self.free.mechanical_power_W)
+                       free_mechanical_power_W=self.free.mechanical_power_W,
+                       free_impact_loss_W=self.free.budget["impacts_J"] / self.free.half_period_s,
+                       envelope_gap=self.envelope_gap)
+        if self.ok and self.own_free is not None:
+            own = self.own_free
+            out.update(own_free_cadence_spm=own.cadence_spm, own_free_mechanical_power_W=own.mechanical_power_W,
+                       own_free_impact_loss_W=own.budget["impacts_J"] / own.half_period_s)
+        if self.family_gap:
+            out.update(family_gap=self.family_gap, same_family=self.same_family)
         return out
 
 
@@ -99,6 +149,13 @@ class WhatIf:
     high_W: float
     impact_low_W: float  # band of the impact loss's change
     impact_high_W: float
+    parts: tuple = ()  # ((part, width W), ...): each part's own span of the power's change
+    same_family: bool = True  # this stride and the runner's cadence's of one family (`family`)
+
+    def shares(self) -> dict[str, float]:
+        """Each part's share of the parts' summed widths (0-1; empty when no part has width)."""
+        total = sum(w for _, w in self.parts)
+        return {p: w / total for p, w in self.parts} if total > 0 else {}
 
     @property
     def resolvable(self) -> bool:
@@ -116,7 +173,8 @@ class WhatIf:
                 "mechanical_power_change_W": self.mechanical_power_change_W,
                 "impact_loss_change_W": self.impact_loss_change_W, "low_W": self.low_W,
                 "high_W": self.high_W, "impact_loss_band_W": [self.impact_low_W, self.impact_high_W],
-                "resolvable": self.resolvable, "words": self.words()}
+                "band_parts_W": dict(self.parts), "band_shares": self.shares(),
+                "same_family": self.same_family, "resolvable": self.resolvable, "words": self.words()}
 
 
 @dataclass
@@ -167,6 +225,7 @@ class StrideAnswer:
                              "impacts_valid": all(i["valid"] for i in s.impacts), "valid": s.valid}
                             for k, s in self.best.items()},
                 "what_if": [w.to_dict() for w in self.what_if], "band": band_text(),
+                "envelope_tolerance": ENVELOPE, "family_tolerance": FAMILY,
                 "curves": [c.to_dict() for c in self.curves], "notes": self.notes,
                 "seconds": self.seconds}
 
@@ -192,14 +251,21 @@ def measured_form(c) -> dict:
 
 def run_curve(name: str, scene, speed: float, cadences: list[float]) -> Curve:
     """The variant's strides at `cadences`: at each the least costly optimum found
-    (stride_map.cadence_curve)."""
+    (stride_map.cadence_curve), solved again from a better free optimum found on the curve
+    (ROUNDS), so that the free optimum is the curve's least (module docstring)."""
     curve = Curve(name, cadences)
     try:
         got = cadence_curve(scene, speed, cadences)
+        for _ in range(ROUNDS):
+            if got.free_from == "free":
+                break
+            again = cadence_curve(scene, speed, cadences, start=got.free)
+            got = again if again.free_from != "free" else replace(again, free_from=got.free_from)
     except RuntimeError as err:
         curve.why_not = str(err)
         return curve
     curve.free, curve.strides, curve.spread, curve.free_from = got.free, got.strides, got.spread(), got.free_from
+    curve.own_free = sticking_free(scene, speed, curve)
     failed = [f"{s.cadence_spm:.0f}" for s in got.strides if not s.success]
     if failed:
         curve.why_not = f"no convergence at {', '.join(failed)} steps/min"
@@ -224,6 +290,46 @@ def variant_curve(name: str, scene, nominal: Curve) -> Curve:
     return curve
 
 
+def touchdown_mode(stride: Stride) -> str:
+    """How the stride's touchdown (its last impact) was solved: stick or slide."""
+    return stride.impacts[-1]["mode"]
+
+
+def sticking_free(scene, speed: float, curve: Curve) -> Stride | None:
+    """Where the free optimum's touchdown slides and the curve's strides stick: the free
+    optimum of the sticking strides, warm from the least costly of them (None otherwise)."""
+    if curve.free is None or not curve.strides or touchdown_mode(curve.free) == touchdown_mode(curve.strides[0]):
+        return None
+    nlp = scene.nlp()
+    return summarise(nlp, warm(nlp, min(curve.strides, key=rank), speed, scene.slope, scene.friction, None), False)
+
+
+def family(scene, speed: float, curve: Curve) -> None:
+    """The free optimum's family along the curve (`Curve.envelope_free`'s): the cadences above
+    its cadence in rising order, and those below it falling, each solved warm from the one
+    before (the first from it); `curve.family_gap` per cadence is how much costlier (relative) that
+    continuation is than the curve's stride (None where it did not converge: the family ends).
+    A continuation that ranks better replaces the curve's stride (gap 0)."""
+    start = curve.envelope_free
+    assert start is not None, "a curve with its free optimum"
+    nlp, c_free = scene.nlp(), start.cadence_spm
+    order = sorted(range(len(curve.cadences)), key=lambda k: curve.cadences[k])
+    gaps: list = [None] * len(order)
+    for side in ([k for k in order if curve.cadences[k] >= c_free],
+                 [k for k in reversed(order) if curve.cadences[k] < c_free]):
+        previous = start
+        for k in side:
+            chained = summarise(nlp, warm(nlp, previous, speed, scene.slope, scene.friction, curve.cadences[k]), False)
+            if not chained.success:
+                break
+            if better(chained, curve.strides[k]):
+                curve.strides[k] = chained
+            kept = curve.strides[k].objective_value
+            gaps[k] = (chained.objective_value - kept) / abs(kept)
+            previous = chained
+    curve.family_gap = gaps
+
+
 def optima_notes(curve: Curve) -> list[str]:
     """Where other starts ended in costlier local optima, and a free optimum found again from
     an imposed cadence's stride, in words."""
@@ -232,21 +338,44 @@ def optima_notes(curve: Curve) -> list[str]:
     if curve.free_from != "free":
         notes.append(f"the free optimum was found again from the stride at {curve.free_from} steps/min "
                      "(the generic guess's was a costlier local optimum)")
+    if curve.own_free is not None and curve.free is not None:
+        notes.append(f"the free optimum's touchdown slides ({'; '.join(curve.free.remarks)}); the imposed "
+                     f"cadences are solved sticking: their own free optimum is at {curve.own_free.cadence_spm:.0f} "
+                     f"steps/min, {curve.own_free.mechanical_power_W:.0f} W, and the envelope and what-ifs are theirs")
+    if curve.envelope_gap > ENVELOPE:
+        notes.append(f"the free optimum lies {curve.envelope_gap * 100:.1f} % above the least costly imposed "
+                     f"stride (tolerance {ENVELOPE * 100:g} %): it is a local optimum, not the curve's least")
+    others = [f"{c:.0f}" for c, same in zip(curve.cadences, curve.same_family) if not same]
+    if curve.family_gap and others:
+        notes.append(f"at {', '.join(others)} steps/min the least costly stride found is of another family than "
+                     "the free optimum's (continued from it, the stride is costlier or does not converge): "
+                     "a what-if between two families says so")
     invalid = [s for s in ([curve.free] if curve.free else []) + curve.strides if s.success and not s.valid]
     notes += [f"the stride at {s.cadence_spm:.0f} steps/min is INVALID ({'; '.join(s.failed_checks)}): "
               "read what it says as the model's, not a runner's" for s in invalid]
+    notes += [f"the stride at {s.cadence_spm:.0f} steps/min: {s.bound_text()}" for s in curve.strides if s.on_bound]
     return notes
 
 
 def what_ifs(curves: list[Curve], cadences: list[float]) -> list[WhatIf]:
-    """Each cadence change against the runner's cadence, nominal and banded (module doc)."""
+    """Each cadence change against the runner's cadence, nominal and banded, with each band
+    part's width and whether both strides are of one family (module doc)."""
     ok = [c for c in curves if c.ok]
     power = np.array([c.power() - c.power()[0] for c in ok])
     impact = np.array([c.impact_loss() - c.impact_loss()[0] for c in ok])
+    members = {p: [0] + [i for i, c in enumerate(ok) if c.part == p] for p in BAND_PARTS}
+    same = ok[0].same_family if ok[0].family_gap else [True] * len(cadences)
     return [WhatIf(pct, cadences[k], float(power[0, k]), float(impact[0, k]),
                    float(power[:, k].min()), float(power[:, k].max()),
-                   float(impact[:, k].min()), float(impact[:, k].max()))
+                   float(impact[:, k].min()), float(impact[:, k].max()),
+                   tuple((p, float(np.ptp(power[m, k]))) for p, m in members.items() if len(m) > 1),
+                   same[0] and same[k])
             for k, pct in enumerate(WHAT_IF_PCT, 1)]
+
+
+def stage_count(band: bool = True) -> int:
+    """The stages `answer` tells its progress of: each variant, the family, the strikes."""
+    return (1 + len(FRICTION_BAND) + len(OBJECTIVE_BAND) + len(MASS_BAND) if band else 1) + 2
 
 
 def answer(c, progress=None, nodes: int = NODES, band: bool = True) -> StrideAnswer:
@@ -264,18 +393,21 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True) -> StrideAns
     cadences = [runner] + [runner * (1 + p / 100) for p in WHAT_IF_PCT]
     nominal = stride_scene(scaled_body(body["mass_kg"], body["height_m"], body["sex"]), speed,
                            measured["strike"], "effort", c.settings["friction"], law, nodes)
-    variants = [("effort (nominal)", nominal)]
-    variants += [(f"friction {mu:g}", _with(nominal, friction=mu)) for mu in FRICTION_BAND]
-    variants += [(o, _with(nominal, objective=o)) for o in OBJECTIVE_BAND]
-    variants += [(f"mass {f * 100 - 100:+.0f} %", with_body(nominal, scaled_body(
+    variants = [("effort (nominal)", "", nominal)]
+    variants += [(f"friction {mu:g}", "friction", _with(nominal, friction=mu)) for mu in FRICTION_BAND]
+    variants += [(o, "objective", _with(nominal, objective=o)) for o in OBJECTIVE_BAND]
+    variants += [(f"mass {f * 100 - 100:+.0f} %", "body", with_body(nominal, scaled_body(
         body["mass_kg"] * f, body["height_m"], body["sex"]))) for f in MASS_BAND]
     variants = variants if band else variants[:1]
     say(f"stride [1/{len(variants)}] {variants[0][0]}: {len(cadences)} cadences")
     curves = [run_curve(variants[0][0], nominal, speed, cadences)]
-    for k, (name, scene) in enumerate(variants[1:], 2):
+    say("stride: the free optimum's family along the cadences")
+    if curves[0].ok and curves[0].free is not None:
+        family(nominal, speed, curves[0])
+    for k, (name, part, scene) in enumerate(variants[1:], 2):
         say(f"stride [{k}/{len(variants)}] {name}: warm from the nominal")
-        curves.append(variant_curve(name, scene, curves[0]) if curves[0].ok
-                      else Curve(name, cadences, why_not="no nominal"))
+        curves.append(replace(variant_curve(name, scene, curves[0]), part=part) if curves[0].ok
+                      else Curve(name, cadences, why_not="no nominal", part=part))
     notes += optima_notes(curves[0])
     if not curves[0].ok:
         notes.append(f"the nominal stride did not converge ({curves[0].why_not}): no what-if")

@@ -92,3 +92,14 @@ def test_an_optimum_that_failed_is_not_drawn():
     note = " ".join(t.get_text() for t in fig.axes[4].texts)
     assert note == "no valid optimum: Maximum_Iterations_Exceeded"
     plt.close(fig)
+
+def test_the_nominal_cadence_curve_passes_through_its_free_optimum():
+    """The envelope: the free optimum (161 steps/min, 379 W) is a point of the nominal's line."""
+    s = {"curves": [curve("nominal", (161.0, 379.0)), curve("8 Hz", (165.0, 300.0))],
+         "measured_cadence_spm": 171.4, "speed_mps": 3.5, "measured_strike": "heel"}
+    power = stride_cadence_figure(s).axes[0]
+    nominal, other = [ln for ln in power.lines if ln.get_marker() == "o"]
+    assert list(nominal.get_xdata()) == [150.0, 160.0, 161.0, 170.0]
+    assert list(nominal.get_ydata()) == [400.0, 380.0, 379.0, 390.0]
+    assert len(other.get_xdata()) == 3  # a variant's star stays off its line
+    plt.close("all")

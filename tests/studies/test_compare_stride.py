@@ -9,7 +9,15 @@ import numpy as np
 import pytest
 
 from formopt.report.tables import stride_lines
-from formopt.studies.compare_stride import WHAT_IF_PCT, Curve, WhatIf, answer, what_ifs
+from formopt.studies.compare_stride import (
+    ENVELOPE,
+    WHAT_IF_PCT,
+    Curve,
+    WhatIf,
+    answer,
+    optima_notes,
+    what_ifs,
+)
 from formopt.studies.stride_form import joint_work
 
 
@@ -36,6 +44,43 @@ def test_what_ifs_span_every_converged_variant():
     assert plus10.mechanical_power_change_W == -3 and (plus10.low_W, plus10.high_W) == (-3, 1)
     assert plus10.impact_loss_change_W == 4 and (plus10.impact_low_W, plus10.impact_high_W) == (1, 4)
     assert got[0].low_W == 5 and got[0].resolvable  # -10 %: +10 W and +5 W, the broken one out
+
+
+def _curve(name, power, part="", objective=None):
+    strides = [SimpleNamespace(mechanical_power_W=p, budget={"impacts_J": 1.0}, half_period_s=1.0,
+                               objective_value=o, success=True, valid=True, on_bound=[], cadence_spm=c)
+               for p, o, c in zip(power, objective or power, [170.0, 153.0, 161.5, 178.5, 187.0])]
+    return Curve(name, [170.0, 153.0, 161.5, 178.5, 187.0], None, strides, part=part)
+
+
+def test_the_band_names_each_part_with_its_own_width():
+    """Each part's width is the span of the change over the nominal and that part's variants;
+    the shares divide the parts' summed widths."""
+    got = what_ifs([_curve("nominal", [100, 110, 104, 98, 97]),
+                    _curve("friction 0.6", [100, 112, 104, 98, 97], "friction"),
+                    _curve("friction 1", [100, 109, 104, 98, 97], "friction"),
+                    _curve("metabolic", [200, 216, 203, 199, 201], "objective"),
+                    _curve("mass +5 %", [105, 115, 109, 103, 102], "body")], [170.0, 153.0, 161.5, 178.5, 187.0])
+    minus10 = got[0]  # changes: nominal +10, friction +12 and +9, objective +16, body +10
+    assert dict(minus10.parts) == {"friction": 3.0, "objective": 6.0, "body": 0.0}
+    assert minus10.shares() == {"friction": 1 / 3, "objective": 2 / 3, "body": 0.0}
+    assert (minus10.low_W, minus10.high_W) == (9, 16) and minus10.same_family
+    assert minus10.to_dict()["band_shares"]["objective"] == pytest.approx(2 / 3)
+
+
+def test_a_what_if_between_two_families_and_a_free_optimum_off_the_envelope_are_said():
+    nominal = _curve("nominal", [100, 110, 104, 98, 97], objective=[1.0, 1.2, 1.1, 0.95, 0.97])
+    nominal.family_gap = [0.0, None, 0.0, 0.05, 0.0]  # 153: no continuation; 178.5: a costlier one
+    nominal.free = SimpleNamespace(objective_value=1.0, cadence_spm=170.0, success=True, valid=True)
+    nominal.strides[4].on_bound = [{"phase": "flat"}]
+    nominal.strides[4].bound_text = lambda: "flat phase 30.0 ms on its low bound (30 ms)"
+    got = what_ifs([nominal], nominal.cadences)
+    assert [w.same_family for w in got] == [False, True, False, True]
+    notes = " ".join(optima_notes(nominal))
+    assert "at 153, 178 steps/min the least costly stride found is of another family" in notes
+    assert nominal.envelope_gap == pytest.approx(0.05) and nominal.envelope_gap > ENVELOPE
+    assert "the free optimum lies 5.0 % above the least costly imposed stride" in notes
+    assert "the stride at 187 steps/min: flat phase 30.0 ms on its low bound" in notes
 
 
 @pytest.fixture(scope="module")
@@ -67,6 +112,9 @@ def test_the_section_against_its_own_strides(section):
     assert sum(work[j]["negative_J"] for j in joints) == pytest.approx(budget["negative_work_J"], rel=1e-9)
     for j in ("hip", "knee", "ankle"):
         assert 0 <= work[f"stance_{j}"]["negative_J"] <= work[f"{j}_R"]["negative_J"] + 1e-12
+    # the envelope: the free optimum is the curve's least; the family walked from it
+    assert nominal.envelope_gap <= ENVELOPE and nominal.own_free is None  # no-slip: no sliding free optimum
+    assert len(nominal.family_gap) == len(nominal.cadences)
     # without the band, every band is the nominal change itself
     for w in s.what_if:
         assert w.low_W == w.high_W == w.mechanical_power_change_W

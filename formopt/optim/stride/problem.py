@@ -135,10 +135,26 @@ class StrideSettings:
     slip: int = 1  # a sliding touchdown's slip sign s along the ground (+1 forward, -1 back)
     impact_weight: float = 0.0  # weight (1/m) of the impacts' summed T_c (and slide friction) per distance
     torque_limit: float = 4.0  # N m per kg of body mass, every joint
-    duration: dict = field(default_factory=lambda: {"slide": (0.0005, 0.1), "heel": (0.005, 0.1), "landing": (0.005, 0.1),
-                                                    "flat": (0.02, 0.3),
-                                                    "forefoot": (0.02, 0.3),
-                                                    "flight": (0.02, 0.3)})  # s, per phase
+    # Each phase's duration bounds (s), a runner's from 2.5 to 6 m/s with room to spare, so that
+    # no realistic optimum is held by them (a stride on one says so: result.on_bounds):
+    # - contact about 0.30 s at 2.5 m/s and 0.24 s at 3.5 (RBDS001, Fukuchi et al. 2017, PeerJ
+    #   5:e3298), 0.27 s at 3.5 to about 0.16 s at 7 m/s (Dorn, Schache & Pandy 2012, JEB 215:1944,
+    #   Fig. 2B), 0.08-0.12 s only at sprinters' top speeds (Weyand et al. 2000, J Appl Physiol
+    #   89:1991); Nummela et al. 2007 (Int J Sports Med 28:655) the same fall with speed;
+    # - flight (aerial time) 0.09-0.14 s, nearly independent of speed (Weyand 2000; Dorn 2012),
+    #   about 0.08 s for RBDS001 at 2.5 m/s (a 0.383 s step less its 0.30 s stance);
+    # - the stance's parts, as shares of RBDS001's stance at 3.5 m/s (heel 0.03 s, flat 0.12 s,
+    #   forefoot 0.09 s: NODE_SHARE's source): heel alone 12 %, flat foot 50 %, forefoot 38 %.
+    # So over contacts of 0.14-0.33 s: heel (or a forefoot strike's landing) 0.01-0.1 s (under
+    # 0.01 s the heel and the forefoot land as one, a flat strike: that strike is solved on its
+    # own); flat 0.03-0.25 s; forefoot 0.03-0.25 s; flight 0.03-0.25 s. Their sum allows a contact
+    # of 0.07-0.6 s. The slide (Coulomb's variant, problem.SLIDING_PHASES) is no runner's phase:
+    # its bounds are numerical (0.5 ms, the slip may stop at once; 0.1 s).
+    # Before 2026-11-25 the bounds were numerical (heel 0.005-0.1 s, the others 0.02-0.3 s); the
+    # heel's 0.005 s floor held the paper body's heel optimum at 3.5 m/s and RBDS001's at 4.5 m/s.
+    duration: dict = field(default_factory=lambda: {"slide": (0.0005, 0.1), "heel": (0.01, 0.1),
+                                                    "landing": (0.01, 0.1), "flat": (0.03, 0.25),
+                                                    "forefoot": (0.03, 0.25), "flight": (0.03, 0.25)})
     max_iter: int = 1000
     tolerance: float = 1e-6
     tendons: dict = field(default_factory=dict)  # joint ("hip", "knee", "ankle") -> N m/rad/kg

@@ -51,6 +51,27 @@ TOLERANCES = {
     # flexors' toe-off moment; beyond it the muscles do not make the stride they are credited with
     "reserve_nm_per_kg": 0.1,
 }
+# A phase duration this close to one of its bounds (problem.StrideSettings.duration) is held
+# by the bound, not chosen by the mechanics (`Stride.on_bound`): IPOPT leaves a variable it holds
+# at a bound within about 1e-8 s of it; a free phase lies farther off (the closest seen on the
+# shipped scenes, 2026-11-25: 6.7 ms). 0.1 ms is 1 % of the shortest bound (the heel's 0.01 s).
+ON_BOUND_S = 1e-4
+# A sticking impulse this close to the friction cone's edge (|1 - mu_c / mu|) is on it (the
+# impacts' `friction_margin` and `on_cone_edge`): it uses all the friction. Valid up to mu_c =
+# mu (1 + CONE_EDGE), under no-slip and under Coulomb (whose map may call it a slide by
+# round-off): the edge is the sticking condition's own boundary (|p_t| <= mu p_n), where
+# Coulomb's sliding impulse equals the sticking one with no slip after it, and IPOPT's
+# tolerance leaves an optimum on it at mu (1 +- 2e-6) (the work objective's heel touchdown:
+# 0.800001 at mu 0.8, 2026-11-25), and a small impulse further (a sliding forefoot strike's
+# heel drop of 8e-5 J: 0.800053); formopt's Coulomb map absorbs the same T_c there within
+# 2e-8 J on the shipped scenes.
+CONE_EDGE = 1e-4
+# A point that reaches the ground this slowly (m/s) touches it rather than leaves it, and is held
+# from the impact on like any other: a flat touchdown's second point, or a forefoot set down with
+# no collision of its own, arrives at 3e-9 to 5e-9 m/s (round-off; the paper body's flat
+# strike and its Hermite-Simpson heel strike at 80 nodes, 2026-11-25), which a strict sign test
+# called invalid.
+GRAZING_MPS = 1e-6
 
 
 @dataclass
@@ -95,6 +116,29 @@ class Stride:
     # the muscles (actuation "muscles"): names (both legs, "<muscle>_R", ...), activation and
     # tendon force (N) histories (n, 16), per muscle the tendon energy stored and returned (J)
     muscles: dict | None = field(repr=False, default=None)
+    # the phases held by a duration bound ({"phase", "duration_s", "side": "low" | "high",
+    # "bound_s"}, `on_bounds`): the bound, not the mechanics, sets them
+    on_bound: list = field(default_factory=list)
+
+    def bound_text(self) -> str:
+        """The phases on a duration bound, in words ("" when none)."""
+        return "; ".join(f"{b['phase']} phase {b['duration_s'] * 1e3:.1f} ms on its {b['side']} bound "
+                         f"({b['bound_s'] * 1e3:g} ms)" for b in self.on_bound) + \
+            (": set by the bound, not the mechanics" if self.on_bound else "")
+
+    @property
+    def remarks(self) -> list[str]:
+        """What a valid stride's headline must say besides its numbers: each phase held by a
+        duration bound, and each sticking impact on the friction cone's edge (valid: the
+        no-slip condition is |p_t| <= mu p_n, and Coulomb's sticking mode ends there; but it
+        uses all the friction, so the friction sets the optimum there)."""
+        out = [self.bound_text()] if self.on_bound else []
+        out += [f"{i['point']} impact of leg {i['leg']} solved sliding under {i['law']}: it slides "
+                f"{i['slide_s'] * 1e3:.0f} ms and {abs(i['slide_m']) * 100:.1f} cm"
+                for i in self.impacts if i["mode"] == "slide"]
+        return out + [f"{i['point']} impact of leg {i['leg']} on the friction cone's edge (mu_c "
+                      f"{i['mu_c']:.4f}, mu {self.friction:g}), solved sticking: valid under {i['law']}, "
+                      "but it uses all the friction" for i in self.impacts if i["on_cone_edge"]]
 
     @property
     def failed_checks(self) -> list[str]:
@@ -120,13 +164,20 @@ class Stride:
         out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k not in skip}
         if self.muscles is not None:  # the per-muscle figures, not the histories
             out["muscles"] = {k: v for k, v in self.muscles.items() if k not in ("activation", "tendon_force_N")}
-        return {**out, "valid": self.valid, "failed_checks": self.failed_checks}
+        return {**out, "valid": self.valid, "failed_checks": self.failed_checks, "remarks": self.remarks}
 
 
 def rank(stride: Stride) -> tuple:
     """The one order of strides, wherever one is chosen (`min(strides, key=rank)`): valid
     before invalid, converged before not, then the least objective (per distance)."""
     return not stride.valid, not stride.success, stride.objective_value
+
+
+def on_bounds(durations: list, bounds: dict) -> list[dict]:
+    """The phases (name, duration s) within ON_BOUND_S of their (low, high) bounds (s)."""
+    return [{"phase": name, "duration_s": d, "side": side, "bound_s": bound}
+            for name, d in durations for side, bound in zip(("low", "high"), bounds[name])
+            if abs(d - bound) <= ON_BOUND_S]
 
 
 def histories(nlp: StrideNLP, blocks: dict, slope: float):
@@ -185,8 +236,9 @@ def budget(nlp: StrideNLP, solved: Solved, impacts: float) -> dict:
 def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> list[dict]:
     """Each impact of the half stride: the NLP's T_c and formopt's impact map at its state;
     `mode` the NLP's (stick, or slide for a sliding touchdown), `valid` when
-    the point approaches, the ground pushes and the law agrees (no-slip: within the friction
-    cone; Coulomb: formopt's Coulomb map gives the same mode)."""
+    the points approach (or graze: GRAZING_MPS), the ground pushes and the law agrees (no-slip: within the friction
+    cone; Coulomb: formopt's Coulomb map gives the same mode); a sticking impact's
+    `friction_margin` 1 - mu_c / mu (None sliding) and `on_cone_edge` (under CONE_EDGE)."""
     out, time = [], 0.0
     transitions: list[tuple] = []
     for i, phase in enumerate(nlp.phases):
@@ -210,13 +262,17 @@ def impacts(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> list[dict]
         check = impact_check(nlp.js, rows, th, minus, slope, mu, slides)
         approach = max(float(nlp.js.points[p](th, minus, slope)[1][1]) for p in points)
         mode = "slide" if slides else "stick"
-        valid = check["impulse_n"] > 0 and approach < 0 and (
-            check["mu_c"] is not None and check["mu_c"] <= mu * (1 + 1e-6) if law == "no-slip"
-            else check["coulomb_mode"] == mode)
+        margin = None if check["mu_c"] is None or slides else float(1.0 - check["mu_c"] / mu)
+        edge = margin is not None and abs(margin) < CONE_EDGE
+        # on the cone's edge the sticking impulse is Coulomb's sliding one too (no slip after it)
+        agrees = (margin is not None and margin > -CONE_EDGE if law == "no-slip"
+                  else check["coulomb_mode"] == mode or (mode == "stick" and edge))
+        valid = check["impulse_n"] > 0 and approach < GRAZING_MPS and agrees
         entry = {"point": "+".join(p.rsplit("_", 1)[0] for p in points),
                  "leg": points[0][-1], "time_s": t, "T_c": float(T_c), "law": law,
                  "mode": mode,
                  "mu_c": check["mu_c"], "valid": bool(valid),
+                 "friction_margin": margin, "on_cone_edge": bool(edge),
                  "T_c_exact": check["T_c"], "T_c_formopt": check["T_c_formopt"],
                  "impact_map_difference_J": check["difference_J"],
                  "coulomb_mode": check["coulomb_mode"], "T_c_coulomb": check["T_c_coulomb"],
@@ -309,7 +365,8 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
         impacts=found, budget=energy, cost_of_transport=positive / (m * GRAVITY * step),
         mechanical_power_W=positive / T, checks=checks, phases=durations, mass_kg=m,
         t=t, phase=names, theta=theta, thetad=thetad, tau=tau, force=force, solved=solved,
-        tau_spring=spring_moments(nlp, theta, names), muscles=muscle_outputs(nlp, solved, checks))
+        tau_spring=spring_moments(nlp, theta, names), muscles=muscle_outputs(nlp, solved, checks),
+        on_bound=on_bounds(durations, nlp.settings.duration))
 
 
 def muscle_outputs(nlp: StrideNLP, solved: Solved, checks: dict) -> dict | None:
@@ -399,8 +456,8 @@ def touchdown_mode(nlp: StrideNLP, stick: Solved) -> tuple[StrideNLP, Solved, li
     cost of transport, cadence; empty when only the sticking one was)."""
     first = summarise(nlp, stick, simulate=False)
     touchdown = first.impacts[-1]
-    edge = touchdown["mu_c"] is not None and touchdown["mu_c"] >= first.friction * (1 - 1e-4)
-    if nlp.settings.strike not in SLIDING_PHASES or not (touchdown["coulomb_mode"] != "stick" or edge):
+    if nlp.settings.strike not in SLIDING_PHASES or not (touchdown["coulomb_mode"] != "stick"
+                                                         or touchdown["on_cone_edge"]):
         return nlp, stick, []
     par = stick.parameters
     sliding = nlp.variant(touchdown="slide", slip=_slip_sign(nlp, stick))

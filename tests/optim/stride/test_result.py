@@ -3,7 +3,8 @@ its checks' stated tolerances."""
 
 from types import SimpleNamespace
 
-from formopt.optim.stride.result import TOLERANCES, Stride, rank
+from formopt.optim.stride.problem import StrideSettings
+from formopt.optim.stride.result import ON_BOUND_S, TOLERANCES, Stride, on_bounds, rank
 
 
 def _stride(valid, success, objective):
@@ -41,3 +42,40 @@ def test_an_invalid_impact_is_named():
               "approach_mps": -1.2}
     s = _checked({}, [impact])
     assert not s.valid and "heel impact of leg L invalid under no-slip (mu_c 0.93" in s.failed_checks[0]
+
+
+def test_a_phase_on_its_duration_bound_is_named_in_the_remarks():
+    bounds = StrideSettings().duration
+    low, high = bounds["heel"][0], bounds["forefoot"][1]
+    durations = [("heel", low + 0.2 * ON_BOUND_S), ("flat", 0.1), ("forefoot", high), ("flight", 0.12)]
+    found = on_bounds(durations, bounds)
+    assert [(b["phase"], b["side"]) for b in found] == [("heel", "low"), ("forefoot", "high")]
+    s = _checked({})
+    s.on_bound, s.friction = found, 0.8
+    assert s.remarks[0].startswith("heel phase 10.0 ms on its low bound (10 ms)")
+    assert not on_bounds([("heel", low + 2 * ON_BOUND_S)], bounds)
+
+
+def test_the_default_duration_bounds_hold_a_runners_phases():
+    """RBDS001 at 3.5 m/s (heel 0.03 s, flat 0.12, forefoot 0.09, flight 0.11: problem.py) lies
+    inside every default bound, not on one."""
+    bounds = StrideSettings().duration
+    runner = {"heel": 0.03, "flat": 0.12, "forefoot": 0.09, "flight": 0.11}
+    assert all(bounds[p][0] < d < bounds[p][1] for p, d in runner.items())
+
+
+def test_a_sticking_impact_on_the_cone_edge_is_valid_and_remarked():
+    edge = {"point": "heel", "leg": "L", "law": "no-slip", "valid": True, "mu_c": 0.8000002,
+            "on_cone_edge": True, "mode": "stick"}
+    inside = {**edge, "point": "forefoot", "mu_c": 0.4, "on_cone_edge": False}
+    s = _checked({}, [edge, inside])
+    s.on_bound, s.friction = [], 0.8
+    assert s.valid and len(s.remarks) == 1 and "heel impact of leg L on the friction cone's edge" in s.remarks[0]
+
+
+def test_a_sliding_touchdown_says_how_far_it_slid():
+    slide = {"point": "forefoot", "leg": "L", "law": "coulomb", "valid": True, "mu_c": 0.8,
+             "on_cone_edge": False, "mode": "slide", "slide_s": 0.045, "slide_m": -0.18}
+    s = _checked({}, [slide])
+    s.on_bound, s.friction = [], 0.8
+    assert s.remarks == ["forefoot impact of leg L solved sliding under coulomb: it slides 45 ms and 18.0 cm"]
