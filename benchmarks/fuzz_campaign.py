@@ -6,9 +6,10 @@ Impact on any ground); and (issue 37) the command line's own options (a typed op
 value, an unknown or dangling option, --scheduler without an address), every scene command on
 every shipped scene kind, a sweep's --out and `scenes copy`'s DIR holding a binary file, a
 folder or a dangling link (a data file replaced or a write through a link counted apart), and
-RBDS001's text trial files damaged (read and measured).
+RBDS001's text trial files damaged (read and measured); every [stride] key of a torque+springs
+and a muscle stride scene (parsed, no solve).
 
-    python benchmarks/fuzz_campaign.py [--scale 1.0] [--only scenes,compare,maps,params,api,options,kinds,outputs,mocap]
+    python benchmarks/fuzz_campaign.py [--scale 1.0] [--only scenes,strides,compare,maps,params,api,options,kinds,outputs,mocap]
     python benchmarks/fuzz_campaign.py --only scenes:solve   # one command's scene mutants
 
 Counts per class: "exit 2 one line" (a command) or "refused one line" (a function's
@@ -142,6 +143,23 @@ def numeric_api(n, folder):
             lambda call: attack.call_api(*call, context) is not None and "success")
 
 
+def stride_scenes(n, folder):
+    """Every key of a torque+springs and a muscle [stride] scene deleted, misspelt or replaced,
+    parsed (io.scene.parse: the checks before any solve)."""
+    from formopt.io.scene import SceneError, parse
+
+    def run(case):
+        (base, path), action, replacement = case
+        try:
+            parse(attack.mutant(base, path, action, replacement))
+        except SceneError as refusal:  # io's refusal: one line naming its key
+            raise InputError(str(refusal)) from None
+        return "success"
+    counted("stride scene keys", n(3000), st.tuples(
+        st.sampled_from(attack.STRIDE_PATHS), st.sampled_from(["delete", "misspell", "unicode key", "replace",
+                                                               "replace"]), attack.REPLACEMENTS), run)
+
+
 def options(n, folder):
     """A typed option with a bad value, an unknown or dangling option, --scheduler without an
     address, on a command line that would otherwise run (compare on RBDS001 T35)."""
@@ -213,7 +231,8 @@ def mocap_files(n, folder):
             lambda case: attack.measured_or_refused(folder, case, static))
 
 
-CLASSES = {"scenes": scenes, "compare": compare_scenes, "maps": marker_maps, "params": sweep_params,
+CLASSES = {"scenes": scenes, "strides": stride_scenes, "compare": compare_scenes, "maps": marker_maps,
+           "params": sweep_params,
            "api": numeric_api, "options": options, "kinds": scene_kinds, "outputs": outputs,
            "mocap": mocap_files}
 

@@ -728,23 +728,28 @@ def standing():
 STRIDE_EVERY_KEY = {**SCENES["stride.toml"], "stride": {
     **SCENES["stride.toml"]["stride"], "cadence_spm": 170.0, "impact_weight": 0.5, "torque_limit_nm_per_kg": 4.0,
     "max_iterations": 100, "starts": 2, "transcription": "hermite-simpson",
-    "duration_s": {"flight": [0.02, 0.3], "heel": [0.005, 0.1]}, "tendons": {"hip": 0.0, "knee": 2.5, "ankle": 4.0}}}
+    "duration_s": {"flight": [0.02, 0.3], "heel": [0.005, 0.1]}, "tendons": {"hip": 0.0, "knee": 2.5, "ankle": 4.0},
+    "actuation": "torque+springs"}}
+STRIDE_MUSCLES = {**SCENES["stride.toml"], "stride": {  # the muscle rung's keys (issue 33)
+    "speed_mps": 3.5, "strike": "heel", "actuation": "muscles", "objective": "activation", "nodes": 24}}
+STRIDE_PATHS = [(base, path) for base in (STRIDE_EVERY_KEY, STRIDE_MUSCLES) for path in paths(base)]
 
 
 @FAST
-@given(path=st.sampled_from(list(paths(STRIDE_EVERY_KEY))),
+@given(where=st.sampled_from(STRIDE_PATHS),
        action=st.sampled_from(["delete", "misspell", "unicode key", "replace", "replace"]),
        replacement=REPLACEMENTS)
-def test_mutated_stride_scenes_load_or_are_refused_in_one_line(path, action, replacement):
-    """Each key of a [stride] scene (and its ground and body) deleted, misspelt or replaced: the
-    scene loads as a StrideScene within the stride's ranges, or is refused in one line naming
-    the key, before any solve."""
+def test_mutated_stride_scenes_load_or_are_refused_in_one_line(where, action, replacement):
+    """Each key of a [stride] scene (and its ground and body; a torque+springs scene and a
+    muscle one) deleted, misspelt or replaced: the scene loads as a StrideScene within the
+    stride's ranges, or is refused in one line naming the key, before any solve."""
     from formopt.io.scene import SceneError, parse
     from formopt.io.stride_scene import StrideScene
     from formopt.optim.stride import ranges
 
+    base, path = where
     try:
-        scene = parse(mutant(STRIDE_EVERY_KEY, path, action, replacement))
+        scene = parse(mutant(base, path, action, replacement))
     except (SceneError, InputError) as err:
         assert "\n" not in str(err).strip() and len(str(err)) < 600, str(err)
         return
