@@ -1,5 +1,5 @@
 """The actuation ladder on RBDS001 (issue 33): torque, torque+springs and muscles, each at the
-runner's speeds, against the runner's processed mean cycle and measured cadence.
+runner's speeds, against the runner's processed mean cycle (its joint powers the data set's) and measured cadence.
 
     python problems/stride_ladder.py [--speeds 2.5 3.5 4.5] [--rungs torque torque+springs muscles]
                                      [--strike heel] [--nodes 40] [--mass 62] [--weight W]
@@ -34,7 +34,7 @@ from formopt.studies.stride import compare_cycle, measured_cycle, predicted_cycl
 
 RBDS = Path(__file__).resolve().parents[1] / "data" / "rbds" / "RBDS001processed.txt"
 MEASURED_CADENCE = {2.5: 156.5, 3.5: 171.4}  # steps/min, RBDS001's trials (formopt compare)
-# the cadence that times the mean cycle (its stance and ankle power): at 4.5 m/s, with no trial
+# the cadence that times the mean cycle's stance: at 4.5 m/s, with no trial
 # of RBDS001's, the middle of the 175-183 steps/min runners choose there
 CYCLE_CADENCE = {**MEASURED_CADENCE, 4.5: 179.0}
 
@@ -48,18 +48,10 @@ def settings(rung: str, body, strike: str, nodes: int) -> StrideSettings:
     return base
 
 
-def ankle_power(percent, moment, angle, period) -> float:
-    """Peak positive ankle power (W/kg) of a cycle: -M dtheta/dt (plantarflexor moment,
-    dorsiflexion angle), theta in deg over `period` s."""
-    t, first = np.unique(percent / 100.0 * period, return_index=True)  # a phase boundary's node once
-    rate = np.gradient(np.radians(angle[first]), t)
-    return float(np.max(-moment[first] * rate))
-
-
 def row(rung, speed, stride, measured, body) -> str:
     cycle = compare_cycle(stride, measured) if measured else None
     pred = predicted_cycle(stride)
-    power = ankle_power(pred["percent"], pred["moments"]["ankle"], pred["angles"]["ankle"], 2 * stride.half_period_s)
+    power = float(np.max(pred["powers"]["ankle"]))
     js = JointSpace(body)
     late = stride.t < 0.8 * stride.half_period_s
     swing = min(float(np.asarray(js.points[p](th, np.zeros(9), 0.0)[0], float).ravel()[1])
@@ -69,8 +61,7 @@ def row(rung, speed, stride, measured, body) -> str:
     if cycle:
         rms = cycle["angle_rms_deg"]
         measured_stance = cycle["stance_share_measured"] * 120.0 / CYCLE_CADENCE[speed]
-        m_power = ankle_power(measured["percent"], measured["moments"]["ankle"], measured["angles"]["ankle"],
-                              120.0 / CYCLE_CADENCE[speed])
+        m_power = float(np.nanmax(measured["powers"]["ankle"]))  # the data set's own joint power
         text += (f" {measured_stance:6.3f} {cycle['peak_vertical_n_per_kg']['measured']:6.1f}"
                  f" {rms['hip']:5.1f} {rms['knee']:5.1f} {rms['ankle']:5.1f} {power:5.1f} {m_power:5.1f}")
     m = stride.muscles

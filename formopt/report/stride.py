@@ -52,8 +52,8 @@ def measured_applies(stride) -> bool:
 
 
 def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
-    """Right-leg joint angles (deg) or net joint moments (N m/kg: the actuators' and the
-    tendons', as the measured net moments) over the gait cycle, or the ground force (N/kg:
+    """Right-leg joint angles (deg), net joint moments (N m/kg: the actuators' and the
+    tendons', as the measured net moments) or their powers (W/kg) over the gait cycle, or the ground force (N/kg:
     vertical and fore-aft, "vertical"); the measured mean beside them (dashed) when given (the
     measured force: vertical only)."""
     predicted = predicted_cycle(stride)
@@ -62,8 +62,9 @@ def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
         predicted = {**predicted, "horizontal": np.r_[stride.force[:, :, 0].sum(axis=1),  # as predicted_cycle
                                                       np.zeros(len(stride.t))] / stride.mass_kg}
     panels = CYCLE_JOINTS if quantity not in ("vertical",) else ("vertical", "horizontal")
-    unit = {"angles": "deg", "moments": "N m/kg", "vertical": "N/kg"}[quantity]
-    label = "predicted" if quantity != "moments" else "predicted, net moment (" + (
+    unit = {"angles": "deg", "moments": "N m/kg", "powers": "W/kg", "vertical": "N/kg"}[quantity]
+    net = {"moments": "net moment", "powers": "power of the net moment"}.get(quantity)
+    label = "predicted" if net is None else f"predicted, {net} (" + (
         "muscles + reserves)" if stride.muscles is not None else "active + tendons)")
     for k, name in enumerate(panels):
         ax = fig.add_subplot(1, len(panels), k + 1)
@@ -73,7 +74,7 @@ def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
         if measured is not None and name != "horizontal":
             data = measured[quantity] if quantity == "vertical" else measured[quantity][name]
             ax.plot(measured["percent"], data, "k--",
-                    label="RBDS001 measured" + (", net moment" if quantity == "moments" else ""))
+                    label="RBDS001 measured" + (f", {net}" if net else ""))
         ax.set_xlabel("gait cycle (%)")
         ax.set_title(f"{name if name != 'horizontal' else 'fore-aft (forward +)'} ({unit})")
     fig.axes[0].legend(fontsize=8)
@@ -138,7 +139,7 @@ def stride_figures(stride, js: JointSpace, measured: dict | None) -> dict[str, F
     (measured_applies); the muscles' where the stride has them."""
     measured = measured if measured is not None and measured_applies(stride) else None
     out = {"stick": stick_figures(stride, js), "angles": cycle_figure(stride, measured, "angles"),
-           "moments": cycle_figure(stride, measured, "moments"),
+           "moments": cycle_figure(stride, measured, "moments"), "powers": cycle_figure(stride, measured, "powers"),
            "grf": cycle_figure(stride, measured, "vertical"), "budget": budget_figure(stride)}
     if stride.muscles is not None:
         out["muscles"] = muscle_figure(stride)

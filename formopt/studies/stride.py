@@ -75,7 +75,8 @@ HIP_SIGN = {"hip": -1.0}
 
 def measured_cycle(path, speed: float) -> dict | None:
     """RBDS001's right-leg mean cycle at `speed` (m/s; None unless 2.5, 3.5 or 4.5): percent
-    (101), angles (deg) and moments (N m/kg) per joint, vertical force (N/kg)."""
+    (101), angles (deg), moments (N m/kg) and powers (W/kg, generation positive) per joint,
+    vertical force (N/kg)."""
     suffix = RBDS_SPEEDS.get(round(speed, 2))
     if suffix is None:
         return None
@@ -83,13 +84,14 @@ def measured_cycle(path, speed: float) -> dict | None:
     return {"percent": data["PercGcycle"],
             "angles": {j: data[f"R{j}AngZ{suffix}"] for j in CYCLE_JOINTS},
             "moments": {j: HIP_SIGN.get(j, 1.0) * data[f"R{j}MomZ{suffix}"] for j in CYCLE_JOINTS},
+            "powers": {j: data[f"R{j}Pow{suffix}"] for j in CYCLE_JOINTS},
             "vertical": np.nan_to_num(data[f"RgrfY{suffix}"], nan=0.0)}
 
 
 def predicted_cycle(stride: Stride) -> dict:
     """The right leg over a whole gait cycle from the half stride (its left leg gives the second
     half, by symmetry): percent, angles (deg), net moments (N m/kg: the active moments and the
-    tendons'), vertical force (N/kg)."""
+    tendons'), their powers (W/kg, P = -tau theta': generation positive), vertical force (N/kg)."""
     T = stride.half_period_s
     percent = np.r_[stride.t / T * 50.0, 50.0 + stride.t / T * 50.0]
     m = stride.mass_kg
@@ -97,8 +99,10 @@ def predicted_cycle(stride: Stride) -> dict:
               for k, j in enumerate(CYCLE_JOINTS)}
     net = stride.tau + (0.0 if stride.tau_spring is None else stride.tau_spring)
     moments = {j: np.r_[net[:, k], net[:, 3 + k]] / m for k, j in enumerate(CYCLE_JOINTS)}
+    rates = {j: np.r_[stride.thetad[:, 3 + k], stride.thetad[:, 6 + k]] for k, j in enumerate(CYCLE_JOINTS)}
+    powers = {j: -moments[j] * rates[j] for j in CYCLE_JOINTS}
     vertical = np.r_[stride.force[:, :, 1].sum(axis=1), np.zeros(len(stride.t))] / m
-    return {"percent": percent, "angles": angles, "moments": moments, "vertical": vertical}
+    return {"percent": percent, "angles": angles, "moments": moments, "powers": powers, "vertical": vertical}
 
 
 def compare_cycle(stride: Stride, measured: dict) -> dict:

@@ -26,7 +26,8 @@ def synthetic(mass_kg=62.0, speed_mps=3.5, n=11):
     force = np.zeros((n, 2, 2))
     force[:6, 0] = [[-100.0, 1200.0]] * 6  # heel: braking, pushing
     return SimpleNamespace(t=t, half_period_s=0.18, mass_kg=mass_kg, speed_mps=speed_mps,
-                           theta=np.zeros((n, 9)), tau=np.zeros((n, 6)), tau_spring=np.zeros((n, 6)), force=force)
+                           theta=np.zeros((n, 9)), thetad=np.zeros((n, 9)), tau=np.zeros((n, 6)),
+                           tau_spring=np.zeros((n, 6)), force=force, muscles=None)
 
 
 def test_the_force_figure_draws_both_components():
@@ -44,3 +45,18 @@ def test_the_measured_runner_is_drawn_only_beside_its_own_body_and_speed(mass, s
     from formopt.report.stride import measured_applies
 
     assert measured_applies(synthetic(mass, speed)) is drawn
+
+
+def test_the_power_figure_is_the_net_moment_times_the_rate():
+    """P = -tau theta' per kg (generation positive): an extensor moment while the knee extends."""
+    import numpy as np
+
+    from formopt.report.stride import cycle_figure
+
+    stride = synthetic()
+    stride.tau[:, 1] = 62.0  # 1 N m/kg at the right knee, extensor
+    stride.thetad[:, 4] = -2.0  # the knee extending at 2 rad/s
+    fig = cycle_figure(stride, None, "powers")
+    assert [ax.get_title() for ax in fig.axes] == ["hip (W/kg)", "knee (W/kg)", "ankle (W/kg)"]
+    assert np.max(fig.axes[1].lines[0].get_ydata()) == pytest.approx(2.0)
+    assert "power of the net moment" in fig.axes[0].lines[0].get_label()
