@@ -1,0 +1,81 @@
+"""The actuation ladder's speed in one run (issue 33 item 6): torque, torque+springs and
+muscles, the same body, strike, mesh and speed.
+
+    python benchmarks/stride_muscles.py [--nodes 40] [--repeats 1] [--speed 3.5]
+
+RBDS001's body (62 kg, 1.81 m), heel strike, each rung's default objective (effort; the
+muscles' metabolic): build (the NLP's graph, IPOPT and its derivatives), cold (the torque rungs
+from the generic guess; the muscles from their start, the torque+springs optimum split among
+them, result.muscle_start, whose own solve is counted apart as `start`) and warm (speed + 0.1
+m/s from the cold optimum with its multipliers, StrideNLP.resolve), medians of wall and CPU
+seconds, IPOPT's iterations and the cadence. Issue 33's targets for the muscles at 40 nodes:
+cold <= 30 s and warm <= 3 s on one core. Measure only.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+from dataclasses import replace
+
+from stride_speed import cell, timed
+
+from formopt.io.muscle_table import body_muscles
+from formopt.mechanics.body import scaled_body
+from formopt.mechanics.joint_space import JointSpace
+from formopt.optim.stride import StrideNLP, StrideSettings
+from formopt.optim.stride.checks import half_period
+from formopt.optim.stride.guess import ballistic
+from formopt.optim.stride.problem import RUNNER_TENDONS
+from formopt.optim.stride.result import muscle_start
+
+TARGETS = {"cold": 30.0, "warm": 3.0}  # s, the muscles at 40 nodes (issue 33 item 6)
+
+
+def rung_settings(rung: str, body, nodes: int) -> StrideSettings:
+    base = StrideSettings(strike="heel", nodes=nodes)
+    return {"torque": base, "torque+springs": replace(base, tendons=dict(RUNNER_TENDONS)),
+            "muscles": replace(base, objective="metabolic", muscles=body_muscles(body))}[rung]
+
+
+def once(rung: str, body, nodes: int, speed: float) -> dict:
+    def build():
+        nlp = StrideNLP(JointSpace(body), rung_settings(rung, body, nodes))
+        assert nlp.solver is not None
+        return nlp
+    nlp, build_s, build_cpu = timed(build)
+    start, start_s, _ = timed(lambda: muscle_start(nlp, speed, 0.0, 0.8, None) if rung == "muscles"
+                                      else ballistic(nlp, speed))
+    cold, cold_s, cold_cpu = timed(lambda: nlp.solve(start, speed))
+    warm, warm_s, warm_cpu = timed(lambda: nlp.resolve(cold, speed + 0.1))
+    return {"build_s": build_s, "build_cpu": build_cpu, "start_s": start_s, "cold_s": cold_s,
+            "cold_cpu": cold_cpu, "cold_iterations": cold.iterations, "warm_s": warm_s, "warm_cpu": warm_cpu,
+            "warm_iterations": warm.iterations, "cadence_spm": 60.0 / half_period(nlp, cold.blocks),
+            "status": f"{cold.status} / {warm.status}"}
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--nodes", type=int, default=40)
+    parser.add_argument("--repeats", type=int, default=1)
+    parser.add_argument("--speed", type=float, default=3.5)
+    args = parser.parse_args()
+    body = scaled_body(62.0, 1.81)
+    print(f"RBDS001's body, heel, {args.nodes} nodes, {args.speed:g} m/s; medians of {args.repeats}; wall s (CPU s)")
+    print(f"{'rung':15s} {'build':>17s} {'start':>9s} {'cold':>17s} {'it':>5s} {'warm':>17s} {'it':>5s} {'cadence':>8s}")
+    for rung in ("torque", "torque+springs", "muscles"):
+        runs = [once(rung, body, args.nodes, args.speed) for _ in range(args.repeats)]
+        m = {k: statistics.median(r[k] for r in runs) for k in runs[0] if k != "status"}
+        print(f"{rung:15s} {cell(m['build_s'])} ({cell(m['build_cpu'], 5)}) {cell(m['start_s'])} "
+              f"{cell(m['cold_s'])} ({cell(m['cold_cpu'], 5)}) {m['cold_iterations']:5.0f} "
+              f"{cell(m['warm_s'])} ({cell(m['warm_cpu'], 5)}) {m['warm_iterations']:5.0f} {m['cadence_spm']:8.1f}"
+              f"   {runs[0]['status']}", flush=True)
+        if rung == "muscles":
+            print("targets (wall, one core): " + ", ".join(
+                f"{k} <= {v:g} s: {'met' if m[f'{k}_s'] + (m['start_s'] if k == 'cold' else 0) <= v else 'missed'}"
+                for k, v in TARGETS.items()) + " (cold counts the start)")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
