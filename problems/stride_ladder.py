@@ -10,7 +10,7 @@ RMS against the mean cycle (deg), the peak ankle power (W/kg, positive), the ten
 stored per step (J: soleus and gastrocnemius, all), the swing foot's least height (m, before
 the last fifth of the half stride), reserves, validity, iterations and seconds (build, solve).
 `--mass` scales the body to another mass at the same height (a heavier runner); `--weight`
-sets the muscles' activation weight (problem.ACTIVATION_WEIGHT) for a calibration run.
+sets the muscles' activation weight (StrideSettings.activation_weight) for a calibration run.
 """
 
 from __future__ import annotations
@@ -39,12 +39,12 @@ MEASURED_CADENCE = {2.5: 156.5, 3.5: 171.4}  # steps/min, RBDS001's trials (form
 CYCLE_CADENCE = {**MEASURED_CADENCE, 4.5: 179.0}
 
 
-def settings(rung: str, body, strike: str, nodes: int) -> StrideSettings:
+def settings(rung: str, body, strike: str, nodes: int, weight: float) -> StrideSettings:
     base = StrideSettings(strike=strike, nodes=nodes)
     if rung == "torque+springs":
         return replace(base, tendons=dict(RUNNER_TENDONS))
     if rung == "muscles":
-        return replace(base, objective="metabolic", muscles=body_muscles(body))
+        return replace(base, objective="metabolic", muscles=body_muscles(body), activation_weight=weight)
     return base
 
 
@@ -80,20 +80,17 @@ def main(argv=None) -> int:
     parser.add_argument("--mass", type=float, default=62.0)
     parser.add_argument("--weight", type=float, default=None)
     args = parser.parse_args(argv)
-    if args.weight is not None:
-        problem.ACTIVATION_WEIGHT = args.weight  # a calibration run only
-        from formopt.optim.stride import costs
-        costs.ACTIVATION_WEIGHT = args.weight
+    weight = problem.ACTIVATION_WEIGHT if args.weight is None else args.weight
     body = scaled_body(args.mass, 1.81)
     print(f"RBDS001's height (1.81 m), {args.mass:g} kg, {args.strike} strike, {args.nodes} nodes, one start, "
-          f"activation weight {problem.ACTIVATION_WEIGHT:g}", flush=True)
+          f"activation weight {weight:g}", flush=True)
     print(f"{'rung':15s} {'v':>4s} {'spm':>7s} {'meas':>6s} {'stance':>6s} {'GRF':>6s} {'m.st':>6s} {'m.GRF':>6s}"
           f" {'hipRMS':>5s} {'knRMS':>5s} {'anRMS':>5s} {'P+ank':>5s} {'m.P+':>5s} {'Ach J':>5s} {'all J':>5s}"
           f" {'res':>5s} {'swing':>6s} {'valid':>5s} {'iter':>5s} {'build':>5s} {'solve':>6s}", flush=True)
     for rung in args.rungs:
         for speed in args.speeds:
             clock = time.perf_counter()
-            nlp = build(body, settings(rung, body, args.strike, args.nodes))
+            nlp = build(body, settings(rung, body, args.strike, args.nodes, weight))
             stride = optimum(nlp, speed)
             stride.solve_s = time.perf_counter() - clock - nlp.build_s  # the torque start's solve too
             print(row(rung, speed, stride, measured_cycle(RBDS, speed), body), flush=True)

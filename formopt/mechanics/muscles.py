@@ -234,6 +234,16 @@ def activation_rate(excitation, activation, smoothing: float = ACTIVATION_SMOOTH
             + (0.5 - switch) * scale / DEACTIVATION_TIME) * (excitation - activation)
 
 
+def holding_activation(muscles: Muscles, angles, rates, force) -> np.ndarray:
+    """The activation (shape (n,), in [0.01, 1]) that holds the Hill equilibrium at tendon
+    forces F (F_max) with F' = 0 and angles and rates theta, theta' (3): `hill_residual` solved
+    for a, a = (F - f_PE - beta v~) / (f_L f_V), clipped (f_L f_V at least 1e-3)."""
+    length, velocity = (np.asarray(v, float).ravel() for v in fibre_state(muscles, angles, rates, force, 0.0))
+    passive = np.asarray(passive_force_length(length, muscles.passive_slack, muscles.passive_stiffness), float).ravel()
+    active = np.asarray(active_force_length(length, muscles.width) * force_velocity(velocity), float).ravel()
+    return np.clip((force - passive - DAMPING * velocity) / np.maximum(active, 1e-3), 0.01, 1.0)
+
+
 def isometric_force(muscles: Muscles, activation, angles) -> np.ndarray:
     """The tendon force F (per F_max, shape (n,)) that holds the equilibrium at rest
     (theta' = 0, F' = 0) for activation a (n,) and angles theta (3,): Newton's method

@@ -201,18 +201,11 @@ class MuscleDriven(Torques):
             joints = slice(3 + 3 * k, 6 + 3 * k)
             F = np.column_stack([nnls(system, np.r_[tau[3 * k:3 * k + 3, j], np.zeros(n)])[0] for j in range(c)])
             F = np.clip(F, 0.0, 1.5)
-            a = np.column_stack([self._holding(theta[joints, j], thetad[joints, j], F[:, j]) for j in range(c)])
+            a = np.column_stack([hill.holding_activation(self.muscles, theta[joints, j], thetad[joints, j], F[:, j])
+                                 for j in range(c)])
             z[2 * n * k:2 * n * (k + 1)] = np.vstack([a, F])
             u[3 * n * k:3 * n * k + n] = a
         return z, u
-
-    def _holding(self, angles, rates, force) -> np.ndarray:
-        """The activation (n) that holds the Hill equilibrium at tendon forces F (F' = 0)."""
-        m = self.muscles
-        length, velocity = (np.asarray(v, float).ravel() for v in hill.fibre_state(m, angles, rates, force, 0.0))
-        passive = np.asarray(hill.passive_force_length(length, m.passive_slack, m.passive_stiffness), float).ravel()
-        active = np.asarray(hill.active_force_length(length, m.width) * hill.force_velocity(velocity), float).ravel()
-        return np.clip((force - passive - hill.DAMPING * velocity) / np.maximum(active, 1e-3), 0.01, 1.0)
 
 
 def actuation(mass: float, limit: float, tendons: dict, muscles: hill.Muscles | None = None) -> Torques:

@@ -133,7 +133,7 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
     reset: list[np.ndarray] = []
     slips: dict = {}
     for i, phase in enumerate(nlp.phases):
-        X, U, T = blocks[f"X_{phase.name}"], nlp.moments(blocks, i), blocks[f"T_{phase.name}"].item()
+        X, U, T = blocks[f"X_{phase.name}"], nlp.moments(blocks, i)[0], blocks[f"T_{phase.name}"].item()
         if nlp.impact_before(i):  # an impact starts the phase
             state[NX:] = joint_impact(js, phase.rows, state[:NX], state[NX:], slope)[0]
         times = np.linspace(0.0, T, X.shape[1])

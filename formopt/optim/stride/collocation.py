@@ -144,6 +144,7 @@ class StrideNLP:
         self.period = ca.sum1(ca.vertcat(*[self.v[f"T_{ph.name}"] for ph in self.phases]))
         self.node_bounds: list = []  # per phase, its node rows' (lower, upper) (_node_function)
         self.node_functions = [self._node_function(i) for i in range(len(self.phases))]
+        self._moment_functions = [self._moment_function(i) for i in range(len(self.phases))]
         self.terms: dict = dict.fromkeys((*INTEGRANDS, "impacts", "smoothing"), 0)
         # the node integrands' values, one column per node (ell: their stack, node by node)
         self.ell_sizes = [len(INTEGRANDS) * c for c in self.columns]
@@ -312,13 +313,25 @@ class StrideNLP:
             out.append((np.asarray(L, float), w))
         return out
 
-    def moments(self, blocks: dict, i: int) -> np.ndarray:
-        """The active joint moments (N m, 6 x columns, JOINTS) of phase i in a numeric solution."""
-        act, name = self.ocp.models[i].actuation, self.phases[i].name
-        c = self.columns[i]
+    def moments(self, blocks: dict, i: int) -> tuple[np.ndarray, np.ndarray]:
+        """(active, passive) joint moments (N m, each 6 x columns, JOINTS) of phase i in a
+        numeric solution: the actuation's, and its springs' (the tendons in parallel) with the
+        touchdown as their rest."""
+        name, c = self.phases[i].name, self.columns[i]
+        td = blocks[f"X_{self.phases[0].name}"][:NX, :1]
+        active, passive = self._moment_functions[i](blocks.get(f"Z_{name}", np.zeros((0, c))), blocks[f"U_{name}"],
+                                                   blocks[f"X_{name}"][:NX], np.repeat(td, c, 1))
+        return np.asarray(active, float), np.asarray(passive, float)
+
+    def _moment_function(self, i: int) -> ca.Function:
+        """Phase i's (z, u, theta, theta_td) -> (active, passive) moments, mapped over its columns."""
+        model = self.ocp.models[i]
+        act = model.actuation
         z, u = ca.SX.sym("z", act.states), ca.SX.sym("u", act.controls)
-        moments = ca.Function("moments", [z, u], [act.active(z, u)]).map(c)
-        return np.asarray(moments(blocks.get(f"Z_{name}", np.zeros((0, c))), blocks[f"U_{name}"]), float)
+        theta, td = ca.SX.sym("theta", NX), ca.SX.sym("theta_td", NX)
+        return ca.Function("moments", [z, u, theta, td], [act.active(z, u),
+                                                          act.passive(theta, td, bool(model.phase.points))]
+                           ).map(self.columns[i])
 
     def variant(self, **changes) -> StrideNLP:
         """The NLP of the same body and IPOPT options with settings changed (e.g. touchdown=

@@ -18,7 +18,7 @@ with the integrals I_k (the transcription's quadrature of the node integrands, o
 The objectives (problem.OBJECTIVES): effort; work = W+ (scale 1 / (m g)); metabolic =
 W+/0.25 + W-/1.2 (Margaria 1968); the work objectives add WORK_REGULARISATION times effort.
 With muscles (problem.MUSCLE_OBJECTIVES): metabolic = the muscles' energy (scale 1 / (m g))
-plus problem.ACTIVATION_WEIGHT times the activation term; activation = the activation term;
+plus StrideSettings.activation_weight (problem.ACTIVATION_WEIGHT, frozen) times the activation term; activation = the activation term;
 both add MUSCLE_RATE_REGULARISATION times muscle_rates and RESERVE_WEIGHT times reserves. Any objective adds impact_weight times
 the impacts (scale 1 / (m g)) and SMOOTHING.
 """
@@ -60,7 +60,8 @@ class CostTerm:
         return self.weight * self.scale * integrals[self.integral] / distance
 
 
-def own_terms(objective: str, mass: float, muscles: bool = False) -> list[CostTerm]:
+def own_terms(objective: str, mass: float, muscles: bool = False,
+              activation_weight: float = ACTIVATION_WEIGHT) -> list[CostTerm]:
     """An objective's own terms (problem.OBJECTIVES; module docstring), without its
     regularisation, the impacts and the smoothing."""
     weight = mass * GRAVITY
@@ -69,7 +70,7 @@ def own_terms(objective: str, mass: float, muscles: bool = False) -> list[CostTe
         if objective == "activation":
             return [activation]
         return [CostTerm("muscle_metabolic", 1.0 / weight),
-                CostTerm("activation", ACTIVATION_SCALE, ACTIVATION_WEIGHT)]
+                CostTerm("activation", ACTIVATION_SCALE, activation_weight)]
     if objective == "effort":
         return [CostTerm("effort", 100.0 / weight ** 2)]
     if objective == "work":
@@ -81,7 +82,7 @@ def own_terms(objective: str, mass: float, muscles: bool = False) -> list[CostTe
 def terms(settings: StrideSettings, mass: float) -> tuple[CostTerm, ...]:
     """The cost terms of a stride's settings (module docstring)."""
     muscles = settings.muscles is not None
-    out = own_terms(settings.objective, mass, muscles)
+    out = own_terms(settings.objective, mass, muscles, settings.activation_weight)
     if muscles:
         out += [CostTerm("muscle_rates", 1.0, MUSCLE_RATE_REGULARISATION), CostTerm("reserves", 1.0, RESERVE_WEIGHT)]
     elif settings.objective != "effort":

@@ -178,14 +178,10 @@ def from_torques(nlp: StrideNLP, torques: StrideNLP, solved) -> dict:
     the actuation's `initial`)."""
     blocks = solved.blocks
     out = {k: v for k, v in blocks.items() if not k.startswith(("S_", "U_"))}
-    td = blocks[f"X_{torques.phases[0].name}"][:NX, 0]
     for i, phase in enumerate(nlp.phases):
         X = blocks[f"X_{phase.name}"]
-        spring = torques.ocp.models[i].actuation
-        tau = torques.moments(blocks, i) + np.column_stack(
-            [np.asarray(spring.passive(X[:NX, k], td, bool(phase.points)), float).ravel() for k in range(X.shape[1])])
         act = nlp.ocp.models[i].actuation
-        z, out[f"U_{phase.name}"] = act.initial(X[:NX], X[NX:], tau)
+        z, out[f"U_{phase.name}"] = act.initial(X[:NX], X[NX:], np.add(*torques.moments(blocks, i)))
         if act.states:
             out[f"Z_{phase.name}"] = z
     return fitted(nlp, out)

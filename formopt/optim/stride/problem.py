@@ -160,6 +160,7 @@ class StrideSettings:
     tendons: dict = field(default_factory=dict)  # joint ("hip", "knee", "ankle") -> N m/rad/kg
     transcription: str = "trapezoid"  # or "hermite-simpson" (collocation.TRANSCRIPTIONS)
     muscles: Muscles | None = None  # one leg's muscles scaled to the body: the "muscles" rung
+    activation_weight: float = ACTIVATION_WEIGHT  # the muscles' metabolic objective's one weight (calibration only)
 
     def __post_init__(self):
         if self.strike not in STRIKE_PHASES:
@@ -191,6 +192,8 @@ class StrideSettings:
             raise InputError(f"law {self.law!r}: expected no-slip or coulomb (frictionless "
                              "impacts leave the foot sliding, a phase the stride does not model)")
         check("impact_weight", self.impact_weight)
+        if not self.activation_weight >= 0.0:
+            raise InputError(f"activation_weight = {self.activation_weight}: expected a number >= 0")
         check("torque_limit_nm_per_kg", self.torque_limit)
         check("max_iterations", self.max_iter, whole=True)
         for joint, k in self.tendons.items():

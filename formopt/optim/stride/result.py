@@ -181,8 +181,9 @@ def on_bounds(durations: list, bounds: dict) -> list[dict]:
 
 
 def histories(nlp: StrideNLP, blocks: dict, slope: float):
-    """Node histories (t, phase, theta, theta', tau, force) over the half stride."""
-    t, names, X, U, force = [], [], [], [], []
+    """Node histories (t, phase, theta, theta', tau, tau_spring, force) over the half stride: tau
+    the active moments, tau_spring the springs' (the tendons in parallel; with tau the net)."""
+    t, names, X, U, springs, force = [], [], [], [], [], []
     start = 0.0
     tangent, normal = np.array([np.cos(slope), np.sin(slope)]), np.array([-np.sin(slope), np.cos(slope)])
     for i, (phase, c) in enumerate(zip(nlp.phases, nlp.columns)):
@@ -190,7 +191,9 @@ def histories(nlp: StrideNLP, blocks: dict, slope: float):
         t.append(start + np.linspace(0.0, T, c))
         names += [phase.name] * (c)
         X.append(blocks[f"X_{phase.name}"])
-        U.append(nlp.moments(blocks, i))
+        active, passive = nlp.moments(blocks, i)
+        U.append(active)
+        springs.append(passive)
         F = nlp.mass * GRAVITY * blocks[f"F_{phase.name}"]
         f = np.zeros((c, len(FOOT_POINTS), 2))
         for k, (point, axis) in enumerate(phase.rows):
@@ -198,15 +201,8 @@ def histories(nlp: StrideNLP, blocks: dict, slope: float):
         force.append(f)
         start += T
     states = np.hstack(X).T
-    return np.concatenate(t), names, states[:, :NX], states[:, NX:], np.hstack(U).T, np.concatenate(force)
-
-
-def spring_moments(nlp: StrideNLP, theta: np.ndarray, names: list) -> np.ndarray:
-    """The actuation's passive moments (the tendons', N m, n x 6, JOINTS) at each node: with
-    `tau` (the active ones) the net joint moments."""
-    models = {model.phase.name: model for model in nlp.ocp.models}
-    return np.array([np.asarray(models[p].actuation.passive(theta[k], theta[0], bool(models[p].phase.points)),
-                                float).ravel() for k, p in enumerate(names)])
+    return (np.concatenate(t), names, states[:, :NX], states[:, NX:], np.hstack(U).T, np.hstack(springs).T,
+            np.concatenate(force))
 
 
 def budget(nlp: StrideNLP, solved: Solved, impacts: float) -> dict:
@@ -327,7 +323,7 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
     step = step_length(speed, T)
     durations = [(p.name, b[f"T_{p.name}"].item()) for p in nlp.phases]
     stance = sum(d for p, (_, d) in zip(nlp.phases, durations) if p.rows)
-    t, names, theta, thetad, tau, force = histories(nlp, b, slope)
+    t, names, theta, thetad, tau, tau_spring, force = histories(nlp, b, slope)
     found = impacts(nlp, b, slope, mu)
     energy = budget(nlp, solved, sum(i["T_c"] for i in found))
     start, end = theta[0], theta[-1]
@@ -365,7 +361,7 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
         impacts=found, budget=energy, cost_of_transport=positive / (m * GRAVITY * step),
         mechanical_power_W=positive / T, checks=checks, phases=durations, mass_kg=m,
         t=t, phase=names, theta=theta, thetad=thetad, tau=tau, force=force, solved=solved,
-        tau_spring=spring_moments(nlp, theta, names), muscles=muscle_outputs(nlp, solved, checks),
+        tau_spring=tau_spring, muscles=muscle_outputs(nlp, solved, checks),
         on_bound=on_bounds(durations, nlp.settings.duration))
 
 
