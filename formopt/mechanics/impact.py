@@ -115,14 +115,13 @@ def on_ground(function: ca.Function, friction: float, slope: float) -> ca.Functi
                        function.name_out())
 
 
-def _indicators(model: Model, strike: str, law: str, x, friction, slope) -> dict:
-    """Every output of impact_function as expressions of (x, friction, slope). Longer than
-    60 lines: the three laws share the contact rows, W and the indicators built from them."""
+def _laws(model: Model, strike: str, q, qd, imp, friction, slope) -> tuple[dict, dict, ca.SX]:
+    """Each contact law's (impulse, qd_plus, T_c, slip, mode) of the strike at (q, qd), with
+    `imp` its no-slip projection; the strike point's contact space (W_c, v_contact and the
+    velocity changes per impulse: NaN for a flat strike or a normal-only model) and the
+    posture's friction ratio W_c[0,1] / W_c[0,0] (mu_posture; 0 without a tangential row)."""
     points = STRIKES[strike]
-    t, n = ground_axes(slope)
-    q, qd = model.state(x, points[0])
-    rows = model.contact_rows(points, slope, tangential=points[:1] if model.tangential else ())
-    imp = projection(model, q, qd, rows)
+    t, _ = ground_axes(slope)
     lam = imp["lambda"][imp["n_body"]:]
     if not model.tangential:  # normal only: the guide holds the rest (see _momentum_impulse)
         lam = ca.vertcat(0, lam)
@@ -160,6 +159,20 @@ def _indicators(model: Model, strike: str, law: str, x, friction, slope) -> dict
         p, mode, slip = contact.velocity_level(W_c, v0, friction)
         laws["coulomb"] = (_split(p), qd + W @ C.T @ p, contact.absorbed(W_c, v0, p), slip, mode)
         mu_posture = ca.DM(0)
+    return laws, space, mu_posture
+
+
+def _indicators(model: Model, strike: str, law: str, x, friction, slope) -> dict:
+    """Every output of impact_function as expressions of (x, friction, slope): each law's
+    (`_laws`) T_c, impulse, slip and velocity changes, and the scene's law's in full."""
+    points = STRIKES[strike]
+    t, n = ground_axes(slope)
+    q, qd = model.state(x, points[0])
+    rows = model.contact_rows(points, slope, tangential=points[:1] if model.tangential else ())
+    imp = projection(model, q, qd, rows)
+    laws, space, mu_posture = _laws(model, strike, q, qd, imp, friction, slope)
+    momentum_matrix = ca.DM(model.momentum_matrix)
+    trunk_matrix = ca.DM(model.com_matrix(model.trunk)) if model.trunk else ca.DM.zeros(2, model.n)
     per_law = {}
     for name, (impulse, qd_plus, T_c, slip, mode) in laws.items():
         dqd = qd_plus - qd
