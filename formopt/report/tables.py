@@ -303,6 +303,11 @@ def stride_lines(s: dict) -> list[str]:
                  f"{s['optimum_step_length_m']:.3f} m, strike point {s['optimum_placement_m']:.3f} m "
                  f"ahead of the hip, {s['measured_strike']} strike; mechanical power "
                  f"{s['optimum_mechanical_power_W']:.0f} W, impact loss {s['optimum_impact_loss_W']:.0f} W")
+    lines += [f"      ({remark})" for remark in s.get("optimum_remarks", [])]
+    if s.get("sticking_optimum_cadence_spm") is not None:
+        lines.append(f"    the sticking strides' optimum (the what-ifs' reference): cadence "
+                     f"{s['sticking_optimum_cadence_spm']:6.1f} steps/min; mechanical power "
+                     f"{s['sticking_optimum_mechanical_power_W']:.0f} W")
     strikes = ", ".join(f"{k} {v['objective_value']:.3f}" + ("" if v["valid"] else " (INVALID)")
                         for k, v in s["strikes"].items() if v is not None)
     best = s["best_strike"] or "none valid"

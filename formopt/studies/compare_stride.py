@@ -218,6 +218,10 @@ class StrideAnswer:
                 "optimum_mechanical_power_W": own.mechanical_power_W if own else None,
                 "optimum_impact_loss_W": own.budget["impacts_J"] / own.half_period_s if own else None,
                 "optimum_joint_work_J": joint_work(own) if own else None,
+                "optimum_remarks": own.remarks if own else [],
+                "sticking_optimum_cadence_spm": self.nominal.own_free.cadence_spm if self.nominal.own_free else None,
+                "sticking_optimum_mechanical_power_W":
+                    self.nominal.own_free.mechanical_power_W if self.nominal.own_free else None,
                 "best_strike": best,
                 "strikes": {k: None if s is None else
                             {"success": s.success, "objective_value": s.objective_value,

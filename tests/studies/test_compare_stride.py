@@ -135,3 +135,15 @@ def test_the_section_json_and_words(section):
     text = "\n".join(stride_lines(d))
     assert "the runner:  cadence  171.4" in text
     assert all(f"{p:+5.0f} %" in text for p in WHAT_IF_PCT)
+
+
+def test_the_optimum_line_carries_its_remarks(section):
+    """A free optimum held by a bound or sliding says so under its own line, and the sticking
+    strides' own optimum is named where the what-ifs are measured from it."""
+    d = {**section.to_dict(), "optimum_remarks": ["forefoot impact of leg L solved sliding under coulomb: it "
+                                                  "slides 28 ms and 5.1 cm"],
+         "sticking_optimum_cadence_spm": 167.0, "sticking_optimum_mechanical_power_W": 275.0}
+    lines = stride_lines(d)
+    k = next(i for i, line in enumerate(lines) if line.startswith("    the optimum"))
+    assert lines[k + 1] == "      (forefoot impact of leg L solved sliding under coulomb: it slides 28 ms and 5.1 cm)"
+    assert "the sticking strides' optimum (the what-ifs' reference): cadence  167.0" in lines[k + 2]
