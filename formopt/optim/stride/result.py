@@ -119,6 +119,9 @@ class Stride:
     # the phases held by a duration bound ({"phase", "duration_s", "side": "low" | "high",
     # "bound_s"}, `on_bounds`): the bound, not the mechanics, sets them
     on_bound: list = field(default_factory=list)
+    # the global search that found it (search.global_optimum: its spend, what it spent, the
+    # optima it met and their spread); None: solved from the given starts (`optimum`)
+    search: dict | None = None
 
     def bound_text(self) -> str:
         """The phases on a duration bound, in words ("" when none)."""
@@ -406,19 +409,35 @@ def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
     (`rank`: valid first, then converged, then the least objective), under Coulomb after its
     touchdown's mode is decided (`touchdown_mode`); where the forward check (`simulate`) makes
     it invalid, the next start in that order is summarised, and the best of those kept."""
-    if guess is None and nlp.settings.transcription != "trapezoid":
-        # Hermite-Simpson from the generic guess: converged at 20 intervals, not in 300
-        # iterations at 40; from the trapezoid's optimum at 40, in 166 (heel, 3.5 m/s, 2026-11-25)
-        base = nlp.variant(transcription="trapezoid")
-        guess = base.solve(ballistic(base, speed), speed, slope, mu, cadence).blocks
-    if guess is None and nlp.settings.muscles is not None:
-        guess = muscle_start(nlp, speed, slope, mu, cadence)
-    first = fitted(nlp, guess) if guess is not None else ballistic(nlp, speed)
+    first = fitted(nlp, guess) if guess is not None else generic_start(nlp, speed, slope, mu, cadence)
     rng = np.random.default_rng(seed)
     solves = [nlp.solve(first if k == 0 else perturbed(first, rng), speed, slope, mu, cadence)
               for k in range(starts)]
-    if starts > 1:
-        solves.sort(key=lambda solved: rank(summarise(nlp, solved, simulate=False)))
+    return best_of(nlp, solves, simulate)
+
+
+def generic_start(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
+                  cadence: float | None = None) -> dict:
+    """The start that knows nothing of the optimum (`optimum`'s default guess, and the global
+    search's): the generic guess (guess.ballistic); for Hermite-Simpson the trapezoid's optimum
+    from it; with muscles the torque rung's optimum split among them (`muscle_start`)."""
+    if nlp.settings.transcription != "trapezoid":
+        # Hermite-Simpson from the generic guess: converged at 20 intervals, not in 300
+        # iterations at 40; from the trapezoid's optimum at 40, in 166 (heel, 3.5 m/s, 2026-11-25)
+        base = nlp.variant(transcription="trapezoid")
+        return fitted(nlp, base.solve(ballistic(base, speed), speed, slope, mu, cadence).blocks)
+    if nlp.settings.muscles is not None:
+        return muscle_start(nlp, speed, slope, mu, cadence)
+    return ballistic(nlp, speed)
+
+
+def best_of(nlp: StrideNLP, solves: list[Solved], simulate: bool = True) -> Stride:
+    """The Stride of the best of `solves` (`rank`: valid first, then converged, then the least
+    objective), under Coulomb after its touchdown's mode is decided (`touchdown_mode`); where
+    the forward check (`simulate`) makes it invalid, the next solve in that order is
+    summarised, and the best of those kept."""
+    if len(solves) > 1:
+        solves = sorted(solves, key=lambda solved: rank(summarise(nlp, solved, simulate=False)))
     best: Stride | None = None
     for solved in solves:  # the next start only where the forward check fails the best one
         kept_nlp, kept, tried = touchdown_mode(nlp, solved) if nlp.settings.law == "coulomb" else (nlp, solved, [])
@@ -428,7 +447,7 @@ def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
         best = stride if best is None or rank(stride) < rank(best) else best
         if best.valid or not best.success:
             break
-    assert best is not None  # starts >= 1
+    assert best is not None, "best_of: no solve"
     return best
 
 

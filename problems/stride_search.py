@@ -1,0 +1,76 @@
+"""The global search's answer against its spend and its mesh (issue 34): RBDS001's body (62 kg,
+1.81 m), torque+springs (problem.RUNNER_TENDONS), effort objective, the free optimum found by
+optim.stride.search at each speed, spend and node count.
+
+    python problems/stride_search.py [--speeds 2.5 3.5 4.5] [--nodes 40] [--spend 1 2]
+                                     [--strike heel] [--transcription trapezoid] [--one-start]
+
+One row per speed, node count and spend (the spends innermost, then the node counts): cost
+(the objective, per distance), cadence (steps/min), their change (%) from the row before at the
+same speed (doubling the spend, or the nodes when --nodes gives two counts), solves, IPOPT
+iterations and seconds spent, the distinct local optima met (cadence:objective) and their
+spread (%), validity, the forward simulation's largest error per phase (rad, each phase from
+the NLP's state at its start) and any phase on its duration bound. `--one-start` adds the
+one-start optimum (optim.stride.optimum from the generic guess) first, for comparison.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from formopt.mechanics.body import scaled_body
+from formopt.optim.stride import problem
+from formopt.optim.stride.collocation import build
+from formopt.optim.stride.problem import RUNNER_TENDONS, StrideSettings
+from formopt.optim.stride.result import optimum
+from formopt.optim.stride.search import global_optimum
+
+
+def row(label: str, speed: float, nodes: int, stride, before) -> str:
+    """One table row; `before`: the row's stride to measure the change from (None: none)."""
+    change = ("    -        -   " if before is None else
+              f"{(stride.objective_value / before.objective_value - 1) * 100:+7.2f} "
+              f"{(stride.cadence_spm / before.cadence_spm - 1) * 100:+7.2f}  ")
+    s = stride.search or {"solves": 1, "iterations": stride.iterations, "seconds": stride.solve_s,
+                          "optima": [], "spread_pct": float("nan")}
+    optima = " ".join(f"{o['cadence_spm']:.0f}:{o['objective']:.4f}" for o in s["optima"])
+    phases = " ".join(f"{e:.3f}" for e in stride.checks.get("forward_per_phase", []))
+    bound = "; ".join(f"{b['phase']} {b['side']}" for b in stride.on_bound) or "-"
+    return (f"{speed:4.1f} {nodes:5d} {label:>6s} {stride.objective_value:8.4f} {stride.cadence_spm:7.1f} {change}"
+            f"{s['solves']:6d} {s['iterations']:6d} {s['seconds']:7.1f} {s['spread_pct']:7.2f}  "
+            f"{'yes' if stride.valid else 'NO':>5s}  [{phases}]  {bound}  {{{optima}}}")
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--speeds", type=float, nargs="+", default=[2.5, 3.5, 4.5])
+    parser.add_argument("--nodes", type=int, nargs="+", default=[40])
+    parser.add_argument("--spend", type=int, nargs="+", default=[1, 2])
+    parser.add_argument("--strike", default="heel", choices=problem.STRIKES)
+    parser.add_argument("--transcription", default="trapezoid", choices=problem.TRANSCRIPTIONS)
+    parser.add_argument("--one-start", action="store_true")
+    args = parser.parse_args(argv)
+    body = scaled_body(62.0, 1.81)
+    print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, torque+springs, effort, {args.transcription}",
+          flush=True)
+    print(f"{'v':>4s} {'nodes':>5s} {'spend':>6s} {'cost':>8s} {'spm':>7s} {'dcost%':>7s} {'dspm%':>7s}  "
+          f"{'solves':>6s} {'iter':>6s} {'s':>7s} {'spread%':>7s}  {'valid':>5s}  [forward rad per phase]  "
+          "on bound  {optima cadence:cost}", flush=True)
+    for speed in args.speeds:
+        before = None
+        for nodes in args.nodes:
+            settings = StrideSettings(strike=args.strike, nodes=nodes, tendons=dict(RUNNER_TENDONS),
+                                      transcription=args.transcription)
+            nlp = build(body, settings)
+            if args.one_start:
+                print(row("one", speed, nodes, optimum(nlp, speed), None), flush=True)
+            for spend in args.spend:
+                stride = global_optimum(nlp, speed, spend=spend)
+                print(row(str(spend), speed, nodes, stride, before), flush=True)
+                before = stride
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
