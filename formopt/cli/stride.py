@@ -16,7 +16,7 @@ from ..mechanics.errors import InputError
 from ..mechanics.joint_space import JOINTS, JointSpace
 from ..optim.stride.result import FOOT_POINTS
 from ..report.stride import stride_figures, stride_table
-from ..studies.stride import measured_cycle
+from ..studies.stride import measured_cycle, stages
 from .common import add_format, emit, out_folder
 
 # RBDS001's measured mean cycle, drawn beside the prediction when the repository's data are there
@@ -66,8 +66,7 @@ def run(args) -> int:
     if not isinstance(scene, StrideScene):
         raise InputError(f"{args.scene}: not a stride scene (it has no [stride] table)")
     out = out_folder(args, scene.path or scene.name)
-    strikes = 3 if (args.strike or scene.strike) == "best" else 1
-    with Stages(None if args.json else strikes, "stride") as say:
+    with Stages(None if args.json else stages(scene, args.speed, args.strike), "stride") as say:
         study = api.stride(scene, args.speed, args.strike, progress=say)
     best = study.best
     measured = measured_cycle(RBDS, best.speed_mps) if RBDS.exists() else None

@@ -8,8 +8,10 @@
               optim.stride.problem.ACTUATIONS), objective ("effort", "work", "metabolic";
               with muscles "metabolic", their default, or "activation"), nodes, impact_weight,
               torque_limit_nm_per_kg (torque rungs),
-              cadence_spm (imposed; absent: free), max_iterations, starts (the generic guess
-              and starts - 1 perturbations of it, the best kept; default 4),
+              cadence_spm (imposed; absent: free), max_iterations, search ("local", the
+              default: starts, the generic guess and starts - 1 perturbations of it, the best
+              kept, default 4; or "global": optim.stride.search's procedure, its spend
+              `spend`, default 1),
               [stride.duration_s] heel/flat/forefoot/flight = [low, high] (s),
               [stride.tendons] hip/knee/ankle = stiffness (N m/rad per kg; the stance leg's
               springs, optim.stride.problem.TENDON_JOINTS; "torque+springs" without it takes
@@ -39,6 +41,7 @@ from ..optim.stride.problem import (
     StrideSettings,
 )
 from ..optim.stride.ranges import RANGES, point
+from ..optim.stride.search import SEARCHES
 from . import validate as val
 from .muscle_table import body_muscles
 from .scene import SceneError, _body
@@ -47,7 +50,7 @@ STRIDE_STRIKES = (*STRIKES, "best")
 STRIDE_LAWS = ("no-slip", "coulomb")
 STRIDE_KEYS = {"speed_mps", "strike", "objective", "nodes", "impact_weight",
                "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts", "tendons",
-               "transcription", "actuation"}
+               "transcription", "actuation", "search", "spend"}
 
 
 @dataclass(frozen=True)
@@ -65,6 +68,8 @@ class StrideScene:
     starts: int = 4  # the multi-start's solves per strike (optim.stride.optimum)
     path: str = ""
     notes: tuple[str, ...] = ()
+    search: str = "local"  # optim.stride.search.SEARCHES: "local" (`starts`) or "global" (`spend`)
+    spend: int = 1  # the global search's spend (optim.stride.search)
 
     def for_strike(self, strike: str) -> StrideSettings:
         """The settings of one strike."""
@@ -134,7 +139,7 @@ def parse(data: dict, path: str = "") -> StrideScene:
         except InputError as err:
             raise SceneError("stride.cadence_spm", str(err)) from None
     max_iter = val.integer(stride, "max_iterations", "stride", 1000, *_whole("max_iterations"))
-    starts = val.integer(stride, "starts", "stride", 4, *_whole("starts"))
+    search, spend, starts = _search(stride)
     duration = dict(StrideSettings().duration)
     if "duration_s" in stride:
         given = val.table(stride, "duration_s", set(NODE_SHARE), set(), "stride")
@@ -153,4 +158,16 @@ def parse(data: dict, path: str = "") -> StrideScene:
     except InputError as err:  # what only the settings check (e.g. a strike's least nodes)
         raise SceneError("stride", str(err)) from None
     return StrideScene(name, body, speed, math.radians(slope), friction, strike, settings,
-                       cadence, starts, path, notes)
+                       cadence, starts, path, notes, search, spend)
+
+
+def _search(stride: dict) -> tuple[str, int, int]:
+    """(search, spend, starts) of the [stride] table: each search's own key only."""
+    search = val.choice(stride.get("search", "local"), "stride.search", SEARCHES)
+    if search == "global" and "starts" in stride:
+        raise SceneError("stride.starts", "the local search's starts: search = 'global' takes spend instead")
+    if search == "local" and "spend" in stride:
+        raise SceneError("stride.spend", "the global search's spend: set search = 'global' (the local "
+                                         "search takes starts)")
+    return (search, val.integer(stride, "spend", "stride", 1, *_whole("spend")),
+            val.integer(stride, "starts", "stride", 4, *_whole("starts")))

@@ -159,6 +159,7 @@ def stride_table(study: StrideStudy) -> str:
                      f"{s.peak_vertical_grf_bw:7.2f} {s.budget['impacts_J']:7.2f} "
                      f"{s.cost_of_transport:6.3f} {s.mechanical_power_W:6.0f} "
                      f"{s.budget['balance_J']:10.3f} {s.iterations:5d} {s.solve_s:6.1f}")
+    lines += [search_text(s) for s in study.strides if s.search is not None]
     if not study.best.valid:
         lines.append("no valid stride: " + ("none of the strikes gives one; the first above ranks best "
                                             "(converged, then the least objective)" if len(study.strides) > 1
@@ -176,3 +177,18 @@ def stride_table(study: StrideStudy) -> str:
             lines.append(f"INVALID {s.strike}: {'; '.join(why)}")
     lines += [f"NOTE {s.strike}: {remark}" for s in study.strides for remark in s.remarks]
     return "\n".join(lines)
+
+
+def search_text(stride) -> str:
+    """What the global search (optim.stride.search) spent and met, in one line: the distinct
+    local optima (cadence, objective, how much costlier than the best), the spread."""
+    g = stride.search
+    optima = g["optima"]
+    best = min((o["objective"] for o in optima), default=float("nan"))
+    met = ", ".join(f"{o['cadence_spm']:.0f} steps/min {o['objective']:.4g}"
+                    + ("" if o["objective"] == best else f" (+{(o['objective'] / best - 1) * 100:.1f} %)")
+                    + ("" if o["valid"] else " invalid") for o in optima)
+    what = "at the imposed cadence" if g["procedure"] == "imposed cadence" else "with the cadence free"
+    return (f"search {stride.strike}: global, spend {g['spend']}: {g['solves']} solves, {g['iterations']} "
+            f"IPOPT iterations, {g['seconds']:.0f} s; {len(optima)} distinct optima {what}: {met or 'none'}"
+            f" (spread {g['spread_pct']:.1f} %)")

@@ -1,5 +1,6 @@
 """The stride of a scene: one optimum per strike ("best": each solved, the best first by
-optim.stride.rank: valid, converged, then the least costly).
+optim.stride.rank: valid, converged, then the least costly), by the scene's search (`[stride]
+search`: "local", optim.stride.optimum's starts, or "global", optim.stride.search).
 
 The NLP of a body and settings is built once (`Strider`) and solved for any speed, slope,
 friction and imposed cadence; a neighbouring solve is warm-started from the last optimum.
@@ -13,8 +14,9 @@ import numpy as np
 
 from ..io.stride_scene import StrideScene
 from ..mechanics.errors import InputError
-from ..optim.stride import Stride, optimum, ranges, rank
+from ..optim.stride import Stride, global_optimum, optimum, ranges, rank
 from ..optim.stride.problem import STRIKES
+from ..optim.stride.search import solves_planned
 
 ROW_KEYS = ("strike", "success", "objective_value", "cadence_spm", "step_length_m", "stance_s",
             "flight_s", "duty_factor", "peak_vertical_grf_bw", "cost_of_transport",
@@ -53,13 +55,28 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
     strikes = STRIKES if choice == "best" else (choice,)
     strides = []
     for k, name in enumerate(strikes, 1):
-        if progress:
-            progress(f"[{k}/{len(strikes)}] {name} strike: {scene.starts} start(s)")
+        head = f"[{k}/{len(strikes)}] {name} strike"
         nlp = scene.nlp(name)
+        if scene.search == "global":
+            say = None if progress is None else (lambda text, head=head: progress(f"{head}: {text}"))
+            strides.append(global_optimum(nlp, speed, scene.slope, scene.friction, scene.cadence, scene.spend,
+                                          simulate, say))
+            continue
+        if progress:
+            progress(f"{head}: {scene.starts} start(s)")
         strides.append(optimum(nlp, speed, scene.slope, scene.friction,
                                scene.cadence, simulate=simulate, starts=scene.starts))
     strides.sort(key=rank)
     return StrideStudy(scene.name, strides)
+
+
+def stages(scene: StrideScene, speed: float | None = None, strike: str | None = None) -> int:
+    """How many times `run` tells its progress: once per strike, or per solve of the global
+    search (optim.stride.search.solves_planned)."""
+    strikes = len(STRIKES) if (strike or scene.strike) == "best" else 1
+    if scene.search != "global":
+        return strikes
+    return strikes * solves_planned(scene.speed if speed is None else speed, scene.spend, scene.cadence)
 
 
 # RBDS001's mean gait cycle (Fukuchi et al. 2017; the data set's Visual3D processing): 101

@@ -60,3 +60,16 @@ def test_the_power_figure_is_the_net_moment_times_the_rate():
     assert [ax.get_title() for ax in fig.axes] == ["hip (W/kg)", "knee (W/kg)", "ankle (W/kg)"]
     assert np.max(fig.axes[1].lines[0].get_ydata()) == pytest.approx(2.0)
     assert "power of the net moment" in fig.axes[0].lines[0].get_label()
+
+
+def test_the_search_line_names_its_spend_and_each_optimum():
+    from formopt.report.stride import search_text
+
+    record = {"procedure": "free cadence", "spend": 2, "solves": 30, "iterations": 1200, "seconds": 95.0,
+              "optima": [{"cadence_spm": 160.2, "objective": 0.4, "valid": True, "reached": 3},
+                         {"cadence_spm": 131.0, "objective": 0.42, "valid": False, "reached": 1}],
+              "spread_pct": 5.0}
+    line = search_text(SimpleNamespace(strike="heel", search=record))
+    assert line.startswith("search heel: global, spend 2: 30 solves, 1200 IPOPT iterations, 95 s")
+    assert "160 steps/min 0.4," in line and "131 steps/min 0.42 (+5.0 %) invalid" in line
+    assert line.endswith("(spread 5.0 %)")

@@ -34,7 +34,11 @@ def test_shipped_stride_scenes_load():
                                        ({"objective": "fun"}, "stride.objective"),
                                        ({"nodes": 3}, "stride.nodes"),
                                        ({"duration_s": {"flight": [0.2, 0.1]}}, "stride.duration_s.flight"),
-                                       ({"cadense_spm": 170}, "stride.cadense_spm")])
+                                       ({"cadense_spm": 170}, "stride.cadense_spm"),
+                                       ({"search": "wide"}, "stride.search"),
+                                       ({"spend": 2}, "stride.spend"),
+                                       ({"search": "global", "starts": 2}, "stride.starts"),
+                                       ({"search": "global", "spend": 9}, "stride.spend")])
 def test_bad_stride_keys_are_named(edit, key):
     data = tomllib.loads(STRIDE_SCENES[0].read_text())
     data["stride"].update(edit)
@@ -94,3 +98,17 @@ def test_bad_actuation_is_named(edit, key):
     data["stride"].update(edit)
     with pytest.raises(SceneError, match=key.replace(".", r"\.")):
         parse(data)
+
+
+def test_the_global_search_is_one_key():
+    from formopt.optim.stride.search import solves_planned
+    from formopt.studies.stride import stages
+
+    data = tomllib.loads(STRIDE_SCENES[0].read_text())
+    data["stride"].update(search="global", spend=2)
+    scene = parse(data)
+    assert scene.search == "global" and scene.spend == 2
+    assert stages(scene) == solves_planned(3.5, 2) and stages(scene, 4.0, "best") == 3 * solves_planned(4.0, 2)
+    data["stride"].update(search="local", starts=2)
+    data["stride"].pop("spend")
+    assert stages(parse(data)) == 1

@@ -47,6 +47,9 @@ RANGES = {
     "duration_s": Range(0.0, 2.0, "s", low_open=True),
     "max_iterations": limits.MAX_ITERATIONS,
     "starts": Range(1, 100),
+    # the global search's spend (optim.stride.search): 1-8; spend 8 is 33 grid cadences and
+    # about 120 solves, several minutes at 40 nodes on a loaded 2-core machine (2026-11-25)
+    "spend": Range(1, 8),
 }
 
 

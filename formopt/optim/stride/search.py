@@ -26,6 +26,7 @@ their cadences, objectives, validity and spread (how much costlier the worst is 
 
 from __future__ import annotations
 
+import itertools
 import time
 from collections.abc import Callable
 
@@ -37,6 +38,9 @@ from .collocation import StrideNLP
 from .layout import Solved
 from .result import Stride, best_of, generic_start, rank, summarise
 
+# `[stride] search`: "local", `optimum`'s starts from the generic guess (scene key `starts`), or
+# "global", this module's procedure (scene key `spend`)
+SEARCHES = ("local", "global")
 # Cadences runners choose, 2-6 m/s: 150-200 steps/min (de Ruiter et al. 2020: 165 +- 8 at 3 m/s;
 # Cavanagh & Kram 1989), widened on both sides so the grid brackets the model's optima too
 # (one start found 118.6 steps/min at 2.5 m/s on RBDS001, 2026-11-25: the releases reach below
@@ -113,7 +117,7 @@ def global_optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float =
     for c in cadences:
         attempt(c, f"{c:.0f} steps/min from the generic start")
     for order in (cadences, cadences[::-1]):  # the continuation, rising then falling
-        for before, c in zip(order, order[1:]):
+        for before, c in itertools.pairwise(order):
             if kept[before][1].success:
                 attempt(c, f"{c:.0f} steps/min warm from {before:.0f}", kept[before][0])
     if cadence is not None:

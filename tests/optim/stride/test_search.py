@@ -1,0 +1,65 @@
+"""optim.stride.search: the global search is deterministic, states what it spent and the optima
+it met, is never worse than the one-start optimum, and its grid is nested in the spend."""
+
+import pytest
+
+from formopt.mechanics.body import scaled_body
+from formopt.mechanics.errors import InputError
+from formopt.optim.stride import search
+from formopt.optim.stride.collocation import build
+from formopt.optim.stride.problem import RUNNER_TENDONS, StrideSettings
+from formopt.optim.stride.result import optimum, rank
+
+SPEED = 3.5
+
+
+@pytest.fixture(scope="module")
+def searched():
+    """A small search (flat strike, 14 nodes, two grid cadences, one released: six solves), run twice, and
+    the one-start optimum of the same NLP."""
+    mp = pytest.MonkeyPatch()
+    mp.setattr(search, "GRID_POINTS", 1)
+    mp.setattr(search, "RELEASED", 1)
+    mp.setattr(search, "GRID_SPM", (150.0, 190.0))
+    nlp = build(scaled_body(62.0, 1.81), StrideSettings(strike="flat", nodes=14, tendons=dict(RUNNER_TENDONS)))
+    runs = [search.global_optimum(nlp, SPEED, simulate=False) for _ in range(2)]
+    planned = search.solves_planned(SPEED)
+    mp.undo()
+    return runs, optimum(nlp, SPEED, simulate=False), planned
+
+
+def test_the_search_is_deterministic(searched):
+    (first, second), _, _ = searched
+    assert first.success
+    assert second.objective_value == first.objective_value and second.cadence_spm == first.cadence_spm
+    assert second.search["optima"] == first.search["optima"]
+
+
+def test_the_search_states_its_spend_and_the_optima_it_met(searched):
+    (stride, _), _, planned = searched
+    record = stride.search
+    assert record["spend"] == 1 and record["procedure"] == "free cadence"
+    assert record["solves"] == planned == 6
+    assert record["iterations"] >= record["solves"] and record["seconds"] > 0
+    assert record["grid_spm"] == [150.0, 190.0] and len(record["grid_objective"]) == 2
+    optima = record["optima"]
+    assert optima and sum(o["reached"] for o in optima) <= 2  # the free solves that converged
+    assert optima[0]["objective"] == pytest.approx(stride.objective_value)
+    assert record["spread_pct"] >= 0.0
+    assert "search" in stride.to_dict()
+
+
+def test_the_search_is_no_worse_than_one_start(searched):
+    (stride, _), one, _ = searched
+    assert rank(stride) <= rank(one)
+
+
+def test_the_grid_is_nested_in_the_spend_and_holds_an_imposed_cadence():
+    one, two = search.grid(3.5, 1), search.grid(3.5, 2)
+    assert one[0] == search.GRID_SPM[0] and one[-1] == search.GRID_SPM[1]
+    assert len(one) == search.GRID_POINTS + 1 and set(one) <= set(two) and len(two) == 2 * search.GRID_POINTS + 1
+    assert 171.4 in search.grid(3.5, 1, 171.4)
+    assert all(60.0 * 8.0 / c <= 2.7 for c in search.grid(8.0, 1))  # steps a runner can take at 8 m/s
+    assert search.solves_planned(3.5, 1, 171.4) == 3 * 6 - 2  # no free solves at an imposed cadence
+    with pytest.raises(InputError, match="spend = 0"):
+        search.grid(3.5, 0)
