@@ -3,21 +3,24 @@
 optim.stride.search at each speed, spend and node count.
 
     python problems/stride_search.py [--speeds 2.5 3.5 4.5] [--nodes 40] [--spend 1 2]
-                                     [--strike heel] [--transcription trapezoid] [--one-start]
+                                     [--strike heel] [--transcription trapezoid] [--starts 1 4]
 
 One row per speed, node count and spend (the spends innermost, then the node counts): cost
 (the objective, per distance), cadence (steps/min), their change (%) from the row before at the
 same speed (doubling the spend, or the nodes when --nodes gives two counts), solves, IPOPT
 iterations and seconds spent, the distinct local optima met (cadence:objective) and their
 spread (%), validity, the forward simulation's largest error per phase (rad, each phase from
-the NLP's state at its start) and any phase on its duration bound. `--one-start` adds the
-one-start optimum (optim.stride.optimum from the generic guess) first, for comparison.
+the NLP's state at its start), any phase on its duration bound and the grid's least objective
+per cadence (cadence=objective). `--starts` adds, first, the local search's optimum with each
+number of starts (optim.stride.optimum: the generic guess and seeded perturbations of it), for
+comparison.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+import time
 
 from formopt.mechanics.body import scaled_body
 from formopt.optim.stride import problem
@@ -27,44 +30,49 @@ from formopt.optim.stride.result import optimum
 from formopt.optim.stride.search import global_optimum
 
 
-def row(label: str, speed: float, nodes: int, stride, before) -> str:
-    """One table row; `before`: the row's stride to measure the change from (None: none)."""
+def row(label: str, speed: float, nodes: int, stride, before, spent: dict | None = None) -> str:
+    """One table row; `before`: the row's stride to measure the change from (None: none);
+    `spent`: a local search's solves and seconds (its iterations: the kept solve's)."""
     change = ("    -        -   " if before is None else
               f"{(stride.objective_value / before.objective_value - 1) * 100:+7.2f} "
               f"{(stride.cadence_spm / before.cadence_spm - 1) * 100:+7.2f}  ")
-    s = stride.search or {"solves": 1, "iterations": stride.iterations, "seconds": stride.solve_s,
-                          "optima": [], "spread_pct": float("nan")}
+    s = stride.search or {**(spent or {}), "iterations": stride.iterations, "optima": [], "spread_pct": float("nan")}
     optima = " ".join(f"{o['cadence_spm']:.0f}:{o['objective']:.4f}" for o in s["optima"])
+    profile = " ".join(f"{c:.0f}={'-' if v is None else f'{v:.4f}'}"
+                       for c, v in zip(s.get("grid_spm", []), s.get("grid_objective", [])))
     phases = " ".join(f"{e:.3f}" for e in stride.checks.get("forward_per_phase", []))
     bound = "; ".join(f"{b['phase']} {b['side']}" for b in stride.on_bound) or "-"
     return (f"{speed:4.1f} {nodes:5d} {label:>6s} {stride.objective_value:8.4f} {stride.cadence_spm:7.1f} {change}"
             f"{s['solves']:6d} {s['iterations']:6d} {s['seconds']:7.1f} {s['spread_pct']:7.2f}  "
-            f"{'yes' if stride.valid else 'NO':>5s}  [{phases}]  {bound}  {{{optima}}}")
+            f"{'yes' if stride.valid else 'NO':>5s}  [{phases}]  {bound}  {{{optima}}}  grid {profile or '-'}")
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speeds", type=float, nargs="+", default=[2.5, 3.5, 4.5])
     parser.add_argument("--nodes", type=int, nargs="+", default=[40])
-    parser.add_argument("--spend", type=int, nargs="+", default=[1, 2])
+    parser.add_argument("--spend", type=int, nargs="*", default=[1, 2])
     parser.add_argument("--strike", default="heel", choices=problem.STRIKES)
     parser.add_argument("--transcription", default="trapezoid", choices=problem.TRANSCRIPTIONS)
-    parser.add_argument("--one-start", action="store_true")
+    parser.add_argument("--starts", type=int, nargs="*", default=[])
     args = parser.parse_args(argv)
     body = scaled_body(62.0, 1.81)
     print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, torque+springs, effort, {args.transcription}",
           flush=True)
     print(f"{'v':>4s} {'nodes':>5s} {'spend':>6s} {'cost':>8s} {'spm':>7s} {'dcost%':>7s} {'dspm%':>7s}  "
           f"{'solves':>6s} {'iter':>6s} {'s':>7s} {'spread%':>7s}  {'valid':>5s}  [forward rad per phase]  "
-          "on bound  {optima cadence:cost}", flush=True)
+          "on bound  {optima cadence:cost}  grid cadence=cost", flush=True)
     for speed in args.speeds:
         before = None
         for nodes in args.nodes:
             settings = StrideSettings(strike=args.strike, nodes=nodes, tendons=dict(RUNNER_TENDONS),
                                       transcription=args.transcription)
             nlp = build(body, settings)
-            if args.one_start:
-                print(row("one", speed, nodes, optimum(nlp, speed), None), flush=True)
+            for starts in args.starts:
+                clock = time.perf_counter()
+                local = optimum(nlp, speed, starts=starts)
+                spent = {"solves": starts, "seconds": time.perf_counter() - clock}
+                print(row(f"s{starts}", speed, nodes, local, None, spent), flush=True)
             for spend in args.spend:
                 stride = global_optimum(nlp, speed, spend=spend)
                 print(row(str(spend), speed, nodes, stride, before), flush=True)

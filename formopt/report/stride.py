@@ -180,15 +180,15 @@ def stride_table(study: StrideStudy) -> str:
 
 
 def search_text(stride) -> str:
-    """What the global search (optim.stride.search) spent and met, in one line: the distinct
-    local optima (cadence, objective, how much costlier than the best), the spread."""
+    """What the global search (optim.stride.search) spent and met, in one line: each distinct
+    local optimum (cadence, objective, its difference from the answer's, invalid ones named),
+    their spread."""
     g = stride.search
-    optima = g["optima"]
-    best = min((o["objective"] for o in optima), default=float("nan"))
     met = ", ".join(f"{o['cadence_spm']:.0f} steps/min {o['objective']:.4g}"
-                    + ("" if o["objective"] == best else f" (+{(o['objective'] / best - 1) * 100:.1f} %)")
-                    + ("" if o["valid"] else " invalid") for o in optima)
+                    + (" (the answer)" if o["answer"] else
+                       f" ({(o['objective'] / stride.objective_value - 1) * 100:+.1f} %)")
+                    + ("" if o["valid"] else " invalid") for o in g["optima"])
     what = "at the imposed cadence" if g["procedure"] == "imposed cadence" else "with the cadence free"
     return (f"search {stride.strike}: global, spend {g['spend']}: {g['solves']} solves, {g['iterations']} "
-            f"IPOPT iterations, {g['seconds']:.0f} s; {len(optima)} distinct optima {what}: {met or 'none'}"
+            f"IPOPT iterations, {g['seconds']:.0f} s; {len(g['optima'])} distinct optima {what}: {met or 'none'}"
             f" (spread {g['spread_pct']:.1f} %)")

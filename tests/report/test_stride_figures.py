@@ -66,10 +66,10 @@ def test_the_search_line_names_its_spend_and_each_optimum():
     from formopt.report.stride import search_text
 
     record = {"procedure": "free cadence", "spend": 2, "solves": 30, "iterations": 1200, "seconds": 95.0,
-              "optima": [{"cadence_spm": 160.2, "objective": 0.4, "valid": True, "reached": 3},
-                         {"cadence_spm": 131.0, "objective": 0.42, "valid": False, "reached": 1}],
-              "spread_pct": 5.0}
-    line = search_text(SimpleNamespace(strike="heel", search=record))
+              "optima": [{"cadence_spm": 160.2, "objective": 0.4, "valid": True, "answer": True, "reached": 3},
+                         {"cadence_spm": 131.0, "objective": 0.38, "valid": False, "answer": False, "reached": 1}],
+              "spread_pct": 5.3}
+    line = search_text(SimpleNamespace(strike="heel", search=record, objective_value=0.4))
     assert line.startswith("search heel: global, spend 2: 30 solves, 1200 IPOPT iterations, 95 s")
-    assert "160 steps/min 0.4," in line and "131 steps/min 0.42 (+5.0 %) invalid" in line
-    assert line.endswith("(spread 5.0 %)")
+    assert "160 steps/min 0.4 (the answer)," in line and "131 steps/min 0.38 (-5.0 %) invalid" in line
+    assert line.endswith("(spread 5.3 %)")

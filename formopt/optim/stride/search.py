@@ -19,9 +19,12 @@ At speed v (slope, friction), with spend s = 1, 2, ... (`global_optimum`):
 Every start is fixed (no random draw): the same call gives the same answer. Step 4 includes
 `optimum`'s one start, so the answer is never worse than it (by `rank`).
 
-`Stride.search` (`record`) says what the search spent (solves, IPOPT iterations, seconds) and
-the distinct local optima it met (step 4's, or at an imposed cadence every stride met there):
-their cadences, objectives, validity and spread (how much costlier the worst is than the best, %).
+`Stride.search` (`record`, `distinct`) says what the search spent (solves, IPOPT iterations,
+seconds: the generic start's own solve for Hermite-Simpson or muscles in the seconds only), the
+grid's least objective per cadence, and the distinct local optima it met (step 4's, or at an
+imposed cadence every stride met there): their cadences, objectives, validity (the forward check
+included) and spread (how much costlier the costliest is than the least, %). An optimum less
+costly than the answer is an invalid one: `rank` puts validity first.
 """
 
 from __future__ import annotations
@@ -128,35 +131,46 @@ def global_optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float =
         found += [spent.run(f"free cadence from {got[1].cadence_spm:.0f} steps/min", None, got[0])
                   for got in released[:RELEASED * spend]]
     stride = best_of(nlp, [solved for solved, _ in found], simulate)
-    stride.search = record(spend, spent, [s for _, s in found], cadences, kept, cadence)
+    stride.search = record(spend, spent, cadences, kept, cadence)
+    stride.search["optima"] = distinct(nlp, [s for _, s in found if s.success], stride, simulate)
+    values = [o["objective"] for o in stride.search["optima"]]
+    stride.search["spread_pct"] = (max(values) - min(values)) / abs(min(values)) * 100.0 if values else float("nan")
     return stride
 
 
-def record(spend: int, spent: _Spend, found: list[Stride], cadences: list[float], kept: dict,
-           cadence: float | None) -> dict:
-    """`Stride.search`: the spend, what was spent, the grid's kept strides and the distinct
-    local optima met (`distinct`) with their spread (%, of the best objective)."""
-    optima = distinct([s for s in found if s.success])
-    values = [o["objective"] for o in optima]
-    spread = (max(values) - min(values)) / abs(min(values)) * 100.0 if values else float("nan")
+def record(spend: int, spent: _Spend, cadences: list[float], kept: dict, cadence: float | None) -> dict:
+    """`Stride.search` but its optima: the spend, what was spent, the grid's least objective per
+    cadence (None where no solve converged)."""
     return {"procedure": "imposed cadence" if cadence is not None else "free cadence", "spend": spend,
             "solves": spent.solves, "iterations": spent.iterations,
             "seconds": time.perf_counter() - spent.start,
             "grid_spm": cadences, "grid_objective": [kept[c][1].objective_value if kept[c][1].success else None
-                                                     for c in cadences],
-            "optima": optima, "spread_pct": spread}
+                                                     for c in cadences]}
 
 
-def distinct(strides: list[Stride]) -> list[dict]:
-    """The distinct optima among converged strides (DISTINCT, DISTINCT_SPM), the best first:
-    cadence (steps/min), objective, validity, and how many solves reached it."""
-    out: list[dict] = []
-    for s in sorted(strides, key=rank):
-        same = [o for o in out if abs(o["objective"] - s.objective_value) <= DISTINCT * abs(o["objective"])
-                and abs(o["cadence_spm"] - s.cadence_spm) < DISTINCT_SPM]
-        if same:
-            same[0]["reached"] += 1
+def distinct(nlp: StrideNLP, strides: list[Stride], answer: Stride, simulate: bool) -> list[dict]:
+    """The distinct optima among converged strides (DISTINCT, DISTINCT_SPM), valid first, then
+    the least objective: cadence (steps/min), objective, how many solves reached it, whether it
+    is the `answer`, its validity and failed checks (with the forward check when `simulate`:
+    the answer's own; the others summarised again)."""
+    groups: list[list[Stride]] = []
+    for s in sorted(strides, key=lambda s: s.objective_value):
+        group = next((g for g in groups if _same(g[0], s)), None)
+        if group is None:
+            groups.append([s])
         else:
-            out.append({"cadence_spm": s.cadence_spm, "objective": s.objective_value, "valid": s.valid,
-                        "reached": 1})
+            group.append(s)
+    out = []
+    for first, *others in groups:
+        is_answer = _same(first, answer)
+        checked = answer if is_answer or first.solved is None else \
+            summarise(nlp, first.solved, simulate) if simulate else first
+        out.append({"cadence_spm": first.cadence_spm, "objective": first.objective_value, "reached": 1 + len(others),
+                    "answer": is_answer, "valid": checked.valid, "failed": checked.failed_checks})
     return sorted(out, key=lambda o: (not o["valid"], o["objective"]))
+
+
+def _same(a: Stride, b: Stride) -> bool:
+    """Two strides are one optimum (DISTINCT, DISTINCT_SPM)."""
+    return (abs(a.objective_value - b.objective_value) <= DISTINCT * abs(b.objective_value)
+            and abs(a.cadence_spm - b.cadence_spm) < DISTINCT_SPM)

@@ -44,7 +44,9 @@ def test_the_search_states_its_spend_and_the_optima_it_met(searched):
     assert record["grid_spm"] == [150.0, 190.0] and len(record["grid_objective"]) == 2
     optima = record["optima"]
     assert optima and sum(o["reached"] for o in optima) <= 2  # the free solves that converged
-    assert optima[0]["objective"] == pytest.approx(stride.objective_value)
+    answer = [o for o in optima if o["answer"]]
+    assert len(answer) == 1 and answer[0]["objective"] == pytest.approx(stride.objective_value)
+    assert all(o["valid"] == (not o["failed"]) for o in optima)
     assert record["spread_pct"] >= 0.0
     assert "search" in stride.to_dict()
 
