@@ -190,5 +190,6 @@ def search_text(stride) -> str:
                     + ("" if o["valid"] else " invalid") for o in g["optima"])
     what = "at the imposed cadence" if g["procedure"] == "imposed cadence" else "with the cadence free"
     return (f"search {stride.strike}: global, spend {g['spend']}: {g['solves']} solves, {g['iterations']} "
-            f"IPOPT iterations, {g['seconds']:.0f} s; {len(g['optima'])} distinct optima {what}: {met or 'none'}"
+            f"IPOPT iterations, {g['seconds']:.0f} s; {len(g['optima'])} distinct "
+            f"{'optimum' if len(g['optima']) == 1 else 'optima'} {what}: {met or 'none'}"
             f" (spread {g['spread_pct']:.1f} %)")
