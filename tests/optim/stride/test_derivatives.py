@@ -28,7 +28,11 @@ def case(request):
         settings["muscles"] = body_muscles(paper_body())
     nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(**{"nodes": 18, **settings}))
     rng = np.random.default_rng(SEED)
-    x = nlp.blocks.join(nlp._with_power_split(perturbed(ballistic(nlp, 3.5), rng)))
+    guess = nlp._with_power_split(perturbed(ballistic(nlp, 3.5), rng))
+    if nlp.settings.objective == "joint-metabolic":  # moments well beyond its smoothing (0.2 N m/kg)
+        for phase in nlp.phases:
+            guess[f"U_{phase.name}"] = rng.uniform(-2.0, 2.0, np.shape(guess[f"U_{phase.name}"]))
+    x = nlp.blocks.join(guess)
     x += rng.uniform(-0.01, 0.01, x.size)
     return nlp, functions(nlp), x, np.array([3.5, 0.05, 0.8]), rng
 
