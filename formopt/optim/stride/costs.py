@@ -10,7 +10,8 @@ with the integrals I_k (the transcription's quadrature of the node integrands, o
     impacts    sum of the impacts' T_c + a slide's friction work   (J)
     smoothing  sum_k h |theta''_k+1 - theta''_k|^2            (between nodes, per distance)
 
-    joint_metabolic   int sum_j E'_j dt  (J; `joint_metabolic_rate`, the torque rungs' metabolic energy)
+    joint_metabolic   int sum_j |tau_j| w_j phi(v_j) / f_V(-v_j) dt  (J; v_j = -tau_j theta'_j / (w_j |tau_j|):
+                      Minetti & Alexander 1997's muscle at each joint, `joint_metabolic_rate`)
     muscle_metabolic  int sum_i E'_i dt  (J; mechanics.muscles.metabolic_rate, both legs)
     activation        int sum_legs sum_i V_i a_i^3 / sum_i V_i dt  (s), scale ACTIVATION_SCALE
     muscle_rates      int sum_i (F'_i / 10)^2 dt  (s^-1)
