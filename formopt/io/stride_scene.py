@@ -5,8 +5,8 @@
     [ground]  friction, slope_deg, contact ("no-slip" or "coulomb": the impacts' law)
     [stride]  speed_mps, strike ("heel", "forefoot", "flat" or "best"), actuation ("torque",
               "torque+springs", the default with [stride.tendons], or "muscles":
-              optim.stride.problem.ACTUATIONS), objective ("effort", "work", "metabolic";
-              with muscles "metabolic", their default, or "activation"), nodes, impact_weight,
+              optim.stride.problem.ACTUATIONS), objective ("effort", "work", "metabolic",
+              "joint-metabolic"; with muscles "metabolic", their default, or "activation"), nodes, impact_weight,
               torque_limit_nm_per_kg (torque rungs),
               cadence_spm (imposed; absent: free), max_iterations, starts (the generic guess
               and starts - 1 perturbations of it, the best kept; default 4),

@@ -68,10 +68,11 @@ TOUCHDOWN_MODES = ("stick", "slide")
 # MIN_NODES each, since a short phase still needs its start and end conditions.
 NODE_SHARE = {"slide": 0.12, "heel": 0.12, "landing": 0.12, "flat": 0.3, "forefoot": 0.25, "flight": 0.33}
 MIN_NODES = 4
-OBJECTIVES = ("effort", "work", "metabolic", "activation")
+OBJECTIVES = ("effort", "work", "metabolic", "joint-metabolic", "activation")
 # The actuation ladder (actuation.py): torque sources, with springs in parallel (`tendons`), or
 # muscles (`muscles`). The muscles take "metabolic" (their own energy, Bhargava et al. 2004, plus
-# ACTIVATION_WEIGHT times their activation) or "activation"; the torque rungs the others.
+# ACTIVATION_WEIGHT times their activation) or "activation"; the torque rungs the others
+# ("joint-metabolic": Minetti & Alexander's muscle at each joint, costs.joint_metabolic_rate).
 ACTUATIONS = ("torque", "torque+springs", "muscles")
 MUSCLE_OBJECTIVES = ("metabolic", "activation")
 TRANSCRIPTIONS = ("trapezoid", "hermite-simpson")  # collocation.py's
