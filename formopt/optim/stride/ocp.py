@@ -130,8 +130,8 @@ class StrideProblem:
         self.phases = settings.phases
         act = actuation(self.mass, settings.torque_limit, settings.tendons, settings.muscles)
         split = costs.needs_power_split(settings)
-        self.models = [NodeModel(ph, act, RigidContact(js, ph.rows, ph.sliding, settings.slip), split)
-                       for ph in self.phases]
+        self.models = [NodeModel(ph, act, RigidContact(js, ph.rows, ph.sliding, settings.slip, settings.clearance),
+                                 split) for ph in self.phases]
         self.transitions = [self._transition(i) for i in range(1, len(self.phases))]
         first = self.phases[0]
         rows = tuple((other_leg(p), a) for p, a in first.rows)
