@@ -14,7 +14,9 @@
               [stride.tendons] hip/knee/ankle = stiffness (N m/rad per kg; the stance leg's
               springs, optim.stride.problem.TENDON_JOINTS; "torque+springs" without it takes
               RUNNER_TENDONS), transcription ("trapezoid", the
-              default, or "hermite-simpson": optim.stride.collocation)
+              default, or "hermite-simpson": optim.stride.collocation), clearance_m (the
+              swing foot's least height while the other foot holds the ground, m; default
+              optim.stride.contact.CLEARANCE)
 
 Every error names its key (SceneError, one line); degrees at this edge, SI inside.
 """
@@ -28,6 +30,7 @@ from ..mechanics.body import Body
 from ..mechanics.errors import InputError
 from ..mechanics.muscles import Muscles
 from ..optim.stride.collocation import StrideNLP, build
+from ..optim.stride.contact import CLEARANCE
 from ..optim.stride.problem import (
     ACTUATIONS,
     NODE_SHARE,
@@ -47,7 +50,7 @@ STRIDE_STRIKES = (*STRIKES, "best")
 STRIDE_LAWS = ("no-slip", "coulomb")
 STRIDE_KEYS = {"speed_mps", "strike", "objective", "nodes", "impact_weight",
                "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts", "tendons",
-               "transcription", "actuation"}
+               "transcription", "actuation", "clearance_m"}
 
 
 @dataclass(frozen=True)
@@ -133,6 +136,7 @@ def parse(data: dict, path: str = "") -> StrideScene:
             point(speed, cadence)
         except InputError as err:
             raise SceneError("stride.cadence_spm", str(err)) from None
+    clearance = val.number(stride, "clearance_m", "stride", default=CLEARANCE, limit=RANGES["clearance_m"])
     max_iter = val.integer(stride, "max_iterations", "stride", 1000, *_whole("max_iterations"))
     starts = val.integer(stride, "starts", "stride", 4, *_whole("starts"))
     duration = dict(StrideSettings().duration)
@@ -149,7 +153,7 @@ def parse(data: dict, path: str = "") -> StrideScene:
         settings = StrideSettings(strike="heel" if strike == "best" else strike, objective=objective,
                                   nodes=nodes, law=law, impact_weight=weight, torque_limit=torque,
                                   duration=duration, max_iter=max_iter, tendons=tendons,
-                                  transcription=transcription, muscles=muscles)
+                                  transcription=transcription, muscles=muscles, clearance=clearance)
     except InputError as err:  # what only the settings check (e.g. a strike's least nodes)
         raise SceneError("stride", str(err)) from None
     return StrideScene(name, body, speed, math.radians(slope), friction, strike, settings,

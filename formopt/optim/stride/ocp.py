@@ -134,8 +134,8 @@ class StrideProblem:
         act = actuation(self.mass, settings.torque_limit, settings.tendons, settings.muscles)
         split = costs.needs_power_split(settings)
         joint_metabolic = settings.objective == "joint-metabolic"
-        self.models = [NodeModel(ph, act, RigidContact(js, ph.rows, ph.sliding, settings.slip), split, joint_metabolic)
-                       for ph in self.phases]
+        self.models = [NodeModel(ph, act, RigidContact(js, ph.rows, ph.sliding, settings.slip, settings.clearance),
+                                 split, joint_metabolic) for ph in self.phases]
         self.transitions = [self._transition(i) for i in range(1, len(self.phases))]
         first = self.phases[0]
         rows = tuple((other_leg(p), a) for p, a in first.rows)

@@ -34,6 +34,7 @@ from dataclasses import dataclass, field
 
 from ...mechanics.errors import InputError
 from ...mechanics.muscles import Muscles
+from .contact import CLEARANCE
 from .ranges import check
 
 
@@ -162,6 +163,7 @@ class StrideSettings:
     transcription: str = "trapezoid"  # or "hermite-simpson" (collocation.TRANSCRIPTIONS)
     muscles: Muscles | None = None  # one leg's muscles scaled to the body: the "muscles" rung
     activation_weight: float = ACTIVATION_WEIGHT  # the muscles' metabolic objective's one weight (calibration only)
+    clearance: float = CLEARANCE  # m: the swing foot's least height while the other holds the ground
 
     def __post_init__(self):
         if self.strike not in STRIKE_PHASES:
@@ -196,6 +198,7 @@ class StrideSettings:
         if not self.activation_weight >= 0.0:
             raise InputError(f"activation_weight = {self.activation_weight}: expected a number >= 0")
         check("torque_limit_nm_per_kg", self.torque_limit)
+        check("clearance_m", self.clearance)
         check("max_iterations", self.max_iter, whole=True)
         for joint, k in self.tendons.items():
             if joint not in TENDON_JOINTS:
