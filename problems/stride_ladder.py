@@ -3,14 +3,19 @@ runner's speeds, against the runner's processed mean cycle (its joint powers the
 
     python problems/stride_ladder.py [--speeds 2.5 3.5 4.5] [--rungs torque torque+springs muscles]
                                      [--strike heel] [--nodes 40] [--mass 62] [--weight W]
+                                     [--objectives effort] [--cadences 150 171.4] [--starts 1]
 
 Prints per rung and speed: cadence (steps/min; measured 156.5 at 2.5 and 171.4 at 3.5 m/s,
 runners choose about 175-183 at 4.5), stance (s), peak vertical force (N/kg), the joint angles'
 RMS against the mean cycle (deg), the peak ankle power (W/kg, positive), the tendons' energy
 stored per step (J: soleus and gastrocnemius, all), the swing foot's least height (m, before
-the last fifth of the half stride), reserves, validity, iterations and seconds (build, solve).
+the last fifth of the half stride), reserves, the objective J (per distance), validity,
+iterations and seconds (build, solve), and the phases a duration bound holds.
 `--mass` scales the body to another mass at the same height (a heavier runner); `--weight`
-sets the muscles' activation weight (StrideSettings.activation_weight) for a calibration run.
+sets the muscles' activation weight (StrideSettings.activation_weight) for a calibration run;
+`--objectives` the torque rungs' objectives (problem.OBJECTIVES; the muscles keep "metabolic"), each
+solved in turn; `--cadences` imposes each cadence (steps/min) in turn instead of leaving it free;
+`--starts` the generic guess and starts - 1 seeded perturbations of it, the best kept (result.optimum).
 """
 
 from __future__ import annotations
@@ -39,8 +44,8 @@ MEASURED_CADENCE = {2.5: 156.5, 3.5: 171.4}  # steps/min, RBDS001's trials (form
 CYCLE_CADENCE = {**MEASURED_CADENCE, 4.5: 179.0}
 
 
-def settings(rung: str, body, strike: str, nodes: int, weight: float) -> StrideSettings:
-    base = StrideSettings(strike=strike, nodes=nodes)
+def settings(rung: str, body, strike: str, nodes: int, weight: float, objective: str = "effort") -> StrideSettings:
+    base = StrideSettings(strike=strike, nodes=nodes, objective=objective)
     if rung == "torque+springs":
         return replace(base, tendons=dict(RUNNER_TENDONS))
     if rung == "muscles":
@@ -49,6 +54,7 @@ def settings(rung: str, body, strike: str, nodes: int, weight: float) -> StrideS
 
 
 def row(rung, speed, stride, measured, body) -> str:
+    rung = f"{rung} {stride.objective}"
     cycle = compare_cycle(stride, measured) if measured else None
     pred = predicted_cycle(stride)
     power = float(np.max(pred["powers"]["ankle"]))
@@ -56,7 +62,7 @@ def row(rung, speed, stride, measured, body) -> str:
     late = stride.t < 0.8 * stride.half_period_s
     swing = min(float(np.asarray(js.points[p](th, np.zeros(9), 0.0)[0], float).ravel()[1])
                 for th in stride.theta[late] for p in ("heel_L", "forefoot_L"))
-    text = (f"{rung:15s} {speed:4.1f} {stride.cadence_spm:7.1f} {MEASURED_CADENCE.get(speed, float('nan')):6.1f} "
+    text = (f"{rung:30s} {speed:4.1f} {stride.cadence_spm:7.1f} {MEASURED_CADENCE.get(speed, float('nan')):6.1f} "
             f"{stride.stance_s:6.3f} {stride.peak_vertical_grf_bw * 9.81:6.1f}")
     if cycle:
         rms = cycle["angle_rms_deg"]
@@ -66,9 +72,10 @@ def row(rung, speed, stride, measured, body) -> str:
                  f" {rms['hip']:5.1f} {rms['knee']:5.1f} {rms['ankle']:5.1f} {power:5.1f} {m_power:5.1f}")
     m = stride.muscles
     tendons = f"{m['achilles_stored_J']:5.1f} {m['tendon_stored_J']:5.1f} {m['reserve_nm_per_kg']:5.2f}" if m else " " * 17
-    return (text + f" {tendons} {swing:6.3f} {'yes' if stride.valid else 'NO':>5s} {stride.iterations:5d}"
-            f" {stride.build_s:5.1f} {stride.solve_s:6.1f}"
-            + ("" if stride.valid else f"  ({'; '.join(stride.failed_checks) or stride.status})"))
+    return (text + f" {tendons} {swing:6.3f} {stride.objective_value:6.4f} {'yes' if stride.valid else 'NO':>5s}"
+            f" {stride.iterations:5d} {stride.build_s:5.1f} {stride.solve_s:6.1f}"
+            + ("" if stride.valid else f"  ({'; '.join(stride.failed_checks) or stride.status})")
+            + (f"  [{stride.bound_text()}]" if stride.on_bound else ""))
 
 
 def main(argv=None) -> int:
@@ -79,21 +86,28 @@ def main(argv=None) -> int:
     parser.add_argument("--nodes", type=int, default=40)
     parser.add_argument("--mass", type=float, default=62.0)
     parser.add_argument("--weight", type=float, default=None)
+    parser.add_argument("--objectives", nargs="+", default=["effort"],
+                        choices=[o for o in problem.OBJECTIVES if o != "activation"])
+    parser.add_argument("--cadences", type=float, nargs="+", default=[None])
+    parser.add_argument("--starts", type=int, default=1)
     args = parser.parse_args(argv)
     weight = problem.ACTIVATION_WEIGHT if args.weight is None else args.weight
     body = scaled_body(args.mass, 1.81)
-    print(f"RBDS001's height (1.81 m), {args.mass:g} kg, {args.strike} strike, {args.nodes} nodes, one start, "
+    print(f"RBDS001's height (1.81 m), {args.mass:g} kg, {args.strike} strike, {args.nodes} nodes, {args.starts} start(s), "
           f"activation weight {weight:g}", flush=True)
-    print(f"{'rung':15s} {'v':>4s} {'spm':>7s} {'meas':>6s} {'stance':>6s} {'GRF':>6s} {'m.st':>6s} {'m.GRF':>6s}"
+    print(f"{'rung objective':30s} {'v':>4s} {'spm':>7s} {'meas':>6s} {'stance':>6s} {'GRF':>6s} {'m.st':>6s} {'m.GRF':>6s}"
           f" {'hipRMS':>5s} {'knRMS':>5s} {'anRMS':>5s} {'P+ank':>5s} {'m.P+':>5s} {'Ach J':>5s} {'all J':>5s}"
-          f" {'res':>5s} {'swing':>6s} {'valid':>5s} {'iter':>5s} {'build':>5s} {'solve':>6s}", flush=True)
-    for rung in args.rungs:
+          f" {'res':>5s} {'swing':>6s} {'J':>6s} {'valid':>5s} {'iter':>5s} {'build':>5s} {'solve':>6s}", flush=True)
+    runs = [(rung, objective) for rung in args.rungs
+            for objective in (["metabolic"] if rung == "muscles" else args.objectives)]
+    for rung, objective in runs:
         for speed in args.speeds:
-            clock = time.perf_counter()
-            nlp = build(body, settings(rung, body, args.strike, args.nodes, weight))
-            stride = optimum(nlp, speed)
-            stride.solve_s = time.perf_counter() - clock - nlp.build_s  # the torque start's solve too
-            print(row(rung, speed, stride, measured_cycle(RBDS, speed), body), flush=True)
+            for cadence in args.cadences:
+                clock = time.perf_counter()
+                nlp = build(body, settings(rung, body, args.strike, args.nodes, weight, objective))
+                stride = optimum(nlp, speed, cadence=cadence, starts=args.starts)
+                stride.solve_s = time.perf_counter() - clock - nlp.build_s  # the torque start's solve too
+                print(row(rung, speed, stride, measured_cycle(RBDS, speed), body), flush=True)
     return 0
 
 

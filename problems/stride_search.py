@@ -4,6 +4,7 @@ optim.stride.search at each speed, spend and node count.
 
     python problems/stride_search.py [--speeds 2.5 3.5 4.5] [--nodes 40] [--spend 1 2]
                                      [--strike heel] [--transcription trapezoid] [--starts 1 4]
+                                     [--clearance 0.01]
 
 One row per speed, node count and spend (the spends innermost, then the node counts): cost
 (the objective, per distance), cadence (steps/min), their change (%) from the row before at the
@@ -13,7 +14,8 @@ spread (%), validity, the forward simulation's largest error per phase (rad, eac
 the NLP's state at its start), any phase on its duration bound and the grid's least objective
 per cadence (cadence=objective). `--starts` adds, first, the local search's optimum with each
 number of starts (optim.stride.optimum: the generic guess and seeded perturbations of it), for
-comparison.
+comparison. `--clearance` (m): the swing foot's least height (StrideSettings.clearance); the
+tables of docs/concepts/stride.md were measured before it existed, as `--clearance 0`.
 """
 
 from __future__ import annotations
@@ -55,9 +57,11 @@ def main(argv=None) -> int:
     parser.add_argument("--strike", default="heel", choices=problem.STRIKES)
     parser.add_argument("--transcription", default="trapezoid", choices=problem.TRANSCRIPTIONS)
     parser.add_argument("--starts", type=int, nargs="*", default=[])
+    parser.add_argument("--clearance", type=float, default=StrideSettings.clearance)
     args = parser.parse_args(argv)
     body = scaled_body(62.0, 1.81)
-    print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, torque+springs, effort, {args.transcription}",
+    print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, torque+springs, effort, {args.transcription}, "
+          f"swing clearance {args.clearance:g} m",
           flush=True)
     print(f"{'v':>4s} {'nodes':>5s} {'spend':>6s} {'cost':>8s} {'spm':>7s} {'dcost%':>7s} {'dspm%':>7s}  "
           f"{'solves':>6s} {'iter':>6s} {'s':>7s} {'spread%':>7s}  {'valid':>5s}  [forward rad per phase]  "
@@ -66,7 +70,7 @@ def main(argv=None) -> int:
         before = None
         for nodes in args.nodes:
             settings = StrideSettings(strike=args.strike, nodes=nodes, tendons=dict(RUNNER_TENDONS),
-                                      transcription=args.transcription)
+                                      transcription=args.transcription, clearance=args.clearance)
             nlp = build(body, settings)
             for starts in args.starts:
                 clock = time.perf_counter()

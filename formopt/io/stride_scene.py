@@ -5,8 +5,8 @@
     [ground]  friction, slope_deg, contact ("no-slip" or "coulomb": the impacts' law)
     [stride]  speed_mps, strike ("heel", "forefoot", "flat" or "best"), actuation ("torque",
               "torque+springs", the default with [stride.tendons], or "muscles":
-              optim.stride.problem.ACTUATIONS), objective ("effort", "work", "metabolic";
-              with muscles "metabolic", their default, or "activation"), nodes, impact_weight,
+              optim.stride.problem.ACTUATIONS), objective ("effort", "work", "metabolic",
+              "joint-metabolic"; with muscles "metabolic", their default, or "activation"), nodes, impact_weight,
               torque_limit_nm_per_kg (torque rungs),
               cadence_spm (imposed; absent: free), max_iterations, search ("local", the
               default: starts, the generic guess and starts - 1 perturbations of it, the best
@@ -16,7 +16,9 @@
               [stride.tendons] hip/knee/ankle = stiffness (N m/rad per kg; the stance leg's
               springs, optim.stride.problem.TENDON_JOINTS; "torque+springs" without it takes
               RUNNER_TENDONS), transcription ("trapezoid", the
-              default, or "hermite-simpson": optim.stride.collocation)
+              default, or "hermite-simpson": optim.stride.collocation), clearance_m (the
+              swing foot's least height while the other foot holds the ground, m; default
+              optim.stride.contact.CLEARANCE)
 
 Every error names its key (SceneError, one line); degrees at this edge, SI inside.
 """
@@ -30,6 +32,7 @@ from ..mechanics.body import Body
 from ..mechanics.errors import InputError
 from ..mechanics.muscles import Muscles
 from ..optim.stride.collocation import StrideNLP, build
+from ..optim.stride.contact import CLEARANCE
 from ..optim.stride.problem import (
     ACTUATIONS,
     NODE_SHARE,
@@ -50,7 +53,7 @@ STRIDE_STRIKES = (*STRIKES, "best")
 STRIDE_LAWS = ("no-slip", "coulomb")
 STRIDE_KEYS = {"speed_mps", "strike", "objective", "nodes", "impact_weight",
                "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts", "tendons",
-               "transcription", "actuation", "search", "spend"}
+               "transcription", "actuation", "clearance_m", "search", "spend"}
 
 
 @dataclass(frozen=True)
@@ -138,6 +141,7 @@ def parse(data: dict, path: str = "") -> StrideScene:
             point(speed, cadence)
         except InputError as err:
             raise SceneError("stride.cadence_spm", str(err)) from None
+    clearance = val.number(stride, "clearance_m", "stride", default=CLEARANCE, limit=RANGES["clearance_m"])
     max_iter = val.integer(stride, "max_iterations", "stride", 1000, *_whole("max_iterations"))
     search, spend, starts = _search(stride)
     duration = dict(StrideSettings().duration)
@@ -154,7 +158,7 @@ def parse(data: dict, path: str = "") -> StrideScene:
         settings = StrideSettings(strike="heel" if strike == "best" else strike, objective=objective,
                                   nodes=nodes, law=law, impact_weight=weight, torque_limit=torque,
                                   duration=duration, max_iter=max_iter, tendons=tendons,
-                                  transcription=transcription, muscles=muscles)
+                                  transcription=transcription, muscles=muscles, clearance=clearance)
     except InputError as err:  # what only the settings check (e.g. a strike's least nodes)
         raise SceneError("stride", str(err)) from None
     return StrideScene(name, body, speed, math.radians(slope), friction, strike, settings,

@@ -361,9 +361,11 @@ def optima_notes(curve: Curve) -> list[str]:
     return notes
 
 
-def what_ifs(curves: list[Curve], cadences: list[float]) -> list[WhatIf]:
-    """Each cadence change against the runner's cadence, nominal and banded, with each band
-    part's width and whether both strides are of one family (module doc)."""
+def what_ifs(curves: list[Curve], cadences: list[float],
+             changes: tuple[float, ...] = WHAT_IF_PCT) -> list[WhatIf]:
+    """Each cadence change (`changes`, % of the runner's cadence cadences[0]; their cadences
+    cadences[1:]) against the runner's cadence, nominal and banded, with each band part's width
+    and whether both strides are of one family (module doc)."""
     ok = [c for c in curves if c.ok]
     power = np.array([c.power() - c.power()[0] for c in ok])
     impact = np.array([c.impact_loss() - c.impact_loss()[0] for c in ok])
@@ -374,7 +376,7 @@ def what_ifs(curves: list[Curve], cadences: list[float]) -> list[WhatIf]:
                    float(impact[:, k].min()), float(impact[:, k].max()),
                    tuple((p, float(np.ptp(power[m, k]))) for p, m in members.items() if len(m) > 1),
                    same[0] and same[k])
-            for k, pct in enumerate(WHAT_IF_PCT, 1)]
+            for k, pct in enumerate(changes, 1)]
 
 
 def stage_count(band: bool = True) -> int:
@@ -382,11 +384,12 @@ def stage_count(band: bool = True) -> int:
     return (1 + len(FRICTION_BAND) + len(OBJECTIVE_BAND) + len(MASS_BAND) if band else 1) + 2
 
 
-def answer(c, progress=None, nodes: int = NODES, band: bool = True) -> StrideAnswer:
+def answer(c, progress=None, nodes: int = NODES, band: bool = True,
+           changes: tuple[float, ...] = WHAT_IF_PCT) -> StrideAnswer:
     """compare's stride section for a Comparison `c` (its speed, main side, body settings,
     friction and law); `progress(text)` is told of each variant; `band` False: the nominal
     variant and strike only (every band then the nominal value, no other strike: a cheap check,
-    not a report)."""
+    not a report); `changes`: the what-ifs' cadence changes (% of the runner's)."""
     say = progress or (lambda text: None)
     start = time.perf_counter()
     measured = measured_form(c)
@@ -394,7 +397,7 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True) -> StrideAns
     law = c.law if c.law in STRIDE_LAWS else "coulomb"
     notes = [] if law == c.law else [f"the stride's impacts under coulomb (it has no {c.law} impacts)"]
     runner = measured["cadence_spm"]
-    cadences = [runner] + [runner * (1 + p / 100) for p in WHAT_IF_PCT]
+    cadences = [runner] + [runner * (1 + p / 100) for p in changes]
     nominal = stride_scene(scaled_body(body["mass_kg"], body["height_m"], body["sex"]), speed,
                            measured["strike"], "effort", c.settings["friction"], law, nodes)
     variants = [("effort (nominal)", "", nominal)]
@@ -428,7 +431,7 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True) -> StrideAns
         notes.append("no strike's free optimum is valid (" + "; ".join(
             f"{s.strike}: {', '.join(s.failed_checks) or s.status}" for s in solved) + "): no best strike")
     return StrideAnswer(speed, law, measured, curves, best,
-                        what_ifs(curves, cadences) if curves[0].ok else [], notes,
+                        what_ifs(curves, cadences, changes) if curves[0].ok else [], notes,
                         time.perf_counter() - start, nominal.settings.nodes)
 
 

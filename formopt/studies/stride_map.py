@@ -33,7 +33,6 @@ from ..mechanics.errors import InputError
 from ..optim.stride import Stride, StrideNLP, costs, ranges, rank, summarise
 from ..optim.stride.guess import ballistic, fitted
 from ..optim.stride.layout import Solved
-from ..optim.stride.problem import OBJECTIVES
 from ..optim.stride.result import optimum
 
 PARAMETERS = {"speed_mps": "running speed, m/s", "cadence_spm": "imposed cadence, steps/min",
@@ -43,6 +42,8 @@ PARAMETERS = {"speed_mps": "running speed, m/s", "cadence_spm": "imposed cadence
 RANGES = {k: ranges.RANGES[k] for k in PARAMETERS}
 # speed, cadence and step length are one relation (cadence = 60 v / L): a grid gives two at most
 CADENCE_GROUP = ("speed_mps", "cadence_spm", "step_length_m")
+# the objectives a map row reports (StrideRow's *_value) from the effort and the budget's work
+MAPPED = ("effort", "work", "metabolic")
 # Points per warm-started chain. A chain's first stride costs about 15-20 warm ones (the free
 # optimum's starts from the generic guess, then the imposed solve: 40 nodes, 2026-11-23, about
 # 10 CPU s against 0.6), so chains are long: on a pool the fair share (studies.sweep) cuts them
@@ -144,7 +145,7 @@ def solution(stride: Stride, nlp: StrideNLP) -> dict:
 
 
 def objective_values(nlp: StrideNLP, stride: Stride) -> dict[str, float]:
-    """The three objectives (problem.OBJECTIVES) of a solved stride, each per distance and
+    """The three work and effort objectives (`MAPPED`) of a solved stride, each per distance and
     scaled as the NLP scales it (optim.stride.costs.own_terms), without the smoothing and
     regularisation terms. The integrals by the transcription's trapezoidal rule on the
     stride's own nodes (a phase boundary's repeated time adds nothing), so a stride that slid
@@ -153,7 +154,7 @@ def objective_values(nlp: StrideNLP, stride: Stride) -> dict[str, float]:
     integrals = {"effort": float(np.trapezoid(np.sum(np.square(stride.tau), axis=1), stride.t)),
                  "positive": b["positive_work_J"], "negative": b["negative_work_J"]}
     return {f"{o}_value": costs.objective(costs.own_terms(o, nlp.mass), integrals, stride.step_length_m)
-            for o in OBJECTIVES}
+            for o in MAPPED}
 
 
 def row_of(nlp: StrideNLP, stride: Stride, start: str) -> StrideRow:

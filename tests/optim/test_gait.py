@@ -35,22 +35,34 @@ def edited(**optimize):
 
 def on_gait(problem, x, ankle):
     """x with the ankle set and hip and knee moved (Newton) back onto the gait's placement."""
-    u = ca.SX.sym("u", 2)
-    state = ca.SX(ca.DM(x))
-    state[HIP], state[KNEE], state[ANKLE] = u[0], u[1], ankle
-    g = [r.expression for r in problem.records if r.name.startswith("hip_from_strike")]
-    target = np.array([r.bound for r in problem.records if r.name.startswith("hip_from_strike")])
-    residual = ca.Function("r", [problem.nlp["x"], problem.nlp["p"]], [ca.vertcat(*g)])
-    to_w = ca.Function("to_w", [u], [ca.vertcat(*[(state[i] - lo) / (hi - lo) for i, lo, hi in zip(
-        problem.index, problem.posture.lower, problem.posture.upper)])])
-    F = ca.Function("F", [u], [residual(to_w(u), problem.p0) - target])
-    newton = ca.rootfinder("newton", "newton", F, {"abstol": 1e-13, "error_on_fail": False})
-    hk = np.asarray(newton(x[[HIP, KNEE]]), float).ravel()
-    if not np.all(np.abs(np.asarray(F(hk), float)) < 1e-10):
+    newton, F = _gait_newton(problem)
+    hk = np.asarray(newton(x[[HIP, KNEE]], x, ankle), float).ravel()
+    if not np.all(np.abs(np.asarray(F(hk, x, ankle), float)) < 1e-10):
         return None  # the placement is out of the leg's reach at this ankle angle
     out = np.array(x, float)
     out[HIP], out[KNEE], out[ANKLE] = hk[0], hk[1], ankle
     return out
+
+
+_NEWTONS: dict = {}
+
+
+def _gait_newton(problem):
+    """The placement's residual F(hip and knee, state, ankle) and its Newton solver, built once
+    per problem (the scans call on_gait thousands of times)."""
+    if id(problem) not in _NEWTONS:
+        u, x, ankle = ca.SX.sym("u", 2), ca.SX.sym("x", len(STATE)), ca.SX.sym("ankle")
+        state = ca.vertcat(*[u[0] if k == HIP else u[1] if k == KNEE else ankle if k == ANKLE else x[k]
+                             for k in range(len(STATE))])
+        g = [r.expression for r in problem.records if r.name.startswith("hip_from_strike")]
+        target = np.array([r.bound for r in problem.records if r.name.startswith("hip_from_strike")])
+        residual = ca.Function("r", [problem.nlp["x"], problem.nlp["p"]], [ca.vertcat(*g)])
+        w = ca.vertcat(*[(state[i] - lo) / (hi - lo) for i, lo, hi in zip(
+            problem.index, problem.posture.lower, problem.posture.upper)])
+        F = ca.Function("F", [u, x, ankle], [residual(w, problem.p0) - target])
+        newton = ca.rootfinder("newton", "newton", F, {"abstol": 1e-13, "error_on_fail": False})
+        _NEWTONS[id(problem)] = (newton, F, problem)
+    return _NEWTONS[id(problem)][:2]
 
 
 def test_the_gait_is_held_and_the_optimum_is_interior(demo):

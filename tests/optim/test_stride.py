@@ -130,7 +130,9 @@ def test_nlp_derivatives_match_finite_differences(js):
                                            ({"objective": "speed"}, "objective"),
                                            ({"nodes": 5}, "nodes"),
                                            ({"law": "frictionless"}, "law"),
-                                           ({"torque_limit": 100.0}, "torque_limit")])
+                                           ({"torque_limit": 100.0}, "torque_limit"),
+                                           ({"clearance": -0.01}, "clearance_m"),
+                                           ({"clearance": float("nan")}, "clearance_m")])
 def test_bad_settings_name_their_key(settings, key):
     with pytest.raises(InputError, match=key):
         StrideSettings(**settings)

@@ -35,6 +35,8 @@ def test_shipped_stride_scenes_load():
                                        ({"nodes": 3}, "stride.nodes"),
                                        ({"duration_s": {"flight": [0.2, 0.1]}}, "stride.duration_s.flight"),
                                        ({"cadense_spm": 170}, "stride.cadense_spm"),
+                                       ({"clearance_m": 0.5}, "stride.clearance_m"),
+                                       ({"clearance_m": "1 cm"}, "stride.clearance_m"),
                                        ({"search": "wide"}, "stride.search"),
                                        ({"spend": 2}, "stride.spend"),
                                        ({"search": "global", "starts": 2}, "stride.starts"),
@@ -62,12 +64,20 @@ def test_stride_command_writes_its_report(tmp_path, capsys):
     assert code == 0
     assert all(k in report for k in JSON_KEYS)
     assert report["speed_mps"] == 3.3 and report["strike"] == "forefoot"
+    assert report["swing_clearance_m"] >= 0.01 - 1e-6  # contact.CLEARANCE, the default
     assert set(report["budget"]) >= {"positive_work_J", "negative_work_J", "impacts_J",
                                      "friction_J", "passive_J", "balance_J"}
     assert set(report["impacts"][0]) >= {"point", "time_s", "T_c", "law", "mode", "mu_c", "valid"}
     names = {p.split("/")[-1] for p in report["files"]}
     assert {"stride.csv", "stride.mot", "stride_grf.sto", "stride_stick.png",
             "stride_angles.png", "stride_budget.png"} <= names
+
+
+def test_the_swing_clearance_is_a_key_with_a_default():
+    data = tomllib.loads(STRIDE_SCENES[0].read_text())
+    assert parse(data).settings.clearance == 0.01  # contact.CLEARANCE
+    data["stride"]["clearance_m"] = 0.0
+    assert parse(data).settings.clearance == 0.0  # the ground alone, as before 2026-11-25
 
 
 def test_the_actuation_ladder_is_one_key():

@@ -11,6 +11,8 @@
   and what it grows to open loop; over a slide, whether the slip keeps its sign and when it
   stops.
 - `drift`: how far the held contact points moved (m) over each phase.
+- `swing_clearance`: the swing foot's least height (m) over the stance phases' nodes, which
+  the NLP holds at or above StrideSettings.clearance (contact.RigidContact.swing).
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ from ...mechanics.compiled import Compiled
 from ...mechanics.impact import projection
 from ...mechanics.joint_space import POINTS, JointSpace
 from .collocation import NU, NX, StrideNLP
-from .contact import rows_kinematics
+from .contact import height, rows_kinematics
 from .layout import held_rows
 from .ocp import periodicity, step_length
 from .problem import other_leg
@@ -197,3 +199,11 @@ def drift(nlp: StrideNLP, blocks: dict, slope: float) -> float:
             else:
                 worst = max(worst, float(np.hypot(*(r1 - r0))))
     return worst
+
+
+def swing_clearance(nlp: StrideNLP, blocks: dict, slope: float) -> float:
+    """The least height (m) above the ground of the swing leg's points (heel and forefoot of the
+    leg with no point held) over the nodes of the phases with contact rows."""
+    return min(float(height(nlp.js, point, X[:NX, k], slope))
+               for model in nlp.ocp.models for X in [blocks[f"X_{model.phase.name}"]]
+               for point in model.contact.swing for k in range(X.shape[1]))

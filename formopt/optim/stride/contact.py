@@ -9,7 +9,8 @@ J_c the rows' Jacobian (r x 9) and v_c = J_c theta' their velocities:
     held rows           J_c theta'' + dJ_c/dt theta' = 0     (all but a sliding point's "t")
     sticking            mu sum f_n - f_t >= 0,  mu sum f_n + f_t >= 0
     sliding (point s)   f_t = -s mu sum f_n,  s v_t >= 0      (kinetic friction against the slip)
-    clearance           every foot point not held at or above the ground
+    clearance           every foot point not held at or above the ground; while the stance
+                        leg holds it, the swing leg's points at least `clearance` above it
 
 `impact` gives the rows of a rigid impact that adds contact rows (the projection of
 mechanics.impact in joint coordinates):
@@ -32,17 +33,34 @@ from .layout import Rows, held_rows
 
 FORCE_LIMIT = 8.0  # body weights: a contact row's force bound (running peaks at 2.5-3)
 FRICTION_FORCE = 5.0  # body weights, a tangential force's bound either way
+# The swing foot's least height (m) while the other foot holds the ground (StrideSettings.clearance;
+# in flight it descends to its touchdown, >= 0 there). Without it the optimal strides passed the
+# swing foot about 1 mm above the ground at mid-swing, which makes swinging the leg cheap. 1 cm
+# is a floor below any runner's: walking, where the swing foot passes lowest, keeps a minimum toe
+# clearance of 13 mm in young adults (Winter 1991, The biomechanics and motor control of human
+# gait, p. 9), 1.9 +- 0.5 cm (Moosabhoy & Gard 2006, Gait Posture 24:493) and 11 +- 6 mm
+# (Schulz 2011, J Biomech 44:1277); a running swing passes higher (no published running minimum
+# was found; RBDS001's heel and metatarsal markers pass 3.4 cm above the treadmill at 2.5 m/s
+# and 8.0 cm at 3.5 m/s while the other foot is loaded, medians over 79 and 86 steps). A floor
+# that holds the swing foot off the ground, not a runner's swing: docs/concepts/muscles.md
+# measures what raising it does (1-10 cm move the muscles' cadence by 1-5 steps/min).
+CLEARANCE = 0.01
 
 
 class RigidContact:
     """The contact rows of one phase (module docstring); `sliding` names the point whose "t"
-    row carries kinetic friction -s mu f_n (s = `slip`, +1 forward or -1 back)."""
+    row carries kinetic friction -s mu f_n (s = `slip`, +1 forward or -1 back); the swing
+    leg's points (`swing`: the leg with no point held, none in flight) stay `clearance` (m)
+    above the ground."""
 
-    def __init__(self, js: JointSpace, rows: tuple, sliding: str = "", slip: int = 1):
+    def __init__(self, js: JointSpace, rows: tuple, sliding: str = "", slip: int = 1, clearance: float = 0.0):
         self.js, self.rows, self.sliding, self.slip = js, tuple(rows), sliding, slip
         self.points = tuple(dict.fromkeys(p for p, _ in rows))
         self.held = held_rows(self.rows, sliding)
         self.free = tuple(p for p in js.points if p not in self.points)
+        legs = {p[-1] for p in self.points}
+        self.swing = tuple(p for p in self.free if legs and p[-1] not in legs)
+        self.clearance = clearance
 
     def force_bounds(self) -> tuple[np.ndarray, np.ndarray]:
         """(lower, upper) of the forces (body weights, a column per row): normal >= 0."""
@@ -57,7 +75,7 @@ class RigidContact:
         """Add the node's contact rows (module docstring) to `rows`; the generalised force
         J_c^T m g f (9)."""
         for point in self.free:
-            rows.add(height(self.js, point, theta, slope), 0.0, np.inf)
+            rows.add(height(self.js, point, theta, slope), self.clearance if point in self.swing else 0.0, np.inf)
         if not self.rows:
             return ca.DM.zeros(thetad.shape[0])
         J, drift, v = self.kinematics(theta, thetad, slope)

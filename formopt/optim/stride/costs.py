@@ -10,13 +10,16 @@ with the integrals I_k (the transcription's quadrature of the node integrands, o
     impacts    sum of the impacts' T_c + a slide's friction work   (J)
     smoothing  sum_k h |theta''_k+1 - theta''_k|^2            (between nodes, per distance)
 
+    joint_metabolic   int sum_j |tau_j| w_j phi(v_j) / f_V(-v_j) dt  (J; v_j = -tau_j theta'_j / (w_j |tau_j|):
+                      Minetti & Alexander 1997's muscle at each joint, `joint_metabolic_rate`)
     muscle_metabolic  int sum_i E'_i dt  (J; mechanics.muscles.metabolic_rate, both legs)
     activation        int sum_legs sum_i V_i a_i^3 / sum_i V_i dt  (s), scale ACTIVATION_SCALE
     muscle_rates      int sum_i (F'_i / 10)^2 dt  (s^-1)
     reserves          int sum_j r_j^2 dt  ((N m/kg)^2 s; the muscles' reserve moments)
 
 The objectives (problem.OBJECTIVES): effort; work = W+ (scale 1 / (m g)); metabolic =
-W+/0.25 + W-/1.2 (Margaria 1968); the work objectives add WORK_REGULARISATION times effort.
+W+/0.25 + W-/1.2 (Margaria 1968); joint-metabolic = joint_metabolic (scale 1 / (m g): a cost of
+transport); work and metabolic add WORK_REGULARISATION times effort.
 With muscles (problem.MUSCLE_OBJECTIVES): metabolic = the muscles' energy (scale 1 / (m g))
 plus StrideSettings.activation_weight (problem.ACTIVATION_WEIGHT, frozen) times the activation term; activation = the activation term;
 both add MUSCLE_RATE_REGULARISATION times muscle_rates and RESERVE_WEIGHT times reserves. Any objective adds impact_weight times
@@ -27,7 +30,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ...mechanics.joint_space import GRAVITY
+import casadi as ca
+
+from ...mechanics.joint_space import GRAVITY, JOINTS
+from ...mechanics.muscles import force_velocity
 from .problem import (
     ACTIVATION_WEIGHT,
     EFFICIENCY_NEGATIVE,
@@ -46,6 +52,60 @@ MUSCLE_RATE_REGULARISATION = 1e-4
 # The reserves' weight (m/s per (N m/kg)^2): 1 N m/kg held over a step costs about 3, ten times a
 # stride's whole objective, so the muscles make every moment they can.
 RESERVE_WEIGHT = 10.0
+
+
+# -- The torque rungs' metabolic energy, joint by joint (`joint_metabolic_rate`) ---------------
+# Minetti & Alexander 1997 (J Theor Biol 186:467): a fully active muscle's metabolic power over
+# F_max v_max as a function of its shortening velocity v / v_max,
+#     phi(v) = (0.054 + 0.506 v + 2.46 v^2) / (1 - 1.13 v + 12.8 v^2 - 1.64 v^3),
+# the coefficients as GaitSym's MAMuscle (Sellers; "Minetti & Alexander, J theor Biol (1997)
+# 186, 467-476") and OpenSim Moco's MinettiAlexander1997Metabolics evaluate them. GaitSym uses
+# the same phi for lengthening (v < 0, clamped to |v| <= 1); what the paper assumes there the
+# search could not confirm. The denominator stays above 0.97 for every v <= 1.2.
+MINETTI_NUMERATOR = (0.054, 0.506, 2.46)  # 1, v, v^2
+MINETTI_DENOMINATOR = (1.0, -1.13, 12.8, -1.64)  # 1, v, v^2, v^3
+# omega_max per joint (rad/s): gait2d's muscles crossing it (io/data/gait2d_muscles.csv,
+# mechanics.muscles with v_max = 10 l_opt/s), sum F_max v_max / sum F_max |r|: their greatest
+# power over their greatest moment (a rigid tendon's view). Lengths scale with height and forces
+# cancel (mechanics.muscles.from_gait2d), so it is the same for every body; tests check it
+# against the table. A model's value, not a measured joint's.
+JOINT_MAX_RATE = {"hip": 22.4, "knee": 23.7, "ankle": 12.7}
+# |tau| as sqrt(tau^2 + eps^2) - eps (zero at zero, within eps of |tau|; the velocity v divides
+# by sqrt(tau^2 + eps^2)), eps = this (N m/kg) times the body's mass: 5 % of the torque limit,
+# 8 % of a stance ankle's 2.5 N m/kg; it undercharges a moment by up to eps (a third of a swing
+# hip's 30 N m). RBDS001, torque+springs, heel, 3.5 m/s, one start (2026-11-25): 0.05 N m/kg
+# left IPOPT short of convergence after 1000 iterations at 40 nodes; 0.1 converged in 415
+# (188 steps/min, objective 0.096), 0.2 in 149 (184 steps/min, 0.079).
+JOINT_METABOLIC_SMOOTHING = 0.2
+# v is capped smoothly at VELOCITY_CAP (v - w ln(1 + exp((v - cap) / w)), w = CAP_WIDTH) where
+# the force-velocity factor still holds (f_V = 0.046 at 0.9): the joints' rates reach 15 rad/s
+# (collocation.STATE_RATE), 1.18 omega_max at the ankle, where a muscle makes no force at all.
+VELOCITY_CAP, CAP_WIDTH = 0.9, 0.02
+
+
+def minetti_alexander(v):
+    """phi(v) (module constants MINETTI_*): metabolic power over F_max v_max at v = v/v_max."""
+    a, b = MINETTI_NUMERATOR, MINETTI_DENOMINATOR
+    return (a[0] + v * (a[1] + v * a[2])) / (b[0] + v * (b[1] + v * (b[2] + v * b[3])))
+
+
+def joint_metabolic_rate(tau, rate, mass: float):
+    """Metabolic power (W) of the active joint moments tau (N m, extensor positive) at the joint
+    flexion rates theta' (rad/s), both (6,) in JOINTS order: a muscle of Minetti & Alexander's
+    at each joint, its activation the moment over what it can make at its velocity,
+
+        E' = sum_j |tau_j| w_j phi(v_j) / f_V(-v_j),  v_j = P_j / (w_j |tau_j|),  P_j = -tau_j theta'_j,
+
+    w_j = JOINT_MAX_RATE, |tau| ~ sqrt(tau^2 + eps^2) - eps (JOINT_METABOLIC_SMOOTHING), v the
+    shortening rate over w (positive where tau does positive work, capped at VELOCITY_CAP) and
+    f_V mechanics.muscles.force_velocity (De Groote et al. 2016; lengthening positive there).
+    Without f_V, work at v > 0.2 would cost less than the work itself."""
+    eps = JOINT_METABOLIC_SMOOTHING * mass
+    w = ca.DM([JOINT_MAX_RATE[j[:-2]] for j in JOINTS])
+    size = ca.sqrt(tau ** 2 + eps ** 2)
+    v = -tau * rate / (w * size)
+    v = v - CAP_WIDTH * ca.log1p(ca.exp((v - VELOCITY_CAP) / CAP_WIDTH))
+    return ca.sum1((size - eps) * w * minetti_alexander(v) / force_velocity(-v))
 
 
 @dataclass(frozen=True)
@@ -75,6 +135,8 @@ def own_terms(objective: str, mass: float, muscles: bool = False,
         return [CostTerm("effort", 100.0 / weight ** 2)]
     if objective == "work":
         return [CostTerm("positive", 1.0 / weight)]
+    if objective == "joint-metabolic":
+        return [CostTerm("joint_metabolic", 1.0 / weight)]
     return [CostTerm("positive", 1.0 / (weight * EFFICIENCY_POSITIVE)),
             CostTerm("negative", 1.0 / (weight * EFFICIENCY_NEGATIVE))]
 
@@ -85,7 +147,7 @@ def terms(settings: StrideSettings, mass: float) -> tuple[CostTerm, ...]:
     out = own_terms(settings.objective, mass, muscles, settings.activation_weight)
     if muscles:
         out += [CostTerm("muscle_rates", 1.0, MUSCLE_RATE_REGULARISATION), CostTerm("reserves", 1.0, RESERVE_WEIGHT)]
-    elif settings.objective != "effort":
+    elif needs_power_split(settings):
         out.append(CostTerm("effort", own_terms("effort", mass)[0].scale, WORK_REGULARISATION))
     if settings.impact_weight:
         out.append(CostTerm("impacts", 1.0 / (mass * GRAVITY), settings.impact_weight))
@@ -99,4 +161,4 @@ def objective(cost_terms, integrals: dict, distance):
 
 def needs_power_split(settings: StrideSettings) -> bool:
     """Whether the objective integrates W+ or W- (the power split's slack variables)."""
-    return settings.muscles is None and settings.objective != "effort"
+    return settings.muscles is None and settings.objective in ("work", "metabolic")

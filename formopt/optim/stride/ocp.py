@@ -10,7 +10,8 @@ controls, f the contact forces, theta_td the touchdown state, p = (speed, slope,
 with the contact model's rows (contact.RigidContact) and, for the work objectives, the power
 split P_j = P_j+ - P_j- (W/kg, P+- >= 0; problem.py says why), and the actuation's own rows
 (the muscles' activation dynamics and Hill equilibrium; actuation.py). Its integrands
-(`INTEGRANDS`): effort sum tau_active^2, the split's sums, the held contacts' power (`ground`),
+(`INTEGRANDS`): effort sum tau_active^2, the split's sums, the joint-level metabolic power
+(costs.joint_metabolic_rate; zero unless the objective is joint-metabolic), the held contacts' power (`ground`),
 the power the budget balances (`balance`: active joints, walls, tendons and contacts), a slide's
 friction power, each active joint's power (6), the walls', the tendons' and the contacts' power,
 and the actuation's own (actuation.OWN_INTEGRANDS: the muscles' activation cost, metabolic rate
@@ -38,7 +39,7 @@ from .layout import Rows
 from .problem import Phase, StrideSettings, other_leg
 
 NX, NU = len(THETA), len(JOINTS)
-INTEGRANDS = ("effort", "positive", "negative", "ground", "balance", "slide", *[f"power_{j}" for j in JOINTS],
+INTEGRANDS = ("effort", "positive", "negative", "joint_metabolic", "ground", "balance", "slide", *[f"power_{j}" for j in JOINTS],
               "walls", "spring", "contact", *OWN_INTEGRANDS)
 
 
@@ -62,6 +63,7 @@ class NodeModel:
     actuation: Torques
     contact: RigidContact
     split: bool  # the power split's slack variables (work objectives)
+    joint_metabolic: bool = False  # the joint-level metabolic power (objective joint-metabolic)
 
     def __call__(self, js: JointSpace, x, a, u, f, s, z, theta_td, p):
         """(rows, {integrand: value}) at one node (module docstring); z the actuation's states."""
@@ -79,6 +81,7 @@ class NodeModel:
         power = -active * thetad[3:]  # W, extensor moment times extension rate
         contact, held, slide = self.contact.power(theta, thetad, f, slope, m)
         out = {"effort": ca.sumsqr(active), "positive": 0.0, "negative": 0.0, "ground": held,
+               "joint_metabolic": costs.joint_metabolic_rate(active, thetad[3:], m) if self.joint_metabolic else 0.0,
                "slide": -slide, "walls": ca.dot(walls, thetad), "spring": ca.dot(spring, thetad[3:]),
                "contact": contact, **{f"power_{j}": power[k] for k, j in enumerate(JOINTS)},
                **self.actuation.integrands(theta, thetad, z, u)}
@@ -130,8 +133,9 @@ class StrideProblem:
         self.phases = settings.phases
         act = actuation(self.mass, settings.torque_limit, settings.tendons, settings.muscles)
         split = costs.needs_power_split(settings)
-        self.models = [NodeModel(ph, act, RigidContact(js, ph.rows, ph.sliding, settings.slip), split)
-                       for ph in self.phases]
+        joint_metabolic = settings.objective == "joint-metabolic"
+        self.models = [NodeModel(ph, act, RigidContact(js, ph.rows, ph.sliding, settings.slip, settings.clearance),
+                                 split, joint_metabolic) for ph in self.phases]
         self.transitions = [self._transition(i) for i in range(1, len(self.phases))]
         first = self.phases[0]
         rows = tuple((other_leg(p), a) for p, a in first.rows)

@@ -34,6 +34,7 @@ from dataclasses import dataclass, field
 
 from ...mechanics.errors import InputError
 from ...mechanics.muscles import Muscles
+from .contact import CLEARANCE
 from .ranges import check
 
 
@@ -68,10 +69,11 @@ TOUCHDOWN_MODES = ("stick", "slide")
 # MIN_NODES each, since a short phase still needs its start and end conditions.
 NODE_SHARE = {"slide": 0.12, "heel": 0.12, "landing": 0.12, "flat": 0.3, "forefoot": 0.25, "flight": 0.33}
 MIN_NODES = 4
-OBJECTIVES = ("effort", "work", "metabolic", "activation")
+OBJECTIVES = ("effort", "work", "metabolic", "joint-metabolic", "activation")
 # The actuation ladder (actuation.py): torque sources, with springs in parallel (`tendons`), or
 # muscles (`muscles`). The muscles take "metabolic" (their own energy, Bhargava et al. 2004, plus
-# ACTIVATION_WEIGHT times their activation) or "activation"; the torque rungs the others.
+# ACTIVATION_WEIGHT times their activation) or "activation"; the torque rungs the others
+# ("joint-metabolic": Minetti & Alexander's muscle at each joint, costs.joint_metabolic_rate).
 ACTUATIONS = ("torque", "torque+springs", "muscles")
 MUSCLE_OBJECTIVES = ("metabolic", "activation")
 TRANSCRIPTIONS = ("trapezoid", "hermite-simpson")  # collocation.py's
@@ -161,6 +163,7 @@ class StrideSettings:
     transcription: str = "trapezoid"  # or "hermite-simpson" (collocation.TRANSCRIPTIONS)
     muscles: Muscles | None = None  # one leg's muscles scaled to the body: the "muscles" rung
     activation_weight: float = ACTIVATION_WEIGHT  # the muscles' metabolic objective's one weight (calibration only)
+    clearance: float = CLEARANCE  # m: the swing foot's least height while the other holds the ground
 
     def __post_init__(self):
         if self.strike not in STRIKE_PHASES:
@@ -195,6 +198,7 @@ class StrideSettings:
         if not self.activation_weight >= 0.0:
             raise InputError(f"activation_weight = {self.activation_weight}: expected a number >= 0")
         check("torque_limit_nm_per_kg", self.torque_limit)
+        check("clearance_m", self.clearance)
         check("max_iterations", self.max_iter, whole=True)
         for joint, k in self.tendons.items():
             if joint not in TENDON_JOINTS:

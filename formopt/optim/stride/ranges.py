@@ -45,6 +45,11 @@ RANGES = {
     "tendon_nm_per_rad_kg": Range(0.0, 20.0, "N m/rad/kg"),
     # a phase's duration bounds: 0 < low < high <= 2 s (a stance at the slowest jog is 0.4 s)
     "duration_s": Range(0.0, 2.0, "s", low_open=True),
+    # the swing foot's least height while the other foot holds the ground (contact.CLEARANCE):
+    # 0 (the ground alone, the strides before 2026-11-25) to 10 cm. A bound, not a measure: the
+    # swing foot is a flight's time from the ground at the stance's start and end, and a floor
+    # far above walking's 1-2 cm minimum toe clearance would set the swing, not bound it.
+    "clearance_m": Range(0.0, 0.1, "m"),
     "max_iterations": limits.MAX_ITERATIONS,
     "starts": Range(1, 100),
     # the global search's spend (optim.stride.search): 1-8; spend 8 is 33 grid cadences and

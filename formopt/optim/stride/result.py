@@ -27,7 +27,7 @@ import numpy as np
 from ...mechanics import muscles as hill
 from ...mechanics.joint_space import GRAVITY, JOINTS
 from .actuation import MuscleDriven
-from .checks import drift, forward, half_period, impact_check
+from .checks import drift, forward, half_period, impact_check, swing_clearance
 from .collocation import NX, StrideNLP
 from .guess import ballistic, fitted, from_torques, perturbed, slide_guess
 from .layout import Solved
@@ -119,6 +119,9 @@ class Stride:
     # the phases held by a duration bound ({"phase", "duration_s", "side": "low" | "high",
     # "bound_s"}, `on_bounds`): the bound, not the mechanics, sets them
     on_bound: list = field(default_factory=list)
+    # m: the swing foot's least height while the other foot holds the ground (checks.swing_clearance;
+    # the NLP holds it at or above StrideSettings.clearance)
+    swing_clearance_m: float = float("nan")
     # the global search that found it (search.global_optimum: its spend, what it spent, the
     # optima it met and their spread); None: solved from the given starts (`optimum`)
     search: dict | None = None
@@ -365,7 +368,7 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
         mechanical_power_W=positive / T, checks=checks, phases=durations, mass_kg=m,
         t=t, phase=names, theta=theta, thetad=thetad, tau=tau, force=force, solved=solved,
         tau_spring=tau_spring, muscles=muscle_outputs(nlp, solved, checks),
-        on_bound=on_bounds(durations, nlp.settings.duration))
+        on_bound=on_bounds(durations, nlp.settings.duration), swing_clearance_m=swing_clearance(nlp, b, slope))
 
 
 def muscle_outputs(nlp: StrideNLP, solved: Solved, checks: dict) -> dict | None:

@@ -12,6 +12,7 @@ import pytest
 from formopt.mechanics.body import paper_body
 from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings, optimum
+from formopt.optim.stride.contact import CLEARANCE
 from formopt.optim.stride.ocp import Release
 
 NODES, SPEED, G = 18, 3.5, 9.81
@@ -49,6 +50,21 @@ def _objective(stride, nlp, weights):
 def test_uphill_stride_converges_and_is_valid(uphill):
     _, stride = uphill
     assert stride.success and stride.valid, stride.failed_checks
+
+
+def test_the_swing_foot_clears_the_ground_while_the_other_holds_it(uphill):
+    """Every node of the stance phases keeps the swing foot's heel and forefoot (leg L) at least
+    StrideSettings.clearance above the slope, measured from the stride's own joint histories;
+    the stride reports that least height."""
+    nlp, stride = uphill
+    stance = {p.name for p in nlp.phases if p.rows}
+    normal = np.array([-np.sin(SLOPE), np.cos(SLOPE)])
+    heights = [float(np.asarray(nlp.js.points[point](theta, np.zeros(9), SLOPE)[0], float).ravel() @ normal)
+               for theta, phase in zip(stride.theta, stride.phase) if phase in stance
+               for point in ("heel_L", "forefoot_L")]
+    assert nlp.settings.clearance == CLEARANCE == 0.01
+    assert min(heights) >= CLEARANCE - 1e-6
+    assert stride.swing_clearance_m == pytest.approx(min(heights), abs=1e-12)
 
 
 def test_a_dropped_point_leaves_the_ground_with_no_force(uphill):

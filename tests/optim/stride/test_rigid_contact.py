@@ -90,3 +90,18 @@ def test_the_node_cone_and_the_slide_take_their_sides(js, states):
     slide.node(rows, th, thd, a, ca.DM([-MU * 1.0, 1.0]), SLOPE, MU, js.mass_total)
     friction_row = [e for e in rows.expr if e.shape[0] == 1][-2]
     assert abs(float(friction_row)) < 1e-12
+
+
+@pytest.mark.parametrize("rows, swing", [((("heel_R", "t"), ("heel_R", "n")), ("heel_L", "forefoot_L")),
+                                         ((("forefoot_R", "t"), ("forefoot_R", "n")), ("heel_L", "forefoot_L")),
+                                         ((), ())])
+def test_the_swing_leg_has_its_clearance_and_the_rest_the_ground(js, states, rows, swing):
+    """While leg R holds the ground, leg L's points are bounded below by the clearance and R's
+    free point by the ground; in flight every point by the ground."""
+    contact = RigidContact(js, rows, clearance=0.02)
+    assert contact.swing == swing
+    node = Rows()
+    theta = ca.DM(states[0][:9])
+    contact.node(node, theta, ca.DM(states[0][9:]), ca.DM.zeros(9), ca.DM.zeros(len(rows)), SLOPE, MU, 70.0)
+    lower = np.concatenate(node.lower)[:len(contact.free)]
+    assert list(lower) == [0.02 if p in swing else 0.0 for p in contact.free]
