@@ -93,7 +93,10 @@ WORK_REGULARISATION = 1e-2
 # means cancel): the light feet used such a sawtooth at the acceleration bound, which the
 # forward simulation does not reproduce (0.2 rad off in a phase at 24 nodes). A small penalty
 # on the squared change of the accelerations between nodes, SMOOTHING * sum h |A_k+1 - A_k|^2
-# per distance (s^3/m), removes it; it costs under 1 % of the objective of a smooth motion.
+# per distance (s^3/m), removes it. It is not negligible on a coarse trapezoid mesh: 13 % of the
+# objective at 40 nodes, 8 % at 80, 3 % with Hermite-Simpson at 20 intervals (RBDS001, heel,
+# torque+springs, effort, 3.5 m/s at 130 steps/min: problems/stride_smoothing.py, 2026-11-25),
+# one reason the trapezoid's optimum moves with the mesh (docs/concepts/stride.md).
 SMOOTHING = 1e-6
 # The one weight of the muscles' "metabolic" objective: ACTIVATION_WEIGHT times the activation
 # term (costs.ACTIVATION_SCALE) beside the muscles' metabolic energy per distance (per m g).
