@@ -8,8 +8,8 @@ runner's speeds, against the runner's processed mean cycle (its joint powers the
 Prints per rung and speed: cadence (steps/min; measured 156.5 at 2.5 and 171.4 at 3.5 m/s,
 runners choose about 175-183 at 4.5), stance (s), peak vertical force (N/kg), the joint angles'
 RMS against the mean cycle (deg), the peak ankle power (W/kg, positive), the tendons' energy
-stored per step (J: soleus and gastrocnemius, all), the swing foot's least height (m, before
-the last fifth of the half stride), reserves, the objective J (per distance), validity,
+stored per step (J: soleus and gastrocnemius, all), the swing foot's least height (m, while
+the other foot is down: Stride.swing_clearance_m), reserves, the objective J (per distance), validity,
 iterations and seconds (build, solve), and the phases a duration bound holds.
 `--mass` scales the body to another mass at the same height (a heavier runner); `--weight`
 sets the muscles' activation weight (StrideSettings.activation_weight) for a calibration run;
@@ -30,7 +30,6 @@ import numpy as np
 
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
-from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import problem
 from formopt.optim.stride.collocation import build
 from formopt.optim.stride.problem import RUNNER_TENDONS, StrideSettings
@@ -53,15 +52,12 @@ def settings(rung: str, body, strike: str, nodes: int, weight: float, objective:
     return base
 
 
-def row(rung, speed, stride, measured, body) -> str:
+def row(rung, speed, stride, measured) -> str:
     rung = f"{rung} {stride.objective}"
     cycle = compare_cycle(stride, measured) if measured else None
     pred = predicted_cycle(stride)
     power = float(np.max(pred["powers"]["ankle"]))
-    js = JointSpace(body)
-    late = stride.t < 0.8 * stride.half_period_s
-    swing = min(float(np.asarray(js.points[p](th, np.zeros(9), 0.0)[0], float).ravel()[1])
-                for th in stride.theta[late] for p in ("heel_L", "forefoot_L"))
+    swing = stride.swing_clearance_m
     text = (f"{rung:30s} {speed:4.1f} {stride.cadence_spm:7.1f} {MEASURED_CADENCE.get(speed, float('nan')):6.1f} "
             f"{stride.stance_s:6.3f} {stride.peak_vertical_grf_bw * 9.81:6.1f}")
     if cycle:
@@ -107,7 +103,7 @@ def main(argv=None) -> int:
                 nlp = build(body, settings(rung, body, args.strike, args.nodes, weight, objective))
                 stride = optimum(nlp, speed, cadence=cadence, starts=args.starts)
                 stride.solve_s = time.perf_counter() - clock - nlp.build_s  # the torque start's solve too
-                print(row(rung, speed, stride, measured_cycle(RBDS, speed), body), flush=True)
+                print(row(rung, speed, stride, measured_cycle(RBDS, speed)), flush=True)
     return 0
 
 
