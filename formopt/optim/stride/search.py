@@ -23,8 +23,8 @@ Every start is fixed (no random draw): the same call gives the same answer. Step
 seconds: the generic start's own solve for Hermite-Simpson or muscles in the seconds only), the
 grid's least objective per cadence, and the distinct local optima it met (step 4's, or at an
 imposed cadence every stride met there): their cadences, objectives, validity (the forward check
-included) and spread (how much costlier the costliest is than the least, %). An optimum less
-costly than the answer is an invalid one: `rank` puts validity first.
+included) and spread (how much costlier the costliest is than the least, %; None when none
+converged). An optimum less costly than the answer is an invalid one: `rank` puts validity first.
 """
 
 from __future__ import annotations
@@ -134,7 +134,8 @@ def global_optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float =
     stride.search = record(spend, spent, cadences, kept, cadence)
     stride.search["optima"] = distinct(nlp, [s for _, s in found if s.success], stride, simulate)
     values = [o["objective"] for o in stride.search["optima"]]
-    stride.search["spread_pct"] = (max(values) - min(values)) / abs(min(values)) * 100.0 if values else float("nan")
+    # None, not NaN, where no solve converged: the JSON writer refuses NaN (io.files.write_json)
+    stride.search["spread_pct"] = (max(values) - min(values)) / abs(min(values)) * 100.0 if values else None
     return stride
 
 
