@@ -150,10 +150,11 @@ def record(spend: int, spent: _Spend, cadences: list[float], kept: dict, cadence
 
 
 def distinct(nlp: StrideNLP, strides: list[Stride], answer: Stride, simulate: bool) -> list[dict]:
-    """The distinct optima among converged strides (DISTINCT, DISTINCT_SPM), valid first, then
-    the least objective: cadence (steps/min), objective, how many solves reached it, whether it
-    is the `answer`, its validity and failed checks (with the forward check when `simulate`:
-    the answer's own; the others summarised again)."""
+    """The distinct optima among converged strides (DISTINCT, DISTINCT_SPM) and the `answer`
+    (its own where the touchdown's mode re-solved it), valid first, then the least objective:
+    cadence (steps/min), objective, how many solves reached it, whether it is the `answer`, its
+    validity and failed checks (with the forward check when `simulate`: the answer's own; the
+    others summarised again)."""
     groups: list[list[Stride]] = []
     for s in sorted(strides, key=lambda s: s.objective_value):
         group = next((g for g in groups if _same(g[0], s)), None)
@@ -161,11 +162,13 @@ def distinct(nlp: StrideNLP, strides: list[Stride], answer: Stride, simulate: bo
             groups.append([s])
         else:
             group.append(s)
+    if answer.success and not any(_same(g[0], answer) for g in groups):
+        groups.append([answer])  # re-solved sliding under Coulomb (result.touchdown_mode): an optimum of its own
     out = []
     for first, *others in groups:
         is_answer = _same(first, answer)
-        checked = answer if is_answer or first.solved is None else \
-            summarise(nlp, first.solved, simulate) if simulate else first
+        checked = answer if is_answer else \
+            summarise(nlp, first.solved, simulate) if simulate and first.solved is not None else first
         out.append({"cadence_spm": first.cadence_spm, "objective": first.objective_value, "reached": 1 + len(others),
                     "answer": is_answer, "valid": checked.valid, "failed": checked.failed_checks})
     return sorted(out, key=lambda o: (not o["valid"], o["objective"]))

@@ -65,3 +65,19 @@ def test_the_grid_is_nested_in_the_spend_and_holds_an_imposed_cadence():
     assert search.solves_planned(3.5, 1, 171.4) == 3 * 6 - 2  # no free solves at an imposed cadence
     with pytest.raises(InputError, match="spend = 0"):
         search.grid(3.5, 0)
+
+
+def test_the_answer_is_among_the_optima_when_the_touchdown_re_solved_it():
+    """Under Coulomb the answer may be the sliding variant's re-solve (result.touchdown_mode),
+    whose objective no free solve reached: it is listed, as the answer, beside them."""
+    from types import SimpleNamespace
+
+    def met(cadence, objective, valid=True):
+        return SimpleNamespace(cadence_spm=cadence, objective_value=objective, success=True, valid=valid,
+                               failed_checks=[] if valid else ["forward"], solved=None)
+
+    sticking, other, sliding = met(160.0, 0.30), met(130.0, 0.28, valid=False), met(158.0, 0.29)
+    optima = search.distinct(None, [sticking, other, sticking], sliding, simulate=False)
+    assert [(o["cadence_spm"], o["answer"], o["reached"]) for o in optima] == [(158.0, True, 1), (160.0, False, 2),
+                                                                            (130.0, False, 1)]
+    assert [o["answer"] for o in search.distinct(None, [sticking], sticking, simulate=False)] == [True]
