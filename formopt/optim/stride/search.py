@@ -20,7 +20,9 @@ Every start is fixed (no random draw): the same call gives the same answer. Step
 `optimum`'s one start, so the answer is never worse than it (by `rank`).
 
 `Stride.search` (`record`, `distinct`) says what the search spent (solves, IPOPT iterations,
-seconds: the generic start's own solve for Hermite-Simpson or muscles in the seconds only), the
+seconds; in the seconds only: the generic start's own solve for Hermite-Simpson or muscles, a
+warm start's failed run before StrideNLP.resolve's cold one, the touchdown's sliding re-solve
+under Coulomb and the optima's forward checks), the
 grid's least objective per cadence, and the distinct local optima it met (step 4's, or at an
 imposed cadence every stride met there): their cadences, objectives, validity (the forward check
 included) and spread (how much costlier the costliest is than the least, %; None when none
@@ -76,8 +78,10 @@ def _runnable(speed: float, cadence: float) -> bool:
 
 
 def solves_planned(speed: float, spend: int = 1, cadence: float | None = None) -> int:
-    """The solves `global_optimum` runs (a progress bar's total): n from the generic start,
-    2 (n - 1) warm, then 1 + RELEASED * spend free ones (none with a cadence imposed)."""
+    """The solves `global_optimum` runs when every one converges (a progress bar's total): n
+    from the generic start, 2 (n - 1) warm, then 1 + RELEASED * spend free ones (none with a
+    cadence imposed). Fewer where one fails: no continuation from a failed grid stride, and no
+    more releases than converged grid strides."""
     n = len(grid(speed, spend, cadence))
     return 3 * n - 2 + (0 if cadence is not None else 1 + RELEASED * spend)
 
@@ -133,6 +137,7 @@ def global_optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float =
     stride = best_of(nlp, [solved for solved, _ in found], simulate)
     stride.search = record(spend, spent, cadences, kept, cadence)
     stride.search["optima"] = distinct(nlp, [s for _, s in found if s.success], stride, simulate)
+    stride.search["seconds"] = time.perf_counter() - spent.start  # the optima's forward checks too
     values = [o["objective"] for o in stride.search["optima"]]
     # None, not NaN, where no solve converged: the JSON writer refuses NaN (io.files.write_json)
     stride.search["spread_pct"] = (max(values) - min(values)) / abs(min(values)) * 100.0 if values else None
@@ -140,11 +145,10 @@ def global_optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float =
 
 
 def record(spend: int, spent: _Spend, cadences: list[float], kept: dict, cadence: float | None) -> dict:
-    """`Stride.search` but its optima: the spend, what was spent, the grid's least objective per
-    cadence (None where no solve converged)."""
+    """`Stride.search` but its optima, spread and seconds: the spend, the solves and IPOPT
+    iterations spent, the grid's least objective per cadence (None where no solve converged)."""
     return {"procedure": "imposed cadence" if cadence is not None else "free cadence", "spend": spend,
             "solves": spent.solves, "iterations": spent.iterations,
-            "seconds": time.perf_counter() - spent.start,
             "grid_spm": cadences, "grid_objective": [kept[c][1].objective_value if kept[c][1].success else None
                                                      for c in cadences]}
 
