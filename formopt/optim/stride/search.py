@@ -60,9 +60,11 @@ DISTINCT_SPM = 0.5
 
 
 def grid(speed: float, spend: int = 1, cadence: float | None = None) -> list[float]:
-    """The search's cadences (steps/min, rising) at `speed` (m/s): step 1 of the module doc."""
+    """The search's cadences (steps/min, rising) at `speed` (m/s): step 1 of the module doc. A
+    speed or imposed cadence out of range is refused (ranges.point), not left an empty grid."""
     if spend < 1:
         raise InputError(f"spend = {spend}: the search's spend is a whole number from 1")
+    ranges.point(speed, cadence)
     points = np.linspace(*GRID_SPM, GRID_POINTS * spend + 1)
     out = {round(float(c), 6) for c in points if _runnable(speed, float(c))}
     return sorted(out | ({float(cadence)} if cadence is not None else set()))

@@ -65,6 +65,10 @@ def test_the_grid_is_nested_in_the_spend_and_holds_an_imposed_cadence():
     assert search.solves_planned(3.5, 1, 171.4) == 3 * 6 - 2  # no free solves at an imposed cadence
     with pytest.raises(InputError, match="spend = 0"):
         search.grid(3.5, 0)
+    with pytest.raises(InputError, match="speed_mps"):  # no cadence of the grid runnable: refused, not skipped
+        search.solves_planned(0.5)
+    with pytest.raises(InputError, match="cadence_spm = 60"):
+        search.grid(3.5, 1, 60.0)
 
 
 def test_the_answer_is_among_the_optima_when_the_touchdown_re_solved_it():
