@@ -192,4 +192,4 @@ def search_text(stride) -> str:
     return (f"search {stride.strike}: global, spend {g['spend']}: {g['solves']} solves, {g['iterations']} "
             f"IPOPT iterations, {g['seconds']:.0f} s; {len(g['optima'])} distinct "
             f"{'optimum' if len(g['optima']) == 1 else 'optima'} {what}: {met or 'none'}"
-            f" (spread {g['spread_pct']:.1f} %)")
+            + (f" (spread {g['spread_pct']:.1f} %)" if g["spread_pct"] is not None else ""))

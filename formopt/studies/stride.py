@@ -20,7 +20,7 @@ from ..optim.stride.search import solves_planned
 
 ROW_KEYS = ("strike", "success", "objective_value", "cadence_spm", "step_length_m", "stance_s",
             "flight_s", "duty_factor", "peak_vertical_grf_bw", "cost_of_transport",
-            "mechanical_power_W", "iterations", "solve_s")
+            "mechanical_power_W", "swing_clearance_m", "iterations", "solve_s", "search")
 
 
 @dataclass
@@ -35,7 +35,8 @@ class StrideStudy:
         return self.strides[0]
 
     def to_dict(self) -> dict:
-        """The best stride's JSON, with one row per strike solved (`strides`)."""
+        """The best stride's JSON, with one row per strike solved (`strides`: what the table
+        prints of each, its global search's record included)."""
         rows = [{**{k: getattr(s, k) for k in ROW_KEYS},
                  "impacts_J": s.budget["impacts_J"],
                  "impacts_valid": all(i["valid"] for i in s.impacts), "valid": s.valid}

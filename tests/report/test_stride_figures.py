@@ -73,3 +73,16 @@ def test_the_search_line_names_its_spend_and_each_optimum():
     assert line.startswith("search heel: global, spend 2: 30 solves, 1200 IPOPT iterations, 95 s")
     assert "160 steps/min 0.4 (the answer)," in line and "131 steps/min 0.38 (-5.0 %) invalid" in line
     assert line.endswith("(spread 5.3 %)")
+
+
+def test_the_search_line_and_json_when_no_free_solve_converged(tmp_path):
+    """No optimum met: the line says none and gives no spread; the record is valid JSON (the
+    writer refuses NaN, so the spread is None)."""
+    from formopt.io.files import write_json
+    from formopt.report.stride import search_text
+
+    record = {"procedure": "free cadence", "spend": 1, "solves": 16, "iterations": 9000, "seconds": 300.0,
+              "optima": [], "spread_pct": None}
+    line = search_text(SimpleNamespace(strike="heel", search=record, objective_value=float("inf")))
+    assert line.endswith("0 distinct optima with the cadence free: none")
+    write_json(tmp_path / "search.json", record)

@@ -96,7 +96,8 @@ def joint_metabolic_rate(tau, rate, mass: float):
 
         E' = sum_j |tau_j| w_j phi(v_j) / f_V(-v_j),  v_j = P_j / (w_j |tau_j|),  P_j = -tau_j theta'_j,
 
-    w_j = JOINT_MAX_RATE, |tau| ~ sqrt(tau^2 + eps^2) - eps (JOINT_METABOLIC_SMOOTHING), v the
+    w_j = JOINT_MAX_RATE, |tau| ~ sqrt(tau^2 + eps^2) - eps before phi and sqrt(tau^2 + eps^2)
+    in v, so v -> 0 with tau (eps: JOINT_METABOLIC_SMOOTHING times the mass), v the
     shortening rate over w (positive where tau does positive work, capped at VELOCITY_CAP) and
     f_V mechanics.muscles.force_velocity (De Groote et al. 2016; lengthening positive there).
     Without f_V, work at v > 0.2 would cost less than the work itself."""

@@ -20,11 +20,13 @@ Every start is fixed (no random draw): the same call gives the same answer. Step
 `optimum`'s one start, so the answer is never worse than it (by `rank`).
 
 `Stride.search` (`record`, `distinct`) says what the search spent (solves, IPOPT iterations,
-seconds: the generic start's own solve for Hermite-Simpson or muscles in the seconds only), the
+seconds; in the seconds only: the generic start's own solve for Hermite-Simpson or muscles, a
+warm start's failed run before StrideNLP.resolve's cold one, the touchdown's sliding re-solve
+under Coulomb and the optima's forward checks), the
 grid's least objective per cadence, and the distinct local optima it met (step 4's, or at an
 imposed cadence every stride met there): their cadences, objectives, validity (the forward check
-included) and spread (how much costlier the costliest is than the least, %). An optimum less
-costly than the answer is an invalid one: `rank` puts validity first.
+included) and spread (how much costlier the costliest is than the least, %; None when none
+converged). An optimum less costly than the answer is an invalid one: `rank` puts validity first.
 """
 
 from __future__ import annotations
@@ -58,9 +60,11 @@ DISTINCT_SPM = 0.5
 
 
 def grid(speed: float, spend: int = 1, cadence: float | None = None) -> list[float]:
-    """The search's cadences (steps/min, rising) at `speed` (m/s): step 1 of the module doc."""
+    """The search's cadences (steps/min, rising) at `speed` (m/s): step 1 of the module doc. A
+    speed or imposed cadence out of range is refused (ranges.point), not left an empty grid."""
     if spend < 1:
         raise InputError(f"spend = {spend}: the search's spend is a whole number from 1")
+    ranges.point(speed, cadence)
     points = np.linspace(*GRID_SPM, GRID_POINTS * spend + 1)
     out = {round(float(c), 6) for c in points if _runnable(speed, float(c))}
     return sorted(out | ({float(cadence)} if cadence is not None else set()))
@@ -76,8 +80,10 @@ def _runnable(speed: float, cadence: float) -> bool:
 
 
 def solves_planned(speed: float, spend: int = 1, cadence: float | None = None) -> int:
-    """The solves `global_optimum` runs (a progress bar's total): n from the generic start,
-    2 (n - 1) warm, then 1 + RELEASED * spend free ones (none with a cadence imposed)."""
+    """The solves `global_optimum` runs when every one converges (a progress bar's total): n
+    from the generic start, 2 (n - 1) warm, then 1 + RELEASED * spend free ones (none with a
+    cadence imposed). Fewer where one fails: no continuation from a failed grid stride, and no
+    more releases than converged grid strides."""
     n = len(grid(speed, spend, cadence))
     return 3 * n - 2 + (0 if cadence is not None else 1 + RELEASED * spend)
 
@@ -133,26 +139,28 @@ def global_optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float =
     stride = best_of(nlp, [solved for solved, _ in found], simulate)
     stride.search = record(spend, spent, cadences, kept, cadence)
     stride.search["optima"] = distinct(nlp, [s for _, s in found if s.success], stride, simulate)
+    stride.search["seconds"] = time.perf_counter() - spent.start  # the optima's forward checks too
     values = [o["objective"] for o in stride.search["optima"]]
-    stride.search["spread_pct"] = (max(values) - min(values)) / abs(min(values)) * 100.0 if values else float("nan")
+    # None, not NaN, where no solve converged: the JSON writer refuses NaN (io.files.write_json)
+    stride.search["spread_pct"] = (max(values) - min(values)) / abs(min(values)) * 100.0 if values else None
     return stride
 
 
 def record(spend: int, spent: _Spend, cadences: list[float], kept: dict, cadence: float | None) -> dict:
-    """`Stride.search` but its optima: the spend, what was spent, the grid's least objective per
-    cadence (None where no solve converged)."""
+    """`Stride.search` but its optima, spread and seconds: the spend, the solves and IPOPT
+    iterations spent, the grid's least objective per cadence (None where no solve converged)."""
     return {"procedure": "imposed cadence" if cadence is not None else "free cadence", "spend": spend,
             "solves": spent.solves, "iterations": spent.iterations,
-            "seconds": time.perf_counter() - spent.start,
             "grid_spm": cadences, "grid_objective": [kept[c][1].objective_value if kept[c][1].success else None
                                                      for c in cadences]}
 
 
 def distinct(nlp: StrideNLP, strides: list[Stride], answer: Stride, simulate: bool) -> list[dict]:
-    """The distinct optima among converged strides (DISTINCT, DISTINCT_SPM), valid first, then
-    the least objective: cadence (steps/min), objective, how many solves reached it, whether it
-    is the `answer`, its validity and failed checks (with the forward check when `simulate`:
-    the answer's own; the others summarised again)."""
+    """The distinct optima among converged strides (DISTINCT, DISTINCT_SPM) and the `answer`
+    (its own where the touchdown's mode re-solved it), valid first, then the least objective:
+    cadence (steps/min), objective, how many solves reached it, whether it is the `answer`, its
+    validity and failed checks (with the forward check when `simulate`: the answer's own; the
+    others summarised again)."""
     groups: list[list[Stride]] = []
     for s in sorted(strides, key=lambda s: s.objective_value):
         group = next((g for g in groups if _same(g[0], s)), None)
@@ -160,11 +168,13 @@ def distinct(nlp: StrideNLP, strides: list[Stride], answer: Stride, simulate: bo
             groups.append([s])
         else:
             group.append(s)
+    if answer.success and not any(_same(g[0], answer) for g in groups):
+        groups.append([answer])  # re-solved sliding under Coulomb (result.touchdown_mode): an optimum of its own
     out = []
     for first, *others in groups:
         is_answer = _same(first, answer)
-        checked = answer if is_answer or first.solved is None else \
-            summarise(nlp, first.solved, simulate) if simulate else first
+        checked = answer if is_answer else \
+            summarise(nlp, first.solved, simulate) if simulate and first.solved is not None else first
         out.append({"cadence_spm": first.cadence_spm, "objective": first.objective_value, "reached": 1 + len(others),
                     "answer": is_answer, "valid": checked.valid, "failed": checked.failed_checks})
     return sorted(out, key=lambda o: (not o["valid"], o["objective"]))

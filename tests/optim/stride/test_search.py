@@ -65,3 +65,43 @@ def test_the_grid_is_nested_in_the_spend_and_holds_an_imposed_cadence():
     assert search.solves_planned(3.5, 1, 171.4) == 3 * 6 - 2  # no free solves at an imposed cadence
     with pytest.raises(InputError, match="spend = 0"):
         search.grid(3.5, 0)
+    with pytest.raises(InputError, match="speed_mps"):  # no cadence of the grid runnable: refused, not skipped
+        search.solves_planned(0.5)
+    with pytest.raises(InputError, match="cadence_spm = 60"):
+        search.grid(3.5, 1, 60.0)
+
+
+def test_the_answer_is_among_the_optima_when_the_touchdown_re_solved_it():
+    """Under Coulomb the answer may be the sliding variant's re-solve (result.touchdown_mode),
+    whose objective no free solve reached: it is listed, as the answer, beside them."""
+    from types import SimpleNamespace
+
+    def met(cadence, objective, valid=True):
+        return SimpleNamespace(cadence_spm=cadence, objective_value=objective, success=True, valid=valid,
+                               failed_checks=[] if valid else ["forward"], solved=None)
+
+    sticking, other, sliding = met(160.0, 0.30), met(130.0, 0.28, valid=False), met(158.0, 0.29)
+    optima = search.distinct(None, [sticking, other, sticking], sliding, simulate=False)
+    assert [(o["cadence_spm"], o["answer"], o["reached"]) for o in optima] == [(158.0, True, 1), (160.0, False, 2),
+                                                                            (130.0, False, 1)]
+    assert [o["answer"] for o in search.distinct(None, [sticking], sticking, simulate=False)] == [True]
+
+
+def test_an_imposed_cadence_keeps_the_best_stride_met_there():
+    """With a cadence imposed: the grid holds it, no free solve runs (solves_planned's count),
+    and the answer and every optimum listed are at that cadence."""
+    mp = pytest.MonkeyPatch()
+    mp.setattr(search, "GRID_POINTS", 1)
+    mp.setattr(search, "GRID_SPM", (150.0, 190.0))
+    try:
+        nlp = build(scaled_body(62.0, 1.81), StrideSettings(strike="flat", nodes=14, tendons=dict(RUNNER_TENDONS)))
+        stride = search.global_optimum(nlp, SPEED, cadence=171.4, simulate=False)
+        planned = search.solves_planned(SPEED, 1, 171.4)
+    finally:
+        mp.undo()
+    record = stride.search
+    assert record["procedure"] == "imposed cadence" and record["grid_spm"] == [150.0, 171.4, 190.0]
+    assert record["solves"] == planned == 7
+    assert stride.success and stride.cadence_spm == pytest.approx(171.4, rel=1e-6)
+    assert record["optima"] and all(o["cadence_spm"] == pytest.approx(171.4, rel=1e-6) for o in record["optima"])
+    assert sum(o["answer"] for o in record["optima"]) == 1
