@@ -42,9 +42,9 @@ FRICTION_FORCE = 5.0  # body weights, a tangential force's bound either way
 # (Schulz 2011, J Biomech 44:1277); a running swing passes higher (no published running minimum
 # was found; RBDS001's heel and metatarsal markers pass 3.4 cm above the treadmill at 2.5 m/s
 # and 8.0 cm at 3.5 m/s while the other foot is loaded, medians over 79 and 86 steps:
-# problems/swing_clearance.py). A floor
-# that holds the swing foot off the ground, not a runner's swing: docs/concepts/muscles.md
-# measures what raising it does (1-10 cm move the muscles' cadence by 1-5 steps/min).
+# problems/swing_clearance.py). A floor that holds the swing foot off the ground, not a
+# runner's swing: docs/concepts/muscles.md measures what raising it does (1-10 cm move the
+# muscles' cadence by 1-5 steps/min).
 CLEARANCE = 0.01
 
 
