@@ -3,8 +3,10 @@ body (62 kg, 1.81 m), heel strike, torque+springs (problem.RUNNER_TENDONS), effo
 (optim.stride.optimum) at an imposed cadence, so every mesh solves the same stride.
 
     python problems/stride_smoothing.py [--speed 3.5] [--cadence 130] [--clearance 0.01]
+                                        [--meshes trapezoid:40 hermite-simpson:20 trapezoid:80]
 
-Prints per mesh (trapezoid 40, Hermite-Simpson 20, trapezoid 80): the objective as IPOPT sees it,
+Prints per mesh (`--meshes`, transcription:intervals; default trapezoid 40, Hermite-Simpson 20,
+trapezoid 80): the objective as IPOPT sees it,
 the smoothing term (problem.SMOOTHING * sum h |A_k+1 - A_k|^2 per distance) and its share (%).
 `--clearance` (m): the swing foot's least height (StrideSettings.clearance; docs/concepts/stride.md's
 figures: 0, measured before it existed).
@@ -31,10 +33,12 @@ def main(argv=None) -> int:
     parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--cadence", type=float, default=130.0)
     parser.add_argument("--clearance", type=float, default=StrideSettings.clearance)
+    parser.add_argument("--meshes", nargs="+", default=[f"{t}:{n}" for t, n in MESHES],
+                        help="transcription:intervals, e.g. hermite-simpson:40")
     args = parser.parse_args(argv)
     body = scaled_body(62.0, 1.81)
     print(f"{'mesh':>20s} {'objective':>9s} {'smoothing':>9s} {'share %':>7s} converged", flush=True)
-    for transcription, nodes in MESHES:
+    for transcription, nodes in ((m.split(":")[0], int(m.split(":")[1])) for m in args.meshes):
         nlp = build(body, StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
                                          transcription=transcription, clearance=args.clearance))
         stride = optimum(nlp, args.speed, cadence=args.cadence, simulate=False)
