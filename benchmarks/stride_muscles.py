@@ -6,7 +6,7 @@ muscles, the same body, strike, mesh and speed.
 RBDS001's body (62 kg, 1.81 m), heel strike, each rung's default objective (effort; the
 muscles' metabolic): build (the NLP's graph, IPOPT and its derivatives), cold (the torque rungs
 from the generic guess; the muscles from their start, the torque+springs optimum split among
-them, result.muscle_start, whose own solve is counted apart as `start`) and warm (speed + 0.1
+them, local.muscle_start, whose own solve is counted apart as `start`) and warm (speed + 0.1
 m/s from the cold optimum with its multipliers, StrideNLP.resolve), medians of wall and CPU
 seconds, IPOPT's iterations and the cadence. Issue 33's targets for the muscles at 40 nodes:
 cold <= 30 s and warm <= 3 s on one core. Measure only.
@@ -26,8 +26,8 @@ from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings
 from formopt.optim.stride.checks import half_period
 from formopt.optim.stride.guess import ballistic
+from formopt.optim.stride.local import muscle_start
 from formopt.optim.stride.problem import RUNNER_TENDONS
-from formopt.optim.stride.result import muscle_start
 
 TARGETS = {"cold": 30.0, "warm": 3.0}  # s, the muscles at 40 nodes (issue 33 item 6)
 

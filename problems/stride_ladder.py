@@ -15,7 +15,7 @@ iterations and seconds (build, solve), and the phases a duration bound holds.
 sets the muscles' activation weight (StrideSettings.activation_weight) for a calibration run;
 `--objectives` the torque rungs' objectives (problem.OBJECTIVES; the muscles keep "metabolic"), each
 solved in turn; `--cadences` imposes each cadence (steps/min) in turn instead of leaving it free;
-`--starts` the generic guess and starts - 1 seeded perturbations of it, the best kept (result.optimum).
+`--starts` the generic guess and starts - 1 seeded perturbations of it, the best kept (local.optimum).
 """
 
 from __future__ import annotations
@@ -32,8 +32,8 @@ from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
 from formopt.optim.stride import problem
 from formopt.optim.stride.collocation import build
+from formopt.optim.stride.local import optimum
 from formopt.optim.stride.problem import RUNNER_TENDONS, StrideSettings
-from formopt.optim.stride.result import optimum
 from formopt.studies.stride import compare_cycle, measured_cycle, predicted_cycle
 
 RBDS = Path(__file__).resolve().parents[1] / "data" / "rbds" / "RBDS001processed.txt"

@@ -27,8 +27,8 @@ import time
 from formopt.mechanics.body import scaled_body
 from formopt.optim.stride import problem
 from formopt.optim.stride.collocation import build
+from formopt.optim.stride.local import optimum
 from formopt.optim.stride.problem import RUNNER_TENDONS, StrideSettings
-from formopt.optim.stride.result import optimum
 from formopt.optim.stride.search import global_optimum
 
 

@@ -21,9 +21,9 @@ import casadi as ca
 
 from formopt.mechanics.body import scaled_body
 from formopt.optim.stride.collocation import build
+from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import step_length
 from formopt.optim.stride.problem import RUNNER_TENDONS, SMOOTHING, StrideSettings
-from formopt.optim.stride.result import optimum
 
 MESHES = (("trapezoid", 40), ("hermite-simpson", 20), ("trapezoid", 80))
 

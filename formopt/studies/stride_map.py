@@ -33,7 +33,7 @@ from ..mechanics.errors import InputError
 from ..optim.stride import Stride, StrideNLP, costs, ranges, rank, summarise
 from ..optim.stride.guess import ballistic, fitted
 from ..optim.stride.layout import Solved
-from ..optim.stride.result import optimum
+from ..optim.stride.local import optimum
 
 PARAMETERS = {"speed_mps": "running speed, m/s", "cadence_spm": "imposed cadence, steps/min",
               "step_length_m": "imposed step length (a half stride), m",

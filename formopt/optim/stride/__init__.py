@@ -3,12 +3,14 @@
 problem.py: phases of each strike, objectives, settings; collocation.py: the trapezoidal
 transcription and the solve; layout.py: its bookkeeping (named blocks, rows, the raw solution);
 guess.py: initial guesses; result.py: the `Stride`; checks.py: its checks against independent
-methods; search.py: the global search for the optimum (its spend stated).
+methods; local.py: the optimum from its starts; search.py: the global search for the optimum
+(its spend stated).
 """
 
 from .collocation import StrideNLP
+from .local import optimum
 from .problem import OBJECTIVES, STRIKE_PHASES, StrideSettings
-from .result import Stride, optimum, rank, summarise
+from .result import Stride, rank, summarise
 from .search import global_optimum
 
 __all__ = ["OBJECTIVES", "STRIKE_PHASES", "StrideSettings", "StrideNLP", "Stride", "optimum", "rank", "summarise",

@@ -3,7 +3,7 @@
 Measured (problems/stride_checks.py, heel strike, 3.5 m/s, 40 nodes): the generic guess
 reaches a local optimum (objective 0.774, 156 steps/min); three perturbed guesses and a
 continuation from 3.0 m/s all reach a better one (0.739, 176 steps/min). A multi-start
-(result.optimum's `starts`) keeps the best.
+(local.optimum's `starts`) keeps the best.
 
 The generic guess knows nothing of the optimum: the hip moves forward at the speed at a
 constant height; the stance foot lies flat under the hip's mid-stance position, the stance

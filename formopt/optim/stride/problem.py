@@ -135,7 +135,7 @@ class StrideSettings:
     strike: str = "heel"
     objective: str = "effort"
     nodes: int = 40  # collocation intervals over the half stride
-    law: str = "no-slip"  # contact law of the impacts (no-slip; coulomb: the mode checked, result.optimum)
+    law: str = "no-slip"  # contact law of the impacts (no-slip; coulomb: the mode checked, local.optimum)
     touchdown: str = "stick"  # the touchdown impact's mode: "slide" (coulomb) adds the slide phase
     slip: int = 1  # a sliding touchdown's slip sign s along the ground (+1 forward, -1 back)
     impact_weight: float = 0.0  # weight (1/m) of the impacts' summed T_c (and slide friction) per distance

@@ -6,13 +6,13 @@ At speed v (slope, friction), with spend s = 1, 2, ... (`global_optimum`):
 1. The grid (`grid`): GRID_POINTS * s + 1 cadences evenly spaced over GRID_SPM (nested: spend 2's
    grid holds spend 1's), those whose step length 60 v / cadence is in its range
    (ranges.point), and the imposed cadence when there is one.
-2. At each grid cadence (imposed), a solve from the generic start (result.generic_start).
+2. At each grid cadence (imposed), a solve from the generic start (local.generic_start).
 3. Continuation along the family: the grid's cadences rising, then falling, each solved warm
    from its neighbour's stride (StrideNLP.resolve); the better kept (`rank`).
 4. With the cadence free: the generic start's free solve (`optimum`'s one start) and the
    RELEASED * s least costly grid strides released to free cadence (each warm from its
    stride), whose cadence and posture then move to the nearest local optimum.
-5. The answer: the best of step 4's solves (result.best_of: valid first, converged, the least
+5. The answer: the best of step 4's solves (local.best_of: valid first, converged, the least
    objective; the touchdown's mode under Coulomb, the forward check). With a cadence imposed
    step 4 is skipped and the answer is the best stride met at that cadence.
 
@@ -41,7 +41,8 @@ from ...mechanics.errors import InputError
 from . import ranges
 from .collocation import StrideNLP
 from .layout import Solved
-from .result import Stride, best_of, generic_start, rank, summarise
+from .local import best_of, generic_start
+from .result import Stride, rank, summarise
 
 # `[stride] search`: "local", `optimum`'s starts from the generic guess (scene key `starts`), or
 # "global", this module's procedure (scene key `spend`)
@@ -169,7 +170,7 @@ def distinct(nlp: StrideNLP, strides: list[Stride], answer: Stride, simulate: bo
         else:
             group.append(s)
     if answer.success and not any(_same(g[0], answer) for g in groups):
-        groups.append([answer])  # re-solved sliding under Coulomb (result.touchdown_mode): an optimum of its own
+        groups.append([answer])  # re-solved sliding under Coulomb (local.touchdown_mode): an optimum of its own
     out = []
     for first, *others in groups:
         is_answer = _same(first, answer)

@@ -7,8 +7,9 @@ from formopt.mechanics.body import scaled_body
 from formopt.mechanics.errors import InputError
 from formopt.optim.stride import search
 from formopt.optim.stride.collocation import build
+from formopt.optim.stride.local import optimum
 from formopt.optim.stride.problem import RUNNER_TENDONS, StrideSettings
-from formopt.optim.stride.result import optimum, rank
+from formopt.optim.stride.result import rank
 
 SPEED = 3.5
 
@@ -72,7 +73,7 @@ def test_the_grid_is_nested_in_the_spend_and_holds_an_imposed_cadence():
 
 
 def test_the_answer_is_among_the_optima_when_the_touchdown_re_solved_it():
-    """Under Coulomb the answer may be the sliding variant's re-solve (result.touchdown_mode),
+    """Under Coulomb the answer may be the sliding variant's re-solve (local.touchdown_mode),
     whose objective no free solve reached: it is listed, as the answer, beside them."""
     from types import SimpleNamespace
 
