@@ -176,43 +176,57 @@ def energy_figure(landing) -> Figure:
 
 def sweep_figure(rows: list[dict], params: list[str]) -> Figure:
     """One parameter: absorbed energy (first impact, all impacts) and peak normal force
-    against it. Two: maps of T_c_total and of the first impact's T_c over the grid. Valid
-    landings (studies.sweep.valid) filled, invalid ones hollow (a slip, a pulled contact, an
-    unfinished landing), failed points (no landing: the error column) as red crosses."""
+    against it (`_sweep_lines`). Two: maps of T_c_total and of the first impact's T_c over the
+    grid (`_sweep_maps`). Valid landings (studies.sweep.valid) filled, invalid ones hollow (a
+    slip, a pulled contact, an unfinished landing), failed points (no landing: the error column)
+    as red crosses."""
     from ..studies.sweep import valid
-
-    def value(r, key):
-        return float(r[key]) if r[key] not in ("", None) else np.nan
 
     failed = [r for r in rows if r["error"]]
     counts = (f"{sum(valid(r) for r in rows)} valid, {sum(not r['error'] and not valid(r) for r in rows)} "
               f"invalid, {len(failed)} failed of {len(rows)}")
-    if len(params) == 1:
-        (param,) = params
-        rows = sorted(rows, key=lambda r: float(r[param]))
-        x = np.array([float(r[param]) for r in rows])
-        ok = np.array([valid(r) for r in rows])
-        bad = np.array([not valid(r) and not r["error"] for r in rows])
-        fig, axes = _subplots(1, 2, figsize=(11, 4))
-        panels = ((axes[0], (("T_c_first", "first impact", "tab:blue"), ("T_c_total", "all impacts", "tab:red")),
-                   "absorbed energy T_c (J)"),
-                  (axes[1], (("f_n_max_N", "peak normal force", "tab:green"),), "peak normal contact force (N)"))
-        for ax, series, ylabel in panels:
-            for key, label, color in series:
-                y = np.array([value(r, key) for r in rows])
-                ax.plot(x, y, "-", color=color, lw=1, alpha=0.5)
-                ax.plot(x[ok], y[ok], "o", ms=4, color=color, label=f"{label}, valid")
-                if bad.any():
-                    ax.plot(x[bad], y[bad], "o", ms=5, mfc="none", color=color, label=f"{label}, invalid")
-            if failed:
-                ax.plot([float(r[param]) for r in failed], np.zeros(len(failed)), "x", color="red",
-                        ms=6, label="failed (no landing)")
-            ax.set_xlabel(_axis_label(param))
-            ax.set_ylabel(ylabel)
-            ax.legend(fontsize=7)
-        fig.suptitle(counts, fontsize=9)
-        fig.tight_layout()
-        return fig
+    fig = _sweep_lines(rows, params[0], failed, valid) if len(params) == 1 else _sweep_maps(rows, params, failed, valid)
+    more = f"; further parameters ({', '.join(params[2:])}) overlaid" if len(params) > 2 else ""
+    fig.suptitle(counts + more, fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def _cell(r: dict, key: str) -> float:
+    """A sweep row's number (nan where the cell is empty)."""
+    return float(r[key]) if r[key] not in ("", None) else np.nan
+
+
+def _sweep_lines(rows: list[dict], param: str, failed: list[dict], valid) -> Figure:
+    """`sweep_figure` for one parameter: T_c (first impact, all impacts) and the peak normal
+    force against it."""
+    rows = sorted(rows, key=lambda r: float(r[param]))
+    x = np.array([float(r[param]) for r in rows])
+    ok = np.array([valid(r) for r in rows])
+    bad = np.array([not valid(r) and not r["error"] for r in rows])
+    fig, axes = _subplots(1, 2, figsize=(11, 4))
+    panels = ((axes[0], (("T_c_first", "first impact", "tab:blue"), ("T_c_total", "all impacts", "tab:red")),
+               "absorbed energy T_c (J)"),
+              (axes[1], (("f_n_max_N", "peak normal force", "tab:green"),), "peak normal contact force (N)"))
+    for ax, series, ylabel in panels:
+        for key, label, color in series:
+            y = np.array([_cell(r, key) for r in rows])
+            ax.plot(x, y, "-", color=color, lw=1, alpha=0.5)
+            ax.plot(x[ok], y[ok], "o", ms=4, color=color, label=f"{label}, valid")
+            if bad.any():
+                ax.plot(x[bad], y[bad], "o", ms=5, mfc="none", color=color, label=f"{label}, invalid")
+        if failed:
+            ax.plot([float(r[param]) for r in failed], np.zeros(len(failed)), "x", color="red",
+                    ms=6, label="failed (no landing)")
+        ax.set_xlabel(_axis_label(param))
+        ax.set_ylabel(ylabel)
+        ax.legend(fontsize=7)
+    return fig
+
+
+def _sweep_maps(rows: list[dict], params: list[str], failed: list[dict], valid) -> Figure:
+    """`sweep_figure` for two parameters (the first two of `params`): maps of T_c_total and of
+    the first impact's T_c, invalid points ringed, failed ones crossed."""
     px, py = params[:2]
     xs = sorted({float(r[px]) for r in rows})
     ys = sorted({float(r[py]) for r in rows})
@@ -221,7 +235,7 @@ def sweep_figure(rows: list[dict], params: list[str]) -> Figure:
                            (axes[1], "T_c_first", "T_c at the first impact (J)")):
         grid = np.full((len(ys), len(xs)), np.nan)
         for r in rows:
-            grid[ys.index(float(r[py])), xs.index(float(r[px]))] = value(r, key)
+            grid[ys.index(float(r[py])), xs.index(float(r[px]))] = _cell(r, key)
         mesh = ax.pcolormesh(xs, ys, np.ma.masked_invalid(grid), shading="nearest", cmap="viridis")
         fig.colorbar(mesh, ax=ax, label=title)
         invalid = [(float(r[px]), float(r[py])) for r in rows if not r["error"] and not valid(r)]
@@ -234,9 +248,6 @@ def sweep_figure(rows: list[dict], params: list[str]) -> Figure:
         ax.set_ylabel(_axis_label(py))
         if invalid or failed:
             ax.legend(fontsize=7, loc="lower right", bbox_to_anchor=(1.0, 1.0), ncol=2, frameon=False)
-    fig.suptitle(counts + (f"; further parameters ({', '.join(params[2:])}) overlaid" if len(params) > 2 else ""),
-                 fontsize=9)
-    fig.tight_layout()
     return fig
 
 
