@@ -6,7 +6,7 @@ import pytest
 from helpers import random_states, split_leg
 
 from formopt import Impact
-from formopt.mechanics.impact import angular_momentum_impact
+from formopt.mechanics.angular_momentum import angular_momentum_impact
 from formopt.mechanics.model import build_model
 
 

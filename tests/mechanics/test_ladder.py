@@ -9,7 +9,7 @@ from helpers import ROOT, land, random_states, touchdown
 
 from formopt import Impact, SceneError, impact, load
 from formopt.io.scene import parse
-from formopt.mechanics.impact import angular_momentum_impact
+from formopt.mechanics.angular_momentum import angular_momentum_impact
 from formopt.mechanics.model import Swing, build_model
 
 FULL = ROOT / "formopt" / "studies" / "data" / "full_body.toml"
