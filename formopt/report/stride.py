@@ -176,6 +176,7 @@ def stride_table(study: StrideStudy) -> str:
             why = s.failed_checks if s.success else [f"IPOPT: {s.status}", *s.failed_checks]
             lines.append(f"INVALID {s.strike}: {'; '.join(why)}")
     lines += [f"NOTE {s.strike}: {remark}" for s in study.strides for remark in s.remarks]
+    lines += [f"NOTE mesh: {study.mesh}"] if study.mesh else []
     return "\n".join(lines)
 
 

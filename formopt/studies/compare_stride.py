@@ -38,7 +38,7 @@ import numpy as np
 
 from ..mechanics.body import scaled_body
 from ..optim.stride import Stride, rank, summarise
-from ..optim.stride.problem import STRIKES
+from ..optim.stride.problem import STRIKES, mesh_note
 from .stride_form import NODES, joint_work, placement_m, stride_scene, with_body
 from .stride_map import better, cadence_curve, free, warm
 
@@ -415,7 +415,7 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
         say(f"stride [{k}/{len(variants)}] {name}: warm from the nominal")
         curves.append(replace(variant_curve(name, scene, curves[0]), part=part) if curves[0].ok
                       else Curve(name, cadences, why_not="no nominal", part=part))
-    notes += optima_notes(curves[0])
+    notes += [mesh_note(nominal.settings), *optima_notes(curves[0])]
     if not curves[0].ok:
         notes.append(f"the nominal stride did not converge ({curves[0].why_not}): no what-if")
     notes += [f"{cv.name} left out of the band: {cv.why_not}" for cv in curves[1:] if not cv.ok]

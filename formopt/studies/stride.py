@@ -15,7 +15,7 @@ import numpy as np
 from ..io.stride_scene import StrideScene
 from ..mechanics.errors import InputError
 from ..optim.stride import Stride, global_optimum, optimum, ranges, rank
-from ..optim.stride.problem import STRIKES
+from ..optim.stride.problem import STRIKES, mesh_note
 from ..optim.stride.search import solves_planned
 
 ROW_KEYS = ("strike", "success", "objective_value", "cadence_spm", "step_length_m", "stance_s",
@@ -29,6 +29,7 @@ class StrideStudy:
 
     scene: str
     strides: list = field(default_factory=list)
+    mesh: str = ""  # how sure the optima are of their mesh (optim.stride.problem.mesh_note)
 
     @property
     def best(self) -> Stride:
@@ -41,7 +42,7 @@ class StrideStudy:
                  "impacts_J": s.budget["impacts_J"],
                  "impacts_valid": all(i["valid"] for i in s.impacts), "valid": s.valid}
                 for s in self.strides]
-        return {"scene": self.scene, **self.best.to_dict(), "strides": rows}
+        return {"scene": self.scene, **self.best.to_dict(), "strides": rows, "mesh": self.mesh}
 
 
 def run(scene: StrideScene, speed: float | None = None, strike: str | None = None,
@@ -68,7 +69,7 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
         strides.append(optimum(nlp, speed, scene.slope, scene.friction,
                                scene.cadence, simulate=simulate, starts=scene.starts))
     strides.sort(key=rank)
-    return StrideStudy(scene.name, strides)
+    return StrideStudy(scene.name, strides, mesh_note(scene.settings))
 
 
 def stages(scene: StrideScene, speed: float | None = None, strike: str | None = None) -> int:

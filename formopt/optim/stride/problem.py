@@ -122,6 +122,13 @@ TENDON_JOINTS = ("hip", "knee", "ankle")
 RUNNER_TENDONS = {"knee": 2.5, "ankle": 4.0}
 
 
+# How far a stride's optimum moved with its mesh, N to 2N intervals (docs/concepts/stride.md,
+# "One answer"; python problems/stride_search.py on RBDS001's body, heel, torque+springs, effort,
+# 2.5-4.5 m/s, 2026-11-25): every stride says it beside its numbers (`mesh_note`).
+MESH_SHIFT = {"trapezoid": "12-21 % in cadence and 21-38 % in cost from 40 to 80 nodes",
+              "hermite-simpson": "under 0.5 % in cadence and 6-10 % in cost from 20 to 40 intervals"}
+
+
 def other_leg(point: str) -> str:
     """heel_R <-> heel_L, forefoot_R <-> forefoot_L."""
     return point[:-1] + ("L" if point.endswith("R") else "R")
@@ -236,3 +243,9 @@ def metabolic(positive, negative):
     """Margaria's metabolic proxy W+/0.25 + W-/1.2 (J)."""
     return positive / EFFICIENCY_POSITIVE + negative / EFFICIENCY_NEGATIVE
 
+
+def mesh_note(settings: StrideSettings) -> str:
+    """How sure a stride's optimum is of its mesh, in words (MESH_SHIFT)."""
+    return (f"{settings.transcription} at {settings.nodes} intervals is not mesh-converged: on RBDS001's body "
+            f"the effort optimum moved {MESH_SHIFT[settings.transcription]} (docs/concepts/stride.md, "
+            "'One answer')")
