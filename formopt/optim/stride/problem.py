@@ -148,7 +148,7 @@ class StrideSettings:
     impact_weight: float = 0.0  # weight (1/m) of the impacts' summed T_c (and slide friction) per distance
     torque_limit: float = 4.0  # N m per kg of body mass, every joint
     # Each phase's duration bounds (s), a runner's from 2.5 to 6 m/s with room to spare, so that
-    # no realistic optimum is held by them (a stride on one says so: result.on_bounds):
+    # no realistic optimum is held by them (a stride on one says so: bounds.on_bounds):
     # - contact about 0.30 s at 2.5 m/s and 0.24 s at 3.5 (RBDS001, Fukuchi et al. 2017, PeerJ
     #   5:e3298), 0.27 s at 3.5 to about 0.16 s at 7 m/s (Dorn, Schache & Pandy 2012, JEB 215:1944,
     #   Fig. 2B), 0.08-0.12 s only at sprinters' top speeds (Weyand et al. 2000, J Appl Physiol

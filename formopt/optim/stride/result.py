@@ -27,6 +27,7 @@ import numpy as np
 from ...mechanics import muscles as hill
 from ...mechanics.joint_space import GRAVITY, JOINTS
 from .actuation import MuscleDriven
+from .bounds import held_by_bounds, held_text, on_bounds
 from .checks import drift, forward, half_period, impact_check, swing_clearance
 from .collocation import NX, StrideNLP
 from .layout import Solved
@@ -50,11 +51,6 @@ TOLERANCES = {
     # flexors' toe-off moment; beyond it the muscles do not make the stride they are credited with
     "reserve_nm_per_kg": 0.1,
 }
-# A phase duration this close to one of its bounds (problem.StrideSettings.duration) is held
-# by the bound, not chosen by the mechanics (`Stride.on_bound`): IPOPT leaves a variable it holds
-# at a bound within about 1e-8 s of it; a free phase lies farther off (the closest seen on the
-# shipped scenes, 2026-11-25: 6.7 ms). 0.1 ms is 1 % of the shortest bound (the heel's 0.01 s).
-ON_BOUND_S = 1e-4
 # A sticking impulse this close to the friction cone's edge (|1 - mu_c / mu|) is on it (the
 # impacts' `friction_margin` and `on_cone_edge`): it uses all the friction. Valid up to mu_c =
 # mu (1 + CONE_EDGE), under no-slip and under Coulomb (whose map may call it a slide by
@@ -116,8 +112,11 @@ class Stride:
     # tendon force (N) histories (n, 16), per muscle the tendon energy stored and returned (J)
     muscles: dict | None = field(repr=False, default=None)
     # the phases held by a duration bound ({"phase", "duration_s", "side": "low" | "high",
-    # "bound_s"}, `on_bounds`): the bound, not the mechanics, sets them
+    # "bound_s"}, bounds.on_bounds): the bound, not the mechanics, sets them
     on_bound: list = field(default_factory=list)
+    # the other variables on one of the solve's bounds (bounds.held_by_bounds: states, rates,
+    # accelerations, forces, the torque limit), grouped by variable
+    held: list = field(default_factory=list)
     # m: the swing foot's least height while the other foot holds the ground (checks.swing_clearance;
     # the NLP holds it at or above StrideSettings.clearance)
     swing_clearance_m: float = float("nan")
@@ -134,10 +133,12 @@ class Stride:
     @property
     def remarks(self) -> list[str]:
         """What a valid stride's headline must say besides its numbers: each phase held by a
-        duration bound, and each sticking impact on the friction cone's edge (valid: the
+        duration bound, the other bounds of the solve it sits on (bounds.held_text), each
+        sliding touchdown, and each sticking impact on the friction cone's edge (valid: the
         no-slip condition is |p_t| <= mu p_n, and Coulomb's sticking mode ends there; but it
         uses all the friction, so the friction sets the optimum there)."""
         out = [self.bound_text()] if self.on_bound else []
+        out += [held_text(self.held)] if self.held else []
         out += [f"{i['point']} impact of leg {i['leg']} solved sliding under {i['law']}: it slides "
                 f"{i['slide_s'] * 1e3:.0f} ms and {abs(i['slide_m']) * 100:.1f} cm"
                 for i in self.impacts if i["mode"] == "slide"]
@@ -176,13 +177,6 @@ def rank(stride: Stride) -> tuple:
     """The one order of strides, wherever one is chosen (`min(strides, key=rank)`): valid
     before invalid, converged before not, then the least objective (per distance)."""
     return not stride.valid, not stride.success, stride.objective_value
-
-
-def on_bounds(durations: list, bounds: dict) -> list[dict]:
-    """The phases (name, duration s) within ON_BOUND_S of their (low, high) bounds (s)."""
-    return [{"phase": name, "duration_s": d, "side": side, "bound_s": bound}
-            for name, d in durations for side, bound in zip(("low", "high"), bounds[name])
-            if abs(d - bound) <= ON_BOUND_S]
 
 
 def histories(nlp: StrideNLP, blocks: dict, slope: float):
@@ -367,7 +361,7 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
         mechanical_power_W=positive / T, checks=checks, phases=durations, mass_kg=m,
         t=t, phase=names, theta=theta, thetad=thetad, tau=tau, force=force, solved=solved,
         tau_spring=tau_spring, muscles=muscle_outputs(nlp, solved, checks),
-        on_bound=on_bounds(durations, nlp.settings.duration), swing_clearance_m=swing_clearance(nlp, b, slope))
+        on_bound=on_bounds(durations, nlp.settings.duration), held=held_by_bounds(nlp, b), swing_clearance_m=swing_clearance(nlp, b, slope))
 
 
 def muscle_outputs(nlp: StrideNLP, solved: Solved, checks: dict) -> dict | None:

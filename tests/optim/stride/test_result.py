@@ -4,7 +4,7 @@ its checks' stated tolerances."""
 from types import SimpleNamespace
 
 from formopt.optim.stride.problem import StrideSettings
-from formopt.optim.stride.result import ON_BOUND_S, TOLERANCES, Stride, on_bounds, rank
+from formopt.optim.stride.result import TOLERANCES, Stride, rank
 
 
 def _stride(valid, success, objective):
@@ -23,7 +23,7 @@ def test_valid_before_invalid_converged_before_not_then_the_cost():
 def _checked(checks, impacts=(), success=True):
     """A Stride's validity from its checks alone (the other fields are not read)."""
     s = Stride.__new__(Stride)
-    s.checks, s.impacts, s.success = checks, list(impacts), success
+    s.checks, s.impacts, s.success, s.held = checks, list(impacts), success, []
     return s
 
 
@@ -42,18 +42,6 @@ def test_an_invalid_impact_is_named():
               "approach_mps": -1.2}
     s = _checked({}, [impact])
     assert not s.valid and "heel impact of leg L invalid under no-slip (mu_c 0.93" in s.failed_checks[0]
-
-
-def test_a_phase_on_its_duration_bound_is_named_in_the_remarks():
-    bounds = StrideSettings().duration
-    low, high = bounds["heel"][0], bounds["forefoot"][1]
-    durations = [("heel", low + 0.2 * ON_BOUND_S), ("flat", 0.1), ("forefoot", high), ("flight", 0.12)]
-    found = on_bounds(durations, bounds)
-    assert [(b["phase"], b["side"]) for b in found] == [("heel", "low"), ("forefoot", "high")]
-    s = _checked({})
-    s.on_bound, s.friction = found, 0.8
-    assert s.remarks[0].startswith("heel phase 10.0 ms on its low bound (10 ms)")
-    assert not on_bounds([("heel", low + 2 * ON_BOUND_S)], bounds)
 
 
 def test_the_default_duration_bounds_hold_a_runners_phases():
