@@ -48,7 +48,7 @@ def test_what_ifs_span_every_converged_variant():
 
 def _curve(name, power, part="", objective=None):
     strides = [SimpleNamespace(mechanical_power_W=p, budget={"impacts_J": 1.0}, half_period_s=1.0,
-                               objective_value=o, success=True, valid=True, on_bound=[], cadence_spm=c)
+                               objective_value=o, success=True, valid=True, on_bound=[], held=[], cadence_spm=c)
                for p, o, c in zip(power, objective or power, [170.0, 153.0, 161.5, 178.5, 187.0])]
     return Curve(name, [170.0, 153.0, 161.5, 178.5, 187.0], None, strides, part=part)
 
@@ -71,7 +71,9 @@ def test_the_band_names_each_part_with_its_own_width():
 def test_a_what_if_between_two_families_and_a_free_optimum_off_the_envelope_are_said():
     nominal = _curve("nominal", [100, 110, 104, 98, 97], objective=[1.0, 1.2, 1.1, 0.95, 0.97])
     nominal.family_gap = [0.0, None, 0.0, 0.05, 0.0]  # 153: no continuation; 178.5: a costlier one
-    nominal.free = SimpleNamespace(objective_value=1.0, cadence_spm=170.0, success=True, valid=True)
+    nominal.free = SimpleNamespace(objective_value=1.0, cadence_spm=170.0, success=True, valid=True,
+                                   held=[{"variable": "knee_R rate", "side": "high", "bound": 15.0,
+                                          "unit": "rad/s", "phases": ["heel"], "nodes": 1}])
     nominal.strides[4].on_bound = [{"phase": "flat"}]
     nominal.strides[4].bound_text = lambda: "flat phase 30.0 ms on its low bound (30 ms)"
     got = what_ifs([nominal], nominal.cadences)
@@ -81,6 +83,10 @@ def test_a_what_if_between_two_families_and_a_free_optimum_off_the_envelope_are_
     assert nominal.envelope_gap == pytest.approx(0.05) and nominal.envelope_gap > ENVELOPE
     assert "the free optimum lies 5.0 % above the least costly imposed stride" in notes
     assert "the stride at 187 steps/min: flat phase 30.0 ms on its low bound" in notes
+    nominal.strides[2].held = nominal.free.held
+    assert optima_notes(nominal)[-1] == ("the solve's bounds hold the strides at 162 steps/min (each stride's `held`); "
+                                         "the free optimum is held by the solve's bounds, not the mechanics: "
+                                         "knee_R rate 15 rad/s (heel: 1 node)")
 
 
 CHANGES = (-5.0, 5.0)  # the section's what-ifs, two of WHAT_IF_PCT's four (the time: 3 cadences, not 5)
