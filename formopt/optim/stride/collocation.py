@@ -33,6 +33,7 @@ from dataclasses import replace
 import casadi as ca
 import numpy as np
 
+from ...mechanics.compiled import compiler
 from ...mechanics.joint_space import GRAVITY, JOINTS, LIMIT_MARGIN, RANGES, THETA, JointSpace
 from . import problem
 from .derivatives import functions as node_derivatives
@@ -59,6 +60,16 @@ MUSCLE_IPOPT = {"mu_strategy": "monotone", "mu_init": 1e-2}
 WARM_START = {"warm_start_init_point": "yes", "mu_strategy": "monotone", "mu_init": 1e-5,
               "warm_start_bound_push": 1e-6, "warm_start_mult_bound_push": 1e-6,
               "warm_start_slack_bound_push": 1e-6}
+
+
+# The node derivatives in C (derivatives.py, mechanics.compiled's disk cache): True, False or
+# "auto" (numerics.compiled's words): compiled from an NLP's COMPILE_FROM-th solve on, when a C
+# compiler is found, since a chain of solves (the search, a cadence curve, a map) pays the first
+# build (4 phases, -O1: about 17 s of CPU, once per body and phase models) and a single solve does
+# not; then 1.6 instead of 17 ms a solve's iteration for the functions (paper's body, heel, 40
+# nodes; benchmarks/stride_speed.py). The iterates are the same to round-off.
+COMPILED: bool | str = "auto"
+COMPILE_FROM = 3
 
 
 # IPOPT's derivatives are assembled node by node (derivatives.py), each phase's node model's own
@@ -127,9 +138,12 @@ class StrideNLP:
 
     _serial = itertools.count()  # each built NLP's own number (its `layout`)
 
-    def __init__(self, js: JointSpace, settings: StrideSettings, ipopt: dict | None = None):
+    def __init__(self, js: JointSpace, settings: StrideSettings, ipopt: dict | None = None,
+                 compiled: bool | str = COMPILED):
+        if not isinstance(compiled, bool) and compiled != "auto":
+            raise ValueError(f"compiled must be true, false or \"auto\", not {compiled!r}")
         start = time.perf_counter()
-        self.js, self.settings, self.ipopt = js, settings, ipopt
+        self.js, self.settings, self.ipopt, self.compile = js, settings, ipopt, compiled
         self.ocp = StrideProblem(js, settings)
         self.mass, self.phases = self.ocp.mass, self.ocp.phases
         self.split = settings.node_split()
@@ -176,18 +190,30 @@ class StrideNLP:
         self.serial = next(StrideNLP._serial)
         self._solver: ca.Function | None = None
         self._warm_solver: ca.Function | None = None
+        self._solver_compiled = False  # whether _solver's node derivatives are C
+        self.solves = 0  # IPOPT runs of this NLP
         self.lbg = np.concatenate(self.node_rows.lower + self.rows.lower)
         self.ubg = np.concatenate(self.node_rows.upper + self.rows.upper)
         self.build_s = time.perf_counter() - start
 
     @property
+    def compiled(self) -> bool:
+        """Whether the next solve's node derivatives run as C (`compile`: True, or "auto" from
+        the COMPILE_FROM-th solve on when a C compiler is found)."""
+        if self.compile != "auto":
+            return bool(self.compile)
+        return self.solves >= COMPILE_FROM - 1 and _has_compiler()
+
+    @property
     def solver(self) -> ca.Function:
-        """IPOPT on the NLP with its derivatives (derivatives.functions), built on first use;
-        build_s counts it."""
-        if self._solver is None:
+        """IPOPT on the NLP with its derivatives (derivatives.functions), built on first use and
+        again when they become compiled; build_s counts it."""
+        if self._solver is None or self._solver_compiled != self.compiled:
             start = time.perf_counter()
+            self._solver_compiled = self.compiled
             self._solver = ca.nlpsol("stride", "ipopt", self.problem, {
-                "ipopt": self.options, "print_time": False, **node_derivatives(self)})
+                "ipopt": self.options, "print_time": False, **node_derivatives(self, self._solver_compiled)})
+            self._warm_solver = None  # it shares the cold solver's derivatives
             self.build_s += time.perf_counter() - start
         return self._solver
 
@@ -334,13 +360,13 @@ class StrideNLP:
                            ).map(self.columns[i])
 
     def variant(self, **changes) -> StrideNLP:
-        """The NLP of the same body and IPOPT options with settings changed (e.g. touchdown=
-        "slide"), built once and kept."""
+        """The NLP of the same body, IPOPT options and compilation with settings changed (e.g.
+        touchdown="slide"), built once and kept."""
         key = tuple(sorted((k, repr(v)) for k, v in changes.items()))  # values may be dicts
         if not hasattr(self, "_variants"):
             self._variants: dict = {}
         if key not in self._variants:
-            self._variants[key] = StrideNLP(self.js, replace(self.settings, **changes), self.ipopt)
+            self._variants[key] = StrideNLP(self.js, replace(self.settings, **changes), self.ipopt, self.compile)
         return self._variants[key]
 
     # -- solve -----------------------------------------------------------------------
@@ -378,9 +404,10 @@ class StrideNLP:
         its primal values alone (`solve`) when that fails."""
         if previous.layout != self.layout or previous.lam_x is None:
             raise ValueError("resolve: the previous solution is not one of this NLP's (solve from its blocks)")
+        solver = self.solver  # built or compiled first: the warm solver shares its derivatives
         if self._warm_solver is None:  # the cold solver's derivatives, not derived again
             start = time.perf_counter()
-            shared = {k: self.solver.get_function(f"nlp_{f}")
+            shared = {k: solver.get_function(f"nlp_{f}")
                       for k, f in (("grad_f", "grad_f"), ("jac_g", "jac_g"), ("hess_lag", "hess_l"))}
             self._warm_solver = ca.nlpsol("stride_warm", "ipopt", self.problem, {
                 "ipopt": {**self.options, **WARM_START}, "print_time": False, **shared})
@@ -397,6 +424,7 @@ class StrideNLP:
             lbg[k] = ubg[k] = 60.0 / cadence
         b = self.blocks
         clock = time.perf_counter()
+        self.solves += 1
         out = solver(**start, p=np.array([speed, slope, mu]), lbx=np.concatenate(b.lower),
                      ubx=np.concatenate(b.upper), lbg=lbg, ubg=ubg)
         seconds = time.perf_counter() - clock
@@ -408,6 +436,15 @@ class StrideNLP:
                       lam_g=np.asarray(out["lam_g"], float).ravel(),
                       parameters={"speed": speed, "slope": slope, "mu": mu, "cadence": cadence},
                       lam_x=np.asarray(out["lam_x"], float).ravel(), layout=self.layout)
+
+
+def _has_compiler() -> bool:
+    """Whether a C compiler is found (mechanics.compiled.compiler)."""
+    try:
+        compiler()
+    except RuntimeError:
+        return False
+    return True
 
 
 def _column(bounds) -> tuple[np.ndarray, np.ndarray]:
