@@ -35,8 +35,7 @@ import numpy as np
 
 from ...mechanics.compiled import compiler
 from ...mechanics.joint_space import GRAVITY, JOINTS, LIMIT_MARGIN, RANGES, THETA, JointSpace
-from . import problem
-from .derivatives import functions as node_derivatives
+from . import derivatives, problem
 from .layout import Blocks, Rows, Solved
 from .ocp import INTEGRANDS, Impact, StrideProblem, periodicity, step_length
 from .problem import StrideSettings
@@ -190,7 +189,8 @@ class StrideNLP:
         self.serial = next(StrideNLP._serial)
         self._solver: ca.Function | None = None
         self._warm_solver: ca.Function | None = None
-        self._solver_compiled = False  # whether _solver's node derivatives are C
+        self._solver_compiled = False  # whether _solver's node models and derivatives are C
+        self._nlp = self.problem  # the solvers' problem (derivatives.problem when compiled)
         self.solves = 0  # IPOPT runs of this NLP
         self.lbg = np.concatenate(self.node_rows.lower + self.rows.lower)
         self.ubg = np.concatenate(self.node_rows.upper + self.rows.upper)
@@ -211,8 +211,10 @@ class StrideNLP:
         if self._solver is None or self._solver_compiled != self.compiled:
             start = time.perf_counter()
             self._solver_compiled = self.compiled
-            self._solver = ca.nlpsol("stride", "ipopt", self.problem, {
-                "ipopt": self.options, "print_time": False, **node_derivatives(self, self._solver_compiled)})
+            nodes = derivatives.node_derivatives(self, self._solver_compiled)
+            self._nlp = derivatives.problem(self, nodes) if self._solver_compiled else self.problem
+            self._solver = ca.nlpsol("stride", "ipopt", self._nlp, {
+                "ipopt": self.options, "print_time": False, **derivatives.functions(self, nodes)})
             self._warm_solver = None  # it shares the cold solver's derivatives
             self.build_s += time.perf_counter() - start
         return self._solver
@@ -409,7 +411,7 @@ class StrideNLP:
             start = time.perf_counter()
             shared = {k: solver.get_function(f"nlp_{f}")
                       for k, f in (("grad_f", "grad_f"), ("jac_g", "jac_g"), ("hess_lag", "hess_l"))}
-            self._warm_solver = ca.nlpsol("stride_warm", "ipopt", self.problem, {
+            self._warm_solver = ca.nlpsol("stride_warm", "ipopt", self._nlp, {
                 "ipopt": {**self.options, **WARM_START}, "print_time": False, **shared})
             self.build_s += time.perf_counter() - start
         got = self._run(self._warm_solver, {"x0": previous.x, "lam_x0": previous.lam_x,

@@ -32,7 +32,8 @@ from .ocp import INTEGRANDS
 class NodeDerivatives:
     """One phase's node Function (collocation.StrideNLP.node_functions) on the stacked node
     vector z: its outputs [rows; integrands], their Jacobian and the Hessian of w . outputs;
-    `compiled`: both as C (mechanics.compiled.external), else SX."""
+    `compiled`: the three as C (mechanics.compiled.external; the outputs with their Jacobian,
+    so that CasADi can differentiate a graph calling them), else SX."""
 
     def __init__(self, node: ca.Function, compiled: bool = False):
         sizes = [node.size1_in(k) for k in range(node.n_in() - 1)]  # all inputs but p
@@ -42,9 +43,11 @@ class NodeDerivatives:
         out = ca.vertcat(rows, ell)
         w = ca.SX.sym("w", out.shape[0])
         self.rows = rows.shape[0]
+        value = ca.Function(f"{node.name()}_value", [z, p], [out])
         jacobian = ca.Function(f"{node.name()}_jacobian", [z, p], [out, ca.jacobian(out, z)])
         hessian = ca.Function(f"{node.name()}_hessian", [z, p, w], [ca.hessian(ca.dot(w, out), z)[0]])
-        self.jacobian, self.hessian = (external(jacobian), external(hessian)) if compiled else (jacobian, hessian)
+        self.value, self.jacobian, self.hessian = ((external(value, jacobian=True), external(jacobian), external(hessian))
+                                                   if compiled else (value, jacobian, hessian))
 
 
 def node_indices(nlp, i: int, k: int) -> np.ndarray:
@@ -58,6 +61,31 @@ def node_indices(nlp, i: int, k: int) -> np.ndarray:
             out.append(b.offsets[block] + k * rows + np.arange(rows))
     out.append(b.offsets[f"X_{nlp.phases[0].name}"] + np.arange(9))  # the touchdown state
     return np.concatenate(out)
+
+
+def node_inputs(nlp, i: int, m: int, x: ca.MX) -> tuple[np.ndarray, ca.MX]:
+    """Phase i's node indices (one column per node: node_indices) and its nodes' z (MX, a
+    column each) in the decision vector x."""
+    idx = np.column_stack([node_indices(nlp, i, k) for k in range(m)])
+    return idx, ca.reshape(x[ca.DM(idx.ravel(order="F").tolist())], idx.shape[0], m)
+
+
+def node_derivatives(nlp, compiled: bool = False) -> list[NodeDerivatives]:
+    """Each phase's NodeDerivatives (`compiled`: in C)."""
+    return [NodeDerivatives(node, compiled) for node in nlp.node_functions]
+
+
+def problem(nlp, nodes: list[NodeDerivatives]) -> dict:
+    """The NLP {"x", "p", "f", "g"} (nlpsol's problem) as StrideNLP.problem, each phase's node
+    model called as its `nodes`' value on its nodes' z."""
+    x, p = ca.MX.sym("x", nlp.blocks.size), ca.MX.sym("p", nlp.p.shape[0])
+    G, ells = [], []
+    for i, (d, m) in enumerate(zip(nodes, nlp.columns)):
+        out = d.value.map(m)(node_inputs(nlp, i, m, x)[1], ca.repmat(p, 1, m))
+        G.append(ca.vec(out[:d.rows, :]))
+        ells.append(ca.vec(out[d.rows:, :]))
+    f, g = nlp.rest(x, ca.vertcat(*ells), p)
+    return {"x": x, "p": p, "f": f, "g": ca.vertcat(*G, g)}
 
 
 def _scatter(values, rows, cols, shape) -> ca.MX:
@@ -74,11 +102,11 @@ def _nonzeros(M: ca.MX) -> tuple[ca.MX, np.ndarray, np.ndarray]:
     return M.nz[list(range(M.nnz()))], np.asarray(r), np.asarray(c)
 
 
-def functions(nlp, compiled: bool = False) -> dict:
+def functions(nlp, nodes: list[NodeDerivatives] | None = None) -> dict:
     """{"grad_f", "jac_g", "hess_lag"}: nlpsol's derivative functions of `nlp` (module
     docstring), with its signatures: (x, p) -> (f, grad), (x, p) -> (g, jac), (x, p, lam_f,
-    lam_g) -> triu(hess). MX graphs calling each phase's node derivatives (`compiled`: in C)
-    mapped over its nodes and the rest's (SX), their nonzeros scattered into the NLP's by
+    lam_g) -> triu(hess). MX graphs calling each phase's node derivatives (`nodes`, default
+    SX) mapped over its nodes and the rest's (SX), their nonzeros scattered into the NLP's by
     constant sparse maps."""
     size, n_ell = nlp.blocks.size, nlp.ell.shape[0]
     x, p = ca.MX.sym("x", size), ca.MX.sym("p", nlp.p.shape[0])
@@ -87,10 +115,8 @@ def functions(nlp, compiled: bool = False) -> dict:
     n_node = sum(e.shape[0] for e in nlp.node_rows.expr)
     G, ells, jac_nz, hess_nz, phases = [], [], [], [], []
     row, col = 0, 0  # the node rows and integrands before this phase
-    for i, (node, m) in enumerate(zip(nlp.node_functions, nlp.columns)):
-        d = NodeDerivatives(node, compiled)
-        idx = np.column_stack([node_indices(nlp, i, k) for k in range(m)])
-        Z = ca.reshape(x[ca.DM(idx.ravel(order="F").tolist())], idx.shape[0], m)
+    for i, (d, m) in enumerate(zip(nodes or node_derivatives(nlp), nlp.columns)):
+        idx, Z = node_inputs(nlp, i, m, x)
         out, J = d.jacobian.map(m)(Z, ca.repmat(p, 1, m))
         G.append(ca.vec(out[:d.rows, :]))
         ells.append(ca.vec(out[d.rows:, :]))
