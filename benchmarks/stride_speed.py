@@ -12,9 +12,10 @@ its primal and dual values, StrideNLP.resolve: IPOPT's warm start), each the med
 (default 3) of wall and CPU seconds, with IPOPT's iterations and the cadence; then where a cold
 solve's CPU goes per IPOPT iteration (IPOPT's own timing of the NLP's functions, the rest being
 IPOPT and MUMPS). Issue 34's targets: cold <= 1 s and warm <= 0.2 s of CPU. Measured 2026-11-26
-(2-core machine shared with other work; medians of 3): interpreted cold 2.4 s, warm 0.8 s;
-compiled cold 0.95 s (85 iterations: 1.8 ms of functions and 9 ms of IPOPT and MUMPS each),
-warm 0.27 s (29 iterations), resolve 0.5 s (58 iterations). The peer: opty's human-gait example on gait2d (torque-driven, planar, 3 m/s, 40 nodes,
+(2-core machine shared with other work, load 4; medians of 3; docs/reference/performance.md):
+interpreted cold 2.34 s, warm 0.75 s; compiled cold 0.98 s (85 iterations: 1.8 ms of functions
+and 9.8 ms of IPOPT and MUMPS each), warm 0.29 s (29 iterations), resolve 0.53 s (58); the first
+compiled build 28 s. The peer: opty's human-gait example on gait2d (torque-driven, planar, 3 m/s, 40 nodes,
 smooth contact; ../shared/peers/opty_gait2d), run cold (its zero guess) and warm (its shipped
 solution) by its run_peer.py in the venv that its install.sh makes (`--peer VENV`, else the
 environment variable FORMOPT_PEER_VENV), a subprocess each, medians of the same N repeats. Without

@@ -61,12 +61,13 @@ WARM_START = {"warm_start_init_point": "yes", "mu_strategy": "monotone", "mu_ini
               "warm_start_slack_bound_push": 1e-6}
 
 
-# The node derivatives in C (derivatives.py, mechanics.compiled's disk cache): True, False or
-# "auto" (numerics.compiled's words): compiled from an NLP's COMPILE_FROM-th solve on, when a C
-# compiler is found, since a chain of solves (the search, a cadence curve, a map) pays the first
-# build (4 phases, -O1: about 17 s of CPU, once per body and phase models) and a single solve does
-# not; then 1.6 instead of 17 ms a solve's iteration for the functions (paper's body, heel, 40
-# nodes; benchmarks/stride_speed.py). The iterates are the same to round-off.
+# The node models and their derivatives in C (derivatives.py, mechanics.compiled's disk cache):
+# True, False or "auto" (numerics.compiled's words): compiled from an NLP's COMPILE_FROM-th solve
+# on, when a C compiler is found: a chain of solves (the search, a cadence curve, a map), not a
+# single one. The functions then cost 1.8 instead of 17 ms an IPOPT iteration, a cold solve
+# 0.98 instead of 2.34 s of CPU; the first build 28 s (-O1; once per body and phase models,
+# paid back after about 20 cold solves); the paper's body, heel, 40 nodes,
+# benchmarks/stride_speed.py, 2026-11-26. The iterates are the same to round-off.
 COMPILED: bool | str = "auto"
 COMPILE_FROM = 3
 
