@@ -1,6 +1,6 @@
 """The half stride's speed beside the peer's (issue 23 item 8, issue 34 item 5), in one run.
 
-    python benchmarks/stride_speed.py [--repeats N] [--peer VENV | --no-peer]
+    python benchmarks/stride_speed.py [--repeats N] [--peer VENV | --no-peer] [--same]
 
 formopt: the paper's body, heel strike, 40 nodes, 3.0 m/s, `effort` (the torque stride), with its
 node models and derivatives interpreted (CasADi's virtual machine) and compiled to C
@@ -15,8 +15,10 @@ IPOPT and MUMPS). Issue 34's targets: cold <= 1 s and warm <= 0.2 s of CPU. Meas
 (2-core machine shared with other work, load 4; medians of 3; docs/reference/performance.md):
 interpreted cold 2.34 s, warm 0.75 s; compiled cold 0.98 s (85 iterations: 1.8 ms of functions
 and 9.8 ms of IPOPT and MUMPS each), warm 0.29 s (29 iterations), resolve 0.53 s (58); the first
-compiled build 28 s. The peer: opty's human-gait example on gait2d (torque-driven, planar, 3 m/s, 40 nodes,
-smooth contact; ../shared/peers/opty_gait2d), run cold (its zero guess) and warm (its shipped
+compiled build 28 s. `--same` solves RBDS001's body (62 kg, 1.81 m; heel, 40 nodes) at 2.5, 3.5
+and 4.5 m/s both ways and prints the iterations, objectives and cadences side by side. The
+peer: opty's human-gait example on gait2d (torque-driven, planar, 3 m/s, 40 nodes, smooth
+contact; ../shared/peers/opty_gait2d), run cold (its zero guess) and warm (its shipped
 solution) by its run_peer.py in the venv that its install.sh makes (`--peer VENV`, else the
 environment variable FORMOPT_PEER_VENV), a subprocess each, medians of the same N repeats. Without
 that venv the peer's rows are skipped with the command that makes it. Measure only: neither side
@@ -35,7 +37,9 @@ import tempfile
 import time
 from pathlib import Path
 
-from formopt.mechanics.body import paper_body
+import numpy as np
+
+from formopt.mechanics.body import paper_body, scaled_body
 from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings
 from formopt.optim.stride.checks import half_period
@@ -123,6 +127,19 @@ def cell(value, width=9) -> str:
     return f"{value:{width}.2f}" if isinstance(value, (int, float)) else f"{'-':>{width}s}"
 
 
+def same(speeds=(2.5, 3.5, 4.5), nodes=40) -> None:
+    """RBDS001's body solved cold, interpreted and compiled: the iterations, the objective and
+    the cadence of each, and their largest relative differences."""
+    body = scaled_body(62.0, 1.81)
+    nlps = [StrideNLP(JointSpace(body), StrideSettings(strike="heel", nodes=nodes), compiled=c) for c in (False, True)]
+    for speed in speeds:
+        a, b = (nlp.solve(ballistic(nlp, speed), speed) for nlp in nlps)
+        ca_, cb = (60.0 / half_period(nlp, s.blocks) for nlp, s in zip(nlps, (a, b)))
+        print(f"RBDS001 {speed} m/s: interpreted {a.iterations} it, {a.objective:.10f}, {ca_:.6f} steps/min; "
+              f"compiled {b.iterations} it, {b.objective:.10f}, {cb:.6f} steps/min; relative differences "
+              f"{abs(b.objective / a.objective - 1):.1e} and {abs(cb / ca_ - 1):.1e}; max |dx| {np.max(np.abs(b.x - a.x)):.1e}")
+
+
 def report(ours: dict[str, list[dict]]) -> None:
     """formopt's rows (medians), the targets, and where a cold solve's CPU goes."""
     print(f"{'':31s} {'build':>17s} {'cold':>17s} {'it':>4s} {'warm':>17s} {'it':>4s} {'resolve':>17s} "
@@ -147,7 +164,11 @@ def main():
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--peer", help=f"the peer's venv (default: ${PEER_ENV})")
     parser.add_argument("--no-peer", action="store_true")
+    parser.add_argument("--same", action="store_true", help="RBDS001 at 3 speeds, interpreted and compiled")
     args = parser.parse_args()
+    if args.same:
+        same()
+        return 0
     print(f"medians of {args.repeats} repeats; wall s (CPU s)")
     print(f"the compiled build into a fresh cache: {first_build():.1f} s of CPU (the C compiler's included)")
     report({path: [formopt_once(compiled) for _ in range(args.repeats)]
