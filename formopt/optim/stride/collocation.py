@@ -199,8 +199,8 @@ class StrideNLP:
 
     @property
     def compiled(self) -> bool:
-        """Whether the next solve's node derivatives run as C (`compile`: True, or "auto" from
-        the COMPILE_FROM-th solve on when a C compiler is found)."""
+        """Whether the next solve's node models and derivatives run as C (`compile`: True, or
+        "auto" from the COMPILE_FROM-th solve on when a C compiler is found)."""
         if self.compile != "auto":
             return bool(self.compile)
         return self.solves >= COMPILE_FROM - 1 and _has_compiler()
