@@ -1,18 +1,20 @@
 """The half stride's speed beside the peer's (issue 23 item 8, issue 34 item 5), in one run.
 
-    python benchmarks/stride_speed.py [--repeats N] [--peer VENV | --no-peer] [--same]
+    python benchmarks/stride_speed.py [--repeats N] [--peer VENV | --no-peer] [--first-build]
+        [--paths both|interpreted|compiled] [--ipopt JSON] [--same]
 
 formopt: the paper's body, heel strike, 40 nodes, 3.0 m/s, `effort` (the torque stride), with its
 node models and derivatives interpreted (CasADi's virtual machine) and compiled to C
-(collocation.COMPILED, StrideNLP(compiled=True)): build (the NLP's graph, IPOPT and its
-derivatives; the compiled libraries from the disk cache, after a first build into a fresh cache
-whose CPU, the C compiler's included, is printed apart), cold (from the generic guess), warm
+(collocation.COMPILED, StrideNLP(compiled=True); `--paths` one of them): build (the NLP's graph,
+IPOPT and its derivatives; the compiled libraries from the disk cache; `--first-build` times
+them into a fresh cache first, the C compiler's CPU included), cold (from the generic guess), warm
 (3.1 m/s from the 3.0 m/s optimum's primal values, StrideNLP.solve) and resolve (the same from
 its primal and dual values, StrideNLP.resolve: IPOPT's warm start), each the median of N repeats
 (default 3) of wall and CPU seconds, with IPOPT's iterations and the cadence; then where a cold
 solve's CPU goes per IPOPT iteration (IPOPT's own timing of the NLP's functions, the rest being
-IPOPT and MUMPS). Issue 34's targets: cold <= 1 s and warm <= 0.2 s of CPU. Measured 2026-11-26
-(2-core machine shared with other work, load 4; medians of 3; docs/reference/performance.md):
+IPOPT and MUMPS); `--ipopt` sets IPOPT options over collocation's. Issue 34's targets: cold
+<= 1 s and warm <= 0.2 s of CPU. Measured 2026-11-26 (2-core machine shared with other work,
+load 4; medians of 3; docs/reference/performance.md):
 interpreted cold 2.34 s, warm 0.75 s; compiled cold 0.98 s (85 iterations: 1.8 ms of functions
 and 9.8 ms of IPOPT and MUMPS each), warm 0.29 s (29 iterations), resolve 0.53 s (58); the first
 compiled build 28 s. `--same` solves RBDS001's body (62 kg, 1.81 m; heel, 40 nodes) at 2.5, 3.5
@@ -62,9 +64,10 @@ def timed(run):
     return out, time.perf_counter() - wall, cpu() + cpu(children=True) - used
 
 
-def build(compiled: bool, nodes: int = 40) -> StrideNLP:
-    """The NLP and its solver: graph, IPOPT and its derivatives (`compiled`: in C)."""
-    nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(strike="heel", nodes=nodes), compiled=compiled)
+def build(compiled: bool, nodes: int = 40, ipopt: dict | None = None) -> StrideNLP:
+    """The NLP and its solver: graph, IPOPT (`ipopt`: options over the defaults) and its
+    derivatives (`compiled`: in C)."""
+    nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(strike="heel", nodes=nodes), ipopt, compiled)
     assert nlp.solver is not None
     return nlp
 
@@ -75,10 +78,10 @@ def per_iteration(stats: dict) -> dict:
     return {k: 1e3 * stats[f"t_proc_nlp_{k}"] / n for k in ("f", "g", "grad_f", "jac_g", "hess_l")}
 
 
-def formopt_once(compiled: bool, speed=3.0, nodes=40) -> dict:
+def formopt_once(compiled: bool, speed=3.0, nodes=40, ipopt: dict | None = None) -> dict:
     """One build, cold, warm and resolved solve (wall and CPU seconds, iterations, status,
     cadence) and the cold solve's functions' ms per iteration."""
-    nlp, build_s, build_cpu = timed(lambda: build(compiled, nodes))
+    nlp, build_s, build_cpu = timed(lambda: build(compiled, nodes, ipopt))
     cold, cold_s, cold_cpu = timed(lambda: nlp.solve(ballistic(nlp, speed), speed))
     functions = per_iteration(nlp.solver.stats())
     warm, warm_s, warm_cpu = timed(lambda: nlp.solve(cold.blocks, speed + 0.1))
@@ -165,14 +168,20 @@ def main():
     parser.add_argument("--peer", help=f"the peer's venv (default: ${PEER_ENV})")
     parser.add_argument("--no-peer", action="store_true")
     parser.add_argument("--same", action="store_true", help="RBDS001 at 3 speeds, interpreted and compiled")
+    parser.add_argument("--first-build", action="store_true", help="time the compiled build into a fresh cache")
+    parser.add_argument("--paths", choices=("both", "interpreted", "compiled"), default="both")
+    parser.add_argument("--ipopt", type=json.loads, default=None, help="IPOPT options over the defaults (JSON)")
     args = parser.parse_args()
     if args.same:
         same()
         return 0
     print(f"medians of {args.repeats} repeats; wall s (CPU s)")
-    print(f"the compiled build into a fresh cache: {first_build():.1f} s of CPU (the C compiler's included)")
-    report({path: [formopt_once(compiled) for _ in range(args.repeats)]
-            for path, compiled in (("interpreted", False), ("compiled", True))})
+    if args.first_build:
+        print(f"the compiled build into a fresh cache: {first_build():.1f} s of CPU (the C compiler's included)")
+    if args.ipopt:
+        print(f"IPOPT options over the defaults: {args.ipopt}")
+    report({path: [formopt_once(compiled, ipopt=args.ipopt) for _ in range(args.repeats)]
+            for path, compiled in (("interpreted", False), ("compiled", True)) if args.paths in ("both", path)})
     venv = None if args.no_peer else peer_venv(args.peer)
     if venv is None:
         print("" if args.no_peer else f"the peer skipped: no venv at --peer or ${PEER_ENV} "
