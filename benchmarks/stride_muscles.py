@@ -1,20 +1,25 @@
 """The actuation ladder's speed in one run (issue 33 item 6): torque, torque+springs and
 muscles, the same body, strike, mesh and speed.
 
-    python benchmarks/stride_muscles.py [--nodes 40] [--repeats 1] [--speed 3.5]
+    python benchmarks/stride_muscles.py [--nodes 40] [--repeats 1] [--speed 3.5] [--compiled auto|true|false]
+        [--rungs torque,torque+springs,muscles] [--ipopt JSON]
 
 RBDS001's body (62 kg, 1.81 m), heel strike, each rung's default objective (effort; the
 muscles' metabolic): build (the NLP's graph, IPOPT and its derivatives), cold (the torque rungs
 from the generic guess; the muscles from their start, the torque+springs optimum split among
 them, local.muscle_start, whose own solve is counted apart as `start`) and warm (speed + 0.1
 m/s from the cold optimum with its multipliers, StrideNLP.resolve), medians of wall and CPU
-seconds, IPOPT's iterations and the cadence. Issue 33's targets for the muscles at 40 nodes:
-cold <= 30 s and warm <= 3 s on one core. Measure only.
+seconds, IPOPT's iterations and the cadence; the NLPs' node models and derivatives compiled to C
+or not (`--compiled`, StrideNLP's: default true, the libraries from the disk cache after a first
+build, which is counted in build); `--rungs` a subset, `--ipopt` IPOPT options over collocation's
+(e.g. '{"print_level": 7, "print_timing_statistics": "yes"}' for IPOPT's log). Issue 33's targets for the muscles at 40 nodes: cold <= 30 s
+and warm <= 3 s on one core. Measure only.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import statistics
 from dataclasses import replace
 
@@ -38,9 +43,9 @@ def rung_settings(rung: str, body, nodes: int) -> StrideSettings:
             "muscles": replace(base, objective="metabolic", muscles=body_muscles(body))}[rung]
 
 
-def once(rung: str, body, nodes: int, speed: float) -> dict:
+def once(rung: str, body, nodes: int, speed: float, compiled: bool | str, ipopt: dict | None = None) -> dict:
     def build():
-        nlp = StrideNLP(JointSpace(body), rung_settings(rung, body, nodes))
+        nlp = StrideNLP(JointSpace(body), rung_settings(rung, body, nodes), ipopt, compiled)
         assert nlp.solver is not None
         return nlp
     nlp, build_s, build_cpu = timed(build)
@@ -59,12 +64,17 @@ def main():
     parser.add_argument("--nodes", type=int, default=40)
     parser.add_argument("--repeats", type=int, default=1)
     parser.add_argument("--speed", type=float, default=3.5)
+    parser.add_argument("--compiled", choices=("auto", "true", "false"), default="true")
+    parser.add_argument("--rungs", default="torque,torque+springs,muscles")
+    parser.add_argument("--ipopt", type=json.loads, default=None, help="IPOPT options over the defaults (JSON)")
     args = parser.parse_args()
+    compiled = {"true": True, "false": False}.get(args.compiled, "auto")
     body = scaled_body(62.0, 1.81)
-    print(f"RBDS001's body, heel, {args.nodes} nodes, {args.speed:g} m/s; medians of {args.repeats}; wall s (CPU s)")
+    print(f"RBDS001's body, heel, {args.nodes} nodes, {args.speed:g} m/s, compiled {args.compiled}; "
+          f"medians of {args.repeats}; wall s (CPU s)")
     print(f"{'rung':15s} {'build':>17s} {'start':>9s} {'cold':>17s} {'it':>5s} {'warm':>17s} {'it':>5s} {'cadence':>8s}")
-    for rung in ("torque", "torque+springs", "muscles"):
-        runs = [once(rung, body, args.nodes, args.speed) for _ in range(args.repeats)]
+    for rung in args.rungs.split(","):
+        runs = [once(rung, body, args.nodes, args.speed, compiled, args.ipopt) for _ in range(args.repeats)]
         m = {k: statistics.median(r[k] for r in runs) for k in runs[0] if k != "status"}
         print(f"{rung:15s} {cell(m['build_s'])} ({cell(m['build_cpu'], 5)}) {cell(m['start_s'])} "
               f"{cell(m['cold_s'])} ({cell(m['cold_cpu'], 5)}) {m['cold_iterations']:5.0f} "

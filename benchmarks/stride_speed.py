@@ -1,13 +1,26 @@
 """The half stride's speed beside the peer's (issue 23 item 8, issue 34 item 5), in one run.
 
-    python benchmarks/stride_speed.py [--repeats N] [--peer VENV | --no-peer]
+    python benchmarks/stride_speed.py [--repeats N] [--peer VENV | --no-peer] [--first-build]
+        [--paths both|interpreted|compiled] [--ipopt JSON] [--same]
 
-formopt: the paper's body, heel strike, 40 nodes, 3.0 m/s, `effort` (the torque stride): build
-(the NLP's graph, IPOPT and its derivatives), cold (from the generic guess) and warm (3.1 m/s
-from the 3.0 m/s optimum), each the median of N repeats (default 3) of wall and CPU seconds,
-with IPOPT's iterations and the cadence. Issue 34's targets: cold <= 1 s and warm <= 0.2 s of
-CPU. The peer: opty's human-gait example on gait2d (torque-driven, planar, 3 m/s, 40 nodes,
-smooth contact; ../shared/peers/opty_gait2d), run cold (its zero guess) and warm (its shipped
+formopt: the paper's body, heel strike, 40 nodes, 3.0 m/s, `effort` (the torque stride), with its
+node models and derivatives interpreted (CasADi's virtual machine) and compiled to C
+(collocation.COMPILED, StrideNLP(compiled=True); `--paths` one of them): build (the NLP's graph,
+IPOPT and its derivatives; the compiled libraries from the disk cache; `--first-build` times
+them into a fresh cache first, the C compiler's CPU included), cold (from the generic guess), warm
+(3.1 m/s from the 3.0 m/s optimum's primal values, StrideNLP.solve) and resolve (the same from
+its primal and dual values, StrideNLP.resolve: IPOPT's warm start), each the median of N repeats
+(default 3) of wall and CPU seconds, with IPOPT's iterations and the cadence; then where a cold
+solve's CPU goes per IPOPT iteration (IPOPT's own timing of the NLP's functions, the rest being
+IPOPT and MUMPS); `--ipopt` sets IPOPT options over collocation's. Issue 34's targets: cold
+<= 1 s and warm <= 0.2 s of CPU. Measured 2026-11-26 (2-core machine shared with other work,
+load 4; medians of 3; docs/reference/performance.md):
+interpreted cold 2.34 s, warm 0.75 s; compiled cold 0.98 s (85 iterations: 1.8 ms of functions
+and 9.8 ms of IPOPT and MUMPS each), warm 0.29 s (29 iterations), resolve 0.53 s (58); the first
+compiled build 28 s. `--same` solves RBDS001's body (62 kg, 1.81 m; heel, 40 nodes) at 2.5, 3.5
+and 4.5 m/s both ways and prints the iterations, objectives and cadences side by side. The
+peer: opty's human-gait example on gait2d (torque-driven, planar, 3 m/s, 40 nodes, smooth
+contact; ../shared/peers/opty_gait2d), run cold (its zero guess) and warm (its shipped
 solution) by its run_peer.py in the venv that its install.sh makes (`--peer VENV`, else the
 environment variable FORMOPT_PEER_VENV), a subprocess each, medians of the same N repeats. Without
 that venv the peer's rows are skipped with the command that makes it. Measure only: neither side
@@ -22,10 +35,13 @@ import os
 import resource
 import statistics
 import subprocess
+import tempfile
 import time
 from pathlib import Path
 
-from formopt.mechanics.body import paper_body
+import numpy as np
+
+from formopt.mechanics.body import paper_body, scaled_body
 from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings
 from formopt.optim.stride.checks import half_period
@@ -42,25 +58,51 @@ def cpu(children: bool = False) -> float:
 
 
 def timed(run):
-    """(result, wall s, CPU s) of run()."""
-    wall, used = time.perf_counter(), cpu()
+    """(result, wall s, CPU s) of run(); the CPU of its child processes (a C compiler) included."""
+    wall, used = time.perf_counter(), cpu() + cpu(children=True)
     out = run()
-    return out, time.perf_counter() - wall, cpu() - used
+    return out, time.perf_counter() - wall, cpu() + cpu(children=True) - used
 
 
-def formopt_once(speed=3.0, nodes=40) -> dict:
-    """One build, cold and warm solve (wall and CPU seconds, iterations, status, cadence)."""
-    def build():
-        nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(strike="heel", nodes=nodes))
-        assert nlp.solver is not None  # the whole build: graph, IPOPT and its derivatives
-        return nlp
-    nlp, build_s, build_cpu = timed(build)
+def build(compiled: bool, nodes: int = 40, ipopt: dict | None = None) -> StrideNLP:
+    """The NLP and its solver: graph, IPOPT (`ipopt`: options over the defaults) and its
+    derivatives (`compiled`: in C)."""
+    nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(strike="heel", nodes=nodes), ipopt, compiled)
+    assert nlp.solver is not None
+    return nlp
+
+
+def per_iteration(stats: dict) -> dict:
+    """ms per IPOPT iteration of the NLP's functions (IPOPT's t_proc_nlp_*, CPU) of a solve."""
+    n = max(stats["iter_count"], 1)
+    return {k: 1e3 * stats[f"t_proc_nlp_{k}"] / n for k in ("f", "g", "grad_f", "jac_g", "hess_l")}
+
+
+def formopt_once(compiled: bool, speed=3.0, nodes=40, ipopt: dict | None = None) -> dict:
+    """One build, cold, warm and resolved solve (wall and CPU seconds, iterations, status,
+    cadence) and the cold solve's functions' ms per iteration."""
+    nlp, build_s, build_cpu = timed(lambda: build(compiled, nodes, ipopt))
     cold, cold_s, cold_cpu = timed(lambda: nlp.solve(ballistic(nlp, speed), speed))
+    functions = per_iteration(nlp.solver.stats())
     warm, warm_s, warm_cpu = timed(lambda: nlp.solve(cold.blocks, speed + 0.1))
+    resolved, resolve_s, resolve_cpu = timed(lambda: nlp.resolve(cold, speed + 0.1))
     return {"build_s": build_s, "build_cpu": build_cpu, "cold_s": cold_s, "cold_cpu": cold_cpu,
             "cold_iterations": cold.iterations, "cold_status": cold.status, "warm_s": warm_s,
             "warm_cpu": warm_cpu, "warm_iterations": warm.iterations, "warm_status": warm.status,
-            "cadence_spm": 60.0 / half_period(nlp, cold.blocks)}
+            "resolve_s": resolve_s, "resolve_cpu": resolve_cpu, "resolve_iterations": resolved.iterations,
+            "cadence_spm": 60.0 / half_period(nlp, cold.blocks), **{f"ms_{k}": v for k, v in functions.items()},
+            "ms_ipopt": 1e3 * cold_cpu / max(cold.iterations, 1) - sum(functions.values())}
+
+
+def first_build() -> float:
+    """CPU s of the compiled build into a fresh cache (the C compiler's included)."""
+    with tempfile.TemporaryDirectory() as cache:
+        before = os.environ.get("FORMOPT_CACHE")
+        os.environ["FORMOPT_CACHE"] = cache
+        try:
+            return timed(lambda: build(True))[2]
+        finally:
+            os.environ.pop("FORMOPT_CACHE") if before is None else os.environ.update(FORMOPT_CACHE=before)
 
 
 def peer_once(venv: Path, mode: str) -> dict:
@@ -88,22 +130,58 @@ def cell(value, width=9) -> str:
     return f"{value:{width}.2f}" if isinstance(value, (int, float)) else f"{'-':>{width}s}"
 
 
+def same(speeds=(2.5, 3.5, 4.5), nodes=40) -> None:
+    """RBDS001's body solved cold, interpreted and compiled: the iterations, the objective and
+    the cadence of each, and their largest relative differences."""
+    body = scaled_body(62.0, 1.81)
+    nlps = [StrideNLP(JointSpace(body), StrideSettings(strike="heel", nodes=nodes), compiled=c) for c in (False, True)]
+    for speed in speeds:
+        a, b = (nlp.solve(ballistic(nlp, speed), speed) for nlp in nlps)
+        ca_, cb = (60.0 / half_period(nlp, s.blocks) for nlp, s in zip(nlps, (a, b)))
+        print(f"RBDS001 {speed} m/s: interpreted {a.iterations} it, {a.objective:.10f}, {ca_:.6f} steps/min; "
+              f"compiled {b.iterations} it, {b.objective:.10f}, {cb:.6f} steps/min; relative differences "
+              f"{abs(b.objective / a.objective - 1):.1e} and {abs(cb / ca_ - 1):.1e}; max |dx| {np.max(np.abs(b.x - a.x)):.1e}")
+
+
+def report(ours: dict[str, list[dict]]) -> None:
+    """formopt's rows (medians), the targets, and where a cold solve's CPU goes."""
+    print(f"{'':31s} {'build':>17s} {'cold':>17s} {'it':>4s} {'warm':>17s} {'it':>4s} {'resolve':>17s} "
+          f"{'it':>4s} {'cadence':>8s}")
+    for path, runs in ours.items():
+        m = {k: median(runs, k) for k in runs[0]}
+        print(f"{'formopt, ' + path:31s} {cell(m['build_s'])} ({cell(m['build_cpu'], 5)}) "
+              f"{cell(m['cold_s'])} ({cell(m['cold_cpu'], 5)}) {m['cold_iterations']:4.0f} "
+              f"{cell(m['warm_s'])} ({cell(m['warm_cpu'], 5)}) {m['warm_iterations']:4.0f} "
+              f"{cell(m['resolve_s'])} ({cell(m['resolve_cpu'], 5)}) {m['resolve_iterations']:4.0f} "
+              f"{m['cadence_spm']:8.1f}   cold: {runs[0]['cold_status']}, warm: {runs[0]['warm_status']}")
+    for path, runs in ours.items():
+        m = {k: median(runs, k) for k in runs[0]}
+        print(f"{path}: a cold iteration's CPU, ms: f {m['ms_f']:.2f}, g {m['ms_g']:.2f}, grad_f {m['ms_grad_f']:.2f}, "
+              f"jac_g {m['ms_jac_g']:.2f}, hess_l {m['ms_hess_l']:.2f}; IPOPT and MUMPS {m['ms_ipopt']:.2f}")
+        print(f"{path}: targets (CPU): " + ", ".join(f"{k} <= {v:g} s: {'met' if m[f'{k}_cpu'] <= v else 'missed'}"
+                                                   for k, v in TARGETS_CPU.items()))
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--peer", help=f"the peer's venv (default: ${PEER_ENV})")
     parser.add_argument("--no-peer", action="store_true")
+    parser.add_argument("--same", action="store_true", help="RBDS001 at 3 speeds, interpreted and compiled")
+    parser.add_argument("--first-build", action="store_true", help="time the compiled build into a fresh cache")
+    parser.add_argument("--paths", choices=("both", "interpreted", "compiled"), default="both")
+    parser.add_argument("--ipopt", type=json.loads, default=None, help="IPOPT options over the defaults (JSON)")
     args = parser.parse_args()
-    ours = [formopt_once() for _ in range(args.repeats)]
+    if args.same:
+        same()
+        return 0
     print(f"medians of {args.repeats} repeats; wall s (CPU s)")
-    print(f"{'':31s} {'build':>17s} {'cold':>17s} {'cold it':>8s} {'warm':>17s} {'warm it':>8s} {'cadence':>8s}")
-    m = {k: median(ours, k) for k in ours[0]}
-    print(f"{'formopt (heel, exact impacts)':31s} {cell(m['build_s'])} ({cell(m['build_cpu'], 5)}) "
-          f"{cell(m['cold_s'])} ({cell(m['cold_cpu'], 5)}) {m['cold_iterations']:8.0f} "
-          f"{cell(m['warm_s'])} ({cell(m['warm_cpu'], 5)}) {m['warm_iterations']:8.0f} {m['cadence_spm']:8.1f}"
-          f"   cold: {ours[0]['cold_status']}, warm: {ours[0]['warm_status']}")
-    print("targets (CPU): " + ", ".join(f"{k} <= {v:g} s: {'met' if m[f'{k}_cpu'] <= v else 'missed'}"
-                                         for k, v in TARGETS_CPU.items()))
+    if args.first_build:
+        print(f"the compiled build into a fresh cache: {first_build():.1f} s of CPU (the C compiler's included)")
+    if args.ipopt:
+        print(f"IPOPT options over the defaults: {args.ipopt}")
+    report({path: [formopt_once(compiled, ipopt=args.ipopt) for _ in range(args.repeats)]
+            for path, compiled in (("interpreted", False), ("compiled", True)) if args.paths in ("both", path)})
     venv = None if args.no_peer else peer_venv(args.peer)
     if venv is None:
         print("" if args.no_peer else f"the peer skipped: no venv at --peer or ${PEER_ENV} "
@@ -114,7 +192,7 @@ def main():
                   for r in runs.values())
     status = {mode: r[0].get("status_msg", r[0].get("error")) for mode, r in runs.items()}
     print(f"{'opty + gait2d (smooth contact)':31s} {cell(cold['build_s'])} {'':7s} {cell(cold['solve_s'])} "
-          f"{'':7s} {'-':>8s} {cell(warm['solve_s'])} {'':7s} {'-':>8s} {cell(warm['cadence_spm'], 8)}"
+          f"{'':7s} {'-':>4s} {cell(warm['solve_s'])} {'':7s} {'-':>4s} {'-':>17s} {'-':>4s} {cell(warm['cadence_spm'], 8)}"
           f"   cold: {status['cold']}, warm: {status['warm']}")
     print(f"the peer's symbolic derivation {cell(cold['derive_s'], 5).strip()} s per run (before its build); its "
           f"process CPU per run: cold {cell(cold['process_cpu'], 5).strip()} s, warm {cell(warm['process_cpu'], 5).strip()} s")

@@ -43,10 +43,13 @@ def compiler() -> str:
                        "use the interpreted CasADi Function instead")
 
 
-def library(function: ca.Function) -> Path:
-    """Path of the compiled shared library of `function` (built once, then cached)."""
+def library(function: ca.Function, jacobian: bool = False) -> Path:
+    """Path of the compiled shared library of `function` (built once, then cached); with
+    `jacobian`, its Jacobian too (`jac_<name>`, which CasADi differentiates a loaded external by)."""
     generator = ca.CodeGenerator(f"{function.name()}.c", {"with_header": False})
     generator.add(function)
+    if jacobian:
+        generator.add(function.jacobian())
     return _compile(generator.dump(), function.name(), FUNCTION_OPT)
 
 
@@ -84,9 +87,10 @@ def _compile(source: str, name: str, level: str) -> Path:
     return target
 
 
-def external(function: ca.Function) -> ca.Function:
-    """The compiled `function` as a CasADi Function (same inputs and outputs)."""
-    return ca.external(function.name(), str(library(function)))
+def external(function: ca.Function, jacobian: bool = False) -> ca.Function:
+    """The compiled `function` as a CasADi Function (same inputs and outputs); `jacobian`: with
+    its compiled Jacobian, so graphs that call it can be differentiated."""
+    return ca.external(function.name(), str(library(function, jacobian)))
 
 
 class Compiled:

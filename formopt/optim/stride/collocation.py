@@ -33,9 +33,9 @@ from dataclasses import replace
 import casadi as ca
 import numpy as np
 
+from ...mechanics.compiled import compiler
 from ...mechanics.joint_space import GRAVITY, JOINTS, LIMIT_MARGIN, RANGES, THETA, JointSpace
-from . import problem
-from .derivatives import functions as node_derivatives
+from . import derivatives, problem
 from .layout import Blocks, Rows, Solved
 from .ocp import INTEGRANDS, Impact, StrideProblem, periodicity, step_length
 from .problem import StrideSettings
@@ -59,6 +59,17 @@ MUSCLE_IPOPT = {"mu_strategy": "monotone", "mu_init": 1e-2}
 WARM_START = {"warm_start_init_point": "yes", "mu_strategy": "monotone", "mu_init": 1e-5,
               "warm_start_bound_push": 1e-6, "warm_start_mult_bound_push": 1e-6,
               "warm_start_slack_bound_push": 1e-6}
+
+
+# The node models and their derivatives in C (derivatives.py, mechanics.compiled's disk cache):
+# True, False or "auto" (numerics.compiled's words): compiled from an NLP's COMPILE_FROM-th solve
+# on, when a C compiler is found: a chain of solves (the search, a cadence curve, a map), not a
+# single one. The functions then cost 1.8 instead of 17 ms an IPOPT iteration, a cold solve
+# 0.98 instead of 2.34 s of CPU; the first build 28 s (-O1; once per body and phase models,
+# paid back after about 20 cold solves); the paper's body, heel, 40 nodes,
+# benchmarks/stride_speed.py, 2026-11-26. The iterates are the same to round-off.
+COMPILED: bool | str = "auto"
+COMPILE_FROM = 3
 
 
 # IPOPT's derivatives are assembled node by node (derivatives.py), each phase's node model's own
@@ -127,9 +138,12 @@ class StrideNLP:
 
     _serial = itertools.count()  # each built NLP's own number (its `layout`)
 
-    def __init__(self, js: JointSpace, settings: StrideSettings, ipopt: dict | None = None):
+    def __init__(self, js: JointSpace, settings: StrideSettings, ipopt: dict | None = None,
+                 compiled: bool | str = COMPILED):
+        if not isinstance(compiled, bool) and compiled != "auto":
+            raise ValueError(f"compiled must be true, false or \"auto\", not {compiled!r}")
         start = time.perf_counter()
-        self.js, self.settings, self.ipopt = js, settings, ipopt
+        self.js, self.settings, self.ipopt, self.compile = js, settings, ipopt, compiled
         self.ocp = StrideProblem(js, settings)
         self.mass, self.phases = self.ocp.mass, self.ocp.phases
         self.split = settings.node_split()
@@ -176,18 +190,33 @@ class StrideNLP:
         self.serial = next(StrideNLP._serial)
         self._solver: ca.Function | None = None
         self._warm_solver: ca.Function | None = None
+        self._solver_compiled = False  # whether _solver's node models and derivatives are C
+        self._nlp = self.problem  # the solvers' problem (derivatives.problem when compiled)
+        self.solves = 0  # IPOPT runs of this NLP
         self.lbg = np.concatenate(self.node_rows.lower + self.rows.lower)
         self.ubg = np.concatenate(self.node_rows.upper + self.rows.upper)
         self.build_s = time.perf_counter() - start
 
     @property
+    def compiled(self) -> bool:
+        """Whether the next solve's node models and derivatives run as C (`compile`: True, or
+        "auto" from the COMPILE_FROM-th solve on when a C compiler is found)."""
+        if self.compile != "auto":
+            return bool(self.compile)
+        return self.solves >= COMPILE_FROM - 1 and _has_compiler()
+
+    @property
     def solver(self) -> ca.Function:
-        """IPOPT on the NLP with its derivatives (derivatives.functions), built on first use;
-        build_s counts it."""
-        if self._solver is None:
+        """IPOPT on the NLP with its derivatives (derivatives.functions), built on first use and
+        again when they become compiled; build_s counts it."""
+        if self._solver is None or self._solver_compiled != self.compiled:
             start = time.perf_counter()
-            self._solver = ca.nlpsol("stride", "ipopt", self.problem, {
-                "ipopt": self.options, "print_time": False, **node_derivatives(self)})
+            self._solver_compiled = self.compiled
+            nodes = derivatives.node_derivatives(self, self._solver_compiled)
+            self._nlp = derivatives.problem(self, nodes) if self._solver_compiled else self.problem
+            self._solver = ca.nlpsol("stride", "ipopt", self._nlp, {
+                "ipopt": self.options, "print_time": False, **derivatives.functions(self, nodes)})
+            self._warm_solver = None  # it shares the cold solver's derivatives
             self.build_s += time.perf_counter() - start
         return self._solver
 
@@ -334,13 +363,13 @@ class StrideNLP:
                            ).map(self.columns[i])
 
     def variant(self, **changes) -> StrideNLP:
-        """The NLP of the same body and IPOPT options with settings changed (e.g. touchdown=
-        "slide"), built once and kept."""
+        """The NLP of the same body, IPOPT options and compilation with settings changed (e.g.
+        touchdown="slide"), built once and kept."""
         key = tuple(sorted((k, repr(v)) for k, v in changes.items()))  # values may be dicts
         if not hasattr(self, "_variants"):
             self._variants: dict = {}
         if key not in self._variants:
-            self._variants[key] = StrideNLP(self.js, replace(self.settings, **changes), self.ipopt)
+            self._variants[key] = StrideNLP(self.js, replace(self.settings, **changes), self.ipopt, self.compile)
         return self._variants[key]
 
     # -- solve -----------------------------------------------------------------------
@@ -378,11 +407,12 @@ class StrideNLP:
         its primal values alone (`solve`) when that fails."""
         if previous.layout != self.layout or previous.lam_x is None:
             raise ValueError("resolve: the previous solution is not one of this NLP's (solve from its blocks)")
+        solver = self.solver  # built or compiled first: the warm solver shares its derivatives
         if self._warm_solver is None:  # the cold solver's derivatives, not derived again
             start = time.perf_counter()
-            shared = {k: self.solver.get_function(f"nlp_{f}")
+            shared = {k: solver.get_function(f"nlp_{f}")
                       for k, f in (("grad_f", "grad_f"), ("jac_g", "jac_g"), ("hess_lag", "hess_l"))}
-            self._warm_solver = ca.nlpsol("stride_warm", "ipopt", self.problem, {
+            self._warm_solver = ca.nlpsol("stride_warm", "ipopt", self._nlp, {
                 "ipopt": {**self.options, **WARM_START}, "print_time": False, **shared})
             self.build_s += time.perf_counter() - start
         got = self._run(self._warm_solver, {"x0": previous.x, "lam_x0": previous.lam_x,
@@ -397,6 +427,7 @@ class StrideNLP:
             lbg[k] = ubg[k] = 60.0 / cadence
         b = self.blocks
         clock = time.perf_counter()
+        self.solves += 1
         out = solver(**start, p=np.array([speed, slope, mu]), lbx=np.concatenate(b.lower),
                      ubx=np.concatenate(b.upper), lbg=lbg, ubg=ubg)
         seconds = time.perf_counter() - clock
@@ -408,6 +439,15 @@ class StrideNLP:
                       lam_g=np.asarray(out["lam_g"], float).ravel(),
                       parameters={"speed": speed, "slope": slope, "mu": mu, "cadence": cadence},
                       lam_x=np.asarray(out["lam_x"], float).ravel(), layout=self.layout)
+
+
+def _has_compiler() -> bool:
+    """Whether a C compiler is found (mechanics.compiled.compiler)."""
+    try:
+        compiler()
+    except RuntimeError:
+        return False
+    return True
 
 
 def _column(bounds) -> tuple[np.ndarray, np.ndarray]:

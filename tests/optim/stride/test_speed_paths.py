@@ -1,0 +1,51 @@
+"""The stride NLP's node derivatives compiled to C (collocation.COMPILED) solve as the
+interpreted ones do: the same iterations and optimum to round-off (no timing here: speed
+lives in benchmarks/stride_speed.py)."""
+
+import numpy as np
+import pytest
+
+from formopt.mechanics.body import paper_body
+from formopt.mechanics.joint_space import JointSpace
+from formopt.optim.stride import StrideNLP, StrideSettings
+from formopt.optim.stride.collocation import COMPILE_FROM
+from formopt.optim.stride.guess import ballistic
+
+SETTINGS = StrideSettings(strike="flat", nodes=14)
+
+
+@pytest.fixture(scope="module")
+def solves():
+    """(interpreted, compiled): each NLP's solve from the generic guess at 3.5 m/s."""
+    out = []
+    for compiled in (False, True):
+        nlp = StrideNLP(JointSpace(paper_body()), SETTINGS, compiled=compiled)
+        out.append((nlp, nlp.solve(ballistic(nlp, 3.5), 3.5)))
+    return out
+
+
+def test_compiled_solves_as_interpreted(solves):
+    (plain, a), (fast, b) = solves
+    assert not plain.compiled and fast.compiled
+    assert a.success and b.success
+    assert a.iterations == b.iterations
+    np.testing.assert_allclose(b.x, a.x, rtol=0, atol=1e-9)
+    assert b.objective == pytest.approx(a.objective, rel=1e-12)
+
+
+def test_auto_compiles_from_a_chains_third_solve(solves):
+    (_, first), _ = solves
+    nlp = StrideNLP(JointSpace(paper_body()), SETTINGS)  # compiled="auto"
+    seen = []
+    for speed in (3.5, 3.6, 3.7):
+        seen.append(nlp.compiled)
+        previous = nlp.solve(first.blocks, speed)
+    assert seen == [False] * (COMPILE_FROM - 1) + [True]
+    assert previous.success
+    warm = nlp.resolve(previous, 3.8)  # the warm solver shares the compiled derivatives
+    assert warm.success and nlp.compiled
+
+
+def test_bad_compiled_value_is_refused():
+    with pytest.raises(ValueError, match="compiled"):
+        StrideNLP(JointSpace(paper_body()), SETTINGS, compiled="yes")
