@@ -63,13 +63,15 @@ WARM_START = {"warm_start_init_point": "yes", "mu_strategy": "monotone", "mu_ini
 
 # The node models and their derivatives in C (derivatives.py, mechanics.compiled's disk cache):
 # True, False or "auto" (numerics.compiled's words): compiled from an NLP's COMPILE_FROM-th solve
-# on, when a C compiler is found: a chain of solves (the search, a cadence curve, a map), not a
-# single one. The functions then cost 1.8 instead of 17 ms an IPOPT iteration, a cold solve
-# 0.98 instead of 2.34 s of CPU; the first build 28 s (-O1; once per body and phase models,
-# paid back after about 20 cold solves); the paper's body, heel, 40 nodes,
-# benchmarks/stride_speed.py, 2026-11-26. The iterates are the same to round-off.
+# on, when a C compiler is found. Compiled, the functions cost 1.8 instead of 17 ms an IPOPT
+# iteration, a cold solve 0.98 instead of 2.34 s of CPU, but the first build costs 28 s (-O1;
+# once per body and phase models, then from the cache); the paper's body, heel, 40 nodes,
+# benchmarks/stride_speed.py, 2026-11-26. "auto" rents before it buys: it compiles once the
+# chain's interpreted solves have cost about what the build does (28 s / 1.4 s saved a solve),
+# so a long chain (a search at a larger spend, a map) ends compiled and a short one (a stride, a
+# cadence curve, the tests) never pays a build. The iterates are the same to round-off.
 COMPILED: bool | str = "auto"
-COMPILE_FROM = 3
+COMPILE_FROM = 20
 
 
 # IPOPT's derivatives are assembled node by node (derivatives.py), each phase's node model's own
