@@ -265,6 +265,27 @@ def maintenance_length_factor(length):
     return -_smooth_max(-rising, -falling, 0.02)
 
 
+def metabolic_terms(muscles: Muscles, activation, length, velocity) -> dict:
+    """Bhargava et al. 2004's rates (W, each of shape (n,); `metabolic_rate` says how):
+    activation heat A, maintenance heat M, shortening heat S and positive fibre work W."""
+    mass, fast = ca.DM(muscles.mass), ca.DM(muscles.fast_twitch)
+    slow_recruited = (1.0 - fast) * ca.sin(0.5 * math.pi * activation)
+    fast_recruited = fast * (1.0 - ca.cos(0.5 * math.pi * activation))
+    isometric = activation * active_force_length(length, ca.DM(muscles.width)) * ca.DM(muscles.max_force)
+    contractile = isometric * force_velocity(velocity)
+    fibre = contractile + ca.DM(muscles.max_force) * passive_force_length(
+        length, ca.DM(muscles.passive_slack), ca.DM(muscles.passive_stiffness))
+    speed = velocity * ca.DM(muscles.max_velocity)
+    lengthening = 0.5 + 0.5 * ca.tanh(speed / SMOOTHING_VELOCITY)
+    short_a, short_b, long_c = SHORTENING_HEAT
+    return {"activation": mass * (ACTIVATION_HEAT[0] * slow_recruited + ACTIVATION_HEAT[1] * fast_recruited),
+            "maintenance": mass * maintenance_length_factor(length) * (
+                MAINTENANCE_HEAT[0] * slow_recruited + MAINTENANCE_HEAT[1] * fast_recruited),
+            "shortening": -((short_a * isometric + short_b * fibre) * (1.0 - lengthening)
+                            + long_c * fibre * lengthening) * speed,
+            "work": -contractile * speed * (1.0 - lengthening)}
+
+
 def metabolic_rate(muscles: Muscles, activation, length, velocity):
     """Metabolic energy rate (W, shape (n,)) of Bhargava et al. 2004 in a smooth form:
 
@@ -279,25 +300,12 @@ def metabolic_rate(muscles: Muscles, activation, length, velocity):
     2019) and OpenSim's Bhargava2004MuscleMetabolicsProbe: the shortening heat's force-dependent
     coefficient, the activation heat's decay 1, the fibres recruited by activation instead of
     excitation; the switches are tanh over `SMOOTHING_VELOCITY`, the corners hyperbolae over
-    0.02 l_opt (g) and 0.1 W/kg (the floor). No basal rate.
+    0.02 l_opt (g) and 0.1 W/kg (the floor). No basal rate. The terms: `metabolic_terms`.
     """
-    mass, fast = ca.DM(muscles.mass), ca.DM(muscles.fast_twitch)
-    slow_recruited = (1.0 - fast) * ca.sin(0.5 * math.pi * activation)
-    fast_recruited = fast * (1.0 - ca.cos(0.5 * math.pi * activation))
-    heat = mass * (ACTIVATION_HEAT[0] * slow_recruited + ACTIVATION_HEAT[1] * fast_recruited)
-    heat += mass * maintenance_length_factor(length) * (
-        MAINTENANCE_HEAT[0] * slow_recruited + MAINTENANCE_HEAT[1] * fast_recruited)
-    isometric = activation * active_force_length(length, ca.DM(muscles.width)) * ca.DM(muscles.max_force)
-    contractile = isometric * force_velocity(velocity)
-    fibre = contractile + ca.DM(muscles.max_force) * passive_force_length(
-        length, ca.DM(muscles.passive_slack), ca.DM(muscles.passive_stiffness))
-    speed = velocity * ca.DM(muscles.max_velocity)
-    lengthening = 0.5 + 0.5 * ca.tanh(speed / SMOOTHING_VELOCITY)
-    short_a, short_b, long_c = SHORTENING_HEAT
-    heat -= ((short_a * isometric + short_b * fibre) * (1.0 - lengthening)
-             + long_c * fibre * lengthening) * speed
-    work = -contractile * speed * (1.0 - lengthening)
-    return _smooth_max(heat / mass, MINIMUM_HEAT, 0.1) * mass + work
+    mass = ca.DM(muscles.mass)
+    terms = metabolic_terms(muscles, activation, length, velocity)
+    heat = terms["activation"] + terms["maintenance"] + terms["shortening"]
+    return _smooth_max(heat / mass, MINIMUM_HEAT, 0.1) * mass + terms["work"]
 
 
 def activation_cost(muscles: Muscles, activation, power: float = 3.0):
