@@ -161,14 +161,14 @@ def main(argv=None) -> int:
     parser.add_argument("--cadences", type=float, nargs="+", default=[171.4, 222.0])
     parser.add_argument("--nodes", type=int, default=24)
     parser.add_argument("--mass", type=float, default=62.0)
-    parser.add_argument("--weight", type=float, default=problem.ACTIVATION_WEIGHT)
+    parser.add_argument("--weight", type=float, default=problem.FORCE_RATE_WEIGHT)
     args = parser.parse_args(argv)
     body = scaled_body(args.mass, 1.81)
     settings = StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic",
-                              muscles=body_muscles(body), activation_weight=args.weight)
+                              muscles=body_muscles(body), force_rate_weight=args.weight)
     nlp = build(body, settings)
     print(f"RBDS001's height, {args.mass:g} kg, heel, {args.nodes} nodes, {args.speed} m/s, "
-          f"activation weight {args.weight:g}")
+          f"force-rate weight {args.weight:g}")
     for cadence in args.cadences:
         report(nlp, optimum(nlp, args.speed, cadence=cadence))
     hand_check(body)

@@ -316,6 +316,14 @@ def activation_cost(muscles: Muscles, activation, power: float = 3.0):
     return ca.dot(volume, activation**power)
 
 
+def force_rate_cost(muscles: Muscles, force_rate):
+    """sum_i V_i F'_i^2 / sum_i V_i (1/s^2): the volume-weighted mean squared rate of the
+    normalised tendon forces F' (1/s), a cost of generating force quickly in the active muscle
+    volume (Kipp, Grabowski & Kram 2018, J Exp Biol 221:jeb184218)."""
+    volume = ca.DM(muscles.volume / muscles.volume.sum())
+    return ca.dot(volume, force_rate**2)
+
+
 @dataclass(frozen=True)
 class LegFunctions:
     """One leg's muscles as CasADi Functions, the calls a stride makes per node.
@@ -326,6 +334,7 @@ class LegFunctions:
     activation_rate(e, a) -> (n)             1/s
     metabolic_rate(theta, theta', a, F, F') -> (1)   W, summed over the leg's muscles
     activation_cost(a) -> (1)                the volume-weighted mean of a^3
+    force_rate_cost(F') -> (1)               the volume-weighted mean of F'^2 (1/s^2)
     """
 
     residual: ca.Function
@@ -333,6 +342,7 @@ class LegFunctions:
     activation_rate: ca.Function
     metabolic_rate: ca.Function
     activation_cost: ca.Function
+    force_rate_cost: ca.Function
 
 
 def leg_functions(muscles: Muscles) -> LegFunctions:
@@ -349,7 +359,8 @@ def leg_functions(muscles: Muscles) -> LegFunctions:
         activation_rate=ca.Function("activation_rate", [exc, act], [activation_rate(exc, act)]),
         metabolic_rate=ca.Function("metabolic_rate", state,
                                    [ca.sum1(metabolic_rate(muscles, act, length, velocity))]),
-        activation_cost=ca.Function("activation_cost", [act], [activation_cost(muscles, act)]))
+        activation_cost=ca.Function("activation_cost", [act], [activation_cost(muscles, act)]),
+        force_rate_cost=ca.Function("force_rate_cost", [rate], [force_rate_cost(muscles, rate)]))
 
 
 def tendon_energy(muscles: Muscles, force) -> np.ndarray:

@@ -83,3 +83,12 @@ def test_bhargava_terms_by_hand():
     assert float(hill.metabolic_rate(soleus, 1.0, 1.0, -0.2)) == pytest.approx(sum(terms.values()), rel=1e-6)
     assert float(hill.metabolic_rate(soleus, 1.0, 1.0, 0.0)) == pytest.approx(held, rel=1e-2)
 
+
+def test_force_rate_integrand_is_volume_weighted(rung):
+    """The force-rate integrand: sum over legs of sum_i V_i F'_i^2 / sum_i V_i (1/s^2)."""
+    u = np.zeros(rung.controls)
+    u[16:24] = 0.3  # g = F'/10 of the right leg's muscles: F' = 3 /s
+    u[40] = -0.5  # the left iliopsoas, F' = -5 /s
+    got = rung.integrands(ca.DM.zeros(9), ca.DM.zeros(9), ca.DM.ones(rung.states) * 0.2, ca.DM(u))["force_rate"]
+    share = rung.muscles.volume / rung.muscles.volume.sum()
+    assert float(got) == pytest.approx(9.0 + 25.0 * share[0], rel=1e-12)
