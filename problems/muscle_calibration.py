@@ -2,7 +2,7 @@
 the muscles' "metabolic" objective) against the weight, bisected on the weight until the
 cadence lands within --tolerance of the runner's.
 
-    python problems/muscle_calibration.py [--speed 3.5] [--target 171.4] [--weights 1 4]
+    python problems/muscle_calibration.py [--speed 3.5] [--target 171.4] [--weights 16 32 64 80]
                                           [--steps 4] [--tolerance 2] [--nodes 24] [--mass 62]
 
 The --weights are solved first (the first from the generic start, local.optimum's; each next
@@ -46,7 +46,7 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--target", type=float, default=171.4)
-    parser.add_argument("--weights", type=float, nargs="+", default=[1.0, 4.0])
+    parser.add_argument("--weights", type=float, nargs="+", default=[16.0, 32.0, 64.0, 80.0])
     parser.add_argument("--steps", type=int, default=4)
     parser.add_argument("--tolerance", type=float, default=2.0)
     parser.add_argument("--nodes", type=int, default=24)
