@@ -8,11 +8,12 @@ runner's speeds, against the runner's processed mean cycle (its joint powers the
 Prints per rung and speed: cadence (steps/min; measured 156.5 at 2.5 and 171.4 at 3.5 m/s,
 runners choose about 175-183 at 4.5), stance (s), peak vertical force (N/kg), the joint angles'
 RMS against the mean cycle (deg), the peak ankle power (W/kg, positive), the tendons' energy
-stored per step (J: soleus and gastrocnemius, all), the swing foot's least height (m, while
-the other foot is down: Stride.swing_clearance_m), reserves, the objective J (per distance), validity,
+stored per step (J: soleus and gastrocnemius, all), reserves (N m/kg), the muscles' metabolic
+energy (J/kg/m), the swing foot's least height (m, while
+the other foot is down: Stride.swing_clearance_m), the objective J (per distance), validity,
 iterations and seconds (build, solve), and the phases a duration bound holds.
 `--mass` scales the body to another mass at the same height (a heavier runner); `--weight`
-sets the muscles' activation weight (StrideSettings.activation_weight) for a calibration run;
+sets the muscles' force-rate weight (StrideSettings.force_rate_weight) for a calibration run;
 `--objectives` the torque rungs' objectives (problem.OBJECTIVES; the muscles keep "metabolic"), each
 solved in turn; `--cadences` imposes each cadence (steps/min) in turn instead of leaving it free;
 `--starts` the generic guess and starts - 1 seeded perturbations of it, the best kept (local.optimum).
@@ -48,7 +49,7 @@ def settings(rung: str, body, strike: str, nodes: int, weight: float, objective:
     if rung == "torque+springs":
         return replace(base, tendons=dict(RUNNER_TENDONS))
     if rung == "muscles":
-        return replace(base, objective="metabolic", muscles=body_muscles(body), activation_weight=weight)
+        return replace(base, objective="metabolic", muscles=body_muscles(body), force_rate_weight=weight)
     return base
 
 
@@ -67,7 +68,9 @@ def row(rung, speed, stride, measured) -> str:
         text += (f" {measured_stance:6.3f} {cycle['peak_vertical_n_per_kg']['measured']:6.1f}"
                  f" {rms['hip']:5.1f} {rms['knee']:5.1f} {rms['ankle']:5.1f} {power:5.1f} {m_power:5.1f}")
     m = stride.muscles
-    tendons = f"{m['achilles_stored_J']:5.1f} {m['tendon_stored_J']:5.1f} {m['reserve_nm_per_kg']:5.2f}" if m else " " * 17
+    energy = m["metabolic_J"] / (stride.mass_kg * stride.step_length_m) if m else float("nan")
+    tendons = (f"{m['achilles_stored_J']:5.1f} {m['tendon_stored_J']:5.1f} {m['reserve_nm_per_kg']:5.2f} {energy:6.2f}"
+               if m else " " * 24)
     return (text + f" {tendons} {swing:6.3f} {stride.objective_value:6.4f} {'yes' if stride.valid else 'NO':>5s}"
             f" {stride.iterations:5d} {stride.build_s:5.1f} {stride.solve_s:6.1f}"
             + ("" if stride.valid else f"  ({'; '.join(stride.failed_checks) or stride.status})")
@@ -87,13 +90,13 @@ def main(argv=None) -> int:
     parser.add_argument("--cadences", type=float, nargs="+", default=[None])
     parser.add_argument("--starts", type=int, default=1)
     args = parser.parse_args(argv)
-    weight = problem.ACTIVATION_WEIGHT if args.weight is None else args.weight
+    weight = problem.FORCE_RATE_WEIGHT if args.weight is None else args.weight
     body = scaled_body(args.mass, 1.81)
     print(f"RBDS001's height (1.81 m), {args.mass:g} kg, {args.strike} strike, {args.nodes} nodes, {args.starts} start(s), "
-          f"activation weight {weight:g}", flush=True)
+          f"force-rate weight {weight:g}", flush=True)
     print(f"{'rung objective':30s} {'v':>4s} {'spm':>7s} {'meas':>6s} {'stance':>6s} {'GRF':>6s} {'m.st':>6s} {'m.GRF':>6s}"
           f" {'hipRMS':>5s} {'knRMS':>5s} {'anRMS':>5s} {'P+ank':>5s} {'m.P+':>5s} {'Ach J':>5s} {'all J':>5s}"
-          f" {'res':>5s} {'swing':>6s} {'J':>6s} {'valid':>5s} {'iter':>5s} {'build':>5s} {'solve':>6s}", flush=True)
+          f" {'res':>5s} {'E/kg/m':>6s} {'swing':>6s} {'J':>6s} {'valid':>5s} {'iter':>5s} {'build':>5s} {'solve':>6s}", flush=True)
     runs = [(rung, objective) for rung in args.rungs
             for objective in (["metabolic"] if rung == "muscles" else args.objectives)]
     for rung, objective in runs:

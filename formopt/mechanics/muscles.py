@@ -265,6 +265,27 @@ def maintenance_length_factor(length):
     return -_smooth_max(-rising, -falling, 0.02)
 
 
+def metabolic_terms(muscles: Muscles, activation, length, velocity) -> dict:
+    """Bhargava et al. 2004's rates (W, each of shape (n,); `metabolic_rate` says how):
+    activation heat A, maintenance heat M, shortening heat S and positive fibre work W."""
+    mass, fast = ca.DM(muscles.mass), ca.DM(muscles.fast_twitch)
+    slow_recruited = (1.0 - fast) * ca.sin(0.5 * math.pi * activation)
+    fast_recruited = fast * (1.0 - ca.cos(0.5 * math.pi * activation))
+    isometric = activation * active_force_length(length, ca.DM(muscles.width)) * ca.DM(muscles.max_force)
+    contractile = isometric * force_velocity(velocity)
+    fibre = contractile + ca.DM(muscles.max_force) * passive_force_length(
+        length, ca.DM(muscles.passive_slack), ca.DM(muscles.passive_stiffness))
+    speed = velocity * ca.DM(muscles.max_velocity)
+    lengthening = 0.5 + 0.5 * ca.tanh(speed / SMOOTHING_VELOCITY)
+    short_a, short_b, long_c = SHORTENING_HEAT
+    return {"activation": mass * (ACTIVATION_HEAT[0] * slow_recruited + ACTIVATION_HEAT[1] * fast_recruited),
+            "maintenance": mass * maintenance_length_factor(length) * (
+                MAINTENANCE_HEAT[0] * slow_recruited + MAINTENANCE_HEAT[1] * fast_recruited),
+            "shortening": -((short_a * isometric + short_b * fibre) * (1.0 - lengthening)
+                            + long_c * fibre * lengthening) * speed,
+            "work": -contractile * speed * (1.0 - lengthening)}
+
+
 def metabolic_rate(muscles: Muscles, activation, length, velocity):
     """Metabolic energy rate (W, shape (n,)) of Bhargava et al. 2004 in a smooth form:
 
@@ -279,25 +300,12 @@ def metabolic_rate(muscles: Muscles, activation, length, velocity):
     2019) and OpenSim's Bhargava2004MuscleMetabolicsProbe: the shortening heat's force-dependent
     coefficient, the activation heat's decay 1, the fibres recruited by activation instead of
     excitation; the switches are tanh over `SMOOTHING_VELOCITY`, the corners hyperbolae over
-    0.02 l_opt (g) and 0.1 W/kg (the floor). No basal rate.
+    0.02 l_opt (g) and 0.1 W/kg (the floor). No basal rate. The terms: `metabolic_terms`.
     """
-    mass, fast = ca.DM(muscles.mass), ca.DM(muscles.fast_twitch)
-    slow_recruited = (1.0 - fast) * ca.sin(0.5 * math.pi * activation)
-    fast_recruited = fast * (1.0 - ca.cos(0.5 * math.pi * activation))
-    heat = mass * (ACTIVATION_HEAT[0] * slow_recruited + ACTIVATION_HEAT[1] * fast_recruited)
-    heat += mass * maintenance_length_factor(length) * (
-        MAINTENANCE_HEAT[0] * slow_recruited + MAINTENANCE_HEAT[1] * fast_recruited)
-    isometric = activation * active_force_length(length, ca.DM(muscles.width)) * ca.DM(muscles.max_force)
-    contractile = isometric * force_velocity(velocity)
-    fibre = contractile + ca.DM(muscles.max_force) * passive_force_length(
-        length, ca.DM(muscles.passive_slack), ca.DM(muscles.passive_stiffness))
-    speed = velocity * ca.DM(muscles.max_velocity)
-    lengthening = 0.5 + 0.5 * ca.tanh(speed / SMOOTHING_VELOCITY)
-    short_a, short_b, long_c = SHORTENING_HEAT
-    heat -= ((short_a * isometric + short_b * fibre) * (1.0 - lengthening)
-             + long_c * fibre * lengthening) * speed
-    work = -contractile * speed * (1.0 - lengthening)
-    return _smooth_max(heat / mass, MINIMUM_HEAT, 0.1) * mass + work
+    mass = ca.DM(muscles.mass)
+    terms = metabolic_terms(muscles, activation, length, velocity)
+    heat = terms["activation"] + terms["maintenance"] + terms["shortening"]
+    return _smooth_max(heat / mass, MINIMUM_HEAT, 0.1) * mass + terms["work"]
 
 
 def activation_cost(muscles: Muscles, activation, power: float = 3.0):
@@ -306,6 +314,14 @@ def activation_cost(muscles: Muscles, activation, power: float = 3.0):
     (J Biomech 14:793); volume weighting as Ackermann & van den Bogert 2010."""
     volume = ca.DM(muscles.volume / muscles.volume.sum())
     return ca.dot(volume, activation**power)
+
+
+def force_rate_cost(muscles: Muscles, force_rate):
+    """sum_i V_i F'_i^2 / sum_i V_i (1/s^2): the volume-weighted mean squared rate of the
+    normalised tendon forces F' (1/s), a cost of generating force quickly in the active muscle
+    volume (Kipp, Grabowski & Kram 2018, J Exp Biol 221:jeb184218)."""
+    volume = ca.DM(muscles.volume / muscles.volume.sum())
+    return ca.dot(volume, force_rate**2)
 
 
 @dataclass(frozen=True)
@@ -318,6 +334,7 @@ class LegFunctions:
     activation_rate(e, a) -> (n)             1/s
     metabolic_rate(theta, theta', a, F, F') -> (1)   W, summed over the leg's muscles
     activation_cost(a) -> (1)                the volume-weighted mean of a^3
+    force_rate_cost(F') -> (1)               the volume-weighted mean of F'^2 (1/s^2)
     """
 
     residual: ca.Function
@@ -325,6 +342,7 @@ class LegFunctions:
     activation_rate: ca.Function
     metabolic_rate: ca.Function
     activation_cost: ca.Function
+    force_rate_cost: ca.Function
 
 
 def leg_functions(muscles: Muscles) -> LegFunctions:
@@ -341,7 +359,8 @@ def leg_functions(muscles: Muscles) -> LegFunctions:
         activation_rate=ca.Function("activation_rate", [exc, act], [activation_rate(exc, act)]),
         metabolic_rate=ca.Function("metabolic_rate", state,
                                    [ca.sum1(metabolic_rate(muscles, act, length, velocity))]),
-        activation_cost=ca.Function("activation_cost", [act], [activation_cost(muscles, act)]))
+        activation_cost=ca.Function("activation_cost", [act], [activation_cost(muscles, act)]),
+        force_rate_cost=ca.Function("force_rate_cost", [rate], [force_rate_cost(muscles, rate)]))
 
 
 def tendon_energy(muscles: Muscles, force) -> np.ndarray:

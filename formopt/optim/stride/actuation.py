@@ -31,7 +31,7 @@ NU = len(JOINTS)
 ACTIVATION_RATE = 200.0
 RESERVE_LIMIT = 1.0  # N m/kg: the muscles' reserve moments at each joint (MuscleDriven)
 MIN_FORCE_PENALTY = 5.0  # N m per unit F: the guess's least-squares split of a moment (MuscleDriven.initial)
-OWN_INTEGRANDS = ("activation", "muscle_metabolic", "muscle_rates", "reserves")  # zero for the torque rungs
+OWN_INTEGRANDS = ("activation", "muscle_metabolic", "force_rate", "muscle_rates", "reserves")  # zero for the torque rungs
 
 
 class Torques:
@@ -180,6 +180,7 @@ class MuscleDriven(Torques):
         return {"activation": sum(self.leg.activation_cost(a) for a, *_ in legs),
                 "muscle_metabolic": sum(self.leg.metabolic_rate(self._joint(theta, k), self._joint(thetad, k), a, F, Fd)
                                         for k, (a, F, _, _, Fd) in enumerate(legs)),
+                "force_rate": sum(self.leg.force_rate_cost(Fd) for *_, Fd in legs),
                 "muscle_rates": sum(ca.sumsqr(Fd / self.RATE_SCALE) for *_, Fd in legs),
                 "reserves": ca.sumsqr(u[6 * self.n:])}
 

@@ -14,15 +14,21 @@ with the integrals I_k (the transcription's quadrature of the node integrands, o
                       Minetti & Alexander 1997's muscle at each joint, `joint_metabolic_rate`)
     muscle_metabolic  int sum_i E'_i dt  (J; mechanics.muscles.metabolic_rate, both legs)
     activation        int sum_legs sum_i V_i a_i^3 / sum_i V_i dt  (s), scale ACTIVATION_SCALE
+    force_rate        int sum_legs sum_i V_i F'_i^2 / sum_i V_i dt  (s^-1; F' the normalised tendon
+                      forces' rates, mechanics.muscles.force_rate_cost), scale FORCE_RATE_SCALE
     muscle_rates      int sum_i (F'_i / 10)^2 dt  (s^-1)
     reserves          int sum_j r_j^2 dt  ((N m/kg)^2 s; the muscles' reserve moments)
 
 The objectives (problem.OBJECTIVES): effort; work = W+ (scale 1 / (m g)); metabolic =
 W+/0.25 + W-/1.2 (Margaria 1968); joint-metabolic = joint_metabolic (scale 1 / (m g): a cost of
 transport); work and metabolic add WORK_REGULARISATION times effort.
-With muscles (problem.MUSCLE_OBJECTIVES): metabolic = the muscles' energy (scale 1 / (m g))
-plus StrideSettings.activation_weight (problem.ACTIVATION_WEIGHT, frozen) times the activation term; activation = the activation term;
-both add MUSCLE_RATE_REGULARISATION times muscle_rates and RESERVE_WEIGHT times reserves. Any objective adds impact_weight times
+With muscles (problem.MUSCLE_OBJECTIVES): metabolic = the muscles' energy (Bhargava et al. 2004,
+scale 1 / (m g)) plus StrideSettings.force_rate_weight (problem.FORCE_RATE_WEIGHT, calibrated on
+RBDS001 at 3.5 m/s and frozen) times the force-rate term: Bhargava's heat is paid per activation
+and time, the same per distance for short contacts as for long, while runners pay for
+generating force quickly (Kram & Taylor 1990; Kipp, Grabowski & Kram 2018); activation = the
+activation term; both add MUSCLE_RATE_REGULARISATION times muscle_rates and RESERVE_WEIGHT times
+reserves. Any objective adds impact_weight times
 the impacts (scale 1 / (m g)) and SMOOTHING.
 """
 
@@ -35,9 +41,9 @@ import casadi as ca
 from ...mechanics.joint_space import GRAVITY, JOINTS
 from ...mechanics.muscles import force_velocity
 from .problem import (
-    ACTIVATION_WEIGHT,
     EFFICIENCY_NEGATIVE,
     EFFICIENCY_POSITIVE,
+    FORCE_RATE_WEIGHT,
     SMOOTHING,
     WORK_REGULARISATION,
     StrideSettings,
@@ -46,12 +52,19 @@ from .problem import (
 # The activation term's scale (m/s): its integral per distance (s/m, about 0.01-0.05 a step)
 # made of order 0.1-1, as the other terms.
 ACTIVATION_SCALE = 10.0
+# The force-rate term's scale (s m): its integral per distance (about 10-20 /(s m) a step)
+# made of order 0.1-1.
+FORCE_RATE_SCALE = 0.01
 # A small weight on the tendon forces' squared rates (per distance) keeps F' from chattering
 # where the muscles are slack (problems/muscle_redundancy.py uses the same).
 MUSCLE_RATE_REGULARISATION = 1e-4
-# The reserves' weight (m/s per (N m/kg)^2): 1 N m/kg held over a step costs about 3, ten times a
-# stride's whole objective, so the muscles make every moment they can.
-RESERVE_WEIGHT = 10.0
+# The reserves' weight (m/s per (N m/kg)^2): 1 N m/kg held over a step costs about 30, four to
+# twelve times a stride's whole objective (2.4-7.1 with the force-rate term, RBDS001 at 2.5-4.5
+# m/s), so the muscles make every moment they can. The reserves pay no force rate: at 10 (set when
+# the objective was about 0.5) they took 0.51 N m/kg at force-rate weight 16 and bought the low
+# cadence (176.4 steps/min against 188.1 at 100; RBDS001, 3.5 m/s, 24 nodes,
+# problems/muscle_calibration.py --weights 16 --steps 0 --reserve-weight 10).
+RESERVE_WEIGHT = 100.0
 
 
 # -- The torque rungs' metabolic energy, joint by joint (`joint_metabolic_rate`) ---------------
@@ -122,16 +135,15 @@ class CostTerm:
 
 
 def own_terms(objective: str, mass: float, muscles: bool = False,
-              activation_weight: float = ACTIVATION_WEIGHT) -> list[CostTerm]:
+              force_rate_weight: float = FORCE_RATE_WEIGHT) -> list[CostTerm]:
     """An objective's own terms (problem.OBJECTIVES; module docstring), without its
     regularisation, the impacts and the smoothing."""
     weight = mass * GRAVITY
     if muscles:
-        activation = CostTerm("activation", ACTIVATION_SCALE)
         if objective == "activation":
-            return [activation]
+            return [CostTerm("activation", ACTIVATION_SCALE)]
         return [CostTerm("muscle_metabolic", 1.0 / weight),
-                CostTerm("activation", ACTIVATION_SCALE, activation_weight)]
+                CostTerm("force_rate", FORCE_RATE_SCALE, force_rate_weight)]
     if objective == "effort":
         return [CostTerm("effort", 100.0 / weight ** 2)]
     if objective == "work":
@@ -145,7 +157,7 @@ def own_terms(objective: str, mass: float, muscles: bool = False,
 def terms(settings: StrideSettings, mass: float) -> tuple[CostTerm, ...]:
     """The cost terms of a stride's settings (module docstring)."""
     muscles = settings.muscles is not None
-    out = own_terms(settings.objective, mass, muscles, settings.activation_weight)
+    out = own_terms(settings.objective, mass, muscles, settings.force_rate_weight)
     if muscles:
         out += [CostTerm("muscle_rates", 1.0, MUSCLE_RATE_REGULARISATION), CostTerm("reserves", 1.0, RESERVE_WEIGHT)]
     elif needs_power_split(settings):

@@ -72,7 +72,7 @@ MIN_NODES = 4
 OBJECTIVES = ("effort", "work", "metabolic", "joint-metabolic", "activation")
 # The actuation ladder (actuation.py): torque sources, with springs in parallel (`tendons`), or
 # muscles (`muscles`). The muscles take "metabolic" (their own energy, Bhargava et al. 2004, plus
-# ACTIVATION_WEIGHT times their activation) or "activation"; the torque rungs the others
+# FORCE_RATE_WEIGHT times their squared force rates) or "activation"; the torque rungs the others
 # ("joint-metabolic": Minetti & Alexander's muscle at each joint, costs.joint_metabolic_rate).
 ACTUATIONS = ("torque", "torque+springs", "muscles")
 MUSCLE_OBJECTIVES = ("metabolic", "activation")
@@ -98,10 +98,17 @@ WORK_REGULARISATION = 1e-2
 # torque+springs, effort, 3.5 m/s at 130 steps/min: problems/stride_smoothing.py, 2026-11-25),
 # one reason the trapezoid's optimum moves with the mesh (docs/concepts/stride.md).
 SMOOTHING = 1e-6
-# The one weight of the muscles' "metabolic" objective: ACTIVATION_WEIGHT times the activation
-# term (costs.ACTIVATION_SCALE) beside the muscles' metabolic energy per distance (per m g).
-# Calibrated once on RBDS001 at 3.5 m/s (docs/concepts/muscles.md says how) and frozen.
-ACTIVATION_WEIGHT = 1.0
+# The one weight of the muscles' "metabolic" objective: FORCE_RATE_WEIGHT times the force-rate
+# term (costs.FORCE_RATE_SCALE: the volume-weighted squared tendon-force rates per distance, Kipp
+# et al. 2018's rate of force generation) beside the muscles' metabolic energy per distance (per
+# m g). Bhargava's heat charges force held over time, about the same per metre in a short contact
+# as in a long one, and left the cadence at 222 steps/min at 3.5 m/s against RBDS001's 171.4 (the
+# activation weight this replaces, 0 / 1 / 10, moved it to 226 / 221 / 218). Calibrated once on
+# RBDS001 at 3.5 m/s, 24 nodes (python problems/muscle_calibration.py --weights 16 32 64 80
+# --steps 0: 188.1 / 185.2 / 174.6 / 174.3 steps/min; 160 gives 173.5, the reserves 0.54 N m/kg)
+# and frozen; 2.5 and 4.5 m/s and a 75 kg body held out give 145.4 / 181.5 and 173.4 steps/min
+# (docs/concepts/muscles.md, "In the stride").
+FORCE_RATE_WEIGHT = 80.0
 
 
 # Tendons: a spring in parallel with the stance leg's joint, engaged unloaded at the touchdown
@@ -172,7 +179,7 @@ class StrideSettings:
     tendons: dict = field(default_factory=dict)  # joint ("hip", "knee", "ankle") -> N m/rad/kg
     transcription: str = "trapezoid"  # or "hermite-simpson" (collocation.TRANSCRIPTIONS)
     muscles: Muscles | None = None  # one leg's muscles scaled to the body: the "muscles" rung
-    activation_weight: float = ACTIVATION_WEIGHT  # the muscles' metabolic objective's one weight (calibration only)
+    force_rate_weight: float = FORCE_RATE_WEIGHT  # the muscles' metabolic objective's one weight (calibration only)
     clearance: float = CLEARANCE  # m: the swing foot's least height while the other holds the ground
 
     def __post_init__(self):
@@ -205,8 +212,8 @@ class StrideSettings:
             raise InputError(f"law {self.law!r}: expected no-slip or coulomb (frictionless "
                              "impacts leave the foot sliding, a phase the stride does not model)")
         check("impact_weight", self.impact_weight)
-        if not self.activation_weight >= 0.0:
-            raise InputError(f"activation_weight = {self.activation_weight}: expected a number >= 0")
+        if not self.force_rate_weight >= 0.0:
+            raise InputError(f"force_rate_weight = {self.force_rate_weight}: expected a number >= 0")
         check("torque_limit_nm_per_kg", self.torque_limit)
         check("clearance_m", self.clearance)
         check("max_iterations", self.max_iter, whole=True)

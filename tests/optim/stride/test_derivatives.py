@@ -21,6 +21,8 @@ from formopt.optim.stride.problem import RUNNER_TENDONS
                                         {"strike": "flat", "transcription": "hermite-simpson", "nodes": 14,
                                          "tendons": RUNNER_TENDONS, "objective": "work"},
                                         {"strike": "flat", "objective": "metabolic", "muscles": "gait2d", "nodes": 14},
+                                        {"strike": "heel", "objective": "metabolic", "muscles": "gait2d",
+                                         "force_rate_weight": 1e4},  # the force-rate term dominant
                                         {"strike": "flat", "objective": "joint-metabolic", "nodes": 14}])
 def case(request):
     settings = dict(request.param)

@@ -66,3 +66,29 @@ def test_tendon_energy_is_the_integral_of_its_force():
     numeric = leg.max_force[6] * np.trapezoid(force, length)
     start = hill.tendon_energy(leg, np.zeros(8))[6]
     assert hill.tendon_energy(leg, np.full(8, 1.2))[6] - start == pytest.approx(numeric, rel=1e-6)
+
+
+def test_bhargava_terms_by_hand():
+    """A fully active soleus at its optimal length: A + M = m_M ((1 - f)(40 + 74) + f (133 + 111))
+    W isometric; shortening at 0.2 v_max adds S = (0.16 F_iso + 0.18 F_M) v and W = F_M v
+    (Bhargava et al. 2004's constants; the smoothing moves them by under 1 %)."""
+    soleus = hill.subset(body_muscles(BODY), ("soleus",))
+    mass, fast, force, speed = soleus.mass[0], soleus.fast_twitch[0], soleus.max_force[0], 0.2 * soleus.max_velocity[0]
+    held = mass * ((1 - fast) * (40 + 74) + fast * (133 + 111))
+    terms = {k: float(v) for k, v in hill.metabolic_terms(soleus, 1.0, 1.0, -0.2).items()}
+    fibre = force * float(hill.force_velocity(-0.2))
+    assert terms["activation"] + terms["maintenance"] == pytest.approx(held, rel=1e-2)
+    assert terms["shortening"] == pytest.approx((0.16 * force + 0.18 * fibre) * speed, rel=1e-2)
+    assert terms["work"] == pytest.approx(fibre * speed, rel=1e-9)
+    assert float(hill.metabolic_rate(soleus, 1.0, 1.0, -0.2)) == pytest.approx(sum(terms.values()), rel=1e-6)
+    assert float(hill.metabolic_rate(soleus, 1.0, 1.0, 0.0)) == pytest.approx(held, rel=1e-2)
+
+
+def test_force_rate_integrand_is_volume_weighted(rung):
+    """The force-rate integrand: sum over legs of sum_i V_i F'_i^2 / sum_i V_i (1/s^2)."""
+    u = np.zeros(rung.controls)
+    u[16:24] = 0.3  # g = F'/10 of the right leg's muscles: F' = 3 /s
+    u[40] = -0.5  # the left iliopsoas, F' = -5 /s
+    got = rung.integrands(ca.DM.zeros(9), ca.DM.zeros(9), ca.DM.ones(rung.states) * 0.2, ca.DM(u))["force_rate"]
+    share = rung.muscles.volume / rung.muscles.volume.sum()
+    assert float(got) == pytest.approx(9.0 + 25.0 * share[0], rel=1e-12)

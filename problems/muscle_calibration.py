@@ -1,0 +1,81 @@
+"""Calibrate the muscles' one cost weight (issue 33): the free cadence of RBDS001's body (heel,
+the muscles' "metabolic" objective) against the weight, bisected on the weight until the
+cadence lands within --tolerance of the runner's.
+
+    python problems/muscle_calibration.py [--speed 3.5] [--target 171.4] [--weights 16 32 64 80]
+                                          [--steps 4] [--tolerance 2] [--nodes 24] [--mass 62]
+
+The --weights are solved first (the first from the generic start, local.optimum's; each next
+from the solution of the nearest weight solved, its blocks as the guess); then, while a lower
+and a higher weight bracket the target, the geometric mean of the bracket, warm started from
+the nearer of the two (at most --steps solves). Prints per solve: weight, cadence (steps/min),
+stance (s), peak vertical force (N/kg), the muscles' energy (J/kg/m), reserves (N m/kg), the
+objective, validity, iterations and CPU seconds (time.process_time).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from dataclasses import replace
+
+from formopt.io.muscle_table import body_muscles
+from formopt.mechanics.body import scaled_body
+from formopt.mechanics.joint_space import GRAVITY
+from formopt.optim.stride import costs
+from formopt.optim.stride.collocation import build
+from formopt.optim.stride.local import optimum
+from formopt.optim.stride.problem import StrideSettings
+
+
+def solve(body, base: StrideSettings, weight: float, speed: float, guess):
+    """The free optimum at `weight` from `guess` (None: the generic start), and its line."""
+    clock = time.process_time()
+    nlp = build(body, replace(base, force_rate_weight=weight))
+    stride = optimum(nlp, speed, guess=guess)
+    energy = stride.muscles["metabolic_J"] / (nlp.mass * stride.step_length_m)
+    print(f"{weight:8.3f} {stride.cadence_spm:7.1f} {stride.stance_s:6.3f} {stride.peak_vertical_grf_bw * GRAVITY:6.1f}"
+          f" {energy:6.2f} {stride.muscles['reserve_nm_per_kg']:5.2f} {stride.objective_value:7.4f}"
+          f" {'yes' if stride.valid else 'NO':>5s} {stride.iterations:5d} {time.process_time() - clock:6.1f}", flush=True)
+    return stride
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--speed", type=float, default=3.5)
+    parser.add_argument("--target", type=float, default=171.4)
+    parser.add_argument("--weights", type=float, nargs="+", default=[16.0, 32.0, 64.0, 80.0])
+    parser.add_argument("--steps", type=int, default=4)
+    parser.add_argument("--tolerance", type=float, default=2.0)
+    parser.add_argument("--nodes", type=int, default=24)
+    parser.add_argument("--mass", type=float, default=62.0)
+    parser.add_argument("--reserve-weight", type=float, default=costs.RESERVE_WEIGHT)
+    args = parser.parse_args(argv)
+    costs.RESERVE_WEIGHT = args.reserve_weight  # a what-if: the reserves' price against the muscles'
+    body = scaled_body(args.mass, 1.81)
+    base = StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic", muscles=body_muscles(body))
+    print(f"{args.mass:g} kg, 1.81 m, heel, {args.nodes} nodes, {args.speed} m/s, target {args.target} steps/min, "
+          f"reserve weight {args.reserve_weight:g}")
+    print(f"{'weight':>8s} {'spm':>7s} {'stance':>6s} {'GRF':>6s} {'J/kg/m':>6s} {'res':>5s} {'J':>7s} {'valid':>5s}"
+          f" {'iter':>5s} {'cpu s':>6s}", flush=True)
+    solved: dict[float, object] = {}
+
+    def nearest(weight):
+        return solved[min(solved, key=lambda w: abs(math.log(w / weight)))].solved.blocks if solved else None
+
+    for weight in args.weights:
+        solved[weight] = solve(body, base, weight, args.speed, nearest(weight))
+    for _ in range(args.steps):
+        low = [w for w, s in solved.items() if s.cadence_spm > args.target]
+        high = [w for w, s in solved.items() if s.cadence_spm <= args.target]
+        if not low or not high or min(abs(s.cadence_spm - args.target) for s in solved.values()) <= args.tolerance:
+            break
+        weight = math.sqrt(max(low) * min(high))
+        solved[weight] = solve(body, base, weight, args.speed, nearest(weight))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
