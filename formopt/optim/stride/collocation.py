@@ -141,7 +141,8 @@ class StrideNLP:
     _serial = itertools.count()  # each built NLP's own number (its `layout`)
 
     def __init__(self, js: JointSpace, settings: StrideSettings, ipopt: dict | None = None,
-                 compiled: bool | str = COMPILED):
+                 compiled: bool | str | None = None):
+        compiled = COMPILED if compiled is None else compiled  # the module's, read at each build
         if not isinstance(compiled, bool) and compiled != "auto":
             raise ValueError(f"compiled must be true, false or \"auto\", not {compiled!r}")
         start = time.perf_counter()
@@ -463,9 +464,9 @@ NLPS_KEPT = 4  # a compare band alternates a few bodies and objectives; each NLP
 
 def build(body, settings: StrideSettings) -> StrideNLP:
     """The stride NLP of a body (mechanics.body.Body) and settings, built once per process and
-    kept while it is among the last NLPS_KEPT asked for (keyed by everything it holds: the body
-    and the settings)."""
-    key = hashlib.sha256(pickle.dumps((body, settings))).hexdigest()
+    kept while it is among the last NLPS_KEPT asked for (keyed by everything it holds: the body,
+    the settings and COMPILED)."""
+    key = hashlib.sha256(pickle.dumps((body, settings, COMPILED))).hexdigest()
     nlp = _BUILT.pop(key, None) or StrideNLP(JointSpace(body), settings)
     _BUILT[key] = nlp  # the most recent last
     while len(_BUILT) > NLPS_KEPT:

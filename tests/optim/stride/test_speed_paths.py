@@ -46,6 +46,17 @@ def test_auto_compiles_from_a_chains_nth_solve(solves, monkeypatch):
     assert warm.success and nlp.compiled
 
 
+def test_the_modules_setting_is_the_default(monkeypatch):
+    """collocation.COMPILED is read when an NLP is built, not when the module is imported, and
+    build() keeps one NLP per setting."""
+    monkeypatch.setattr(collocation, "_BUILT", {})
+    monkeypatch.setattr(collocation, "COMPILED", True)
+    assert StrideNLP(JointSpace(paper_body()), SETTINGS).compiled
+    assert collocation.build(paper_body(), SETTINGS).compiled
+    monkeypatch.setattr(collocation, "COMPILED", False)
+    assert not collocation.build(paper_body(), SETTINGS).compiled
+
+
 def test_bad_compiled_value_is_refused():
     with pytest.raises(ValueError, match="compiled"):
         StrideNLP(JointSpace(paper_body()), SETTINGS, compiled="yes")
