@@ -28,6 +28,7 @@ import itertools
 import math
 import pickle
 import time
+import warnings
 from dataclasses import replace
 
 import casadi as ca
@@ -203,7 +204,8 @@ class StrideNLP:
     @property
     def compiled(self) -> bool:
         """Whether the next solve's node models and derivatives run as C (`compile`: True, or
-        "auto" from the COMPILE_FROM-th solve on when a C compiler is found)."""
+        "auto" from the COMPILE_FROM-th solve on when a C compiler is found; "auto" becomes
+        False, with a RuntimeWarning, when compiling fails)."""
         if self.compile != "auto":
             return bool(self.compile)
         return self.solves >= COMPILE_FROM - 1 and _has_compiler()
@@ -214,9 +216,18 @@ class StrideNLP:
         again when they become compiled; build_s counts it."""
         if self._solver is None or self._solver_compiled != self.compiled:
             start = time.perf_counter()
-            self._solver_compiled = self.compiled
-            nodes = derivatives.node_derivatives(self, self._solver_compiled)
-            self._nlp = derivatives.problem(self, nodes) if self._solver_compiled else self.problem
+            compiled = self.compiled
+            try:
+                nodes = derivatives.node_derivatives(self, compiled)
+            except RuntimeError as error:  # the C compiler failed: "auto" goes on interpreted
+                if self.compile != "auto":
+                    raise
+                warnings.warn(f"the stride NLP's node models did not compile, solved interpreted: {error}",
+                              RuntimeWarning, stacklevel=2)
+                self.compile, compiled = False, False
+                nodes = derivatives.node_derivatives(self, compiled)
+            self._solver_compiled = compiled
+            self._nlp = derivatives.problem(self, nodes) if compiled else self.problem
             self._solver = ca.nlpsol("stride", "ipopt", self._nlp, {
                 "ipopt": self.options, "print_time": False, **derivatives.functions(self, nodes)})
             self._warm_solver = None  # it shares the cold solver's derivatives

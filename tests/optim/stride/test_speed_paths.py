@@ -5,6 +5,7 @@ lives in benchmarks/stride_speed.py)."""
 import numpy as np
 import pytest
 
+from formopt.mechanics import compiled as compiled_functions
 from formopt.mechanics.body import paper_body
 from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings, collocation
@@ -44,6 +45,24 @@ def test_auto_compiles_from_a_chains_nth_solve(solves, monkeypatch):
     assert previous.success
     warm = nlp.resolve(previous, 3.8)  # the warm solver shares the compiled derivatives
     assert warm.success and nlp.compiled
+
+
+def test_auto_goes_on_interpreted_when_compiling_fails(solves, monkeypatch):
+    """A C compiler that is found but fails: "auto" warns and solves interpreted (a long chain
+    goes on), True raises."""
+    (_, first), _ = solves
+
+    def broken(source, name, level):
+        raise RuntimeError(f"compiling {name} failed")
+    monkeypatch.setattr(compiled_functions, "_compile", broken)
+    monkeypatch.setattr(collocation, "COMPILE_FROM", 2)
+    nlp = StrideNLP(JointSpace(paper_body()), SETTINGS, compiled="auto")
+    assert nlp.solve(first.blocks, 3.5).success and nlp.compiled  # the next solve would compile
+    with pytest.warns(RuntimeWarning, match="did not compile"):
+        again = nlp.solve(first.blocks, 3.6)
+    assert again.success and not nlp.compiled and nlp.resolve(again, 3.7).success
+    with pytest.raises(RuntimeError, match="failed"):
+        StrideNLP(JointSpace(paper_body()), SETTINGS, compiled=True).solve(first.blocks, 3.5)
 
 
 def test_the_modules_setting_is_the_default(monkeypatch):
