@@ -2,6 +2,7 @@
 interpreted ones do: the same iterations and optimum to round-off (no timing here: speed
 lives in benchmarks/stride_speed.py)."""
 
+import casadi as ca
 import numpy as np
 import pytest
 
@@ -30,7 +31,22 @@ def test_compiled_solves_as_interpreted(solves):
     assert a.success and b.success
     assert a.iterations == b.iterations
     np.testing.assert_allclose(b.x, a.x, rtol=0, atol=1e-9)
+    for got, want in ((b.lam_g, a.lam_g), (b.lam_x, a.lam_x)):  # the warm start's multipliers
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-9 * max(1.0, np.max(np.abs(want))))
     assert b.objective == pytest.approx(a.objective, rel=1e-12)
+
+
+def test_compiled_problem_is_the_same_nlp(solves):
+    """The solvers' own problems (the compiled one calls the C node models) give the same
+    objective and constraints at any x and p, a slope and another friction included."""
+    (plain, a), (fast, _) = solves
+    x = a.x + 1e-3 * np.random.default_rng(0).standard_normal(a.x.size)
+    p = [3.2, 0.05, 0.6]
+    (f0, g0), (f1, g1) = ([np.asarray(v, float) for v in ca.Function(
+        "fg", [n._nlp["x"], n._nlp["p"]], [n._nlp["f"], n._nlp["g"]])(x, p)] for n in (plain, fast))
+    assert fast._nlp is not fast.problem and plain._nlp is plain.problem
+    np.testing.assert_allclose(g1, g0, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(f1, f0, rtol=1e-12)
 
 
 def test_auto_compiles_from_a_chains_nth_solve(solves, monkeypatch):
