@@ -58,7 +58,7 @@ def test_auto_compiles_from_a_chains_nth_solve(solves, monkeypatch):
         seen.append(nlp.compiled)
         previous = nlp.solve(first.blocks, speed)
     assert seen == [False, False, True]
-    assert previous.success
+    assert previous.success and nlp._nlp is not nlp.problem  # the solver was built again, compiled
     warm = nlp.resolve(previous, 3.8)  # the warm solver shares the compiled derivatives
     assert warm.success and nlp.compiled
 
