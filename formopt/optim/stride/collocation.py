@@ -137,7 +137,9 @@ TRANSCRIPTIONS: dict[str, type[Trapezoid] | type[HermiteSimpson]] = dict(
 
 
 class StrideNLP:
-    """The half stride NLP of one body and settings: build once, solve for any parameters."""
+    """The half stride NLP of one body and settings: build once, solve for any parameters.
+    `ipopt`: IPOPT options over the defaults; `compiled`: True, False or "auto", the node models
+    and their derivatives in C (COMPILED, read at each build, when not given)."""
 
     _serial = itertools.count()  # each built NLP's own number (its `layout`)
 
