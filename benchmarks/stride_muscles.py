@@ -10,8 +10,9 @@ from the generic guess; the muscles from their start, the torque+springs optimum
 them, local.muscle_start, whose own solve is counted apart as `start`) and warm (speed + 0.1
 m/s from the cold optimum with its multipliers, StrideNLP.resolve), medians of wall and CPU
 seconds, IPOPT's iterations and the cadence; the NLPs' node models and derivatives compiled to C
-or not (`--compiled`, StrideNLP's: default true, the libraries from the disk cache after a first
-build, which is counted in build); `--rungs` a subset, `--ipopt` IPOPT options over collocation's
+or not (`--compiled`, StrideNLP's `compiled`: default true here, where StrideNLP's own is
+collocation.COMPILED, "auto"; the libraries from the disk cache after a first build, which is
+counted in build); `--rungs` a subset, `--ipopt` IPOPT options over collocation's
 (e.g. '{"print_level": 7, "print_timing_statistics": "yes"}' for IPOPT's log). Issue 33's targets for the muscles at 40 nodes: cold <= 30 s
 and warm <= 3 s on one core. Measure only.
 """

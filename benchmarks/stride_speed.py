@@ -102,7 +102,10 @@ def first_build() -> float:
         try:
             return timed(lambda: build(True))[2]
         finally:
-            os.environ.pop("FORMOPT_CACHE") if before is None else os.environ.update(FORMOPT_CACHE=before)
+            if before is None:
+                del os.environ["FORMOPT_CACHE"]
+            else:
+                os.environ["FORMOPT_CACHE"] = before
 
 
 def peer_once(venv: Path, mode: str) -> dict:

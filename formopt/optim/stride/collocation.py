@@ -28,6 +28,7 @@ import itertools
 import math
 import pickle
 import time
+import warnings
 from dataclasses import replace
 
 import casadi as ca
@@ -136,12 +137,15 @@ TRANSCRIPTIONS: dict[str, type[Trapezoid] | type[HermiteSimpson]] = dict(
 
 
 class StrideNLP:
-    """The half stride NLP of one body and settings: build once, solve for any parameters."""
+    """The half stride NLP of one body and settings: build once, solve for any parameters.
+    `ipopt`: IPOPT options over the defaults; `compiled`: True, False or "auto", the node models
+    and their derivatives in C (COMPILED, read at each build, when not given)."""
 
     _serial = itertools.count()  # each built NLP's own number (its `layout`)
 
     def __init__(self, js: JointSpace, settings: StrideSettings, ipopt: dict | None = None,
-                 compiled: bool | str = COMPILED):
+                 compiled: bool | str | None = None):
+        compiled = COMPILED if compiled is None else compiled  # the module's, read at each build
         if not isinstance(compiled, bool) and compiled != "auto":
             raise ValueError(f"compiled must be true, false or \"auto\", not {compiled!r}")
         start = time.perf_counter()
@@ -202,7 +206,8 @@ class StrideNLP:
     @property
     def compiled(self) -> bool:
         """Whether the next solve's node models and derivatives run as C (`compile`: True, or
-        "auto" from the COMPILE_FROM-th solve on when a C compiler is found)."""
+        "auto" from the COMPILE_FROM-th solve on when a C compiler is found; "auto" becomes
+        False, with a RuntimeWarning, when compiling fails)."""
         if self.compile != "auto":
             return bool(self.compile)
         return self.solves >= COMPILE_FROM - 1 and _has_compiler()
@@ -213,9 +218,18 @@ class StrideNLP:
         again when they become compiled; build_s counts it."""
         if self._solver is None or self._solver_compiled != self.compiled:
             start = time.perf_counter()
-            self._solver_compiled = self.compiled
-            nodes = derivatives.node_derivatives(self, self._solver_compiled)
-            self._nlp = derivatives.problem(self, nodes) if self._solver_compiled else self.problem
+            compiled = self.compiled
+            try:
+                nodes = derivatives.node_derivatives(self, compiled)
+            except RuntimeError as error:  # the C compiler failed: "auto" goes on interpreted
+                if self.compile != "auto":
+                    raise
+                warnings.warn(f"the stride NLP's node models did not compile, solved interpreted: {error}",
+                              RuntimeWarning, stacklevel=2)
+                self.compile, compiled = False, False
+                nodes = derivatives.node_derivatives(self, compiled)
+            self._solver_compiled = compiled
+            self._nlp = derivatives.problem(self, nodes) if compiled else self.problem
             self._solver = ca.nlpsol("stride", "ipopt", self._nlp, {
                 "ipopt": self.options, "print_time": False, **derivatives.functions(self, nodes)})
             self._warm_solver = None  # it shares the cold solver's derivatives
@@ -463,9 +477,9 @@ NLPS_KEPT = 4  # a compare band alternates a few bodies and objectives; each NLP
 
 def build(body, settings: StrideSettings) -> StrideNLP:
     """The stride NLP of a body (mechanics.body.Body) and settings, built once per process and
-    kept while it is among the last NLPS_KEPT asked for (keyed by everything it holds: the body
-    and the settings)."""
-    key = hashlib.sha256(pickle.dumps((body, settings))).hexdigest()
+    kept while it is among the last NLPS_KEPT asked for (keyed by everything it holds: the body,
+    the settings and COMPILED)."""
+    key = hashlib.sha256(pickle.dumps((body, settings, COMPILED))).hexdigest()
     nlp = _BUILT.pop(key, None) or StrideNLP(JointSpace(body), settings)
     _BUILT[key] = nlp  # the most recent last
     while len(_BUILT) > NLPS_KEPT:

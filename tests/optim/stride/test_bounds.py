@@ -5,10 +5,11 @@ contact law itself."""
 import numpy as np
 import pytest
 
+from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.joint_space import THETA, JointSpace
 from formopt.optim.stride.bounds import ON_BOUND_S, held_by_bounds, held_text, on_bounds
 from formopt.optim.stride.collocation import ACCELERATION, STATE_RATE, StrideNLP
-from formopt.optim.stride.contact import FORCE_LIMIT
+from formopt.optim.stride.contact import FORCE_LIMIT, FRICTION_FORCE
 from formopt.optim.stride.problem import StrideSettings
 from formopt.optim.stride.result import Stride
 
@@ -70,3 +71,26 @@ def test_angles_are_said_in_degrees(nlp):
     b["X_flight"][4, 2] = nlp.blocks.split(np.concatenate(nlp.blocks.lower))["X_flight"][4, 2]  # knee_R at -5 deg
     assert held_text(held_by_bounds(nlp, b)) == \
         "held by the solve's bounds, not the mechanics: knee_R angle -5 deg (flight: 1 node)"
+
+
+def test_a_tangential_force_and_the_touchdowns_rates_are_found(nlp):
+    b = _inside(nlp)
+    b["F_heel"][0, 2] = -FRICTION_FORCE  # heel_R tangential, its low bound (a bound's work, not the law's)
+    b["V_touchdown"][NX - 1, 0] = -STATE_RATE  # ankle_L's rate after the touchdown
+    held = {(h["variable"], h["side"]) for h in held_by_bounds(nlp, b)}
+    assert held == {("heel_R tangential force", "low"), ("ankle_L rate after the touchdown", "low")}
+
+
+def test_the_muscles_controls_and_states_are_left_out(body):
+    """An excitation at zero is a muscle at rest, a reserve has its own check: the muscles'
+    controls and states on their bounds are not listed; the body's states still are."""
+    nlp = StrideNLP(JointSpace(body), StrideSettings(strike="flat", nodes=14, objective="metabolic",
+                                                     muscles=body_muscles(body)))
+    b = _inside(nlp)
+    lower = nlp.blocks.split(np.concatenate(nlp.blocks.lower))
+    for key in b:
+        if key[0] in "UZ":
+            b[key][:] = lower[key]
+    assert held_by_bounds(nlp, b) == []
+    b["X_flat"][NX + 4, 0] = STATE_RATE
+    assert [h["variable"] for h in held_by_bounds(nlp, b)] == ["knee_R rate"]

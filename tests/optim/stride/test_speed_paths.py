@@ -2,9 +2,11 @@
 interpreted ones do: the same iterations and optimum to round-off (no timing here: speed
 lives in benchmarks/stride_speed.py)."""
 
+import casadi as ca
 import numpy as np
 import pytest
 
+from formopt.mechanics import compiled as compiled_functions
 from formopt.mechanics.body import paper_body
 from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings, collocation
@@ -29,7 +31,22 @@ def test_compiled_solves_as_interpreted(solves):
     assert a.success and b.success
     assert a.iterations == b.iterations
     np.testing.assert_allclose(b.x, a.x, rtol=0, atol=1e-9)
+    for got, want in ((b.lam_g, a.lam_g), (b.lam_x, a.lam_x)):  # the warm start's multipliers
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-9 * max(1.0, np.max(np.abs(want))))
     assert b.objective == pytest.approx(a.objective, rel=1e-12)
+
+
+def test_compiled_problem_is_the_same_nlp(solves):
+    """The solvers' own problems (the compiled one calls the C node models) give the same
+    objective and constraints at any x and p, a slope and another friction included."""
+    (plain, a), (fast, _) = solves
+    x = a.x + 1e-3 * np.random.default_rng(0).standard_normal(a.x.size)
+    p = [3.2, 0.05, 0.6]
+    (f0, g0), (f1, g1) = ([np.asarray(v, float) for v in ca.Function(
+        "fg", [n._nlp["x"], n._nlp["p"]], [n._nlp["f"], n._nlp["g"]])(x, p)] for n in (plain, fast))
+    assert fast._nlp is not fast.problem and plain._nlp is plain.problem
+    np.testing.assert_allclose(g1, g0, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(f1, f0, rtol=1e-12)
 
 
 def test_auto_compiles_from_a_chains_nth_solve(solves, monkeypatch):
@@ -41,9 +58,38 @@ def test_auto_compiles_from_a_chains_nth_solve(solves, monkeypatch):
         seen.append(nlp.compiled)
         previous = nlp.solve(first.blocks, speed)
     assert seen == [False, False, True]
-    assert previous.success
+    assert previous.success and nlp._nlp is not nlp.problem  # the solver was built again, compiled
     warm = nlp.resolve(previous, 3.8)  # the warm solver shares the compiled derivatives
     assert warm.success and nlp.compiled
+
+
+def test_auto_goes_on_interpreted_when_compiling_fails(solves, monkeypatch):
+    """A C compiler that is found but fails: "auto" warns and solves interpreted (a long chain
+    goes on), True raises."""
+    (_, first), _ = solves
+
+    def broken(source, name, level):
+        raise RuntimeError(f"compiling {name} failed")
+    monkeypatch.setattr(compiled_functions, "_compile", broken)
+    monkeypatch.setattr(collocation, "COMPILE_FROM", 2)
+    nlp = StrideNLP(JointSpace(paper_body()), SETTINGS, compiled="auto")
+    assert nlp.solve(first.blocks, 3.5).success and nlp.compiled  # the next solve would compile
+    with pytest.warns(RuntimeWarning, match="did not compile"):
+        again = nlp.solve(first.blocks, 3.6)
+    assert again.success and not nlp.compiled and nlp.resolve(again, 3.7).success
+    with pytest.raises(RuntimeError, match="failed"):
+        StrideNLP(JointSpace(paper_body()), SETTINGS, compiled=True).solve(first.blocks, 3.5)
+
+
+def test_the_modules_setting_is_the_default(monkeypatch):
+    """collocation.COMPILED is read when an NLP is built, not when the module is imported, and
+    build() keeps one NLP per setting."""
+    monkeypatch.setattr(collocation, "_BUILT", {})
+    monkeypatch.setattr(collocation, "COMPILED", True)
+    assert StrideNLP(JointSpace(paper_body()), SETTINGS).compiled
+    assert collocation.build(paper_body(), SETTINGS).compiled
+    monkeypatch.setattr(collocation, "COMPILED", False)
+    assert not collocation.build(paper_body(), SETTINGS).compiled
 
 
 def test_bad_compiled_value_is_refused():
