@@ -96,7 +96,12 @@ WORK_REGULARISATION = 1e-2
 # per distance (s^3/m), removes it. It is not negligible on a coarse trapezoid mesh: 13 % of the
 # objective at 40 nodes, 8 % at 80, 3 % with Hermite-Simpson at 20 intervals (RBDS001, heel,
 # torque+springs, effort, 3.5 m/s at 130 steps/min: problems/stride_smoothing.py, 2026-11-25),
-# one reason the trapezoid's optimum moves with the mesh (docs/concepts/stride.md).
+# one reason the trapezoid's optimum moves with the mesh (docs/concepts/stride.md). Hermite-Simpson
+# smooths the accelerations' curvature within each interval instead (collocation.HermiteSimpson:
+# its null mode, not a smooth motion): 1.0 / 0.2 / 0.08 % of the objective at 20 / 40 / 80
+# intervals, where the change between columns took 3.1 / 1.3 / 0.4 % (the same stride, release
+# rows gone: problems/stride_mesh.py, 2026-11-26); without any smoothing its swing ankle
+# oscillates column to column and the forward check fails (1.45 rad at 20 intervals).
 SMOOTHING = 1e-6
 # The one weight of the muscles' "metabolic" objective: ACTIVATION_WEIGHT times the activation
 # term (costs.ACTIVATION_SCALE) beside the muscles' metabolic energy per distance (per m g).

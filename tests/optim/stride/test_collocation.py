@@ -14,7 +14,7 @@ from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import paper_body, scaled_body
 from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings, optimum
-from formopt.optim.stride.collocation import NX
+from formopt.optim.stride.collocation import NX, HermiteSimpson, Trapezoid
 from formopt.optim.stride.contact import CLEARANCE, height
 from formopt.optim.stride.ocp import Release, StrideProblem
 
@@ -153,7 +153,8 @@ def test_impact_weight_lowers_the_impacts(js, uphill):
 def test_hermite_simpson_solves_and_integrates_by_simpsons_rule(js):
     """The second transcription (2N + 1 columns: mesh points and midpoints) converges from the
     generic guess to a valid stride, and its objective is Simpson's rule on its columns, h/6
-    (1, 4, 2, ..., 4, 1), with the smoothing at the columns' spacing h/2."""
+    (1, 4, 2, ..., 4, 1), with the smoothing on the accelerations' curvature in each interval,
+    h |A_k - 2 A_m + A_k+1|^2."""
     nlp = StrideNLP(js, StrideSettings(strike="heel", nodes=NODES, transcription="hermite-simpson"))
     stride = optimum(nlp, SPEED, simulate=False)
     assert stride.success and stride.valid, stride.failed_checks
@@ -164,6 +165,24 @@ def test_hermite_simpson_solves_and_integrates_by_simpsons_rule(js):
         w = np.full(2 * n + 1, 2.0)
         w[1::2], w[[0, -1]] = 4.0, 1.0
         effort += h / 6 * w @ np.sum((m * b[f"U_{phase.name}"]) ** 2, axis=0)
-        smooth += h / 2 * np.sum(np.diff(b[f"A_{phase.name}"], axis=1) ** 2)
+        A = b[f"A_{phase.name}"]
+        smooth += h * np.sum((A[:, :-2:2] - 2 * A[:, 1::2] + A[:, 2::2]) ** 2)
     d = stride.step_length_m
     assert stride.objective_value == pytest.approx(100 * effort / (m * G) ** 2 / d + 1e-6 * smooth / d, rel=1e-6)
+
+
+def test_hermite_simpsons_smoothing_sees_its_null_mode_not_a_smooth_motion():
+    """Accelerations +c at the mesh points and -c/2 at the midpoints leave Hermite-Simpson's
+    defects unchanged (the velocities see h/6 (c - 2c + c) = 0): its smoothing costs them 9 h c^2
+    an interval, and nothing for accelerations linear in time (the trapezoid's, their changes)."""
+    h, n, c = 0.01, 3, 2.0
+    rng = np.random.default_rng(0)
+    X, D = ca.DM(rng.random((4, 2 * n + 1))), ca.DM(rng.random((4, 2 * n + 1)))
+    mode = ca.DM([[c if k % 2 == 0 else -c / 2 for k in range(2 * n + 1)]] * 2)
+    D_moved = ca.vertcat(D[:2, :], D[2:, :] + mode)  # the rates' lower half: the accelerations
+    moved = np.array(HermiteSimpson.defects(X, D_moved, h), float)
+    assert np.allclose(moved, np.array(HermiteSimpson.defects(X, D, h), float))
+    assert float(HermiteSimpson.smoothing(mode, h)) == pytest.approx(2 * n * 9 * h * c ** 2)
+    linear = ca.DM(np.outer([1.0, -3.0], np.linspace(0.0, 1.0, 2 * n + 1)))
+    assert float(HermiteSimpson.smoothing(linear, h)) == pytest.approx(0.0, abs=1e-20)
+    assert float(Trapezoid.smoothing(linear, h)) == pytest.approx(h * 10 * (2 * n) / (2 * n) ** 2)
