@@ -9,10 +9,10 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
 Prints per mesh (transcription:intervals): the objective, the smoothing term (problem.SMOOTHING),
 the effort term per phase and per joint, the phase durations, the dropped points' normal force
 (body weights) at the last column of their phase (heel-off, toe-off), the decision variables on
-a bound (block: count; A at collocation.ACCELERATION, F at contact.FORCE_LIMIT, X at the joint
-ranges or STATE_RATE, U at the torque limit, T at a duration bound), the node rows active per
-phase (clearance, friction cone, heights) and the largest multiplier per block and per phase's
-node rows, with IPOPT's iterations and CPU seconds. `--figure`: the torques, accelerations and
+a finite bound by row and columns (A at collocation.ACCELERATION, F at contact.FORCE_LIMIT, X at
+the joint ranges or STATE_RATE, U at the torque limit, T at a duration bound) with their largest
+multiplier, and per phase its node rows on a bound (heights and clearance, friction cones) and
+the three with the largest multipliers; IPOPT's iterations and CPU seconds. `--figure`: the torques, accelerations and
 contact forces per phase on normalised phase time, the meshes overlaid (PNG).
 """
 
@@ -49,8 +49,14 @@ def phase_terms(nlp, b, speed: float) -> tuple[dict, float]:
 
 
 def near(values, bounds):
-    """Which values are on their bounds (within TIGHT relative to max(1, |bound|))."""
-    return np.abs(values - bounds) <= TIGHT * np.maximum(1.0, np.abs(bounds))
+    """Which values are on their (finite) bounds (within TIGHT relative to max(1, |bound|))."""
+    return np.isfinite(bounds) & (np.abs(values - bounds) <= TIGHT * np.maximum(1.0, np.abs(bounds)))
+
+
+def row_name(block: str, row: int) -> str:
+    """A block's row by name: THETA (and its rates, "d" before) for X and A, JOINTS for U."""
+    names = {"X": (*THETA, *(f"d{t}" for t in THETA)), "A": THETA, "U": JOINTS}.get(block[0])
+    return names[row] if names else str(row)
 
 
 def on_bounds(nlp, solved) -> tuple[list[str], list[str]]:
@@ -61,18 +67,36 @@ def on_bounds(nlp, solved) -> tuple[list[str], list[str]]:
     blocks = []
     for name in b.names:
         s = slice(b.offsets[name], b.offsets[name] + int(np.prod(b.shapes[name])))
-        if at[s].any():
-            blocks.append(f"{name} {at[s].sum()} (lam {np.abs(solved.lam_x[s]).max():.3g})")
+        on, lam = (v[s].reshape(b.shapes[name], order="F") for v in (at, np.abs(solved.lam_x)))
+        blocks += [f"{name} {row_name(name, r)} at {on[r].sum()} of columns {np.flatnonzero(on[r]).min()}-"
+                   f"{np.flatnonzero(on[r]).max()}/{on.shape[1] - 1} (lam {lam[r].max():.3g})"
+                   for r in np.flatnonzero(on.any(axis=1))]
     p = [solved.parameters[k] for k in ("speed", "slope", "mu")]
     g = np.asarray(ca.Function("g", [b.vector(), nlp.p], [nlp.problem["g"]])(x, p), float).ravel()
     rows, k = [], 0
     for i, phase in enumerate(nlp.phases):
-        lo, hi = (np.tile(v, nlp.columns[i]) for v in nlp.node_bounds[i])
-        s = slice(k, k + len(lo))
-        active = (lo < hi) & (near(g[s], lo) | near(g[s], hi))
-        rows.append(f"{phase.name} {active.sum()} (lam {np.abs(solved.lam_g[s]).max():.3g})")
-        k += len(lo)
+        lo, hi = nlp.node_bounds[i]
+        c, labels = nlp.columns[i], node_row_names(nlp.ocp.models[i])
+        assert len(labels) == len(lo), "node_row_names: ocp.NodeModel's rows changed"
+        value, lam = (v[k:k + len(lo) * c].reshape(c, len(lo)) for v in (g, np.abs(solved.lam_g)))
+        on = (lo < hi) & (near(value, lo) | near(value, hi))
+        top = np.argsort(lam.max(axis=0))[::-1][:3]
+        rows.append(f"{phase.name}: on a bound " + (" ".join(f"{labels[r]} x{on[:, r].sum()}"
+                                                           for r in np.flatnonzero(on.any(axis=0))) or "-")
+                    + "; largest lam " + " ".join(f"{labels[r]} {lam[:, r].max():.3g} at column "
+                                                  f"{lam[:, r].argmax()}/{c - 1}" for r in top))
+        k += len(lo) * c
     return blocks, rows
+
+
+def node_row_names(model) -> list[str]:
+    """A torque rung's node rows by name, in ocp.NodeModel's order: the free points' heights,
+    the held rows (J a + dJ v), the friction cones, the equations of motion."""
+    contact = model.contact
+    sticking = [p for p, a in contact.rows if a == "t" and p != contact.sliding]
+    return ([f"height {p}" for p in contact.free] + [f"held {contact.rows[k][0]} {contact.rows[k][1]}"
+                                                      for k in contact.held]
+            + [f"cone {p} {side}" for p in sticking for side in "+-"] + [f"motion {t}" for t in THETA])
 
 
 def release_forces(nlp, b) -> list[str]:
@@ -132,7 +156,8 @@ def main(argv=None) -> int:
             print(f"  {phase:9s} {b[f'T_{phase}'].item() * 1e3:6.1f} ms  effort {e.sum():.5f}: "
                   + " ".join(f"{j} {v:.5f}" for j, v in zip(JOINTS, e)), flush=True)
         print(f"  released with (BW): {', '.join(release_forces(nlp, b))}")
-        print(f"  on a bound: {'; '.join(blocks) or '-'}\n  node rows on a bound: {'; '.join(rows)}", flush=True)
+        print("  variables on a bound: " + ("; ".join(blocks) or "-"))
+        print("\n".join(f"  node rows, {r}" for r in rows), flush=True)
         guess = b
         solved.append((f"{transcription} {nodes}", nlp, b))
     if args.figure:
