@@ -171,18 +171,20 @@ def test_hermite_simpson_solves_and_integrates_by_simpsons_rule(js):
     assert stride.objective_value == pytest.approx(100 * effort / (m * G) ** 2 / d + 1e-6 * smooth / d, rel=1e-6)
 
 
-def test_hermite_simpsons_smoothing_sees_its_null_mode_not_a_smooth_motion():
+def test_the_smoothing_sees_each_transcriptions_null_mode():
     """Accelerations +c at the mesh points and -c/2 at the midpoints leave Hermite-Simpson's
-    defects unchanged (the velocities see h/6 (c - 2c + c) = 0): its smoothing costs them 9 h c^2
-    an interval, and nothing for accelerations linear in time (the trapezoid's, their changes)."""
+    defects unchanged (the velocities see h/6 (c - 2c + c) = 0), +c and -c node to node the
+    trapezoid's: their smoothing costs them 9 h c^2 an interval (the curvature in each, blind to
+    accelerations linear in time: a share that falls as h^4) and 4 h c^2 a step (the change
+    between nodes)."""
     h, n, c = 0.01, 3, 2.0
     rng = np.random.default_rng(0)
-    X, D = ca.DM(rng.random((4, 2 * n + 1))), ca.DM(rng.random((4, 2 * n + 1)))
-    mode = ca.DM([[c if k % 2 == 0 else -c / 2 for k in range(2 * n + 1)]] * 2)
-    D_moved = ca.vertcat(D[:2, :], D[2:, :] + mode)  # the rates' lower half: the accelerations
-    moved = np.array(HermiteSimpson.defects(X, D_moved, h), float)
-    assert np.allclose(moved, np.array(HermiteSimpson.defects(X, D, h), float))
-    assert float(HermiteSimpson.smoothing(mode, h)) == pytest.approx(2 * n * 9 * h * c ** 2)
+    for transcription, pattern, cost in ((HermiteSimpson, (c, -c / 2), 9 * n), (Trapezoid, (c, -c), 4 * 2 * n)):
+        X, D = ca.DM(rng.random((4, 2 * n + 1))), ca.DM(rng.random((4, 2 * n + 1)))
+        mode = ca.DM([[pattern[k % 2] for k in range(2 * n + 1)]] * 2)
+        D_moved = ca.vertcat(D[:2, :], D[2:, :] + mode)  # the rates' lower half: the accelerations
+        moved = np.array(transcription.defects(X, D_moved, h), float)
+        assert np.allclose(moved, np.array(transcription.defects(X, D, h), float)), transcription
+        assert float(transcription.smoothing(mode, h)) == pytest.approx(2 * cost * h * c ** 2)
     linear = ca.DM(np.outer([1.0, -3.0], np.linspace(0.0, 1.0, 2 * n + 1)))
     assert float(HermiteSimpson.smoothing(linear, h)) == pytest.approx(0.0, abs=1e-20)
-    assert float(Trapezoid.smoothing(linear, h)) == pytest.approx(h * 10 * (2 * n) / (2 * n) ** 2)
