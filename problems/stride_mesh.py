@@ -1,8 +1,8 @@
 """Where the stride's objective moves with the mesh (issue 34's N against 2N): RBDS001's body (62 kg,
-1.81 m), heel strike, torque+springs (problem.RUNNER_TENDONS), effort, at an imposed cadence, each
+1.81 m), heel strike, torque+springs (problem.RUNNER_TENDONS), effort, at an imposed cadence (or free), each
 mesh warm from the one before (guess.fitted), so every mesh solves the same stride.
 
-    python problems/stride_mesh.py [--speed 3.5] [--cadence 130]
+    python problems/stride_mesh.py [--speed 3.5] [--cadence 130 (0: free)]
                                    [--meshes hermite-simpson:20 hermite-simpson:40 hermite-simpson:80]
                                    [--figure mesh.png]
 
@@ -132,7 +132,7 @@ def figure(path: str, meshes: list) -> None:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
-    parser.add_argument("--cadence", type=float, default=130.0)
+    parser.add_argument("--cadence", type=float, default=130.0, help="steps/min; 0: free")
     parser.add_argument("--meshes", nargs="+", default=[f"hermite-simpson:{n}" for n in (20, 40, 80)],
                         help="transcription:intervals, e.g. trapezoid:40")
     parser.add_argument("--figure", default="")
@@ -142,12 +142,13 @@ def main(argv=None) -> int:
         nlp = build(body, StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
                                          transcription=transcription))
         clock = time.process_time()
-        stride = optimum(nlp, args.speed, cadence=args.cadence, guess=guess)
+        stride = optimum(nlp, args.speed, cadence=args.cadence or None, guess=guess)
         seconds = time.process_time() - clock
         b = stride.solved.blocks
         effort, smooth = phase_terms(nlp, b, args.speed)
         blocks, rows = on_bounds(nlp, stride.solved)
-        print(f"{transcription} {nodes} (split {nlp.split}): objective {stride.objective_value:.5f}, effort "
+        print(f"{transcription} {nodes} (split {nlp.split}): objective {stride.objective_value:.5f} at "
+              f"{stride.cadence_spm:.1f} steps/min, effort "
               f"{sum(e.sum() for e in effort.values()):.5f}, smoothing {smooth:.5f}; converged {stride.success} "
               f"in {stride.iterations} iterations, {seconds:.1f} s CPU; valid {stride.valid} "
               f"{' '.join(stride.failed_checks)}; forward rad per phase "

@@ -129,9 +129,9 @@ RUNNER_TENDONS = {"knee": 2.5, "ankle": 4.0}
 
 # How far a stride's optimum moved with its mesh, N to 2N intervals (docs/concepts/stride.md,
 # "One answer"; python problems/stride_search.py on RBDS001's body, heel, torque+springs, effort,
-# 2.5-4.5 m/s, 2026-11-26, without the release's force row): every stride says it beside its
-# numbers (`mesh_note`).
-MESH_SHIFT = {"trapezoid": "2-22 % in cadence and 17-43 % in cost from 40 to 80 nodes",
+# 2.5-4.5 m/s; the trapezoid 2026-11-25, Hermite-Simpson 2026-11-26, without its release's force
+# row): every stride says it beside its numbers (`mesh_note`).
+MESH_SHIFT = {"trapezoid": "12-21 % in cadence and 21-38 % in cost from 40 to 80 nodes",
               "hermite-simpson": "under 2 % in cadence and 1-6 % in cost from 20 to 40 intervals "
                                  "(0.2 % in cost from 40 to 80 on one stride)"}
 
