@@ -7,7 +7,8 @@ body (62 kg, 1.81 m), heel strike, torque+springs (problem.RUNNER_TENDONS), effo
 
 Prints per mesh (`--meshes`, transcription:intervals; default trapezoid 40, Hermite-Simpson 20,
 trapezoid 80): the objective as IPOPT sees it,
-the smoothing term (problem.SMOOTHING * sum h |A_k+1 - A_k|^2 per distance) and its share (%).
+the smoothing term (problem.SMOOTHING times the transcription's sum, collocation; per distance) and its
+share (%).
 `--clearance` (m): the swing foot's least height (StrideSettings.clearance; docs/concepts/stride.md's
 figures: 0, measured before it existed).
 """

@@ -96,7 +96,12 @@ WORK_REGULARISATION = 1e-2
 # per distance (s^3/m), removes it. It is not negligible on a coarse trapezoid mesh: 13 % of the
 # objective at 40 nodes, 8 % at 80, 3 % with Hermite-Simpson at 20 intervals (RBDS001, heel,
 # torque+springs, effort, 3.5 m/s at 130 steps/min: problems/stride_smoothing.py, 2026-11-25),
-# one reason the trapezoid's optimum moves with the mesh (docs/concepts/stride.md).
+# one reason the trapezoid's optimum moves with the mesh (docs/concepts/stride.md). Hermite-Simpson
+# smooths the accelerations' curvature within each interval instead (collocation.HermiteSimpson:
+# its null mode, not a smooth motion): 1.0 / 0.2 / 0.08 % of the objective at 20 / 40 / 80
+# intervals, where the change between columns took 3.1 / 1.3 / 0.4 % (the same stride, release
+# rows gone: problems/stride_mesh.py, 2026-11-26); without any smoothing its swing ankle
+# oscillates column to column and the forward check fails (1.45 rad at 20 intervals).
 SMOOTHING = 1e-6
 # The one weight of the muscles' "metabolic" objective: FORCE_RATE_WEIGHT times the force-rate
 # term (costs.FORCE_RATE_SCALE: the volume-weighted squared tendon-force rates per distance, Kipp
@@ -131,9 +136,11 @@ RUNNER_TENDONS = {"knee": 2.5, "ankle": 4.0}
 
 # How far a stride's optimum moved with its mesh, N to 2N intervals (docs/concepts/stride.md,
 # "One answer"; python problems/stride_search.py on RBDS001's body, heel, torque+springs, effort,
-# 2.5-4.5 m/s, 2026-11-25): every stride says it beside its numbers (`mesh_note`).
+# 2.5-4.5 m/s; the trapezoid 2026-11-25, Hermite-Simpson 2026-11-26, without its release's force
+# row): every stride says it beside its numbers (`mesh_note`).
 MESH_SHIFT = {"trapezoid": "12-21 % in cadence and 21-38 % in cost from 40 to 80 nodes",
-              "hermite-simpson": "under 0.5 % in cadence and 6-10 % in cost from 20 to 40 intervals"}
+              "hermite-simpson": "under 2 % in cadence and 1-6 % in cost from 20 to 40 intervals "
+                                 "(0.2 % in cost and 0.1 % in cadence from 40 to 80 at 3.5 and 4.5 m/s)"}
 
 
 def other_leg(point: str) -> str:

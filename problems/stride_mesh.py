@@ -1,0 +1,170 @@
+"""Where the stride's objective moves with the mesh (issue 34's N against 2N): RBDS001's body (62 kg,
+1.81 m), heel strike, torque+springs (problem.RUNNER_TENDONS), effort, at an imposed cadence (or free), each
+mesh warm from the one before (guess.fitted), so every mesh solves the same stride.
+
+    python problems/stride_mesh.py [--speed 3.5] [--cadence 130 (0: free)]
+                                   [--meshes hermite-simpson:20 hermite-simpson:40 hermite-simpson:80]
+                                   [--figure mesh.png]
+
+Prints per mesh (transcription:intervals): the objective, the smoothing term (problem.SMOOTHING),
+the effort term per phase and per joint, the phase durations, the dropped points' normal force
+(body weights) at the last column of their phase (heel-off, toe-off), the decision variables on
+a finite bound by row and columns (A at collocation.ACCELERATION, F at contact.FORCE_LIMIT, X at
+the joint ranges or STATE_RATE, U at the torque limit, T at a duration bound) with their largest
+multiplier, and per phase its node rows on a bound (heights and clearance, friction cones) and
+the three with the largest multipliers; IPOPT's iterations and CPU seconds. `--figure`: the torques, accelerations and
+contact forces per phase on normalised phase time, the meshes overlaid (PNG).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+
+import casadi as ca
+import matplotlib
+import numpy as np
+
+from formopt.mechanics.body import scaled_body
+from formopt.mechanics.joint_space import GRAVITY, JOINTS, THETA
+from formopt.optim.stride.collocation import build
+from formopt.optim.stride.local import optimum
+from formopt.optim.stride.problem import RUNNER_TENDONS, SMOOTHING, StrideSettings
+
+matplotlib.use("Agg")
+TIGHT = 1e-6  # a value this close to its bound (relative to max(1, |bound|)) is on it
+
+
+def phase_terms(nlp, b, speed: float) -> tuple[dict, float]:
+    """({phase: effort term per joint (6,)}, smoothing term): the objective's parts (per distance)."""
+    d = speed * sum(b[f"T_{p.name}"].item() for p in nlp.phases)
+    effort, smooth = {}, 0.0
+    for phase, n in zip(nlp.phases, nlp.split):
+        T, A = b[f"T_{phase.name}"].item(), b[f"A_{phase.name}"]
+        w = np.asarray(nlp.transcription.weights(n, T / n), float).ravel()
+        effort[phase.name] = (nlp.mass * b[f"U_{phase.name}"]) ** 2 @ w * 100 / (nlp.mass * GRAVITY) ** 2 / d
+        smooth += SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n)) / d
+    return effort, smooth
+
+
+def near(values, bounds):
+    """Which values are on their (finite) bounds (within TIGHT relative to max(1, |bound|))."""
+    return np.isfinite(bounds) & (np.abs(values - bounds) <= TIGHT * np.maximum(1.0, np.abs(bounds)))
+
+
+def row_name(block: str, row: int) -> str:
+    """A block's row by name: THETA (and its rates, "d" before) for X and A, JOINTS for U."""
+    names = {"X": (*THETA, *(f"d{t}" for t in THETA)), "A": THETA, "U": JOINTS}.get(block[0])
+    return names[row] if names else str(row)
+
+
+def on_bounds(nlp, solved) -> tuple[list[str], list[str]]:
+    """(the blocks with entries on a bound: count and largest |multiplier|; per phase, its node
+    rows' inequalities on a bound: count and the rows' largest |multiplier|)."""
+    b, x = nlp.blocks, solved.x
+    at = near(x, np.concatenate(b.lower)) | near(x, np.concatenate(b.upper))
+    blocks = []
+    for name in b.names:
+        s = slice(b.offsets[name], b.offsets[name] + int(np.prod(b.shapes[name])))
+        on, lam = (v[s].reshape(b.shapes[name], order="F") for v in (at, np.abs(solved.lam_x)))
+        blocks += [f"{name} {row_name(name, r)} at {on[r].sum()} of columns {np.flatnonzero(on[r]).min()}-"
+                   f"{np.flatnonzero(on[r]).max()}/{on.shape[1] - 1} (lam {lam[r].max():.3g})"
+                   for r in np.flatnonzero(on.any(axis=1))]
+    p = [solved.parameters[k] for k in ("speed", "slope", "mu")]
+    g = np.asarray(ca.Function("g", [b.vector(), nlp.p], [nlp.problem["g"]])(x, p), float).ravel()
+    rows, k = [], 0
+    for i, phase in enumerate(nlp.phases):
+        lo, hi = nlp.node_bounds[i]
+        c, labels = nlp.columns[i], node_row_names(nlp.ocp.models[i])
+        assert len(labels) == len(lo), "node_row_names: ocp.NodeModel's rows changed"
+        value, lam = (v[k:k + len(lo) * c].reshape(c, len(lo)) for v in (g, np.abs(solved.lam_g)))
+        on = (lo < hi) & (near(value, lo) | near(value, hi))
+        top = np.argsort(lam.max(axis=0))[::-1][:3]
+        rows.append(f"{phase.name}: on a bound " + (" ".join(f"{labels[r]} x{on[:, r].sum()}"
+                                                           for r in np.flatnonzero(on.any(axis=0))) or "-")
+                    + "; largest lam " + " ".join(f"{labels[r]} {lam[:, r].max():.3g} at column "
+                                                  f"{lam[:, r].argmax()}/{c - 1}" for r in top))
+        k += len(lo) * c
+    return blocks, rows
+
+
+def node_row_names(model) -> list[str]:
+    """A torque rung's node rows by name, in ocp.NodeModel's order: the free points' heights,
+    the held rows (J a + dJ v), the friction cones, the equations of motion."""
+    contact = model.contact
+    sticking = [p for p, a in contact.rows if a == "t" and p != contact.sliding]
+    return ([f"height {p}" for p in contact.free] + [f"held {contact.rows[k][0]} {contact.rows[k][1]}"
+                                                      for k in contact.held]
+            + [f"cone {p} {side}" for p in sticking for side in "+-"] + [f"motion {t}" for t in THETA])
+
+
+def release_forces(nlp, b) -> list[str]:
+    """The dropped points' normal force (body weights) at the last column of their phase."""
+    out = []
+    for before, after in zip(nlp.phases, nlp.phases[1:]):
+        for k, (point, axis) in enumerate(before.rows):
+            if axis == "n" and point not in after.points:
+                out.append(f"{point} {b[f'F_{before.name}'][k, -1]:.3f}")
+    return out
+
+
+def figure(path: str, meshes: list) -> None:
+    """The torques (N m/kg), accelerations and contact forces (body weights) per phase on
+    normalised phase time, one line per mesh (`meshes`: (label, nlp, blocks))."""
+    import matplotlib.pyplot as plt
+    phases = [p.name for p in meshes[0][1].phases]
+    what = [("U", j, JOINTS[j]) for j in range(len(JOINTS))] + [("A", j, THETA[j]) for j in range(3, len(THETA))] \
+        + [("F", j, f"row {j}") for j in range(3)]
+    fig, axes = plt.subplots(len(what), len(phases), figsize=(4 * len(phases), 1.8 * len(what)), squeeze=False)
+    for label, _, b in meshes:
+        for c, phase in enumerate(phases):
+            for r, (key, j, name) in enumerate(what):
+                values = b[f"{key}_{phase}"]
+                if j < values.shape[0]:
+                    axes[r, c].plot(np.linspace(0, 1, values.shape[1]), values[j], ".-", ms=3, lw=0.8, label=label)
+                axes[r, c].set_title(f"{phase} {key} {name}", fontsize=8)
+    axes[0, 0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=60)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--speed", type=float, default=3.5)
+    parser.add_argument("--cadence", type=float, default=130.0, help="steps/min; 0: free")
+    parser.add_argument("--meshes", nargs="+", default=[f"hermite-simpson:{n}" for n in (20, 40, 80)],
+                        help="transcription:intervals, e.g. trapezoid:40")
+    parser.add_argument("--figure", default="")
+    args = parser.parse_args(argv)
+    body, guess, solved = scaled_body(62.0, 1.81), None, []
+    for transcription, nodes in ((m.split(":")[0], int(m.split(":")[1])) for m in args.meshes):
+        nlp = build(body, StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
+                                         transcription=transcription))
+        clock = time.process_time()
+        stride = optimum(nlp, args.speed, cadence=args.cadence or None, guess=guess)
+        seconds = time.process_time() - clock
+        b = stride.solved.blocks
+        effort, smooth = phase_terms(nlp, b, args.speed)
+        blocks, rows = on_bounds(nlp, stride.solved)
+        print(f"{transcription} {nodes} (split {nlp.split}): objective {stride.objective_value:.5f} at "
+              f"{stride.cadence_spm:.1f} steps/min, effort "
+              f"{sum(e.sum() for e in effort.values()):.5f}, smoothing {smooth:.5f}; converged {stride.success} "
+              f"in {stride.iterations} iterations, {seconds:.1f} s CPU; valid {stride.valid} "
+              f"{' '.join(stride.failed_checks)}; forward rad per phase "
+              f"{' '.join(f'{e:.3f}' for e in stride.checks['forward_per_phase'])}", flush=True)
+        for phase, e in effort.items():
+            print(f"  {phase:9s} {b[f'T_{phase}'].item() * 1e3:6.1f} ms  effort {e.sum():.5f}: "
+                  + " ".join(f"{j} {v:.5f}" for j, v in zip(JOINTS, e)), flush=True)
+        print(f"  released with (BW): {', '.join(release_forces(nlp, b))}")
+        print("  variables on a bound: " + ("; ".join(blocks) or "-"))
+        print("\n".join(f"  node rows, {r}" for r in rows), flush=True)
+        guess = b
+        solved.append((f"{transcription} {nodes}", nlp, b))
+    if args.figure:
+        figure(args.figure, solved)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
