@@ -142,6 +142,8 @@ class HermiteSimpson:
 
     @staticmethod
     def smoothing(A, h):
+        """The smoothing's sum (problem.SMOOTHING) of the accelerations A (2n + 1 columns, mesh
+        points even): sum over the intervals of h |A_k - 2 A_m + A_k+1|^2."""
         return h * ca.sumsqr(A[:, :-2:2] - 2 * A[:, 1::2] + A[:, 2::2])
 
 
