@@ -30,6 +30,7 @@ the slip: velocity_level's law, checked after the solve).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from ...mechanics.errors import InputError
@@ -222,8 +223,8 @@ class StrideSettings:
             raise InputError(f"law {self.law!r}: expected no-slip or coulomb (frictionless "
                              "impacts leave the foot sliding, a phase the stride does not model)")
         check("impact_weight", self.impact_weight)
-        if not self.force_rate_weight >= 0.0:
-            raise InputError(f"force_rate_weight = {self.force_rate_weight}: expected a number >= 0")
+        if not 0.0 <= self.force_rate_weight < math.inf:
+            raise InputError(f"force_rate_weight = {self.force_rate_weight}: expected a finite number >= 0")
         check("torque_limit_nm_per_kg", self.torque_limit)
         check("clearance_m", self.clearance)
         check("max_iterations", self.max_iter, whole=True)

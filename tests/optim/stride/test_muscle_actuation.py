@@ -92,3 +92,10 @@ def test_force_rate_integrand_is_volume_weighted(rung):
     got = rung.integrands(ca.DM.zeros(9), ca.DM.zeros(9), ca.DM.ones(rung.states) * 0.2, ca.DM(u))["force_rate"]
     share = rung.muscles.volume / rung.muscles.volume.sum()
     assert float(got) == pytest.approx(9.0 + 25.0 * share[0], rel=1e-12)
+
+
+@pytest.mark.parametrize("weight", [-1.0, float("nan"), float("inf")])
+def test_force_rate_weight_must_be_finite_and_not_negative(weight):
+    """An infinite weight was taken: the objective inf, or nan where the force rates are zero."""
+    with pytest.raises(InputError, match="force_rate_weight"):
+        StrideSettings(muscles=body_muscles(paper_body()), objective="metabolic", force_rate_weight=weight)
