@@ -160,8 +160,9 @@ class StrideProblem:
         added = tuple(p for p in after.points if p not in before.points)
         if added:
             return Impact(added, self.models[i].contact)
-        zero_force = self.models[i].actuation.states or self.settings.transcription == "trapezoid"
-        dropped = tuple(k for k, (p, a) in enumerate(before.rows) if a == "n" and p not in after.points and zero_force)
+        if not (self.models[i].actuation.states or self.settings.transcription == "trapezoid"):
+            return Release((), before.sliding)  # torque sources on Hermite-Simpson: `Release` says why
+        dropped = tuple(k for k, (p, a) in enumerate(before.rows) if a == "n" and p not in after.points)
         return Release(dropped, before.sliding)
 
     def objective(self, integrals: dict, speed, period):
