@@ -263,8 +263,13 @@ def metabolic(positive, negative):
 
 
 def mesh_note(settings: StrideSettings) -> str:
-    """How sure a stride's optimum is of its mesh, in words (MESH_SHIFT, MESH_CONVERGED)."""
+    """How sure a stride's optimum is of its mesh, in words (MESH_SHIFT, MESH_CONVERGED: measured
+    on the torque+springs rung, so not claimed for the muscles')."""
     least, shift = MESH_CONVERGED.get(settings.transcription, (None, ""))
+    if least is not None and settings.nodes >= least and settings.muscles is not None:
+        return (f"{settings.transcription} at {settings.nodes} intervals: on RBDS001's body the torque+springs "
+                f"effort optimum moved {shift}; the muscles', whose release keeps its f_n = 0 row, is not "
+                "measured (docs/concepts/stride.md, 'One answer')")
     if least is not None and settings.nodes >= least:
         return (f"{settings.transcription} at {settings.nodes} intervals: on RBDS001's body the effort optimum "
                 f"moved {shift}, within 1 % (docs/concepts/stride.md, 'One answer')")

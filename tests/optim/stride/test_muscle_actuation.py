@@ -12,7 +12,7 @@ from formopt.mechanics.body import paper_body, scaled_body
 from formopt.mechanics.errors import InputError
 from formopt.optim.stride.actuation import MuscleDriven
 from formopt.optim.stride.layout import Rows
-from formopt.optim.stride.problem import StrideSettings
+from formopt.optim.stride.problem import StrideSettings, mesh_note
 
 BODY = scaled_body(62.0, 1.81)
 
@@ -99,3 +99,13 @@ def test_force_rate_weight_must_be_finite_and_not_negative(weight):
     """An infinite weight was taken: the objective inf, or nan where the force rates are zero."""
     with pytest.raises(InputError, match="force_rate_weight"):
         StrideSettings(muscles=body_muscles(paper_body()), objective="metabolic", force_rate_weight=weight)
+
+
+def test_the_mesh_note_claims_no_convergence_for_the_muscles():
+    """problem.MESH_CONVERGED was measured on the torque+springs rung, whose Hermite-Simpson
+    release has no f_n = 0 row; the muscles keep that row, so their note does not say "within 1 %"."""
+    torque = StrideSettings(nodes=40, transcription="hermite-simpson")
+    muscles = StrideSettings(nodes=40, transcription="hermite-simpson", objective="metabolic",
+                             muscles=body_muscles(paper_body()))
+    assert "within 1 %" in mesh_note(torque)
+    assert "within 1 %" not in mesh_note(muscles) and "not measured" in mesh_note(muscles)
