@@ -29,8 +29,7 @@ RBDS001 at 3.5 m/s and frozen) times the force-rate term: Bhargava's heat is pai
 and time, the same per distance for short contacts as for long, while runners pay for
 generating force quickly (Kram & Taylor 1990; Kipp, Grabowski & Kram 2018); activation = the
 activation term; both add MUSCLE_RATE_REGULARISATION times muscle_rates and RESERVE_WEIGHT times
-reserves. Any objective adds impact_weight times
-the impacts (scale 1 / (m g)) and SMOOTHING.
+reserves. Any objective adds impact_weight times the impacts (scale 1 / (m g)) and SMOOTHING.
 """
 
 from __future__ import annotations
