@@ -24,7 +24,7 @@ import numpy as np
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics import muscles as hill
 from formopt.mechanics.body import scaled_body
-from formopt.mechanics.joint_space import GRAVITY, JOINTS
+from formopt.mechanics.joint_space import GRAVITY, JOINTS, JointSpace
 from formopt.optim.stride import problem
 from formopt.optim.stride.collocation import NX, build
 from formopt.optim.stride.local import optimum
@@ -147,12 +147,7 @@ def hand_check(body) -> None:
           f"= {hand + shortening + work:.1f} W (efficiency W/E {work / (hand + shortening + work):.2f}), model {model:.1f} W")
     held = hand * 0.15
     print(f"   the soleus fully active for 0.15 s (a stance): {held:.1f} J; a runner's net "
-          f"4 J/kg/m at 3.5 m/s and 171 steps/min: {4 * body_mass(body) * 3.5 * 60 / 171.4:.0f} J per step")
-
-
-def body_mass(body) -> float:
-    from formopt.mechanics.joint_space import JointSpace
-    return JointSpace(body).mass_total
+          f"4 J/kg/m at 3.5 m/s and 171 steps/min: {4 * JointSpace(body).mass_total * 3.5 * 60 / 171.4:.0f} J per step")
 
 
 def main(argv=None) -> int:

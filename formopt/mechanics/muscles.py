@@ -319,7 +319,8 @@ def activation_cost(muscles: Muscles, activation, power: float = 3.0):
 def force_rate_cost(muscles: Muscles, force_rate):
     """sum_i V_i F'_i^2 / sum_i V_i (1/s^2): the volume-weighted mean squared rate of the
     normalised tendon forces F' (1/s), a cost of generating force quickly in the active muscle
-    volume (Kipp, Grabowski & Kram 2018, J Exp Biol 221:jeb184218)."""
+    volume (Kipp, Grabowski & Kram 2018, J Exp Biol 221:jeb184218); squared, it charges a
+    falling force as a rising one, and it is a smooth stand-in for Kipp's rate, not its equation."""
     volume = ca.DM(muscles.volume / muscles.volume.sum())
     return ca.dot(volume, force_rate**2)
 

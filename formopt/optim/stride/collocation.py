@@ -121,7 +121,8 @@ class HermiteSimpson:
     quadrature weights h/6 (1, 4, 2, 4, ..., 2, 4, 1) (Simpson's rule: fourth order). Its
     smoothing: sum h |A_k - 2 A_m + A_k+1|^2 over the intervals, the accelerations' curvature
     within each: (+c, -c/2, +c) leaves the velocity defects unchanged and costs 9 h c^2 an
-    interval, a smooth A (h/2)^4 |A''|^2 (its share falls as h^4, not as h^2)."""
+    interval, a smooth A h (h/2)^4 |A''|^2 an interval, (h/2)^4 int |A''|^2 dt in all (its share
+    falls as h^4, the trapezoid's h^2 int |A'|^2 dt as h^2)."""
 
     @staticmethod
     def columns(n: int) -> int:
@@ -142,6 +143,8 @@ class HermiteSimpson:
 
     @staticmethod
     def smoothing(A, h):
+        """The smoothing's sum (problem.SMOOTHING) of the accelerations A (2n + 1 columns, mesh
+        points even): sum over the intervals of h |A_k - 2 A_m + A_k+1|^2."""
         return h * ca.sumsqr(A[:, :-2:2] - 2 * A[:, 1::2] + A[:, 2::2])
 
 

@@ -29,8 +29,7 @@ RBDS001 at 3.5 m/s and frozen) times the force-rate term: Bhargava's heat is pai
 and time, the same per distance for short contacts as for long, while runners pay for
 generating force quickly (Kram & Taylor 1990; Kipp, Grabowski & Kram 2018); activation = the
 activation term; both add MUSCLE_RATE_REGULARISATION times muscle_rates and RESERVE_WEIGHT times
-reserves. Any objective adds impact_weight times
-the impacts (scale 1 / (m g)) and SMOOTHING.
+reserves. Any objective adds impact_weight times the impacts (scale 1 / (m g)) and SMOOTHING.
 """
 
 from __future__ import annotations
@@ -53,8 +52,9 @@ from .problem import (
 # The activation term's scale (m/s): its integral per distance (s/m, about 0.01-0.05 a step)
 # made of order 0.1-1, as the other terms.
 ACTIVATION_SCALE = 10.0
-# The force-rate term's scale (s m): its integral per distance (about 10-20 /(s m) a step)
-# made of order 0.1-1.
+# The force-rate term's scale (s m): its integral per distance (18-20 /(s m) at the optimum
+# without the term, 3.9 at the calibrated one: RBDS001, 3.5 m/s, 171.4 steps/min,
+# docs/concepts/muscles.md) made of order 0.1.
 FORCE_RATE_SCALE = 0.01
 # A small weight on the tendon forces' squared rates (per distance) keeps F' from chattering
 # where the muscles are slack (problems/muscle_redundancy.py uses the same).

@@ -15,14 +15,15 @@ split P_j = P_j+ - P_j- (W/kg, P+- >= 0; problem.py says why), and the actuation
 the power the budget balances (`balance`: active joints, walls, tendons and contacts), a slide's
 friction power, each active joint's power (6), the walls', the tendons' and the contacts' power,
 and the actuation's own (actuation.OWN_INTEGRANDS: the muscles' activation cost, metabolic rate
-(W) and squared tendon-force rates).
+(W), volume-weighted squared tendon-force rates (the force-rate term), plain squared tendon-force
+rates (their regularisation) and squared reserves).
 
-Transitions (phase i-1 -> i): `Impact` where phase i adds a point (it reaches the ground
-moving into it; contact.RigidContact.impact), `Release` where it drops one (the dropped point's normal
-force zero at phase i-1's end, but for torque sources on Hermite-Simpson: `Release` says why; the
-end of a slide: its slip zero). The touchdown of L at
-the flight's end is an `Impact` too; periodicity: that post-impact state, legs swapped and
-moved back one step along the ground, is the start (`shift`), and x_hip = 0 at the start.
+Transitions (phase i-1 -> i): `Impact` where phase i adds a point (it reaches the ground moving
+into it; contact.RigidContact.impact), `Release` where it drops one (the dropped point's normal
+force zero at phase i-1's end, but for torque sources on Hermite-Simpson: `Release` says why;
+the end of a slide: its slip zero). The touchdown of L at the flight's end is an `Impact` too;
+periodicity: that post-impact state, legs swapped and moved back one step along the ground, is
+the start (`shift`), and x_hip = 0 at the start.
 """
 
 from __future__ import annotations
@@ -160,8 +161,9 @@ class StrideProblem:
         added = tuple(p for p in after.points if p not in before.points)
         if added:
             return Impact(added, self.models[i].contact)
-        zero_force = self.models[i].actuation.states or self.settings.transcription == "trapezoid"
-        dropped = tuple(k for k, (p, a) in enumerate(before.rows) if a == "n" and p not in after.points and zero_force)
+        if not (self.models[i].actuation.states or self.settings.transcription == "trapezoid"):
+            return Release((), before.sliding)  # torque sources on Hermite-Simpson: `Release` says why
+        dropped = tuple(k for k, (p, a) in enumerate(before.rows) if a == "n" and p not in after.points)
         return Release(dropped, before.sliding)
 
     def objective(self, integrals: dict, speed, period):

@@ -30,6 +30,7 @@ the slip: velocity_level's law, checked after the solve).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from ...mechanics.errors import InputError
@@ -226,8 +227,8 @@ class StrideSettings:
             raise InputError(f"law {self.law!r}: expected no-slip or coulomb (frictionless "
                              "impacts leave the foot sliding, a phase the stride does not model)")
         check("impact_weight", self.impact_weight)
-        if not self.force_rate_weight >= 0.0:
-            raise InputError(f"force_rate_weight = {self.force_rate_weight}: expected a number >= 0")
+        if not 0.0 <= self.force_rate_weight < math.inf:
+            raise InputError(f"force_rate_weight = {self.force_rate_weight}: expected a finite number >= 0")
         check("torque_limit_nm_per_kg", self.torque_limit)
         check("clearance_m", self.clearance)
         check("max_iterations", self.max_iter, whole=True)
@@ -266,8 +267,13 @@ def metabolic(positive, negative):
 
 
 def mesh_note(settings: StrideSettings) -> str:
-    """How sure a stride's optimum is of its mesh, in words (MESH_SHIFT, MESH_FINE)."""
+    """How sure a stride's optimum is of its mesh, in words (MESH_SHIFT, MESH_FINE: measured on
+    the torque+springs rung, so not claimed for the muscles')."""
     least, shift = MESH_FINE.get(settings.transcription, (None, ""))
+    if least is not None and settings.nodes >= least and settings.muscles is not None:
+        return (f"{settings.transcription} at {settings.nodes} intervals: the torque+springs effort optimum "
+                f"moved {shift}; the muscles', whose release keeps its f_n = 0 row, is not measured "
+                "(docs/concepts/stride.md, 'One answer')")
     if least is not None and settings.nodes >= least:
         return (f"{settings.transcription} at {settings.nodes} intervals: the effort optimum moved {shift} "
                 "(docs/concepts/stride.md, 'One answer')")

@@ -119,6 +119,21 @@ def test_a_dropped_point_leaves_the_ground_as_the_next_phase_begins(hermite):
                 assert min(h) > -1e-8, (after.name, point, h[:3])
 
 
+def test_a_released_point_accelerates_off_the_ground(hermite):
+    """Without the release's f_n = 0 row, nothing but the next phase's heights >= 0 at its columns
+    makes the moments' jump lift the point: at the next phase's first column the dropped point,
+    at rest on the ground, must accelerate away from it (a rigid contact lets go only so; 45 and
+    125 m/s^2 at heel-off and toe-off here), or the ground would have to pull."""
+    nlp, stride = hermite
+    for i, transition in enumerate(nlp.ocp.transitions):
+        if isinstance(transition, Release):
+            before, after = nlp.phases[i], nlp.phases[i + 1]
+            X, A = (stride.solved.blocks[f"{key}_{after.name}"] for key in "XA")
+            for point in (p for p in before.points if p not in after.points):
+                _, _, J, drift = nlp.js.points[point](ca.DM(X[:NX, 0]), ca.DM(X[NX:, 0]), 0.0)
+                assert float((J @ ca.DM(A[:, 0]) + drift)[1]) > 0.0, (after.name, point)
+
+
 def test_the_muscles_release_with_no_force():
     """With muscles, whose moments are states, the dropped points' normal forces reach zero at
     their phase's end (a row on the state), as a runner's ground force falls at toe-off."""

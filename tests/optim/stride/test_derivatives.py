@@ -83,3 +83,30 @@ def test_gradient_against_finite_differences(case):
         e[k] = 1e-6
         numeric = (float(f(x + e, p)) - float(f(x - e, p))) / 2e-6
         assert grad[k] == pytest.approx(numeric, rel=1e-5, abs=1e-6)
+
+
+def test_force_rate_gradient_against_finite_differences(case):
+    """The muscles' force-rate term (the metabolic objective's weighted sum V_i F'_i^2 / sum V_i
+    per distance), where it dominates: the objective's gradient in the tendon-force rates'
+    controls F'/10 of both legs, at every phase's first, middle and last column, against
+    central differences (the random columns of the test above may miss them)."""
+    nlp, ours, x, p, _ = case
+    if nlp.settings.force_rate_weight < 1e3 or nlp.settings.muscles is None:
+        pytest.skip("the force-rate case only")
+    n = len(nlp.settings.muscles.names)
+    grad = np.asarray(ours["grad_f"](x, p)[1], float).ravel()
+    f = ca.Function("f", [nlp.problem["x"], nlp.problem["p"]], [nlp.problem["f"]])
+    rows = [*range(2 * n, 3 * n), *range(5 * n, 6 * n)]  # the legs' F'/10 (actuation.MuscleDriven._legs)
+    checked = 0
+    for phase in nlp.phases:
+        name = f"U_{phase.name}"
+        start, (height, width) = nlp.blocks.offsets[name], nlp.blocks.shapes[name]
+        for column in (0, width // 2, width - 1):
+            for row in rows:
+                k = start + column * height + row  # column-major, as the blocks are joined
+                e = np.zeros(x.size)
+                e[k] = 1e-6
+                numeric = (float(f(x + e, p)) - float(f(x - e, p))) / 2e-6
+                assert grad[k] == pytest.approx(numeric, rel=1e-5, abs=1e-6), (name, column, row)
+                checked += abs(numeric) > 1e-3
+    assert checked > len(rows)  # the term is felt there, not a gradient of zeros

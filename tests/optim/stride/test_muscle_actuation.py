@@ -12,7 +12,7 @@ from formopt.mechanics.body import paper_body, scaled_body
 from formopt.mechanics.errors import InputError
 from formopt.optim.stride.actuation import MuscleDriven
 from formopt.optim.stride.layout import Rows
-from formopt.optim.stride.problem import StrideSettings
+from formopt.optim.stride.problem import StrideSettings, mesh_note
 
 BODY = scaled_body(62.0, 1.81)
 
@@ -92,3 +92,20 @@ def test_force_rate_integrand_is_volume_weighted(rung):
     got = rung.integrands(ca.DM.zeros(9), ca.DM.zeros(9), ca.DM.ones(rung.states) * 0.2, ca.DM(u))["force_rate"]
     share = rung.muscles.volume / rung.muscles.volume.sum()
     assert float(got) == pytest.approx(9.0 + 25.0 * share[0], rel=1e-12)
+
+
+@pytest.mark.parametrize("weight", [-1.0, float("nan"), float("inf")])
+def test_force_rate_weight_must_be_finite_and_not_negative(weight):
+    """An infinite weight was taken: the objective inf, or nan where the force rates are zero."""
+    with pytest.raises(InputError, match="force_rate_weight"):
+        StrideSettings(muscles=body_muscles(paper_body()), objective="metabolic", force_rate_weight=weight)
+
+
+def test_the_mesh_note_claims_no_convergence_for_the_muscles():
+    """problem.MESH_FINE was measured on the torque+springs rung, whose Hermite-Simpson release
+    has no f_n = 0 row; the muscles keep that row, so their note does not claim its figure."""
+    torque = StrideSettings(nodes=40, transcription="hermite-simpson")
+    muscles = StrideSettings(nodes=40, transcription="hermite-simpson", objective="metabolic",
+                             muscles=body_muscles(paper_body()))
+    assert "0.2 % in cost" in mesh_note(torque) and "not measured" not in mesh_note(torque)
+    assert "not measured" in mesh_note(muscles)
