@@ -77,7 +77,7 @@ OBJECTIVES = ("effort", "work", "metabolic", "joint-metabolic", "activation")
 # ("joint-metabolic": Minetti & Alexander's muscle at each joint, costs.joint_metabolic_rate).
 ACTUATIONS = ("torque", "torque+springs", "muscles")
 MUSCLE_OBJECTIVES = ("metabolic", "activation")
-TRANSCRIPTIONS = ("trapezoid", "hermite-simpson")  # collocation.py's
+TRANSCRIPTIONS = ("trapezoid", "hermite-simpson")  # transcription.py's
 # Margaria R. (1968) Int Z angew Physiol 25:339: efficiencies of positive and negative muscle work
 EFFICIENCY_POSITIVE = 0.25
 EFFICIENCY_NEGATIVE = 1.2
@@ -98,7 +98,7 @@ WORK_REGULARISATION = 1e-2
 # objective at 40 nodes, 8 % at 80, 3 % with Hermite-Simpson at 20 intervals (RBDS001, heel,
 # torque+springs, effort, 3.5 m/s at 130 steps/min: problems/stride_smoothing.py, 2026-11-25),
 # one reason the trapezoid's optimum moves with the mesh (docs/concepts/stride.md). Hermite-Simpson
-# smooths the accelerations' curvature within each interval instead (collocation.HermiteSimpson:
+# smooths the accelerations' curvature within each interval instead (transcription.HermiteSimpson:
 # its null mode, not a smooth motion): 1.0 / 0.2 / 0.08 % of the objective at 20 / 40 / 80
 # intervals, where the change between columns took 3.1 / 1.3 / 0.4 % (the same stride, release
 # rows gone: problems/stride_mesh.py, 2026-11-26); without any smoothing its swing ankle
@@ -192,7 +192,7 @@ class StrideSettings:
     max_iter: int = 1000
     tolerance: float = 1e-6
     tendons: dict = field(default_factory=dict)  # joint ("hip", "knee", "ankle") -> N m/rad/kg
-    transcription: str = "trapezoid"  # or "hermite-simpson" (collocation.TRANSCRIPTIONS)
+    transcription: str = "trapezoid"  # or "hermite-simpson" (transcription.TRANSCRIPTIONS)
     muscles: Muscles | None = None  # one leg's muscles scaled to the body: the "muscles" rung
     force_rate_weight: float = FORCE_RATE_WEIGHT  # the muscles' metabolic objective's one weight (calibration only)
     clearance: float = CLEARANCE  # m: the swing foot's least height while the other holds the ground

@@ -14,9 +14,10 @@ from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import paper_body, scaled_body
 from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings, optimum
-from formopt.optim.stride.collocation import NX, HermiteSimpson, Trapezoid
+from formopt.optim.stride.collocation import NX
 from formopt.optim.stride.contact import CLEARANCE, height
 from formopt.optim.stride.ocp import Release, StrideProblem
+from formopt.optim.stride.transcription import HermiteSimpson, Trapezoid
 
 NODES, SPEED, G = 18, 3.5, 9.81
 SLOPE = np.arctan(0.05)  # a 5 % slope
