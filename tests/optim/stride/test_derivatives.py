@@ -15,7 +15,7 @@ from formopt.optim.stride.derivatives import functions
 from formopt.optim.stride.guess import ballistic, perturbed
 from formopt.optim.stride.problem import RUNNER_TENDONS
 
-FORCE_RATE = {"strike": "heel", "objective": "metabolic", "muscles": "gait2d",
+FORCE_RATE = {"strike": "flat", "nodes": 14, "objective": "metabolic", "muscles": "gait2d",
               "force_rate_weight": 1e4}  # the force-rate term dominant
 CASES = [{"strike": "heel", "tendons": RUNNER_TENDONS},
          {"strike": "forefoot", "objective": "metabolic", "impact_weight": 1.0},
