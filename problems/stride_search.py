@@ -10,8 +10,9 @@ One row per speed, node count and spend (the spends innermost, then the node cou
 (the objective, per distance), cadence (steps/min), their change (%) from the row before at the
 same speed (doubling the spend, or the nodes when --nodes gives two counts), solves, IPOPT
 iterations and seconds spent, the distinct local optima met (cadence:objective) and their
-spread (%), validity, the forward simulation's largest error per phase (rad, each phase from
-the NLP's state at its start), any phase on its duration bound and the grid's least objective
+spread (%), validity, the held contact points' drift (mm) and the energy budget's balance (% of
+W+), the forward simulation's largest error per phase (rad, each phase from the NLP's state at
+its start), any phase on its duration bound and the grid's least objective
 per cadence (cadence=objective). `--starts` adds, first, the local search's optimum with each
 number of starts (optim.stride.optimum: the generic guess and seeded perturbations of it), for
 comparison. `--clearance` (m): the swing foot's least height (StrideSettings.clearance); the
@@ -44,9 +45,11 @@ def row(label: str, speed: float, nodes: int, stride, before, spent: dict | None
                        for c, v in zip(s.get("grid_spm", []), s.get("grid_objective", [])))
     phases = " ".join(f"{e:.3f}" for e in stride.checks.get("forward_per_phase", []))
     bound = "; ".join(f"{b['phase']} {b['side']}" for b in stride.on_bound) or "-"
+    drift, balance = stride.checks["drift_m"] * 1e3, stride.checks["balance_relative"] * 100
     return (f"{speed:4.1f} {nodes:5d} {label:>6s} {stride.objective_value:8.4f} {stride.cadence_spm:7.1f} {change}"
             f"{s['solves']:6d} {s['iterations']:6d} {s['seconds']:7.1f} {s['spread_pct']:7.2f}  "
-            f"{'yes' if stride.valid else 'NO':>5s}  [{phases}]  {bound}  {{{optima}}}  grid {profile or '-'}")
+            f"{'yes' if stride.valid else 'NO':>5s} {drift:8.3f} {balance:9.2e}  [{phases}]  {bound}  "
+            f"{{{optima}}}  grid {profile or '-'}")
 
 
 def main(argv=None) -> int:
@@ -64,7 +67,8 @@ def main(argv=None) -> int:
           f"swing clearance {args.clearance:g} m",
           flush=True)
     print(f"{'v':>4s} {'nodes':>5s} {'spend':>6s} {'cost':>8s} {'spm':>7s} {'dcost%':>7s} {'dspm%':>7s}  "
-          f"{'solves':>6s} {'iter':>6s} {'s':>7s} {'spread%':>7s}  {'valid':>5s}  [forward rad per phase]  "
+          f"{'solves':>6s} {'iter':>6s} {'s':>7s} {'spread%':>7s}  {'valid':>5s} {'drift mm':>8s} {'balance%':>9s}  "
+          "[forward rad per phase]  "
           "on bound  {optima cadence:cost}  grid cadence=cost", flush=True)
     for speed in args.speeds:
         before = None
