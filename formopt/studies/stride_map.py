@@ -187,7 +187,8 @@ def free(scene: StrideScene, speed: float, slope: float, mu: float) -> Stride:
 
 def warm(nlp: StrideNLP, previous: Stride, speed, slope, mu, cadence) -> Solved:
     """A solve warm-started from a solved neighbour: with its multipliers when it is a
-    solution of this NLP (StrideNLP.resolve), else from its variables fitted to the nodes."""
+    solution of this NLP or of another body's with the same settings (StrideNLP.layout,
+    .resolve), else from its variables fitted to the nodes."""
     if previous.solved is not None and previous.solved.layout == nlp.layout:
         return nlp.resolve(previous.solved, speed, slope, mu, cadence)
     return nlp.solve(solution(previous, nlp), speed, slope, mu, cadence)
