@@ -454,11 +454,11 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
     others = [s for s in STRIKES if s != measured["strike"]] if band else []
     say(f"stride: {len(variants)} variants warm from the nominal and {len(others)} other strikes "
         f"on {min(workers, len(variants) + len(others)) or 1} processes")
+    tasks: list[tuple] = []
     if curves[0].ok:
         tasks = [(_variant, (name, part, scene, curves[0]), f"variant {name} done") for name, part, scene in variants]
     else:
-        tasks, curves = [], curves + [Curve(name, cadences, why_not="no nominal", part=part)
-                                      for name, part, _ in variants]
+        curves += [Curve(name, cadences, why_not="no nominal", part=part) for name, part, _ in variants]
     tasks += [(_strike, (_with(nominal, strike=s), speed), f"strike {s} done") for s in others]
     solved = independent(tasks, workers, say)
     curves += solved[:len(tasks) - len(others)]
