@@ -33,10 +33,8 @@ process, on a 2-core machine under a load of 5 (2026-11-27).
 
 from __future__ import annotations
 
-import multiprocessing
 import os
 import time
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -44,6 +42,7 @@ import numpy as np
 from ..mechanics.body import scaled_body
 from ..optim.stride import Stride, rank, summarise
 from ..optim.stride.problem import STRIKES, mesh_note
+from .pool import local_pool
 from .stride_form import NODES, joint_work, placement_m, stride_scene, with_body
 from .stride_map import better, cadence_curve, free, warm
 
@@ -409,23 +408,26 @@ def _strike(task: tuple) -> Stride | None:
 
 
 def independent(tasks: list[tuple], workers: int, say) -> list:
-    """[fn(args) for fn, args, name in tasks] on a local pool of `workers` processes (fork: each
-    inherits the NLPs built so far; 1: in this process), `say(name)` as each ends; the results
-    in the tasks' order."""
-    if workers <= 1 or len(tasks) <= 1:
-        out = []
-        for fn, args, name in tasks:
-            out.append(fn(args))
-            say(name)
-        return out
+    """[fn(args) for fn, args, name in tasks] on a local pool of `workers` processes
+    (studies.pool: fork, each inherits the NLPs built so far; 1: in this process), `say(name)`
+    as each ends; the results in the tasks' order."""
     results: list = [None] * len(tasks)
-    with ProcessPoolExecutor(min(workers, len(tasks)), mp_context=multiprocessing.get_context("fork")) as pool:
-        running = {pool.submit(fn, args): k for k, (fn, args, _) in enumerate(tasks)}
-        for done in as_completed(running):
-            k = running[done]
-            results[k] = done.result()
+    if workers <= 1 or len(tasks) <= 1:
+        for k, task in enumerate(tasks):
+            results[k] = _numbered((k, task))[1]
+            say(task[2])
+        return results
+    with local_pool(min(workers, len(tasks))) as pool:
+        for k, result in pool.imap_unordered(_numbered, list(enumerate(tasks))):
+            results[k] = result
             say(tasks[k][2])
     return results
+
+
+def _numbered(item: tuple) -> tuple:
+    """(k, fn(args)) of a numbered task (k, (fn, args, name))."""
+    k, (fn, args, _) = item
+    return k, fn(args)
 
 
 def answer(c, progress=None, nodes: int = NODES, band: bool = True,

@@ -24,10 +24,6 @@ import contextlib
 import csv
 import itertools
 import math
-import os
-import signal
-import threading
-import time
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, fields, replace
 from pathlib import Path
@@ -42,6 +38,7 @@ from ..mechanics.errors import InputError
 from ..mechanics.landing import simulate_state
 from ..mechanics.model import STATE, joint_angles
 from . import optimum_map, stride_map
+from .pool import local_pool
 
 PARAMETERS = {"speed_mps": "hip_vx", "trunk_deg": "trunk", "hip_deg": "hip", "knee_deg": "knee", "ankle_deg": "ankle",
               "hip_vx": "hip_vx", "hip_vz": "hip_vz", "friction": None, "slope_deg": None}
@@ -306,38 +303,11 @@ def _results(work, scene, chunks, workers, scheduler, tick=None):
             for future in as_completed(futures):
                 yield futures[future], future.result()
     elif workers > 1 and len(chunks) > 1:
-        import multiprocessing
-
-        pool = multiprocessing.Pool(workers, _worker_start, (os.getpid(),))
-        try:
+        with local_pool(workers) as pool:
             yield from pool.imap_unordered(_chunk_rows, [(work, scene, chunk) for chunk in chunks])
-            pool.close()
-        finally:  # Ctrl-C or an error: the workers end with the sweep
-            _end(pool)
     else:
         for chunk in chunks:
             yield chunk, work(scene, chunk, tick) if tick else work(scene, chunk)
-
-
-POOL_END_S = 5.0  # s: the most a sweep waits for its pool to end (`_end`)
-
-
-def _end(pool) -> None:
-    """Terminate a process pool, waiting at most POOL_END_S: CPython's Pool.terminate can wait
-    forever on the result queue's lock when it kills a worker that held it (seen once on a full
-    disk, the workers dead and the main thread in terminate's join). A terminate still waiting
-    then is left in a daemon thread, and the workers are killed here."""
-    import threading
-
-    ender = threading.Thread(target=lambda: (pool.terminate(), pool.join()), daemon=True)
-    ender.start()
-    ender.join(POOL_END_S)
-    if ender.is_alive():
-        for worker in pool._pool:
-            worker.kill()
-
-
-WATCH = 0.1  # s: how often a pool worker looks for its parent where the kernel does not tell it
 
 
 def _client(Client, address: str):
@@ -348,25 +318,6 @@ def _client(Client, address: str):
     except (OSError, ValueError, TypeError) as err:  # dask's TimeoutError is an OSError
         raise OutputError(f"--scheduler {address!r}: no Dask scheduler there "
                           f"({type(err).__name__}: {str(err).splitlines()[0][:120] if str(err) else ''})") from None
-
-
-def _worker_start(parent: int):
-    """A pool worker ignores Ctrl-C (its sweep stops it) and ends when its sweep is killed:
-    at once on Linux (the kernel sends SIGKILL when the parent dies, prctl PR_SET_PDEATHSIG),
-    elsewhere within WATCH seconds (it polls its parent)."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    try:
-        import ctypes
-        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # 1 = PR_SET_PDEATHSIG
-    except (OSError, AttributeError):  # not Linux: the watch below
-        pass
-
-    def watch():
-        while os.getppid() == parent:
-            time.sleep(WATCH)
-        os._exit(1)
-
-    threading.Thread(target=watch, daemon=True).start()
 
 
 def _chunk_rows(task):
