@@ -186,21 +186,24 @@ def stature(body: Body) -> float:
     return (body["thigh"].length + body["shank"].length) / ((table["thigh"][0] + table["shank"][0]) / table["stature"])
 
 
-def scaled_body(mass: float, height: float, sex: str = "male") -> Body:
+def scaled_body(mass: float, height: float, sex: str = "male", legs: float = 1.0) -> Body:
     """A body scaled from total mass (kg) and stature (m) with de Leva (1996), Table 4.
 
     The swing leg mirrors the stance leg; head, arms and trunk carry the rest (Winter's HAT
-    geometry).
+    geometry). `legs`: the legs' segment masses and inertias times this (an individual's
+    against de Leva's regression), the trunk carrying the rest of the same total mass.
     """
     if sex not in DE_LEVA:
         raise InputError(f"sex must be one of {sorted(DE_LEVA)}, not {sex!r}")
+    if not 0.5 <= legs <= 1.5:
+        raise InputError(f"legs = {legs:g}: the legs' mass factor is between 0.5 and 1.5")
     table = DE_LEVA[sex]
     scale = height / table["stature"]
 
     def props(name):
         length, mass_fraction, com_fraction, gyration = table[name]
         length *= scale
-        m = mass_fraction * mass
+        m = mass_fraction * mass * legs
         return length, m, com_fraction * length, m * (gyration * length) ** 2
 
     thigh_l, thigh_m, thigh_c, thigh_i = props("thigh")
@@ -216,4 +219,5 @@ def scaled_body(mass: float, height: float, sex: str = "male") -> Body:
         "shank": bar("shank", shank_m, shank_l, shank_c, shank_i),
         "foot": foot(foot_m, (heel_x + foot_c, -FOOT_COM_BELOW_ANKLE * ankle_height), foot_i,
                      (heel_x, -ankle_height), (FOREFOOT_AHEAD_OF_ANKLE * foot_l, -ankle_height)),
-    }, source=f"de Leva 1996 Table 4 ({sex}), scaled to {mass:g} kg, {height:g} m")
+    }, source=f"de Leva 1996 Table 4 ({sex}), scaled to {mass:g} kg, {height:g} m"
+              + ("" if legs == 1.0 else f", legs' mass x {legs:g}"))

@@ -23,8 +23,8 @@ continuation reaches (FAMILY) is of the free optimum's family, and a what-if bet
 two families says so (`WhatIf.same_family`, `notes`). Its band [low_W, high_W] spans dP over
 the variants, each solved warm from the nominal's stride at the same cadence (variant_curve):
 the objective (effort, the nominal; metabolic: OBJECTIVE_BAND), the friction (FRICTION_BAND)
-and the body's scaling (MASS_BAND); `WhatIf.parts` is each part's own width (the span of dP
-over the nominal and that part's variants). A variant that fails to converge at any cadence is
+and the legs' share of the body's mass (LEG_MASS_BAND); `WhatIf.parts` is each part's own
+width (the span of dP over the nominal and that part's variants). A variant that fails to converge at any cadence is
 left out of the band and named in `notes`. A change whose band holds zero is "no change the
 model can resolve". The variants and the other strikes' free optima are solved on WORKERS
 processes (`independent`): RBDS001 T35's section took 77 s of wall time against 108 s in one
@@ -51,13 +51,19 @@ WHAT_IF_PCT = (-10.0, -5.0, 5.0, 10.0)  # cadence changes asked (% of the runner
 # the coefficient's usual span in the stride and compare scenes); the objective: what a runner
 # minimises is not known: effort and metabolic (the `work` objective, W+ alone, converged at no
 # imposed cadence within 500 iterations on RBDS001 at 3.58 m/s, 24 nodes, and cost 3 solves per
-# failure: metabolic, which weighs W+ and W-, stands for the work objectives); the body: de Leva's segment masses are
-# a population's regression, an individual's segment masses differ from it by about 5 %, and
-# the runner's own mass (clothes, shoes, hydration) by 1-2 %: total mass +- 5 % (the segments
-# scaled with it)
+# failure: metabolic, which weighs W+ and W-, stands for the work objectives); the body: the
+# stride's dynamics are homogeneous in mass (segment masses and inertias, the joint moments'
+# bound and springs per kg, the friction cone), so a runner's total mass scales the power and
+# leaves the stride, and needs no solve (RBDS001's body, 3.5 m/s, heel, 18 nodes: +5 % of mass
+# gave +4.98 % of power and the cadence to 3e-7; test_compare_stride); what moves the stride is
+# how the mass is shared: de Leva's segment masses are a population's regression, an
+# individual's differ from it by about 5 %: the legs' segments +-5 %, the trunk carrying the
+# rest (mechanics.body.scaled_body's `legs`; there -2.9 / +3.0 % of power, +1.2 / -1.3 % of
+# cadence). Until 2026-11-27 the band scaled
+# the total mass, which measured the scale and the solves' local optima, not the body.
 FRICTION_BAND = (0.6, 1.0)
 OBJECTIVE_BAND = ("metabolic",)
-MASS_BAND = (0.95, 1.05)
+LEG_MASS_BAND = (0.95, 1.05)
 # a free optimum this far from the runner's cadence (fraction) is beyond the cadences runners
 # choose around their own (de Ruiter 2020: optimal 171 +- 8 against preferred 165 +- 8)
 FAR = 0.2
@@ -244,8 +250,8 @@ class StrideAnswer:
 def band_text() -> str:
     """What the what-if band spans, in words."""
     return (f"friction {FRICTION_BAND[0]:g}-{FRICTION_BAND[1]:g}, the objective (effort, "
-            f"{', '.join(OBJECTIVE_BAND)}) and the mass {MASS_BAND[0] * 100 - 100:+.0f}/"
-            f"{MASS_BAND[1] * 100 - 100:+.0f} %")
+            f"{', '.join(OBJECTIVE_BAND)}) and the legs' mass {LEG_MASS_BAND[0] * 100 - 100:+.0f}/"
+            f"{LEG_MASS_BAND[1] * 100 - 100:+.0f} %")
 
 
 def measured_form(c) -> dict:
@@ -393,7 +399,7 @@ def what_ifs(curves: list[Curve], cadences: list[float],
 def stage_count(band: bool = True) -> int:
     """The stages `answer` tells its progress of: the nominal, the family, the strikes' start
     and, with the band, each variant and each other strike as it ends."""
-    return 3 + (len(FRICTION_BAND) + len(OBJECTIVE_BAND) + len(MASS_BAND) + len(STRIKES) - 1 if band else 0)
+    return 3 + (len(FRICTION_BAND) + len(OBJECTIVE_BAND) + len(LEG_MASS_BAND) + len(STRIKES) - 1 if band else 0)
 
 
 def _variant(task: tuple) -> Curve:
@@ -473,11 +479,12 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
 
 
 def _variants(nominal, body: dict) -> list[tuple]:
-    """The band's variants of the nominal scene: (name, part, scene), friction, objective and mass."""
+    """The band's variants of the nominal scene: (name, part, scene), friction, objective and
+    the legs' mass."""
     out = [(f"friction {mu:g}", "friction", _with(nominal, friction=mu)) for mu in FRICTION_BAND]
     out += [(o, "objective", _with(nominal, objective=o)) for o in OBJECTIVE_BAND]
-    return out + [(f"mass {f * 100 - 100:+.0f} %", "body", with_body(nominal, scaled_body(
-        body["mass_kg"] * f, body["height_m"], body["sex"]))) for f in MASS_BAND]
+    return out + [(f"legs' mass {f * 100 - 100:+.0f} %", "body", with_body(nominal, scaled_body(
+        body["mass_kg"], body["height_m"], body["sex"], legs=f))) for f in LEG_MASS_BAND]
 
 
 def _notes(curves: list[Curve], best: dict, runner: float, nominal) -> list[str]:

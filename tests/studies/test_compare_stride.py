@@ -8,6 +8,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from formopt.mechanics.body import scaled_body
+from formopt.optim.stride import summarise
 from formopt.report.tables import stride_lines
 from formopt.studies.compare_stride import (
     ENVELOPE,
@@ -19,7 +21,8 @@ from formopt.studies.compare_stride import (
     optima_notes,
     what_ifs,
 )
-from formopt.studies.stride_form import joint_work
+from formopt.studies.stride_form import joint_work, stride_scene
+from formopt.studies.stride_map import warm
 
 
 def test_a_change_inside_its_band_is_not_advised():
@@ -136,6 +139,21 @@ def test_the_section_against_its_own_strides(section):
     # without the band, every band is the nominal change itself
     for w in s.what_if:
         assert w.low_W == w.high_W == w.mechanical_power_change_W
+
+
+def test_total_mass_scales_the_power_and_leaves_the_stride(section):
+    """Why the band varies the legs' share of the mass and not the total (LEG_MASS_BAND): the
+    stride's dynamics are homogeneous in mass, so +5 % of mass is +5 % of power, the same stride."""
+    free = section.nominal.free
+    scene = stride_scene(scaled_body(62.0 * 1.05, 1.81), 3.5, "heel", nodes=18)
+    nlp = scene.nlp()
+    heavier = summarise(nlp, warm(nlp, free, 3.5, 0.0, 0.8, None), False)
+    assert heavier.success
+    assert heavier.mechanical_power_W / free.mechanical_power_W == pytest.approx(1.05, rel=2e-3)
+    assert heavier.cadence_spm == pytest.approx(free.cadence_spm, rel=1e-3)
+    lighter_legs = scaled_body(62.0, 1.81, legs=0.95)
+    assert sum(seg.mass for seg in lighter_legs.segments.values()) == pytest.approx(
+        sum(seg.mass for seg in scaled_body(62.0, 1.81).segments.values()), rel=1e-12)
 
 
 def test_the_section_json_and_words(section):
