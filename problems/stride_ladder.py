@@ -2,7 +2,7 @@
 runner's speeds, against the runner's processed mean cycle (its joint powers the data set's) and measured cadence.
 
     python problems/stride_ladder.py [--speeds 2.5 3.5 4.5] [--rungs torque torque+springs muscles]
-                                     [--strike heel] [--nodes 40] [--mass 62] [--weight W]
+                                     [--strike heel] [--nodes 40] [--mass 62] [--weight W] [--reserve-weight R]
                                      [--objectives effort] [--cadences 150 171.4] [--starts 1]
 
 Prints per rung and speed: cadence (steps/min; measured 156.5 at 2.5 and 171.4 at 3.5 m/s,
@@ -13,7 +13,8 @@ energy (J/kg/m), the swing foot's least height (m, while
 the other foot is down: Stride.swing_clearance_m), the objective J (per distance), validity,
 iterations and seconds (build, solve), and the phases a duration bound holds.
 `--mass` scales the body to another mass at the same height (a heavier runner); `--weight`
-sets the muscles' force-rate weight (StrideSettings.force_rate_weight) for a calibration run;
+sets the muscles' force-rate weight (StrideSettings.force_rate_weight) for a calibration run,
+`--reserve-weight` their reserves' (StrideSettings.reserve_weight) for a what-if;
 `--objectives` the torque rungs' objectives (problem.OBJECTIVES; the muscles keep "metabolic"), each
 solved in turn; `--cadences` imposes each cadence (steps/min) in turn instead of leaving it free;
 `--starts` the generic guess and starts - 1 seeded perturbations of it, the best kept (local.optimum).
@@ -44,12 +45,14 @@ MEASURED_CADENCE = {2.5: 156.5, 3.5: 171.4}  # steps/min, RBDS001's trials (form
 CYCLE_CADENCE = {**MEASURED_CADENCE, 4.5: 179.0}
 
 
-def settings(rung: str, body, strike: str, nodes: int, weight: float, objective: str = "effort") -> StrideSettings:
+def settings(rung: str, body, strike: str, nodes: int, weight: float, objective: str = "effort",
+             reserve_weight: float = problem.RESERVE_WEIGHT) -> StrideSettings:
     base = StrideSettings(strike=strike, nodes=nodes, objective=objective)
     if rung == "torque+springs":
         return replace(base, tendons=dict(RUNNER_TENDONS))
     if rung == "muscles":
-        return replace(base, objective="metabolic", muscles=body_muscles(body), force_rate_weight=weight)
+        return replace(base, objective="metabolic", muscles=body_muscles(body), force_rate_weight=weight,
+                       reserve_weight=reserve_weight)
     return base
 
 
@@ -85,6 +88,7 @@ def main(argv=None) -> int:
     parser.add_argument("--nodes", type=int, default=40)
     parser.add_argument("--mass", type=float, default=62.0)
     parser.add_argument("--weight", type=float, default=None)
+    parser.add_argument("--reserve-weight", type=float, default=problem.RESERVE_WEIGHT)
     parser.add_argument("--objectives", nargs="+", default=["effort"],
                         choices=[o for o in problem.OBJECTIVES if o != "activation"])
     parser.add_argument("--cadences", type=float, nargs="+", default=[None])
@@ -93,7 +97,7 @@ def main(argv=None) -> int:
     weight = problem.FORCE_RATE_WEIGHT if args.weight is None else args.weight
     body = scaled_body(args.mass, 1.81)
     print(f"RBDS001's height (1.81 m), {args.mass:g} kg, {args.strike} strike, {args.nodes} nodes, {args.starts} start(s), "
-          f"force-rate weight {weight:g}", flush=True)
+          f"force-rate weight {weight:g}, reserve weight {args.reserve_weight:g}", flush=True)
     print(f"{'rung objective':30s} {'v':>4s} {'spm':>7s} {'meas':>6s} {'stance':>6s} {'GRF':>6s} {'m.st':>6s} {'m.GRF':>6s}"
           f" {'hipRMS':>5s} {'knRMS':>5s} {'anRMS':>5s} {'P+ank':>5s} {'m.P+':>5s} {'Ach J':>5s} {'all J':>5s}"
           f" {'res':>5s} {'E/kg/m':>6s} {'swing':>6s} {'J':>6s} {'valid':>5s} {'iter':>5s} {'build':>5s} {'solve':>6s}", flush=True)
@@ -103,7 +107,7 @@ def main(argv=None) -> int:
         for speed in args.speeds:
             for cadence in args.cadences:
                 clock = time.perf_counter()
-                nlp = build(body, settings(rung, body, args.strike, args.nodes, weight, objective))
+                nlp = build(body, settings(rung, body, args.strike, args.nodes, weight, objective, args.reserve_weight))
                 stride = optimum(nlp, speed, cadence=cadence, starts=args.starts)
                 stride.solve_s = time.perf_counter() - clock - nlp.build_s  # the torque start's solve too
                 print(row(rung, speed, stride, measured_cycle(RBDS, speed)), flush=True)
