@@ -86,23 +86,30 @@ def reserves(nlp, blocks: dict) -> None:
         start += T
 
 
-def muscle_rhs(nlp, i: int, blocks: dict):
-    """The phase's right-hand side of [theta, theta', a_R, F_R, a_L, F_L] with the excitations and
-    reserves piecewise linear between the nodes (F' from mechanics.muscles.tendon_force_rate)."""
-    act, phase = nlp.ocp.models[0].actuation, nlp.phases[i]
-    n, X, U, T = act.n, blocks[f"X_{phase.name}"], blocks[f"U_{phase.name}"], blocks[f"T_{phase.name}"].item()
-    times, acc = np.linspace(0.0, T, X.shape[1]), accelerations(nlp, i)
-    td = blocks[f"X_{nlp.phases[0].name}"][:NX, 0]
-    slope, mu = 0.0, 0.8
-    arms = -act.muscles.moment_arms.T * act.muscles.max_force  # (3, n)
+def interpolated(times: np.ndarray, U: np.ndarray, t: float) -> np.ndarray:
+    """The node values U (columns at `times`) piecewise linear at t."""
+    k = min(max(int(np.searchsorted(times, t)) - 1, 0), len(times) - 2)
+    w = min(max((t - times[k]) / (times[k + 1] - times[k]), 0.0), 1.0)
+    return (1 - w) * U[:, k] + w * U[:, k + 1]
+
+
+def right_hand_sides(nlp, i: int, solved):
+    """Phase i's right-hand sides, with its node times: the moments replayed (of [theta, theta'])
+    and the excitations replayed (of [theta, theta', a_R, F_R, a_L, F_L]: the activation dynamics,
+    F' from mechanics.muscles.tendon_force_rate, the reserves as moments), each piecewise linear."""
+    act, phase, blocks = nlp.ocp.models[0].actuation, nlp.phases[i], solved.blocks
+    n, X, U = act.n, blocks[f"X_{phase.name}"], blocks[f"U_{phase.name}"]
+    times, acc = np.linspace(0.0, blocks[f"T_{phase.name}"].item(), X.shape[1]), accelerations(nlp, i)
+    td, slope, mu = blocks[f"X_{nlp.phases[0].name}"][:NX, 0], solved.parameters["slope"], solved.parameters["mu"]
+    moments, arms = nlp.moments(blocks, i)[0], -act.muscles.moment_arms.T * act.muscles.max_force
     tendon_rate = hill.tendon_force_rate(act.muscles)
 
-    def rhs(t, y):
-        k = min(max(int(np.searchsorted(times, t)) - 1, 0), len(times) - 2)
-        w = min(max((t - times[k]) / (times[k + 1] - times[k]), 0.0), 1.0)
-        u = (1 - w) * U[:, k] + w * U[:, k + 1]
-        x, z = y[:2 * NX], y[2 * NX:]
-        tau, dz = nlp.mass * u[6 * n:].copy(), np.zeros_like(z)
+    def replay(t, x):
+        return np.r_[x[NX:], acc(x[:NX], x[NX:], interpolated(times, moments, t), td, slope, mu)["thetadd"]]
+
+    def muscles(t, y):
+        u, x, z = interpolated(times, U, t), y[:2 * NX], y[2 * NX:]
+        tau, dz = nlp.mass * u[6 * n:], np.zeros_like(z)
         for leg in range(2):
             a, F = z[2 * n * leg:2 * n * leg + n], z[2 * n * leg + n:2 * n * (leg + 1)]
             th, thd = x[3 + 3 * leg:6 + 3 * leg], x[NX + 3 + 3 * leg:NX + 6 + 3 * leg]
@@ -111,27 +118,19 @@ def muscle_rhs(nlp, i: int, blocks: dict):
             tau[3 * leg:3 * leg + 3] += arms @ F
         return np.r_[x[NX:], acc(x[:NX], x[NX:], tau, td, slope, mu)["thetadd"], dz]
 
-    return rhs, times, T
+    return replay, muscles, times
 
 
-def forward_errors(nlp, blocks: dict) -> list[tuple[float, str, float, str]]:
-    """Per phase: (moments replayed: largest angle error rad, its coordinate; excitations replayed:
-    the same), each phase from the NLP's state at its start."""
+def forward_errors(nlp, solved) -> list[tuple[float, str, float, str]]:
+    """Per phase: (moments replayed: the largest angle error, rad, and its coordinate; excitations
+    replayed: the same), each phase from the NLP's state at its start (`solved`: layout.Solved)."""
     out = []
     for i, phase in enumerate(nlp.phases):
-        X, Z = blocks[f"X_{phase.name}"], blocks[f"Z_{phase.name}"]
-        rhs, times, T = muscle_rhs(nlp, i, blocks)
-        moments = nlp.moments(blocks, i)[0]
-        acc, td = accelerations(nlp, i), blocks[f"X_{nlp.phases[0].name}"][:NX, 0]
-
-        def replay(t, x, U=moments, times=times, acc=acc, td=td):
-            k = min(max(int(np.searchsorted(times, t)) - 1, 0), len(times) - 2)
-            w = min(max((t - times[k]) / (times[k + 1] - times[k]), 0.0), 1.0)
-            return np.r_[x[NX:], acc(x[:NX], x[NX:], (1 - w) * U[:, k] + w * U[:, k + 1], td, 0.0, 0.8)["thetadd"]]
-
-        row = []
-        for f, y0, method in ((replay, X[:, 0], "DOP853"), (rhs, np.r_[X[:, 0], Z[:, 0]], "LSODA")):
-            sim = solve_ivp(f, (0.0, T), y0, method=method, t_eval=times, rtol=1e-8, atol=1e-8)
+        X, Z = solved.blocks[f"X_{phase.name}"], solved.blocks[f"Z_{phase.name}"]
+        replay, muscles, times = right_hand_sides(nlp, i, solved)
+        row: list = []
+        for f, y0, method in ((replay, X[:, 0], "DOP853"), (muscles, np.r_[X[:, 0], Z[:, 0]], "LSODA")):
+            sim = solve_ivp(f, (0.0, times[-1]), y0, method=method, t_eval=times, rtol=1e-8, atol=1e-8)
             error = np.abs(sim.y[:NX] - X[:NX]).max(axis=1) if sim.success else np.full(NX, np.inf)
             error[:2] = 0.0  # the angles only (the hip's position is in m)
             row += [float(error.max()), COORDINATES[int(np.argmax(error))]]
@@ -160,7 +159,7 @@ def main(argv=None) -> int:
         reserves(nlp, stride.solved.blocks)
         print(" forward, each phase from the NLP's state (largest angle error, rad):"
               " moments replayed | excitations replayed through the muscles")
-        for phase, (m, mj, e, ej) in zip(nlp.phases, forward_errors(nlp, stride.solved.blocks)):
+        for phase, (m, mj, e, ej) in zip(nlp.phases, forward_errors(nlp, stride.solved)):
             print(f"  {phase.name:8s} {m:7.3f} ({mj:7s}) | {e:7.3f} ({ej})")
     return 0
 

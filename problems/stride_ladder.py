@@ -89,7 +89,7 @@ def row(rung, speed, stride, measured) -> str:
 def muscle_forward(nlp, stride) -> str:
     """The muscles' own forward check (problems/muscle_forward.py): the largest angle error (rad)
     over the phases, each from the NLP's state at its start, the excitations replayed."""
-    return f"  muscles' forward check {max(e for _, _, e, _ in forward_errors(nlp, stride.solved.blocks)):.3f} rad"
+    return f"  muscles' forward check {max(e for _, _, e, _ in forward_errors(nlp, stride.solved)):.3f} rad"
 
 
 
