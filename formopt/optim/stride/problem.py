@@ -121,7 +121,11 @@ FORCE_RATE_WEIGHT = 80.0
 # reserves pay no force rate: at 10 (set when the objective was about 0.5) they took 0.51 N m/kg
 # at force-rate weight 16 and bought the low cadence (176.4 steps/min against 188.1 at 100;
 # RBDS001, 3.5 m/s, 24 nodes, problems/muscle_calibration.py --weights 16 --steps 0
-# --reserve-weight 10).
+# --reserve-weight 10). At 100 they still buy the fast moment changes at the contact's events
+# (0.18-0.58 N m/kg in bursts, invalid); 10000 reached from the optimum at 100 leaves 0.01-0.05
+# and moves the cadence (155.5 / 179.1 / 197.3 steps/min at 2.5 / 3.5 / 4.5 m/s), while a cold
+# solve at 10000 ends in a costlier optimum (192.9 at 3.5 m/s): kept at 100 until the muscles'
+# start continues from it (docs/concepts/muscles.md, "Where the reserves act").
 RESERVE_WEIGHT = 100.0
 
 
