@@ -24,10 +24,14 @@ from dataclasses import replace
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY
-from formopt.optim.stride import costs
 from formopt.optim.stride.collocation import build
 from formopt.optim.stride.local import optimum
-from formopt.optim.stride.problem import StrideSettings
+from formopt.optim.stride.problem import RESERVE_WEIGHT, StrideSettings
+
+
+def log_weight(weight: float) -> float:
+    """log(1 + w): the scale the weights are compared and bisected on."""
+    return math.log1p(weight)
 
 
 def solve(body, base: StrideSettings, weight: float, speed: float, guess):
@@ -51,11 +55,11 @@ def main(argv=None) -> int:
     parser.add_argument("--tolerance", type=float, default=2.0)
     parser.add_argument("--nodes", type=int, default=24)
     parser.add_argument("--mass", type=float, default=62.0)
-    parser.add_argument("--reserve-weight", type=float, default=costs.RESERVE_WEIGHT)
+    parser.add_argument("--reserve-weight", type=float, default=RESERVE_WEIGHT)
     args = parser.parse_args(argv)
-    costs.RESERVE_WEIGHT = args.reserve_weight  # a what-if: the reserves' price against the muscles'
     body = scaled_body(args.mass, 1.81)
-    base = StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic", muscles=body_muscles(body))
+    base = StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic", muscles=body_muscles(body),
+                          reserve_weight=args.reserve_weight)
     print(f"{args.mass:g} kg, 1.81 m, heel, {args.nodes} nodes, {args.speed} m/s, target {args.target} steps/min, "
           f"reserve weight {args.reserve_weight:g}")
     print(f"{'weight':>8s} {'spm':>7s} {'stance':>6s} {'GRF':>6s} {'J/kg/m':>6s} {'res':>5s} {'J':>7s} {'valid':>5s}"
@@ -63,7 +67,7 @@ def main(argv=None) -> int:
     solved: dict[float, object] = {}
 
     def nearest(weight):
-        return solved[min(solved, key=lambda w: abs(math.log(w / weight)))].solved.blocks if solved else None
+        return solved[min(solved, key=lambda w: abs(log_weight(w) - log_weight(weight)))].solved.blocks if solved else None
 
     for weight in args.weights:
         solved[weight] = solve(body, base, weight, args.speed, nearest(weight))
@@ -72,7 +76,7 @@ def main(argv=None) -> int:
         high = [w for w, s in solved.items() if s.cadence_spm <= args.target]
         if not low or not high or min(abs(s.cadence_spm - args.target) for s in solved.values()) <= args.tolerance:
             break
-        weight = math.sqrt(max(low) * min(high))
+        weight = math.expm1(0.5 * (log_weight(max(low)) + log_weight(min(high))))
         solved[weight] = solve(body, base, weight, args.speed, nearest(weight))
     return 0
 

@@ -2,7 +2,8 @@
 runner's speeds, against the runner's processed mean cycle (its joint powers the data set's) and measured cadence.
 
     python problems/stride_ladder.py [--speeds 2.5 3.5 4.5] [--rungs torque torque+springs muscles]
-                                     [--strike heel] [--nodes 40] [--mass 62] [--weight W]
+                                     [--strike heel] [--nodes 40] [--mass 62] [--weight W] [--reserve-weight R]
+                                     [--reserve-start R0]
                                      [--objectives effort] [--cadences 150 171.4] [--starts 1]
 
 Prints per rung and speed: cadence (steps/min; measured 156.5 at 2.5 and 171.4 at 3.5 m/s,
@@ -11,9 +12,14 @@ RMS against the mean cycle (deg), the peak ankle power (W/kg, positive), the ten
 stored per step (J: soleus and gastrocnemius, all), reserves (N m/kg), the muscles' metabolic
 energy (J/kg/m), the swing foot's least height (m, while
 the other foot is down: Stride.swing_clearance_m), the objective J (per distance), validity,
-iterations and seconds (build, solve), and the phases a duration bound holds.
+iterations and seconds (build, solve), and the phases a duration bound holds; for the muscles
+last the forward check with the excitations replayed through the muscles (rad,
+problems/muscle_forward.py; the validity column's replays the joint moments).
 `--mass` scales the body to another mass at the same height (a heavier runner); `--weight`
-sets the muscles' force-rate weight (StrideSettings.force_rate_weight) for a calibration run;
+sets the muscles' force-rate weight (StrideSettings.force_rate_weight) for a calibration run,
+`--reserve-weight` their reserves' (StrideSettings.reserve_weight) for a what-if, and
+`--reserve-start` solves the muscles first at that reserve weight and starts the solve at
+--reserve-weight from its optimum (a continuation in the reserves' price);
 `--objectives` the torque rungs' objectives (problem.OBJECTIVES; the muscles keep "metabolic"), each
 solved in turn; `--cadences` imposes each cadence (steps/min) in turn instead of leaving it free;
 `--starts` the generic guess and starts - 1 seeded perturbations of it, the best kept (local.optimum).
@@ -28,6 +34,7 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
+from muscle_forward import forward_errors
 
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
@@ -44,12 +51,14 @@ MEASURED_CADENCE = {2.5: 156.5, 3.5: 171.4}  # steps/min, RBDS001's trials (form
 CYCLE_CADENCE = {**MEASURED_CADENCE, 4.5: 179.0}
 
 
-def settings(rung: str, body, strike: str, nodes: int, weight: float, objective: str = "effort") -> StrideSettings:
+def settings(rung: str, body, strike: str, nodes: int, weight: float, objective: str = "effort",
+             reserve_weight: float = problem.RESERVE_WEIGHT) -> StrideSettings:
     base = StrideSettings(strike=strike, nodes=nodes, objective=objective)
     if rung == "torque+springs":
         return replace(base, tendons=dict(RUNNER_TENDONS))
     if rung == "muscles":
-        return replace(base, objective="metabolic", muscles=body_muscles(body), force_rate_weight=weight)
+        return replace(base, objective="metabolic", muscles=body_muscles(body), force_rate_weight=weight,
+                       reserve_weight=reserve_weight)
     return base
 
 
@@ -77,6 +86,13 @@ def row(rung, speed, stride, measured) -> str:
             + (f"  [{stride.bound_text()}]" if stride.on_bound else ""))
 
 
+def muscle_forward(nlp, stride) -> str:
+    """The muscles' own forward check (problems/muscle_forward.py): the largest angle error (rad)
+    over the phases, each from the NLP's state at its start, the excitations replayed."""
+    return f"  muscles' forward check {max(e for _, _, e, _ in forward_errors(nlp, stride.solved)):.3f} rad"
+
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speeds", type=float, nargs="+", default=[2.5, 3.5, 4.5])
@@ -85,6 +101,8 @@ def main(argv=None) -> int:
     parser.add_argument("--nodes", type=int, default=40)
     parser.add_argument("--mass", type=float, default=62.0)
     parser.add_argument("--weight", type=float, default=None)
+    parser.add_argument("--reserve-weight", type=float, default=problem.RESERVE_WEIGHT)
+    parser.add_argument("--reserve-start", type=float, default=None)
     parser.add_argument("--objectives", nargs="+", default=["effort"],
                         choices=[o for o in problem.OBJECTIVES if o != "activation"])
     parser.add_argument("--cadences", type=float, nargs="+", default=[None])
@@ -93,7 +111,7 @@ def main(argv=None) -> int:
     weight = problem.FORCE_RATE_WEIGHT if args.weight is None else args.weight
     body = scaled_body(args.mass, 1.81)
     print(f"RBDS001's height (1.81 m), {args.mass:g} kg, {args.strike} strike, {args.nodes} nodes, {args.starts} start(s), "
-          f"force-rate weight {weight:g}", flush=True)
+          f"force-rate weight {weight:g}, reserve weight {args.reserve_weight:g}", flush=True)
     print(f"{'rung objective':30s} {'v':>4s} {'spm':>7s} {'meas':>6s} {'stance':>6s} {'GRF':>6s} {'m.st':>6s} {'m.GRF':>6s}"
           f" {'hipRMS':>5s} {'knRMS':>5s} {'anRMS':>5s} {'P+ank':>5s} {'m.P+':>5s} {'Ach J':>5s} {'all J':>5s}"
           f" {'res':>5s} {'E/kg/m':>6s} {'swing':>6s} {'J':>6s} {'valid':>5s} {'iter':>5s} {'build':>5s} {'solve':>6s}", flush=True)
@@ -103,10 +121,15 @@ def main(argv=None) -> int:
         for speed in args.speeds:
             for cadence in args.cadences:
                 clock = time.perf_counter()
-                nlp = build(body, settings(rung, body, args.strike, args.nodes, weight, objective))
-                stride = optimum(nlp, speed, cadence=cadence, starts=args.starts)
+                nlp = build(body, settings(rung, body, args.strike, args.nodes, weight, objective, args.reserve_weight))
+                guess = None
+                if rung == "muscles" and args.reserve_start is not None:
+                    first = build(body, settings(rung, body, args.strike, args.nodes, weight, objective, args.reserve_start))
+                    guess = optimum(first, speed, cadence=cadence, simulate=False).solved.blocks
+                stride = optimum(nlp, speed, cadence=cadence, guess=guess, starts=args.starts)
                 stride.solve_s = time.perf_counter() - clock - nlp.build_s  # the torque start's solve too
-                print(row(rung, speed, stride, measured_cycle(RBDS, speed)), flush=True)
+                print(row(rung, speed, stride, measured_cycle(RBDS, speed))
+                      + (muscle_forward(nlp, stride) if rung == "muscles" else ""), flush=True)
     return 0
 
 

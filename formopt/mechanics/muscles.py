@@ -214,6 +214,22 @@ def hill_residual(muscles: Muscles, activation, angles, rates, force, force_rate
     return fibre - force
 
 
+def tendon_force_rate(muscles: Muscles) -> ca.Function:
+    """(theta (3), theta' (3), a (n), F (n)) -> F' (n, 1/s): `hill_residual` = 0 solved for the
+    tendon forces' rates, the explicit form of the implicit tendon dynamics (a forward simulation's
+    right-hand side). The residual falls monotonically with F' (a faster-stretching tendon leaves
+    a slower fibre, and f_V and the damping rise with the fibre's velocity); Newton from F' = 0
+    (CasADi's rootfinder, which raises where it does not converge)."""
+    n = len(muscles.names)
+    angles, rates = ca.SX.sym("theta", 3), ca.SX.sym("theta_dot", 3)
+    act, force, rate = ca.SX.sym("a", n), ca.SX.sym("F", n), ca.SX.sym("F_dot", n)
+    residual = ca.Function("residual", [rate, ca.vertcat(angles, rates, act, force)],
+                           [hill_residual(muscles, act, angles, rates, force, rate)])
+    solver = ca.rootfinder("tendon_rate", "newton", residual, {"abstol": 1e-10, "max_iter": 50})
+    return ca.Function("tendon_force_rate", [angles, rates, act, force],
+                       [solver(ca.DM.zeros(n), ca.vertcat(angles, rates, act, force))])
+
+
 def joint_moments(muscles: Muscles, force):
     """tau = -r^T (F_max F) (N m, shape (3,)): hip and knee extension, ankle plantarflexion +."""
     return -ca.mtimes(ca.DM(muscles.moment_arms).T, ca.DM(muscles.max_force) * force)

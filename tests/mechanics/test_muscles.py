@@ -246,3 +246,17 @@ def test_activation_rate_derivative_matches_finite_differences(functions):
     approx = central_difference(lambda z: np.asarray(value(z), float).ravel(), point, h=1e-5)
     np.testing.assert_allclose(approx, np.asarray(jac(point), float), atol=1e-5)
     assert math.isfinite(float(ca.norm_inf(jac(point))))
+
+
+def test_tendon_force_rate_holds_the_hill_equilibrium(leg):
+    """F' = tendon_force_rate(theta, theta', a, F) zeroes hill_residual, shortening and
+    lengthening, from slack (a = 0.01) to full activation."""
+    rng = np.random.default_rng(3)
+    rate = mu.tendon_force_rate(leg)
+    for activation in (0.01, 0.5, 1.0):
+        theta, thetad = np.radians([20.0, 40.0, 5.0]), rng.uniform(-6.0, 6.0, 3)
+        force = rng.uniform(0.05, 0.8, 8)
+        force_rate = rate(theta, thetad, np.full(8, activation), force)
+        residual = mu.hill_residual(leg, ca.DM(np.full(8, activation)), ca.DM(theta), ca.DM(thetad),
+                                    ca.DM(force), force_rate)
+        assert np.abs(np.asarray(residual)).max() < 1e-9

@@ -117,9 +117,9 @@ class MuscleDriven(Torques):
         tau = [tau_R(F_R); tau_L(F_L)] + m r,   tau_leg = -r^T F_max F (mechanics.muscles.joint_moments)
 
     The reserves (as OpenSim Moco's and PredSim's reserve actuators) keep the NLP feasible where
-    the muscles cannot make a motion of the search (their cost, costs.RESERVE_WEIGHT, makes them
-    a last resort); a stride reports their largest moment (`Stride.checks["reserve_nm_per_kg"]`)
-    and is invalid beyond TOLERANCES["reserve_nm_per_kg"].
+    the muscles cannot make a motion of the search (their cost, StrideSettings.reserve_weight,
+    makes them a last resort); a stride reports their largest moment
+    (`Stride.checks["reserve_nm_per_kg"]`) and is invalid beyond TOLERANCES["reserve_nm_per_kg"].
 
     a' is a control tied to the activation dynamics by a row (the defects stay linear: the
     node model holds every nonlinearity). The joints' passive moments (mechanics.joint_space's

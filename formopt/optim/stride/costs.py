@@ -28,8 +28,9 @@ scale 1 / (m g)) plus StrideSettings.force_rate_weight (problem.FORCE_RATE_WEIGH
 RBDS001 at 3.5 m/s and frozen) times the force-rate term: Bhargava's heat is paid per activation
 and time, the same per distance for short contacts as for long, while runners pay for
 generating force quickly (Kram & Taylor 1990; Kipp, Grabowski & Kram 2018); activation = the
-activation term; both add MUSCLE_RATE_REGULARISATION times muscle_rates and RESERVE_WEIGHT times
-reserves. Any objective adds impact_weight times the impacts (scale 1 / (m g)) and SMOOTHING.
+activation term; both add MUSCLE_RATE_REGULARISATION times muscle_rates and
+StrideSettings.reserve_weight (problem.RESERVE_WEIGHT) times reserves. Any objective adds
+impact_weight times the impacts (scale 1 / (m g)) and SMOOTHING.
 """
 
 from __future__ import annotations
@@ -59,13 +60,6 @@ FORCE_RATE_SCALE = 0.01
 # A small weight on the tendon forces' squared rates (per distance) keeps F' from chattering
 # where the muscles are slack (problems/muscle_redundancy.py uses the same).
 MUSCLE_RATE_REGULARISATION = 1e-4
-# The reserves' weight (m/s per (N m/kg)^2): 1 N m/kg held over a step costs about 30, four to
-# twelve times a stride's whole objective (2.4-7.1 with the force-rate term, RBDS001 at 2.5-4.5
-# m/s), so the muscles make every moment they can. The reserves pay no force rate: at 10 (set when
-# the objective was about 0.5) they took 0.51 N m/kg at force-rate weight 16 and bought the low
-# cadence (176.4 steps/min against 188.1 at 100; RBDS001, 3.5 m/s, 24 nodes,
-# problems/muscle_calibration.py --weights 16 --steps 0 --reserve-weight 10).
-RESERVE_WEIGHT = 100.0
 
 
 # -- The torque rungs' metabolic energy, joint by joint (`joint_metabolic_rate`) ---------------
@@ -160,7 +154,7 @@ def terms(settings: StrideSettings, mass: float) -> tuple[CostTerm, ...]:
     muscles = settings.muscles is not None
     out = own_terms(settings.objective, mass, muscles, settings.force_rate_weight)
     if muscles:
-        out += [CostTerm("muscle_rates", 1.0, MUSCLE_RATE_REGULARISATION), CostTerm("reserves", 1.0, RESERVE_WEIGHT)]
+        out += [CostTerm("muscle_rates", 1.0, MUSCLE_RATE_REGULARISATION), CostTerm("reserves", 1.0, settings.reserve_weight)]
     elif needs_power_split(settings):
         out.append(CostTerm("effort", own_terms("effort", mass)[0].scale, WORK_REGULARISATION))
     if settings.impact_weight:

@@ -115,6 +115,18 @@ SMOOTHING = 1e-6
 # and frozen; 2.5 and 4.5 m/s and a 75 kg body held out give 145.4 / 181.5 and 173.4 steps/min
 # (docs/concepts/muscles.md, "In the stride").
 FORCE_RATE_WEIGHT = 80.0
+# The muscles' reserve moments' weight (m/s per (N m/kg)^2; costs' `reserves` term): 1 N m/kg
+# held over a step costs about 30, four to twelve times a stride's whole objective (2.4-7.1 with
+# the force-rate term, RBDS001 at 2.5-4.5 m/s), so the muscles make every moment they can. The
+# reserves pay no force rate: at 10 (set when the objective was about 0.5) they took 0.51 N m/kg
+# at force-rate weight 16 and bought the low cadence (176.4 steps/min against 188.1 at 100;
+# RBDS001, 3.5 m/s, 24 nodes, problems/muscle_calibration.py --weights 16 --steps 0
+# --reserve-weight 10). At 100 they still buy the fast moment changes at the contact's events
+# (0.18-0.58 N m/kg in bursts, invalid); 10000 reached from the optimum at 100 leaves 0.01-0.05
+# and moves the cadence (155.5 / 179.1 / 197.3 steps/min at 2.5 / 3.5 / 4.5 m/s), while a cold
+# solve at 10000 ends in a costlier optimum (192.9 at 3.5 m/s): kept at 100 until the muscles'
+# start continues from it (docs/concepts/muscles.md, "Where the reserves act").
+RESERVE_WEIGHT = 100.0
 
 
 # Tendons: a spring in parallel with the stance leg's joint, engaged unloaded at the touchdown
@@ -195,6 +207,7 @@ class StrideSettings:
     transcription: str = "trapezoid"  # or "hermite-simpson" (transcription.TRANSCRIPTIONS)
     muscles: Muscles | None = None  # one leg's muscles scaled to the body: the "muscles" rung
     force_rate_weight: float = FORCE_RATE_WEIGHT  # the muscles' metabolic objective's one weight (calibration only)
+    reserve_weight: float = RESERVE_WEIGHT  # the muscles' reserves' weight (a what-if only)
     clearance: float = CLEARANCE  # m: the swing foot's least height while the other holds the ground
 
     def __post_init__(self):
@@ -229,6 +242,8 @@ class StrideSettings:
         check("impact_weight", self.impact_weight)
         if not 0.0 <= self.force_rate_weight < math.inf:
             raise InputError(f"force_rate_weight = {self.force_rate_weight}: expected a finite number >= 0")
+        if not 0.0 < self.reserve_weight < math.inf:
+            raise InputError(f"reserve_weight = {self.reserve_weight}: expected a finite number > 0")
         check("torque_limit_nm_per_kg", self.torque_limit)
         check("clearance_m", self.clearance)
         check("max_iterations", self.max_iter, whole=True)

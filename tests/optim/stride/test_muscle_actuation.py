@@ -101,6 +101,13 @@ def test_force_rate_weight_must_be_finite_and_not_negative(weight):
         StrideSettings(muscles=body_muscles(paper_body()), objective="metabolic", force_rate_weight=weight)
 
 
+@pytest.mark.parametrize("weight", [0.0, -1.0, float("nan"), float("inf")])
+def test_reserve_weight_must_be_finite_and_positive(weight):
+    """The reserves' weight is a setting (a what-if), not a module global to overwrite."""
+    with pytest.raises(InputError, match="reserve_weight"):
+        StrideSettings(muscles=body_muscles(paper_body()), objective="metabolic", reserve_weight=weight)
+
+
 def test_the_mesh_note_claims_no_convergence_for_the_muscles():
     """problem.MESH_FINE was measured on the torque+springs rung, whose Hermite-Simpson release
     has no f_n = 0 row; the muscles keep that row, so their note does not claim its figure."""
