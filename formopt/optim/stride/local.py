@@ -12,7 +12,7 @@ from .checks import impact_check
 from .collocation import NX, StrideNLP
 from .guess import ballistic, fitted, from_torques, perturbed, slide_guess
 from .layout import Solved
-from .problem import RUNNER_TENDONS, SLIDING_PHASES
+from .problem import RESERVE_CONTINUATION, RUNNER_TENDONS, SLIDING_PHASES
 from .result import Stride, rank, summarise
 
 
@@ -71,10 +71,16 @@ def best_of(nlp: StrideNLP, solves: list[Solved], simulate: bool = True) -> Stri
 def muscle_start(nlp: StrideNLP, speed: float, slope: float, mu: float, cadence: float | None) -> dict:
     """The muscles' start: the torque+springs rung's optimum (effort, problem.RUNNER_TENDONS,
     trapezoid) of the same strike and mesh from the generic guess, its net moments split among
-    the muscles (guess.from_torques). From the generic guess itself the muscle NLP did not
-    converge in 600 iterations (RBDS001, heel, 40 nodes, 3.5 m/s, 2026-11-25)."""
+    the muscles (guess.from_torques), then the muscles' optimum at each reserve weight of
+    problem.RESERVE_CONTINUATION below the setting's, each from the one before (a cold solve at
+    the default 10000 ends in a costlier optimum: problem.RESERVE_WEIGHT). From the generic
+    guess itself the muscle NLP did not converge in 600 iterations (RBDS001, heel, 40 nodes,
+    3.5 m/s, 2026-11-25)."""
     base = nlp.variant(muscles=None, objective="effort", tendons=RUNNER_TENDONS, transcription="trapezoid")
-    return from_torques(nlp, base, base.solve(ballistic(base, speed), speed, slope, mu, cadence))
+    start = from_torques(nlp, base, base.solve(ballistic(base, speed), speed, slope, mu, cadence))
+    for weight in (w for w in RESERVE_CONTINUATION if w < nlp.settings.reserve_weight):
+        start = nlp.variant(reserve_weight=weight).solve(start, speed, slope, mu, cadence).blocks
+    return start
 
 
 def touchdown_mode(nlp: StrideNLP, stick: Solved) -> tuple[StrideNLP, Solved, list]:

@@ -115,18 +115,22 @@ SMOOTHING = 1e-6
 # and frozen; 2.5 and 4.5 m/s and a 75 kg body held out give 145.4 / 181.5 and 173.4 steps/min
 # (docs/concepts/muscles.md, "In the stride").
 FORCE_RATE_WEIGHT = 80.0
-# The muscles' reserve moments' weight (m/s per (N m/kg)^2; costs' `reserves` term): 1 N m/kg
-# held over a step costs about 30, four to twelve times a stride's whole objective (2.4-7.1 with
-# the force-rate term, RBDS001 at 2.5-4.5 m/s), so the muscles make every moment they can. The
+# The muscles' reserve moments' weight (m/s per (N m/kg)^2; costs' `reserves` term): at 100,
+# 1 N m/kg held over a step costs about 30, four to twelve times a stride's whole objective
+# (2.4-7.1 with the force-rate term, RBDS001 at 2.5-4.5 m/s), at 10000 a hundred times that. The
 # reserves pay no force rate: at 10 (set when the objective was about 0.5) they took 0.51 N m/kg
 # at force-rate weight 16 and bought the low cadence (176.4 steps/min against 188.1 at 100;
 # RBDS001, 3.5 m/s, 24 nodes, problems/muscle_calibration.py --weights 16 --steps 0
 # --reserve-weight 10). At 100 they still buy the fast moment changes at the contact's events
-# (0.18-0.58 N m/kg in bursts, invalid); 10000 reached from the optimum at 100 leaves 0.01-0.05
-# and moves the cadence (155.5 / 179.1 / 197.3 steps/min at 2.5 / 3.5 / 4.5 m/s), while a cold
-# solve at 10000 ends in a costlier optimum (192.9 at 3.5 m/s): kept at 100 until the muscles'
-# start continues from it (docs/concepts/muscles.md, "Where the reserves act").
-RESERVE_WEIGHT = 100.0
+# (0.18-0.58 N m/kg in bursts at 2.5-4.5 m/s, beyond the 0.1 tolerance: invalid strides); at
+# 10000 the muscles make those moments (reserves 0.01-0.05 N m/kg, RBDS001, 24 nodes), but only
+# when the solve is continued from the optimum at 100: a cold solve at 10000 ends in a costlier
+# optimum (192.9 steps/min at 3.5 m/s, objective 6.03 against 5.80 from 100;
+# docs/concepts/muscles.md, "Where the reserves act"). So the muscles' start
+# (local.muscle_start) solves at each weight of RESERVE_CONTINUATION below the setting's, in turn,
+# before the setting's own.
+RESERVE_WEIGHT = 10000.0
+RESERVE_CONTINUATION = (100.0,)
 
 
 # Tendons: a spring in parallel with the stance leg's joint, engaged unloaded at the touchdown
