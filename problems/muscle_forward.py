@@ -11,13 +11,14 @@ Per speed, after the solve:
   length and velocity (l_opt, v_max), f_L, f_V and the moment it makes against the moment it
   would make fully active at the same fibre state (a = 1: its capacity there).
 - **Forward check, two ways**, each phase from the NLP's state at its start (as
-  optim/stride/checks.forward's `reset` runs): (1) the net joint moments replayed (piecewise
-  linear; what checks.forward does), (2) the excitations replayed (piecewise linear) through the
-  activation dynamics, the Hill equilibrium solved for F' at every step (the implicit tendon
-  dynamics, mechanics.muscles.hill_residual) and the tendon forces' moments, the reserves
-  replayed as moments: the muscle-driven body's own forward simulation, whose fibres resist a
-  departure from the path (force-length-velocity: the "preflexes" of Brown & Loeb 2000, van
-  Soest & Bobbert 1993) where a replayed moment does not. The largest joint-angle error (rad) per
+  optim/stride/checks.forward's `reset` runs, with its right-hand sides, checks.replay): (1) the
+  net joint moments replayed (piecewise linear; the torque rungs' check, a figure for the
+  muscles), (2) the excitations replayed (piecewise linear) through the activation dynamics, the
+  Hill equilibrium solved for F' at every step (mechanics.muscles.tendon_force_rate) and the
+  tendon forces' moments, the reserves replayed as moments: the muscle-driven body's own forward
+  simulation, whose fibres resist a departure from the path (force-length-velocity: the
+  "preflexes" of Brown & Loeb 2000, van Soest & Bobbert 1993) where a replayed moment does not,
+  and what checks.forward judges a muscle stride by. The largest joint-angle error (rad) per
   phase, and the joint where it is.
 """
 
@@ -34,7 +35,7 @@ from scipy.integrate import solve_ivp
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics import muscles as hill
 from formopt.mechanics.body import scaled_body
-from formopt.optim.stride.checks import accelerations
+from formopt.optim.stride.checks import replay
 from formopt.optim.stride.collocation import NX, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.problem import StrideSettings
@@ -86,51 +87,17 @@ def reserves(nlp, blocks: dict) -> None:
         start += T
 
 
-def interpolated(times: np.ndarray, U: np.ndarray, t: float) -> np.ndarray:
-    """The node values U (columns at `times`) piecewise linear at t."""
-    k = min(max(int(np.searchsorted(times, t)) - 1, 0), len(times) - 2)
-    w = min(max((t - times[k]) / (times[k + 1] - times[k]), 0.0), 1.0)
-    return (1 - w) * U[:, k] + w * U[:, k + 1]
-
-
-def right_hand_sides(nlp, i: int, solved):
-    """Phase i's right-hand sides, with its node times: the moments replayed (of [theta, theta'])
-    and the excitations replayed (of [theta, theta', a_R, F_R, a_L, F_L]: the activation dynamics,
-    F' from mechanics.muscles.tendon_force_rate, the reserves as moments), each piecewise linear."""
-    act, phase, blocks = nlp.ocp.models[0].actuation, nlp.phases[i], solved.blocks
-    n, X, U = act.n, blocks[f"X_{phase.name}"], blocks[f"U_{phase.name}"]
-    times, acc = np.linspace(0.0, blocks[f"T_{phase.name}"].item(), X.shape[1]), accelerations(nlp, i)
-    td, slope, mu = blocks[f"X_{nlp.phases[0].name}"][:NX, 0], solved.parameters["slope"], solved.parameters["mu"]
-    moments, arms = nlp.moments(blocks, i)[0], -act.muscles.moment_arms.T * act.muscles.max_force
-    tendon_rate = hill.tendon_force_rate(act.muscles)
-
-    def replay(t, x):
-        return np.r_[x[NX:], acc(x[:NX], x[NX:], interpolated(times, moments, t), td, slope, mu)["thetadd"]]
-
-    def muscles(t, y):
-        u, x, z = interpolated(times, U, t), y[:2 * NX], y[2 * NX:]
-        tau, dz = nlp.mass * u[6 * n:], np.zeros_like(z)
-        for leg in range(2):
-            a, F = z[2 * n * leg:2 * n * leg + n], z[2 * n * leg + n:2 * n * (leg + 1)]
-            th, thd = x[3 + 3 * leg:6 + 3 * leg], x[NX + 3 + 3 * leg:NX + 6 + 3 * leg]
-            dz[2 * n * leg:2 * n * leg + n] = np.asarray(hill.activation_rate(u[3 * n * leg:3 * n * leg + n], a), float).ravel()
-            dz[2 * n * leg + n:2 * n * (leg + 1)] = np.asarray(tendon_rate(th, thd, a, F), float).ravel()
-            tau[3 * leg:3 * leg + 3] += arms @ F
-        return np.r_[x[NX:], acc(x[:NX], x[NX:], tau, td, slope, mu)["thetadd"], dz]
-
-    return replay, muscles, times
-
-
 def forward_errors(nlp, solved) -> list[tuple[float, str, float, str]]:
     """Per phase: (moments replayed: the largest angle error, rad, and its coordinate; excitations
-    replayed: the same), each phase from the NLP's state at its start (`solved`: layout.Solved)."""
+    replayed: the same), each phase from the NLP's state at its start (`solved`: layout.Solved;
+    the right-hand sides optim.stride.checks.replay's, the integrators checks.forward's)."""
     out = []
     for i, phase in enumerate(nlp.phases):
         X, Z = solved.blocks[f"X_{phase.name}"], solved.blocks[f"Z_{phase.name}"]
-        replay, muscles, times = right_hand_sides(nlp, i, solved)
         row: list = []
-        for f, y0, method in ((replay, X[:, 0], "DOP853"), (muscles, np.r_[X[:, 0], Z[:, 0]], "LSODA")):
-            sim = solve_ivp(f, (0.0, times[-1]), y0, method=method, t_eval=times, rtol=1e-8, atol=1e-8)
+        for excitations, y0, method, tol in ((False, X[:, 0], "DOP853", 1e-10), (True, np.r_[X[:, 0], Z[:, 0]], "LSODA", 1e-8)):
+            rhs, times = replay(nlp, i, solved.blocks, solved.parameters, excitations)
+            sim = solve_ivp(rhs, (0.0, times[-1]), y0, method=method, t_eval=times, rtol=tol, atol=tol)
             error = np.abs(sim.y[:NX] - X[:NX]).max(axis=1) if sim.success else np.full(NX, np.inf)
             error[:2] = 0.0  # the angles only (the hip's position is in m)
             row += [float(error.max()), COORDINATES[int(np.argmax(error))]]
@@ -154,6 +121,7 @@ def main(argv=None) -> int:
         stride = optimum(nlp, speed)
         print(f"\n== {speed} m/s, {args.nodes} nodes: {stride.cadence_spm:.1f} steps/min, reserves "
               f"{stride.checks['reserve_nm_per_kg']:.2f} N m/kg, forward check {stride.checks['forward_theta']:.3f} rad"
+              f" (moments replayed {stride.checks['forward_moments_reset_theta']:.3f})"
               f" ({'valid' if stride.valid else '; '.join(stride.failed_checks)})")
         print(" reserves beyond the tolerance, and the muscles turning the joint their way:")
         reserves(nlp, stride.solved.blocks)

@@ -3,7 +3,6 @@ runner's speeds, against the runner's processed mean cycle (its joint powers the
 
     python problems/stride_ladder.py [--speeds 2.5 3.5 4.5] [--rungs torque torque+springs muscles]
                                      [--strike heel] [--nodes 40] [--mass 62] [--weight W] [--reserve-weight R]
-                                     [--reserve-start R0]
                                      [--objectives effort] [--cadences 150 171.4] [--starts 1]
 
 Prints per rung and speed: cadence (steps/min; measured 156.5 at 2.5 and 171.4 at 3.5 m/s,
@@ -13,13 +12,12 @@ stored per step (J: soleus and gastrocnemius, all), reserves (N m/kg), the muscl
 energy (J/kg/m), the swing foot's least height (m, while
 the other foot is down: Stride.swing_clearance_m), the objective J (per distance), validity,
 iterations and seconds (build, solve), and the phases a duration bound holds; for the muscles
-last the forward check with the excitations replayed through the muscles (rad,
-problems/muscle_forward.py; the validity column's replays the joint moments).
+last their net joint moments replayed (rad, checks.forward's `moments_reset_theta`: a figure; the
+validity column's forward check replays their excitations through the muscles).
 `--mass` scales the body to another mass at the same height (a heavier runner); `--weight`
 sets the muscles' force-rate weight (StrideSettings.force_rate_weight) for a calibration run,
-`--reserve-weight` their reserves' (StrideSettings.reserve_weight) for a what-if, and
-`--reserve-start` solves the muscles first at that reserve weight and starts the solve at
---reserve-weight from its optimum (a continuation in the reserves' price);
+`--reserve-weight` their reserves' (StrideSettings.reserve_weight; the muscles' start continues
+to it from problem.RESERVE_CONTINUATION's weights below it) for a what-if;
 `--objectives` the torque rungs' objectives (problem.OBJECTIVES; the muscles keep "metabolic"), each
 solved in turn; `--cadences` imposes each cadence (steps/min) in turn instead of leaving it free;
 `--starts` the generic guess and starts - 1 seeded perturbations of it, the best kept (local.optimum).
@@ -34,7 +32,6 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
-from muscle_forward import forward_errors
 
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
@@ -86,11 +83,11 @@ def row(rung, speed, stride, measured) -> str:
             + (f"  [{stride.bound_text()}]" if stride.on_bound else ""))
 
 
-def muscle_forward(nlp, stride) -> str:
-    """The muscles' own forward check (problems/muscle_forward.py): the largest angle error (rad)
-    over the phases, each from the NLP's state at its start, the excitations replayed."""
-    return f"  muscles' forward check {max(e for _, _, e, _ in forward_errors(nlp, stride.solved)):.3f} rad"
-
+def moments_replayed(stride) -> str:
+    """A muscle stride's net joint moments replayed (rad; its forward check, the validity's,
+    replays the excitations)."""
+    return (f"  forward {stride.checks['forward_theta']:.3f} rad, moments replayed "
+            f"{stride.checks['forward_moments_reset_theta']:.3f} rad")
 
 
 def main(argv=None) -> int:
@@ -102,7 +99,6 @@ def main(argv=None) -> int:
     parser.add_argument("--mass", type=float, default=62.0)
     parser.add_argument("--weight", type=float, default=None)
     parser.add_argument("--reserve-weight", type=float, default=problem.RESERVE_WEIGHT)
-    parser.add_argument("--reserve-start", type=float, default=None)
     parser.add_argument("--objectives", nargs="+", default=["effort"],
                         choices=[o for o in problem.OBJECTIVES if o != "activation"])
     parser.add_argument("--cadences", type=float, nargs="+", default=[None])
@@ -122,14 +118,10 @@ def main(argv=None) -> int:
             for cadence in args.cadences:
                 clock = time.perf_counter()
                 nlp = build(body, settings(rung, body, args.strike, args.nodes, weight, objective, args.reserve_weight))
-                guess = None
-                if rung == "muscles" and args.reserve_start is not None:
-                    first = build(body, settings(rung, body, args.strike, args.nodes, weight, objective, args.reserve_start))
-                    guess = optimum(first, speed, cadence=cadence, simulate=False).solved.blocks
-                stride = optimum(nlp, speed, cadence=cadence, guess=guess, starts=args.starts)
-                stride.solve_s = time.perf_counter() - clock - nlp.build_s  # the torque start's solve too
+                stride = optimum(nlp, speed, cadence=cadence, starts=args.starts)
+                stride.solve_s = time.perf_counter() - clock - nlp.build_s  # the starts' solves too
                 print(row(rung, speed, stride, measured_cycle(RBDS, speed))
-                      + (muscle_forward(nlp, stride) if rung == "muscles" else ""), flush=True)
+                      + (moments_replayed(stride) if rung == "muscles" else ""), flush=True)
     return 0
 
 

@@ -19,6 +19,8 @@ Symbolic (SX) or numeric arguments.
 
 from __future__ import annotations
 
+from functools import cached_property
+
 import casadi as ca
 import numpy as np
 
@@ -186,6 +188,18 @@ class MuscleDriven(Torques):
 
     def swap(self, z):
         return ca.vertcat(z[2 * self.n:], z[:2 * self.n])
+
+    def forward_rates(self, theta, thetad, z, u):
+        """z' (4n) of a forward simulation: the activation dynamics da/dt(e, a) of the
+        excitations e in u, and the Hill equilibrium solved for F' (the implicit tendon dynamics
+        made explicit: mechanics.muscles.tendon_force_rate); u's a' and F' are not used."""
+        return ca.vertcat(*[ca.vertcat(self.leg.activation_rate(e, a),
+                                       self._tendon_rate(self._joint(theta, k), self._joint(thetad, k), a, F))
+                            for k, (a, F, e, _, _) in enumerate(self._legs(z, u))])
+
+    @cached_property
+    def _tendon_rate(self) -> ca.Function:
+        return hill.tendon_force_rate(self.muscles)
 
     def initial(self, theta, thetad, tau):
         """(z, u) of a guess that makes the moments tau (N m, 6 x c) at node angles and rates

@@ -9,13 +9,15 @@
   exact impact maps (a slide with its force on the cone's edge); the largest state difference
   at the nodes is the transcription's error (each phase from the NLP's state at its start),
   and what it grows to open loop; over a slide, whether the slip keeps its sign and when it
-  stops.
+  stops. The muscle rung replays its excitations through the muscles instead (`forward`).
 - `drift`: how far the held contact points moved (m) over each phase.
 - `swing_clearance`: the swing foot's least height (m) over the stance phases' nodes, which
   the NLP holds at or above StrideSettings.clearance (contact.RigidContact.swing).
 """
 
 from __future__ import annotations
+
+from types import SimpleNamespace
 
 import casadi as ca
 import numpy as np
@@ -24,6 +26,7 @@ from ...mechanics import contact
 from ...mechanics.compiled import Compiled
 from ...mechanics.impact import projection
 from ...mechanics.joint_space import POINTS, JointSpace
+from .actuation import MuscleDriven
 from .collocation import NU, NX, StrideNLP
 from .contact import height, rows_kinematics
 from .layout import held_rows
@@ -116,63 +119,126 @@ def accelerations(nlp: StrideNLP, i: int) -> Compiled:
                     compiled=False)
 
 
+def muscle_dynamics(nlp: StrideNLP, i: int) -> Compiled:
+    """[theta', theta'', z'] of the muscle-driven body (actuation.MuscleDriven) in phase i, as a
+    numpy call of (x = [theta, theta'] (18), z (the muscles' states), u (the controls), theta at
+    touchdown (9), slope (rad), mu): the tendon forces' moments and the reserves
+    (MuscleDriven.active) through `accelerations`, and the states' rates of the excitations
+    (MuscleDriven.forward_rates)."""
+    act = nlp.ocp.models[i].actuation
+    assert isinstance(act, MuscleDriven), "muscle_dynamics: the phase is not muscle-driven"
+    x, z, u = ca.MX.sym("x", 2 * NX), ca.MX.sym("z", act.states), ca.MX.sym("u", act.controls)
+    td, slope, mu = ca.MX.sym("theta_td", NX), ca.MX.sym("slope"), ca.MX.sym("mu")
+    thdd = accelerations(nlp, i).function(x[:NX], x[NX:], act.active(z, u), td, slope, mu)
+    rates = ca.vertcat(x[NX:], thdd, act.forward_rates(x[:NX], x[NX:], z, u))
+    return Compiled(ca.Function("muscle_dynamics", [x, z, u, td, slope, mu], [rates],
+                                ["x", "z", "u", "theta_td", "slope", "mu"], ["rates"]), compiled=False)
+
+
+def replay(nlp: StrideNLP, i: int, blocks: dict, parameters: dict, excitations: bool):
+    """(f(t, y), the node times) of phase i's forward simulation: y = [theta, theta'] with the
+    optimal active moments replayed, or (`excitations`) y = [theta, theta', z] with the muscles'
+    excitations and reserves replayed (`muscle_dynamics`), each piecewise linear between the nodes."""
+    name, first = nlp.phases[i].name, blocks[f"X_{nlp.phases[0].name}"]
+    times = np.linspace(0.0, blocks[f"T_{name}"].item(), blocks[f"X_{name}"].shape[1])
+    args = (first[:NX, 0], parameters["slope"], parameters["mu"])
+    if excitations:
+        U, dynamics = blocks[f"U_{name}"], muscle_dynamics(nlp, i)
+        return (lambda t, y: dynamics(y[:2 * NX], y[2 * NX:], _interpolated(times, U, t), *args)["rates"]), times
+    U, acc = nlp.moments(blocks, i)[0], accelerations(nlp, i)
+    return (lambda t, y: np.r_[y[NX:], acc(y[:NX], y[NX:], _interpolated(times, U, t), *args)["thetadd"]]), times
+
+
+def _interpolated(times: np.ndarray, U: np.ndarray, t: float) -> np.ndarray:
+    """The node values U (columns at `times`) piecewise linear at t."""
+    k = min(max(int(np.searchsorted(times, t)) - 1, 0), len(times) - 2)
+    w = min(max((t - times[k]) / (times[k + 1] - times[k]), 0.0), 1.0)
+    return (1 - w) * U[:, k] + w * U[:, k + 1]
+
+
 def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
-    """Integrate the optimal moments forward (module docstring), twice: open loop over the
+    """Integrate the optimal controls forward (module docstring), twice: open loop over the
     whole half stride (`theta`, `thetad`, `per_phase_theta`: the largest node differences, m
     or rad and m/s or rad/s), and phase by phase from the NLP's state at each phase's start
     (`reset_theta`, `reset_per_phase`); `periodicity`: the open-loop post-touchdown state
     against the start; `slip_mps`: over a sliding phase (from its NLP start), the least and
     the largest s v_t of the sliding point on a fine grid (the slip held if the least is not
     below zero beyond the integration's error), and its v_t at the phase's end.
-    `parameters`: speed, slope, mu (Solved.parameters)."""
+    The muscle rung (actuation.MuscleDriven) replays its controls, the excitations (and the
+    reserves), through the activation dynamics and the Hill equilibrium, its activations and
+    tendon forces states of the simulation: a muscle resists a departure from its path
+    (force-length-velocity) where a moment replayed as a function of time does not (van Soest &
+    Bobbert 1993, Biol Cybern 69:195: a simulated jump far less sensitive to perturbations
+    under open-loop stimulation than under open-loop joint moments), so its strides are judged
+    on that; their net moments replayed phase by phase stay a figure (`moments_reset_theta`,
+    `moments_reset_per_phase`). `parameters`: speed, slope, mu (Solved.parameters)."""
+    muscles = isinstance(nlp.ocp.models[0].actuation, MuscleDriven)
+    out = _simulate(nlp, blocks, parameters, excitations=muscles)
+    if muscles:
+        moments = _simulate(nlp, blocks, parameters, excitations=False, open_loop=False)
+        out.update(moments_reset_theta=moments["reset_theta"], moments_reset_per_phase=moments["reset_per_phase"])
+    return out
+
+
+def _simulate(nlp: StrideNLP, blocks: dict, parameters: dict, excitations: bool, open_loop: bool = True) -> dict:
+    """`forward`'s figures of one replay (`replay`): the moments' (DOP853, rtol 1e-10) or the
+    excitations' (LSODA, rtol 1e-8); an integration that fails
+    counts as an infinite error (and so does what follows it, open loop)."""
     from scipy.integrate import solve_ivp  # here: scipy.integrate costs 0.2 s at every CLI start
 
-    js = nlp.js
-    slope, mu, slip = parameters["slope"], parameters["mu"], nlp.settings.slip
-    X0 = blocks[f"X_{nlp.phases[0].name}"]
-    state = X0[:, 0].copy()
+    js, slope, mu, slip = nlp.js, parameters["slope"], parameters["mu"], nlp.settings.slip
+    method, tol = ("LSODA", 1e-8) if excitations else ("DOP853", 1e-10)
+    nodes = [np.vstack([blocks[f"X_{p.name}"]] + ([blocks[f"Z_{p.name}"]] if excitations else [])) for p in nlp.phases]
+    state = nodes[0][:, 0].copy()
     errors: list[np.ndarray] = []
     reset: list[np.ndarray] = []
     slips: dict = {}
     for i, phase in enumerate(nlp.phases):
-        X, U, T = blocks[f"X_{phase.name}"], nlp.moments(blocks, i)[0], blocks[f"T_{phase.name}"].item()
-        if nlp.impact_before(i):  # an impact starts the phase
-            state[NX:] = joint_impact(js, phase.rows, state[:NX], state[NX:], slope)[0]
-        times = np.linspace(0.0, T, X.shape[1])
-        acc = accelerations(nlp, i)
-
-        def rhs(t, x, U=U, times=times, acc=acc):
-            k = min(max(int(np.searchsorted(times, t)) - 1, 0), len(times) - 2)  # piecewise linear moments
-            w = min(max((t - times[k]) / (times[k + 1] - times[k]), 0.0), 1.0)
-            tau = (1 - w) * U[:, k] + w * U[:, k + 1]
-            return np.r_[x[NX:], acc(x[:NX], x[NX:], tau, X0[:NX, 0], slope, mu)["thetadd"]]
-
-        for start, record in ((state, errors), (X[:, 0], reset)):
-            out = solve_ivp(rhs, (0.0, T), start, method="DOP853", t_eval=times, rtol=1e-10,
-                            atol=1e-10, dense_output=True)
-            record.append(np.abs(out.y - X).max(axis=1))
+        Y = nodes[i]
+        if nlp.impact_before(i) and np.isfinite(state).all():  # an impact starts the phase
+            state[NX:2 * NX] = joint_impact(js, phase.rows, state[:NX], state[NX:2 * NX], slope)[0]
+        rhs, times = replay(nlp, i, blocks, parameters, excitations)
+        for start, record in ((state, errors), (Y[:, 0], reset))[0 if open_loop else 1:]:
+            sim = _integrate(solve_ivp, rhs, times, start, method, tol)
+            record.append(np.abs(sim.y[:2 * NX] - Y[:2 * NX]).max(axis=1) if sim.success else np.full(2 * NX, np.inf))
             if record is errors:
-                state = out.y[:, -1]
-            elif phase.sliding:
-                slips = _slip(js, phase.sliding, out.sol, T, slope, slip)
-    touchdown = (other_leg(nlp.phases[0].sliding), slip, mu) if nlp.phases[0].sliding else None
-    plus = joint_impact(js, nlp.touchdown_rows, state[:NX], state[NX:], slope, touchdown)[0]
-    step = step_length(parameters["speed"], half_period(nlp, blocks))
-    period_error = np.abs(np.asarray(periodicity(state[:NX], plus, X0[:, 0], step, slope), float)).max()
-    err, res = np.array(errors), np.array(reset)
-    return {"theta": float(err[:, :NX].max()), "thetad": float(err[:, NX:].max()),
-            "per_phase_theta": [float(e) for e in err[:, :NX].max(axis=1)],
-            "reset_theta": float(res[:, :NX].max()),
-            "reset_per_phase": [float(e) for e in res[:, :NX].max(axis=1)],
-            "periodicity": float(period_error), **slips}
+                state = sim.y[:, -1] if sim.success else np.full_like(state, np.nan)
+            elif phase.sliding and sim.success:
+                slips = _slip(js, phase.sliding, sim.sol, times[-1], slope, slip)
+    res = np.array(reset)
+    out = {"reset_theta": float(res[:, :NX].max()), "reset_per_phase": [float(e) for e in res[:, :NX].max(axis=1)], **slips}
+    if open_loop:
+        touchdown = (other_leg(nlp.phases[0].sliding), slip, mu) if nlp.phases[0].sliding else None
+        period_error = np.inf
+        if np.isfinite(state).all():
+            plus = joint_impact(js, nlp.touchdown_rows, state[:NX], state[NX:2 * NX], slope, touchdown)[0]
+            step = step_length(parameters["speed"], half_period(nlp, blocks))
+            period_error = np.abs(np.asarray(periodicity(state[:NX], plus, nodes[0][:2 * NX, 0], step, slope), float)).max()
+        err = np.array(errors)
+        out.update(theta=float(err[:, :NX].max()), thetad=float(err[:, NX:].max()),
+                   per_phase_theta=[float(e) for e in err[:, :NX].max(axis=1)], periodicity=float(period_error))
+    return out
+
+
+def _integrate(solve_ivp, rhs, times: np.ndarray, start: np.ndarray, method: str, tol: float):
+    """solve_ivp over the node times from `start`, dense; a start that is not finite, or a
+    right-hand side that raises (the tendon rates' Newton not converging), is a failure."""
+    if not np.isfinite(start).all():
+        return SimpleNamespace(success=False)
+    try:
+        return solve_ivp(rhs, (0.0, times[-1]), start, method=method, t_eval=times, rtol=tol, atol=tol,
+                         dense_output=True)
+    except RuntimeError:
+        return SimpleNamespace(success=False)
 
 
 def _slip(js: JointSpace, point: str, path, T: float, slope: float, slip: int) -> dict:
-    """s v_t (m/s) of a sliding point along a simulated phase (`path`: the dense solution) on
+    """s v_t (m/s) of a sliding point along a simulated phase (`path`: the dense solution, its
+    first 2 NX rows theta and theta') on
     400 steps: its least and largest before it first stops, v_t at the phase's end, and when
     it first stops (`slip_stop_s`, s; T if it slides through; the NLP's slide stops at T)."""
     times = np.linspace(0.0, T, 401)
-    v = slip * np.array([float(js.points[point](x[:NX], x[NX:], slope)[1][0]) for x in path(times).T])
+    v = slip * np.array([float(js.points[point](x[:NX], x[NX:2 * NX], slope)[1][0]) for x in path(times).T])
     stopped = np.flatnonzero(v <= 0.0)
     k = stopped[0] if stopped.size else len(v)
     stop = T if k == len(v) else float(np.interp(0.0, [v[k], v[k - 1]], [times[k], times[k - 1]])) if k else 0.0

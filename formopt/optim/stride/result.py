@@ -339,7 +339,7 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
                       open_loop_theta=sim["theta"], open_loop_thetad=sim["thetad"],
                       open_loop_per_phase=sim["per_phase_theta"],
                       open_loop_periodicity=sim["periodicity"],
-                      **{f"forward_{k}": v for k, v in sim.items() if k.startswith("slip_")})
+                      **{f"forward_{k}": v for k, v in sim.items() if k.startswith(("slip_", "moments_"))})
     strike_point = "heel_R" if nlp.settings.strike != "forefoot" else "forefoot_R"
     r = np.asarray(nlp.js.points[strike_point](start, np.zeros(NX), slope)[0], float).ravel()
     end_v = b[f"X_{nlp.phases[-1].name}"][NX:, -1]

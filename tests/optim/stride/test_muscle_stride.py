@@ -1,0 +1,48 @@
+"""A solved muscle-driven stride (the paper's body, heel strike, 18 nodes, 3.5 m/s, the default
+settings: the reserves' weight reached by local.muscle_start's continuation) and its forward
+check (checks.forward), which replays the excitations through the muscles: within its tolerance
+for the optimum, beyond it when the stance leg is driven at half its excitations. The cheapest
+muscle stride there is (18 nodes is the heel strike's least mesh): about 25 s of CPU."""
+
+import numpy as np
+import pytest
+
+from formopt.io.muscle_table import body_muscles
+from formopt.mechanics.body import paper_body
+from formopt.mechanics.joint_space import JointSpace
+from formopt.optim.stride import StrideNLP, StrideSettings, optimum
+from formopt.optim.stride.checks import forward
+from formopt.optim.stride.result import TOLERANCES
+
+
+@pytest.fixture(scope="module")
+def muscle_stride():
+    body = paper_body()
+    nlp = StrideNLP(JointSpace(body), StrideSettings(strike="heel", nodes=18, objective="metabolic",
+                                                     muscles=body_muscles(body)))
+    return nlp, optimum(nlp, 3.5)
+
+
+def test_the_muscles_make_the_stride_without_their_reserves(muscle_stride):
+    """Valid: the reserves within their tolerance (0.1 N m/kg) and the excitations replayed
+    within the forward check's; the net moments' replay reported beside them."""
+    _, stride = muscle_stride
+    assert stride.valid, stride.failed_checks
+    assert stride.checks["reserve_nm_per_kg"] <= TOLERANCES["reserve_nm_per_kg"]
+    assert stride.checks["forward_theta"] <= TOLERANCES["forward_theta"]
+    assert np.isfinite(stride.checks["forward_moments_reset_theta"])
+    assert len(stride.checks["forward_moments_reset_per_phase"]) == len(stride.phases)
+
+
+def test_half_the_stance_legs_excitations_do_not_make_the_stride(muscle_stride):
+    """The stance leg's (R) excitations halved at every node: the replay leaves the path by more
+    than the tolerance (0.25 rad here; 0.8 of them stay within it: the muscles' force-length-
+    velocity pulls the motion back), while the unchanged moments' replay cannot see it."""
+    nlp, stride = muscle_stride
+    n = nlp.ocp.models[0].actuation.n
+    blocks = {k: v.copy() for k, v in stride.solved.blocks.items()}
+    for phase in nlp.phases:
+        blocks[f"U_{phase.name}"][:n] *= 0.5
+    perturbed = forward(nlp, blocks, stride.solved.parameters)
+    assert perturbed["reset_theta"] > TOLERANCES["forward_theta"]
+    assert perturbed["moments_reset_theta"] == pytest.approx(stride.checks["forward_moments_reset_theta"])
