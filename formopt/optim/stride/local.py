@@ -36,13 +36,14 @@ def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
 def generic_start(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
                   cadence: float | None = None) -> dict:
     """The start that knows nothing of the optimum (`optimum`'s default guess, and the global
-    search's): the generic guess (guess.ballistic); for Hermite-Simpson the trapezoid's optimum
-    from it; with muscles the torque rung's optimum split among them (`muscle_start`)."""
+    search's): the generic guess (guess.ballistic); with muscles the torque rung's optimum split
+    among them and continued in the reserves' price (`muscle_start`); for Hermite-Simpson the
+    trapezoid's optimum from the trapezoid's start."""
     if nlp.settings.transcription != "trapezoid":
         # Hermite-Simpson from the generic guess: converged at 20 intervals, not in 300
         # iterations at 40; from the trapezoid's optimum at 40, in 166 (heel, 3.5 m/s, 2026-11-25)
         base = nlp.variant(transcription="trapezoid")
-        return fitted(nlp, base.solve(ballistic(base, speed), speed, slope, mu, cadence).blocks)
+        return fitted(nlp, base.solve(generic_start(base, speed, slope, mu, cadence), speed, slope, mu, cadence).blocks)
     if nlp.settings.muscles is not None:
         return muscle_start(nlp, speed, slope, mu, cadence)
     return ballistic(nlp, speed)
