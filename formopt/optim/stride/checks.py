@@ -182,8 +182,8 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
 
 def _simulate(nlp: StrideNLP, blocks: dict, parameters: dict, excitations: bool, open_loop: bool = True) -> dict:
     """`forward`'s figures of one replay (`replay`): the moments' (DOP853, rtol 1e-10) or the
-    excitations' (LSODA, rtol 1e-8); an integration that fails
-    counts as an infinite error (and so does what follows it, open loop)."""
+    excitations' (LSODA, rtol 1e-8), phase by phase and (`open_loop`) over the half stride; an
+    integration that fails counts as an infinite error (open loop, so does what follows it)."""
     from scipy.integrate import solve_ivp  # here: scipy.integrate costs 0.2 s at every CLI start
 
     js, slope, mu, slip = nlp.js, parameters["slope"], parameters["mu"], nlp.settings.slip
@@ -198,7 +198,7 @@ def _simulate(nlp: StrideNLP, blocks: dict, parameters: dict, excitations: bool,
         if nlp.impact_before(i) and np.isfinite(state).all():  # an impact starts the phase
             state[NX:2 * NX] = joint_impact(js, phase.rows, state[:NX], state[NX:2 * NX], slope)[0]
         rhs, times = replay(nlp, i, blocks, parameters, excitations)
-        for start, record in ((state, errors), (Y[:, 0], reset))[0 if open_loop else 1:]:
+        for start, record in ([(state, errors)] if open_loop else []) + [(Y[:, 0], reset)]:
             sim = _integrate(solve_ivp, rhs, times, start, method, tol)
             record.append(np.abs(sim.y[:2 * NX] - Y[:2 * NX]).max(axis=1) if sim.success else np.full(2 * NX, np.inf))
             if record is errors:
