@@ -2,8 +2,8 @@
 runner's speeds, against the runner's processed mean cycle (its joint powers the data set's) and measured cadence.
 
     python problems/stride_ladder.py [--speeds 2.5 3.5 4.5] [--rungs torque torque+springs muscles]
-                                     [--strike heel] [--nodes 40] [--mass 62] [--start-mass M] [--weight W]
-                                     [--reserve-weight R]
+                                     [--strike heel] [--nodes 40] [--mass 62] [--start-mass M] [--start-speed S]
+                                     [--weight W] [--reserve-weight R]
                                      [--objectives effort] [--cadences 150 171.4] [--starts 1]
 
 Prints per rung and speed: cadence (steps/min; measured 156.5 at 2.5 and 171.4 at 3.5 m/s,
@@ -16,7 +16,8 @@ iterations and seconds (build, solve), and the phases a duration bound holds; fo
 last their forward check (rad, the excitations replayed through the muscles: the validity's) and
 their net joint moments replayed (checks.forward's `moments_reset_theta`: a figure).
 `--mass` scales the body to another mass at the same height (a heavier runner), `--start-mass`
-starts each solve from the optimum of the body at that mass (a continuation in mass); `--weight`
+and `--start-speed` start each solve from the optimum of the body at that mass and speed (a
+continuation in one step; the other from --mass and the speed solved); `--weight`
 sets the muscles' force-rate weight (StrideSettings.force_rate_weight) for a calibration run,
 `--reserve-weight` their reserves' (StrideSettings.reserve_weight; the muscles' start continues
 to it from problem.RESERVE_CONTINUATION's weights below it) for a what-if;
@@ -100,6 +101,7 @@ def main(argv=None) -> int:
     parser.add_argument("--nodes", type=int, default=40)
     parser.add_argument("--mass", type=float, default=62.0)
     parser.add_argument("--start-mass", type=float, default=None)
+    parser.add_argument("--start-speed", type=float, default=None)
     parser.add_argument("--weight", type=float, default=None)
     parser.add_argument("--reserve-weight", type=float, default=problem.RESERVE_WEIGHT)
     parser.add_argument("--objectives", nargs="+", default=["effort"],
@@ -122,10 +124,10 @@ def main(argv=None) -> int:
                 clock = time.perf_counter()
                 nlp = build(body, settings(rung, body, args.strike, args.nodes, weight, objective, args.reserve_weight))
                 guess = None
-                if args.start_mass is not None:
-                    other = scaled_body(args.start_mass, 1.81)
+                if args.start_mass is not None or args.start_speed is not None:
+                    other = scaled_body(args.start_mass or args.mass, 1.81)
                     first = build(other, settings(rung, other, args.strike, args.nodes, weight, objective, args.reserve_weight))
-                    guess = optimum(first, speed, cadence=cadence, simulate=False).solved.blocks
+                    guess = optimum(first, args.start_speed or speed, cadence=cadence, simulate=False).solved.blocks
                 stride = optimum(nlp, speed, cadence=cadence, guess=guess, starts=args.starts)
                 stride.solve_s = time.perf_counter() - clock - nlp.build_s  # the starts' solves too
                 print(row(rung, speed, stride, measured_cycle(RBDS, speed))
