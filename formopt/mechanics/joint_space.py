@@ -14,17 +14,19 @@ M(theta) = J^T M J, Q_g = momentum_matrix^T [0, -g]; tau the six joint moments (
 mechanics.landing), so the generalised force on a flexion angle is -tau; J_c the contact
 points' rows [t; n] of a ground of slope `slope` (rad); f the ground's force (N).
 
-Passive joint moments tau_pass(theta) (`passive_moments`): the elastic moments of the
-relaxed leg that Riener & Edrich (1999, J Biomech 32:539) measured on ten healthy subjects, with the two-joint muscles' coupling (the knee's moment depends on the hip and the
-ankle, the hip's and the ankle's on the knee), double exponentials in degrees (their hip and
-knee flexion, ankle PLANTARflexion positive, moments positive in the direction of the
-positive angle), as published for an adult (not scaled with the body; Miller et al. 2012 used
-them so in a sprinting model). A smooth field, not a wall: 6.4 N m of
-plantarflexion at a neutral ankle with the knee straight, 42 N m at 20 deg of dorsiflexion,
-19.5 N m of knee flexion 5 deg into hyperextension. The coupling makes the field
-non-conservative (d tau_hip / d knee != d tau_knee / d hip): a stride's passive work
-(result.py's `passive_J`) need not be zero. The ranges `RANGES` are those of running
-(Novacheck 1998); a solve bounds the angles at RANGES +- `LIMIT_MARGIN`.
+Passive joint moments tau_pass(theta) (`passive_moments`): the elastic moments of the relaxed
+leg that Riener & Edrich (1999, J Biomech 32:539) measured on ten healthy subjects, with the
+two-joint muscles' coupling (the knee's moment depends on the hip and the ankle, the hip's and
+the ankle's on the knee): double exponentials in degrees (their hip and knee flexion and ankle
+PLANTARflexion positive, moments positive in the direction of the positive angle), as published
+for an adult, not scaled with the body (Miller et al. 2012 used them so in a sprinting model).
+A smooth field, not a wall: 6.4 N m of plantarflexion at a neutral ankle with the knee straight,
+42 N m at 20 deg of dorsiflexion, 22 N m of knee flexion 5 deg into hyperextension. The coupling
+is not a potential's (d tau_hip / d knee != d tau_knee / d hip): a stride's passive work
+(result.py's `passive_J`) need not be zero. Elastic only, no damping: the forward check stays
+at 0.02-0.03 rad (docs/concepts/stride.md, "The joints' passive moments"). The ranges `RANGES`
+are those of running (Novacheck 1998); a solve bounds the angles at RANGES +- `LIMIT_MARGIN`
+(5 deg: at 15 deg the loaded ankle reaches 44 deg of dorsiflexion).
 """
 
 from __future__ import annotations
