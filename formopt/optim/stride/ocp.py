@@ -5,15 +5,15 @@ the touchdown with the periodicity, and the cost terms.
 Node model (per phase, at every node; x = (theta, theta'), a = theta'', u the actuation's
 controls, f the contact forces, theta_td the touchdown state, p = (speed, slope, mu)):
 
-    M(theta) a + c(theta, theta') - g(theta) - tau_walls(theta) + [0; tau(z, u)] - J_c^T m g f = 0
+    M(theta) a + c(theta, theta') - g(theta) - tau_pass(theta) + [0; tau(z, u)] - J_c^T m g f = 0
 
 with the contact model's rows (contact.RigidContact) and, for the work objectives, the power
 split P_j = P_j+ - P_j- (W/kg, P+- >= 0; problem.py says why), and the actuation's own rows
 (the muscles' activation dynamics and Hill equilibrium; actuation.py). Its integrands
 (`INTEGRANDS`): effort sum tau_active^2, the split's sums, the joint-level metabolic power
 (costs.joint_metabolic_rate; zero unless the objective is joint-metabolic), the held contacts' power (`ground`),
-the power the budget balances (`balance`: active joints, walls, tendons and contacts), a slide's
-friction power, each active joint's power (6), the walls', the tendons' and the contacts' power,
+the power the budget balances (`balance`: active joints, passive joint moments, tendons and contacts), a slide's
+friction power, each active joint's power (6), the passive joint moments' (`walls`), the tendons' and the contacts' power,
 and the actuation's own (actuation.OWN_INTEGRANDS: the muscles' activation cost, metabolic rate
 (W), volume-weighted squared tendon-force rates (the force-rate term), plain squared tendon-force
 rates (their regularisation) and squared reserves).
@@ -76,7 +76,7 @@ class NodeModel:
         active = self.actuation.active(z, u)
         self.actuation.rows(rows, theta, thetad, z, u)
         spring = self.actuation.passive(theta, theta_td, bool(self.phase.points))
-        walls = js.passive(theta)
+        walls = js.passive(theta)  # the joints' passive moments, tau_pass (mechanics.joint_space)
         ground_force = self.contact.node(rows, theta, thetad, a, f, slope, mu, m)
         rows.add((js.mass(theta) @ a + js.bias(theta, thetad) - js.gravity(theta) - walls
                   + ca.vertcat(0, 0, 0, active + spring) - ground_force) / m)
