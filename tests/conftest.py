@@ -8,6 +8,7 @@ import pytest
 from formopt.mechanics.body import paper_body
 from formopt.mechanics.compiled import compiler
 from formopt.mechanics.model import build_model
+from formopt.optim.stride import collocation
 
 
 @pytest.fixture(scope="session")
@@ -33,19 +34,27 @@ FAST_CC = '#!/bin/sh\nexec "${FORMOPT_TEST_CC:-cc}" "$@" -O0\n'
 
 
 @pytest.fixture(scope="session", autouse=True)
-def compile_cache(tmp_path_factory):
-    """One cache of compiled functions for the whole session (FORMOPT_CACHE), shared by the
-    pytest-xdist workers (each library is written by an atomic rename, compiled._compile), so
-    a graph compiles once per run and no test reads the user's own cache; CC compiles at -O0
-    (FAST_CC). Subprocesses (the CLI, examples, notebooks) inherit both."""
+def compile_cache(request, tmp_path_factory):
+    """One cache of compiled functions for the tests (FORMOPT_CACHE), kept between runs in
+    pytest's cache folder (.pytest_cache/d/formopt-cache; `pytest --cache-clear` empties it;
+    without the cache plugin, the session's temp folder) and shared by the pytest-xdist workers:
+    a library is keyed by its C source, compiler and flags and written by an atomic rename
+    (compiled._compile), so a graph compiles once, not once per run (test_speed_paths: 5 s of
+    cc), and no test reads the user's own cache. CC compiles at -O0 (FAST_CC) through a wrapper
+    at a fixed path in that folder (the compiler's path is part of the key). Subprocesses (the
+    CLI, examples, notebooks) inherit both."""
     mp = pytest.MonkeyPatch()
-    root = tmp_path_factory.getbasetemp()
-    if os.environ.get("PYTEST_XDIST_WORKER"):  # the workers' temp folders share one parent
-        root = root.parent
-    path = root / "formopt-cache"
+    cache = getattr(request.config, "cache", None)
+    if cache is not None:
+        root = cache.mkdir("formopt-cache")
+    else:
+        root = tmp_path_factory.getbasetemp()
+        if os.environ.get("PYTEST_XDIST_WORKER"):  # the workers' temp folders share one parent
+            root = root.parent
+    path = root / "libraries"
     path.mkdir(exist_ok=True)
     cc = root / "cc-O0"
-    if not cc.exists():
+    if not cc.exists() or cc.read_text() != FAST_CC:
         tmp = root / f"cc-O0.{os.getpid()}"
         tmp.write_text(FAST_CC)
         tmp.chmod(0o755)
@@ -54,6 +63,19 @@ def compile_cache(tmp_path_factory):
     mp.setenv("FORMOPT_TEST_CC", compiler())
     mp.setenv("CC", str(cc))
     yield path
+    mp.undo()
+
+
+@pytest.fixture(scope="session", autouse=True)
+def no_compile_by_chance():
+    """The stride NLP's "auto" compilation (collocation.COMPILE_FROM) never starts by chance in
+    the tests: collocation.build keeps NLPs per process, so one NLP's solves add up across the
+    tests of a worker in whatever order they run (test_search's imposed-cadence test made the
+    20th solve and compiled the node models: 5 s of cc). test_speed_paths tests the path with its
+    own COMPILE_FROM; the compiled solves are checked there against the interpreted ones."""
+    mp = pytest.MonkeyPatch()
+    mp.setattr(collocation, "COMPILE_FROM", 10**9)
+    yield
     mp.undo()
 
 
