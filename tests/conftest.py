@@ -130,18 +130,19 @@ if LoadFileScheduling is not None:
         return ByFile(config, log) if config.getvalue("dist") == "loadfile" else None
 
 
-# The slowest files (pytest -n 2 --durations=0, 2026-11-24, seconds of the file's tests): they are
-# handed out first. A stale list costs only balance, never a test.
-SLOW = ("studies/test_compare_stride.py",  # 17 (2026-11-25, a clean clone); about 3 more for the family walk (issue 34)
-        "test_notebooks.py",  # 22
-        "studies/test_stride_sweep.py",  # 21
-        "optim/stride/test_derivatives.py",  # 14
-        "optim/stride/test_collocation.py",  # 12
-        "test_examples.py",  # 14
-        "test_docs.py",  # 12
-        "optim/test_stride.py",  # 12
-        "test_bad_input.py",  # 10
-        "optim/test_stride_tendons.py",  # 8
-        "cli/test_compare_command.py",  # 7
-        "optim/test_posture.py",  # 6
-        "optim/test_gait.py")  # 6
+# The slowest files (CPU seconds of the file's tests, pytest -n 2 with a fresh compile cache,
+# 2026-11-26): they are handed out first. A stale list costs only balance, never a test.
+SLOW = ("test_examples.py",  # 25
+        "optim/stride/test_derivatives.py",  # 21
+        "studies/test_stride_sweep.py",  # 18
+        "test_notebooks.py",  # 17
+        "test_bad_input.py",  # 14
+        "studies/test_compare_stride.py",  # 12
+        "optim/stride/test_speed_paths.py",  # 12 (5 with the compile cache of an earlier run)
+        "cli/test_compare_command.py",  # 11
+        "test_docs.py",  # 11
+        "optim/test_stride.py",  # 11
+        "optim/test_posture.py",  # 10
+        "optim/stride/test_search.py",  # 10
+        "optim/stride/test_collocation.py",  # 9
+        "mechanics/test_joint_moments.py")  # 8
