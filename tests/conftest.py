@@ -2,6 +2,7 @@
 session (helpers.py holds the shared functions)."""
 
 import os
+import time
 
 import pytest
 
@@ -31,6 +32,20 @@ def shank_foot(body):
 # give the same IEEE results (the full-body landing: the same T_c_total to the last bit), and -O0
 # compiles the large step functions about six times faster (full-body landing: 17 s -> 2.7 s CPU).
 FAST_CC = '#!/bin/sh\nexec "${FORMOPT_TEST_CC:-cc}" "$@" -O0\n'
+
+
+KEEP_DAYS = 30  # a kept library built longer ago than this is built again (the cache's growth bounded)
+
+
+def pytest_configure(config):
+    """The kept compile cache's libraries older than KEEP_DAYS removed, once a run, by the main
+    process before any test (an xdist worker might be loading one)."""
+    cache = getattr(config, "cache", None)
+    if cache is None or hasattr(config, "workerinput"):
+        return
+    for library in (cache.mkdir("formopt-cache") / "libraries").glob("*.so"):
+        if time.time() - library.stat().st_mtime > KEEP_DAYS * 86400:
+            library.unlink(missing_ok=True)
 
 
 @pytest.fixture(scope="session", autouse=True)
