@@ -1,8 +1,9 @@
-"""Fixtures: the paper's body and its models, one compile cache and one Dask cluster per
-session (helpers.py holds the shared functions)."""
+"""Fixtures: the paper's body and its models, one compile cache kept between runs, one Dask
+cluster per session (helpers.py holds the shared functions)."""
 
 import os
 import time
+from pathlib import Path
 
 import pytest
 
@@ -37,13 +38,23 @@ FAST_CC = '#!/bin/sh\nexec "${FORMOPT_TEST_CC:-cc}" "$@" -O0\n'
 KEEP_DAYS = 30  # a kept library built longer ago than this is built again (the cache's growth bounded)
 
 
+def kept_cache(config) -> Path | None:
+    """The compile cache's folder in pytest's cache (.pytest_cache/d/formopt-cache), or None
+    without the cache plugin or where it cannot be written (a read-only checkout)."""
+    cache = getattr(config, "cache", None)
+    try:
+        return cache.mkdir("formopt-cache") if cache is not None else None
+    except OSError:
+        return None
+
+
 def pytest_configure(config):
     """The kept compile cache's libraries older than KEEP_DAYS removed, once a run, by the main
     process before any test (an xdist worker might be loading one)."""
-    cache = getattr(config, "cache", None)
-    if cache is None or hasattr(config, "workerinput"):
+    root = kept_cache(config)
+    if root is None or hasattr(config, "workerinput"):
         return
-    for library in (cache.mkdir("formopt-cache") / "libraries").glob("*.so"):
+    for library in (root / "libraries").glob("*.so"):
         if time.time() - library.stat().st_mtime > KEEP_DAYS * 86400:
             library.unlink(missing_ok=True)
 
@@ -52,17 +63,15 @@ def pytest_configure(config):
 def compile_cache(request, tmp_path_factory):
     """One cache of compiled functions for the tests (FORMOPT_CACHE), kept between runs in
     pytest's cache folder (.pytest_cache/d/formopt-cache; `pytest --cache-clear` empties it;
-    without the cache plugin, the session's temp folder) and shared by the pytest-xdist workers:
+    without it, the session's temp folder: kept_cache) and shared by the pytest-xdist workers:
     a library is keyed by its C source, compiler and flags and written by an atomic rename
     (compiled._compile), so a graph compiles once, not once per run (test_speed_paths: 5 s of
     cc), and no test reads the user's own cache. CC compiles at -O0 (FAST_CC) through a wrapper
     at a fixed path in that folder (the compiler's path is part of the key). Subprocesses (the
     CLI, examples, notebooks) inherit both."""
     mp = pytest.MonkeyPatch()
-    cache = getattr(request.config, "cache", None)
-    if cache is not None:
-        root = cache.mkdir("formopt-cache")
-    else:
+    root = kept_cache(request.config)
+    if root is None:
         root = tmp_path_factory.getbasetemp()
         if os.environ.get("PYTEST_XDIST_WORKER"):  # the workers' temp folders share one parent
             root = root.parent
