@@ -12,6 +12,8 @@ from formopt.mechanics.compiled import compiler
 from formopt.mechanics.model import build_model
 from formopt.optim.stride import collocation
 
+pytest_plugins = ("cpu_times",)  # pytest --cpu-times: each file's CPU seconds (cpu_times.py)
+
 
 @pytest.fixture(scope="session")
 def body():
