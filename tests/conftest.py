@@ -170,5 +170,4 @@ SLOW = ("test_examples.py",  # 25
         "optim/test_stride.py",  # 11
         "optim/test_posture.py",  # 10
         "optim/stride/test_search.py",  # 10
-        "optim/stride/test_collocation.py",  # 9
-        "mechanics/test_joint_moments.py")  # 8
+        "optim/stride/test_collocation.py")  # 9
