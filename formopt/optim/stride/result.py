@@ -215,7 +215,7 @@ def budget(nlp: StrideNLP, solved: Solved, impacts: float) -> dict:
         sums["positive"] += float(np.maximum(power, 0).sum(axis=0) @ w)
         sums["negative"] += float(np.maximum(-power, 0).sum(axis=0) @ w)
         sums["friction"] -= float(L[INTEGRANDS.index("contact")] @ w)
-        sums["passive"] -= float(L[INTEGRANDS.index("walls")] @ w)
+        sums["passive"] -= float(L[INTEGRANDS.index("passive")] @ w)
         sums["spring"] += float(L[INTEGRANDS.index("spring")] @ w)
     par = solved.parameters
     climb = nlp.mass * GRAVITY * step_length(par["speed"], half_period(nlp, solved.blocks)) * np.sin(par["slope"])
