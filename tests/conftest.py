@@ -1,13 +1,18 @@
-"""Fixtures: the paper's body and its models, one compile cache and one Dask cluster per
-session (helpers.py holds the shared functions)."""
+"""Fixtures: the paper's body and its models, one compile cache kept between runs, one Dask
+cluster per session (helpers.py holds the shared functions)."""
 
 import os
+import time
+from pathlib import Path
 
 import pytest
 
 from formopt.mechanics.body import paper_body
 from formopt.mechanics.compiled import compiler
 from formopt.mechanics.model import build_model
+from formopt.optim.stride import collocation
+
+pytest_plugins = ("cpu_times",)  # pytest --cpu-times: each file's CPU seconds (cpu_times.py)
 
 
 @pytest.fixture(scope="session")
@@ -32,20 +37,50 @@ def shank_foot(body):
 FAST_CC = '#!/bin/sh\nexec "${FORMOPT_TEST_CC:-cc}" "$@" -O0\n'
 
 
+KEEP_DAYS = 30  # a kept library built longer ago than this is built again (the cache's growth bounded)
+
+
+def kept_cache(config) -> Path | None:
+    """The compile cache's folder in pytest's cache (.pytest_cache/d/formopt-cache), or None
+    without the cache plugin or where it cannot be written (a read-only checkout)."""
+    cache = getattr(config, "cache", None)
+    try:
+        return cache.mkdir("formopt-cache") if cache is not None else None
+    except OSError:
+        return None
+
+
+def pytest_configure(config):
+    """The kept compile cache's libraries older than KEEP_DAYS removed, once a run, by the main
+    process before any test (an xdist worker might be loading one)."""
+    root = kept_cache(config)
+    if root is None or hasattr(config, "workerinput"):
+        return
+    for library in (root / "libraries").glob("*.so"):
+        if time.time() - library.stat().st_mtime > KEEP_DAYS * 86400:
+            library.unlink(missing_ok=True)
+
+
 @pytest.fixture(scope="session", autouse=True)
-def compile_cache(tmp_path_factory):
-    """One cache of compiled functions for the whole session (FORMOPT_CACHE), shared by the
-    pytest-xdist workers (each library is written by an atomic rename, compiled._compile), so
-    a graph compiles once per run and no test reads the user's own cache; CC compiles at -O0
-    (FAST_CC). Subprocesses (the CLI, examples, notebooks) inherit both."""
+def compile_cache(request, tmp_path_factory):
+    """One cache of compiled functions for the tests (FORMOPT_CACHE), kept between runs in
+    pytest's cache folder (.pytest_cache/d/formopt-cache; `pytest --cache-clear` empties it;
+    without it, the session's temp folder: kept_cache) and shared by the pytest-xdist workers:
+    a library is keyed by its C source, compiler and flags and written by an atomic rename
+    (compiled._compile), so a graph compiles once, not once per run (test_speed_paths: 5 s of
+    cc), and no test reads the user's own cache. CC compiles at -O0 (FAST_CC) through a wrapper
+    at a fixed path in that folder (the compiler's path is part of the key). Subprocesses (the
+    CLI, examples, notebooks) inherit both."""
     mp = pytest.MonkeyPatch()
-    root = tmp_path_factory.getbasetemp()
-    if os.environ.get("PYTEST_XDIST_WORKER"):  # the workers' temp folders share one parent
-        root = root.parent
-    path = root / "formopt-cache"
+    root = kept_cache(request.config)
+    if root is None:
+        root = tmp_path_factory.getbasetemp()
+        if os.environ.get("PYTEST_XDIST_WORKER"):  # the workers' temp folders share one parent
+            root = root.parent
+    path = root / "libraries"
     path.mkdir(exist_ok=True)
     cc = root / "cc-O0"
-    if not cc.exists():
+    if not cc.exists() or cc.read_text() != FAST_CC:
         tmp = root / f"cc-O0.{os.getpid()}"
         tmp.write_text(FAST_CC)
         tmp.chmod(0o755)
@@ -54,6 +89,19 @@ def compile_cache(tmp_path_factory):
     mp.setenv("FORMOPT_TEST_CC", compiler())
     mp.setenv("CC", str(cc))
     yield path
+    mp.undo()
+
+
+@pytest.fixture(scope="session", autouse=True)
+def no_compile_by_chance():
+    """The stride NLP's "auto" compilation (collocation.COMPILE_FROM) never starts by chance in
+    the tests: collocation.build keeps NLPs per process, so one NLP's solves add up across the
+    tests of a worker in whatever order they run (test_search's imposed-cadence test made the
+    20th solve and compiled the node models: 5 s of cc). test_speed_paths tests the path with its
+    own COMPILE_FROM; the compiled solves are checked there against the interpreted ones."""
+    mp = pytest.MonkeyPatch()
+    mp.setattr(collocation, "COMPILE_FROM", 10**9)
+    yield
     mp.undo()
 
 
@@ -108,18 +156,18 @@ if LoadFileScheduling is not None:
         return ByFile(config, log) if config.getvalue("dist") == "loadfile" else None
 
 
-# The slowest files (pytest -n 2 --durations=0, 2026-11-24, seconds of the file's tests): they are
-# handed out first. A stale list costs only balance, never a test.
-SLOW = ("studies/test_compare_stride.py",  # 17 (2026-11-25, a clean clone); about 3 more for the family walk (issue 34)
-        "test_notebooks.py",  # 22
-        "studies/test_stride_sweep.py",  # 21
-        "optim/stride/test_derivatives.py",  # 14
-        "optim/stride/test_collocation.py",  # 12
-        "test_examples.py",  # 14
-        "test_docs.py",  # 12
-        "optim/test_stride.py",  # 12
-        "test_bad_input.py",  # 10
-        "optim/test_stride_tendons.py",  # 8
-        "cli/test_compare_command.py",  # 7
-        "optim/test_posture.py",  # 6
-        "optim/test_gait.py")  # 6
+# The slowest files (CPU seconds of the file's tests, pytest -n 2 with a fresh compile cache,
+# 2026-11-26): they are handed out first. A stale list costs only balance, never a test.
+SLOW = ("test_examples.py",  # 25
+        "optim/stride/test_derivatives.py",  # 21
+        "studies/test_stride_sweep.py",  # 18
+        "test_notebooks.py",  # 17
+        "test_bad_input.py",  # 14
+        "studies/test_compare_stride.py",  # 12
+        "optim/stride/test_speed_paths.py",  # 12 (5 with the compile cache of an earlier run)
+        "cli/test_compare_command.py",  # 11
+        "test_docs.py",  # 11
+        "optim/test_stride.py",  # 11
+        "optim/test_posture.py",  # 10
+        "optim/stride/test_search.py",  # 10
+        "optim/stride/test_collocation.py")  # 9

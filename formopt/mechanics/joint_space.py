@@ -7,20 +7,26 @@ L its swing leg (swing_*). The natural coordinates q(theta) follow from the segm
 of mechanics.model (`landmarks`: the same conventions), so every body constraint holds
 identically and, with J = dq/dtheta and M the model's constant mass matrix (Lagrange),
 
-    M(theta) theta'' + J^T M (dJ/dt) theta' = J^T Q_g + tau_pass(theta, theta') - S tau + J_c^T f
+    M(theta) theta'' + J^T M (dJ/dt) theta' = J^T Q_g + tau_pass(theta) - S tau + J_c^T f
 
 M(theta) = J^T M J, Q_g = momentum_matrix^T [0, -g]; tau the six joint moments (N m, extensor
 (hip, knee) and plantarflexor (ankle) positive, the landing's convention: FLEXION in
 mechanics.landing), so the generalised force on a flexion angle is -tau; J_c the contact
 points' rows [t; n] of a ground of slope `slope` (rad); f the ground's force (N).
 
-Passive moments beyond the ranges of motion (`RANGES`): a smooth exponential wall,
-tau_pass = K [exp((phi_min - phi) / w) - exp((phi - phi_max) / w)] on each flexion angle phi
-(K = 1 N m, w = 5 deg: 0.14 N m inside the range 10 deg away from a limit, 2.7 N m at 5 deg
-beyond it, where `LIMIT_MARGIN`, the hard bound of a solve, stops it: a stiffer wall makes a
-light swing foot ring at a period near the collocation step). The form is the exponential limit of Riener & Edrich (1999, J Biomech 32:539) and
-of Anderson & Pandy (1999); the values are ours, chosen so the wall matters only beyond the
-range. The ranges are those of running (Novacheck 1998), with a margin.
+Passive joint moments tau_pass(theta) (`passive_moments`): the elastic moments of the relaxed
+leg that Riener & Edrich (1999, J Biomech 32:539) measured on ten healthy subjects, with the
+two-joint muscles' coupling (the knee's moment depends on the hip and the ankle, the hip's and
+the ankle's on the knee): double exponentials in degrees (their hip and knee flexion and ankle
+PLANTARflexion positive, moments positive in the direction of the positive angle), as published
+for an adult, not scaled with the body (Miller et al. 2012 used them so in a sprinting model).
+A smooth field, not a wall: 6.4 N m of plantarflexion at a neutral ankle with the knee straight,
+42 N m at 20 deg of dorsiflexion, 22 N m of knee flexion 5 deg into hyperextension. The coupling
+is not a potential's (d tau_hip / d knee != d tau_knee / d hip): a stride's passive work
+(result.py's `passive_J`) need not be zero. Elastic only, no damping: the forward check stays
+at 0.02-0.03 rad (docs/concepts/stride.md, "The joints' passive moments"). The ranges `RANGES`
+are those of running (Novacheck 1998); a solve bounds the angles at RANGES +- `LIMIT_MARGIN`
+(5 deg: at 15 deg the loaded ankle reaches 44 deg of dorsiflexion).
 """
 
 from __future__ import annotations
@@ -44,9 +50,26 @@ POINTS = {"heel_R": "heel", "forefoot_R": "forefoot", "heel_L": "swing_heel",
 RANGES = {"hip": (math.radians(-40.0), math.radians(110.0)),
           "knee": (math.radians(0.0), math.radians(140.0)),
           "ankle": (math.radians(-50.0), math.radians(30.0))}
-PASSIVE_K = 1.0  # N m
-PASSIVE_WIDTH = math.radians(5.0)  # rad
 LIMIT_MARGIN = math.radians(5.0)  # rad, how far beyond RANGES a solve may go
+
+
+def passive_moments(angles):
+    """One leg's passive moments (N m; on hip flexion, knee flexion, ankle dorsiflexion) at its
+    flexion angles (hip, knee, ankle dorsiflexion; rad), Riener & Edrich (1999) (module
+    docstring), with h, k the hip's and knee's flexion and p the ankle's plantarflexion (deg):
+
+        hip   = exp(1.4655 - 0.0034 k - 0.0750 h) - exp(1.3403 - 0.0226 k + 0.0305 h) + 8.072
+        knee  = exp(1.800 - 0.0460 p - 0.0352 k + 0.0217 h) - exp(-3.971 - 0.0004 p + 0.0495 k
+                - 0.0128 h) - 4.820 + exp(2.220 - 0.150 k)
+        ankle = -[exp(2.1016 - 0.0843 p - 0.0176 k) - exp(-7.9763 + 0.1949 p + 0.0008 k) - 1.792]
+
+    (the last a plantarflexion moment, negated onto dorsiflexion). Elastic only: no damping."""
+    h, k, p = (180.0 / math.pi * angles[0], 180.0 / math.pi * angles[1], -180.0 / math.pi * angles[2])
+    hip = ca.exp(1.4655 - 0.0034 * k - 0.0750 * h) - ca.exp(1.3403 - 0.0226 * k + 0.0305 * h) + 8.072
+    knee = (ca.exp(1.800 - 0.0460 * p - 0.0352 * k + 0.0217 * h)
+            - ca.exp(-3.971 - 0.0004 * p + 0.0495 * k - 0.0128 * h) - 4.820 + ca.exp(2.220 - 0.150 * k))
+    plantar = ca.exp(2.1016 - 0.0843 * p - 0.0176 * k) - ca.exp(-7.9763 + 0.1949 * p + 0.0008 * k) - 1.792
+    return hip, knee, -plantar
 
 
 def swap_legs(theta):
@@ -60,7 +83,7 @@ class JointSpace:
 
     Functions (theta (9), theta' (9), slope (rad) where needed):
     q(theta) (n natural coordinates), J(theta) (n x 9), mass(theta) (9 x 9), bias(theta, theta')
-    (J^T M dJ/dt theta'), gravity(theta) (J^T Q_g), passive(theta, theta') (generalised passive
+    (J^T M dJ/dt theta'), gravity(theta) (J^T Q_g), passive(theta) (generalised passive
     moments, 9), kinetic(theta, theta'), potential(theta) (J, zero at z = 0),
     point(theta, theta', slope) per foot point -> (position (2), [t, n] velocity (2), [t; n]
     Jacobian (2 x 9), [t; n] of dJ/dt theta' (2)), com(theta) (2, m).
@@ -87,7 +110,8 @@ class JointSpace:
         self.kinetic = ca.Function("kinetic", [th, thd], [0.5 * ca.dot(qd, M @ qd)])
         self.potential = ca.Function("potential", [th], [GRAVITY * self.mass_total * com[1]])
         self.com = ca.Function("com", [th], [com])
-        self.passive = ca.Function("passive", [th], [self._passive(th)])
+        self.passive = ca.Function("passive", [th], [ca.vertcat(0, 0, 0, *[
+            m for k in (3, 6) for m in passive_moments(th[k:k + 3])])], ["theta"], ["tau"])
         slope = ca.SX.sym("slope")
         t, n = ca.vertcat(ca.cos(slope), ca.sin(slope)), ca.vertcat(-ca.sin(slope), ca.cos(slope))
         axes = ca.horzcat(t, n).T
@@ -109,16 +133,6 @@ class JointSpace:
         swing = Swing(s["hip_L"], s["knee_L"], s["ankle_L"], 0, 0, 0)
         hip = ca.vertcat(s["x_hip"], s["z_hip"])
         return {k: p + hip for k, (p, _) in landmarks(x, self.model.body, "hip", swing).items()}
-
-    @staticmethod
-    def _passive(theta):
-        """Generalised passive moments (N m, 9) of the exponential walls beyond RANGES."""
-        out = [0, 0, 0]
-        for k, name in enumerate(JOINTS):
-            lo, hi = RANGES[name[:-2]]
-            phi = theta[3 + k]
-            out.append(PASSIVE_K * (ca.exp((lo - phi) / PASSIVE_WIDTH) - ca.exp((phi - hi) / PASSIVE_WIDTH)))
-        return ca.vertcat(*out)
 
     def segment_rates(self, theta, thetad) -> tuple[np.ndarray, Swing]:
         """model.STATE of a numeric joint state (stance leg = R), for the natural model's own

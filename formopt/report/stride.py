@@ -83,7 +83,7 @@ def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
 
 
 SINKS = {"negative_work_J": "negative work", "impacts_J": "impacts (T_c)",
-         "spring_J": "tendons let go at toe-off", "friction_J": "friction", "passive_J": "passive limits",
+         "spring_J": "tendons let go at toe-off", "friction_J": "friction", "passive_J": "passive joint moments",
          "climb_J": "climb"}  # where the positive work goes: every term the budget balances
 
 

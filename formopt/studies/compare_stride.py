@@ -52,15 +52,16 @@ WHAT_IF_PCT = (-10.0, -5.0, 5.0, 10.0)  # cadence changes asked (% of the runner
 # minimises is not known: effort and metabolic (the `work` objective, W+ alone, converged at no
 # imposed cadence within 500 iterations on RBDS001 at 3.58 m/s, 24 nodes, and cost 3 solves per
 # failure: metabolic, which weighs W+ and W-, stands for the work objectives); the body: the
-# stride's dynamics are homogeneous in mass (segment masses and inertias, the joint moments'
-# bound and springs per kg, the friction cone), so a runner's total mass scales the power and
-# leaves the stride, and needs no solve (RBDS001's body, 3.5 m/s, heel, 18 nodes: +5 % of mass
-# gave +4.98 % of power and the cadence to 3e-7; test_compare_stride); what moves the stride is
-# how the mass is shared: de Leva's segment masses are a population's regression, an
-# individual's differ from it by about 5 %: the legs' segments +-5 %, the trunk carrying the
-# rest (mechanics.body.scaled_body's `legs`; there -2.9 / +3.0 % of power, +1.2 / -1.3 % of
-# cadence). Until 2026-11-27 the band scaled
-# the total mass, which measured the scale and the solves' local optima, not the body.
+# stride's dynamics are nearly homogeneous in mass (segment masses and inertias, the joint
+# moments' bound and springs per kg, the friction cone; only Riener & Edrich's passive joint
+# moments are an adult's, not scaled), so a runner's total mass scales the power and barely
+# moves the stride (RBDS001's body, 3.5 m/s, heel, 18 nodes: +5 % of mass gave +5.7 % of power
+# and -0.16 % of cadence; test_compare_stride), and a runner's mass is known to 1-2 %; what
+# moves the stride is how the mass is shared: de Leva's segment masses are a population's
+# regression, an individual's differ from it by about 5 %: the legs' segments +-5 %, the trunk
+# carrying the rest (mechanics.body.scaled_body's `legs`; there -2.4 / +2.3 % of power,
+# +0.8 / -0.8 % of cadence). Until 2026-11-27 the band scaled the total mass, which measured
+# the scale and the solves' local optima more than the body.
 FRICTION_BAND = (0.6, 1.0)
 OBJECTIVE_BAND = ("metabolic",)
 LEG_MASS_BAND = (0.95, 1.05)

@@ -10,7 +10,7 @@ from helpers import SEED
 
 from formopt.mechanics.body import paper_body, scaled_body
 from formopt.mechanics.impact import projection
-from formopt.mechanics.joint_space import JOINTS, POINTS, JointSpace, swap_legs
+from formopt.mechanics.joint_space import JOINTS, POINTS, JointSpace, passive_moments, swap_legs
 from formopt.mechanics.landing import Joints, LandingModel
 from formopt.mechanics.model import build_model
 from formopt.optim.stride.checks import joint_impact
@@ -72,8 +72,7 @@ def test_dynamics_match_the_landing_with_torque_joints(js, active):
         out = lm.motion(active).call({"q": q, "qd": qd, "s_anchor": anchor,
                                    "joint": lm.joint_parameters(q), "friction": 0.0, "t": 0.5})
         rows = tuple((f"{p}_R", a) for p in active for a in "tn")
-        assert np.max(np.abs(np.asarray(js.passive(theta), float))) < 1.0  # walls far away
-        # the landing has no range-of-motion walls: solve without them
+        # the landing has no passive joint moments: solve without them
         M = np.asarray(js.mass(theta), float)
         Jc = np.vstack([np.asarray(js.points[p](theta, thetad, 0.0)[2], float)[0 if a == "t" else 1]
                         for p, a in rows]) if rows else np.zeros((0, 9))
@@ -129,12 +128,12 @@ def test_energy_and_swap(js):
 
 
 def test_derivatives_match_finite_differences(js):
-    """The Jacobians CasADi takes of the mass matrix times a vector and of the bias term
-    against central finite differences."""
+    """The Jacobians CasADi takes of the mass matrix times a vector, the bias term and the
+    passive joint moments against central finite differences."""
     theta, thetad = (v[0] for v in running_states(1, SEED + 3))
     a = np.random.default_rng(SEED).normal(size=9)
     th, thd = ca.SX.sym("th", 9), ca.SX.sym("thd", 9)
-    f = ca.Function("f", [th, thd], [js.mass(th) @ a + js.bias(th, thd) - js.gravity(th)])
+    f = ca.Function("f", [th, thd], [js.mass(th) @ a + js.bias(th, thd) - js.gravity(th) - js.passive(th)])
     jacobian = ca.Function("jacobian", [th, thd], [ca.jacobian(f(th, thd), ca.vertcat(th, thd))])
     analytic = np.asarray(jacobian(theta, thetad), float)
     eps = 1e-6
@@ -143,3 +142,28 @@ def test_derivatives_match_finite_differences(js):
         (np.asarray(f(*np.split(x0 + eps * e, 2)), float) - np.asarray(f(*np.split(x0 - eps * e, 2)), float)).ravel()
         / (2 * eps) for e in np.eye(18)])
     assert np.allclose(analytic, numeric, rtol=1e-6, atol=1e-5)
+
+
+@pytest.mark.parametrize(("angles_deg", "published"), [
+    ((0, 60, 0), (10.618, -4.454, -1.053)),  # knee -4.454 = e^(1.8-2.112) - e^(-3.971+2.97) - 4.82 + e^(2.22-9)
+    ((0, 0, 20), (8.582, 19.549, -42.358)),  # ankle: -(e^(2.1016+1.686) - e^(-7.9763-3.898) - 1.792)
+    ((-20, 10, 0), (25.172, -0.049, -5.067)),  # hip: e^(1.4655-0.034+1.5) - e^(1.3403-0.226-0.61) + 8.072
+    ((0, -5, 0), (8.199, 21.871, -7.139)),  # knee 5 deg into hyperextension: e^(2.22+0.75) and the rest
+])
+def test_passive_moments_are_riener_and_edrichs(angles_deg, published):
+    """passive_moments against Riener & Edrich (1999)'s equations evaluated by hand (N m; hip
+    flexion, knee flexion, ankle dorsiflexion moments; their ankle angle and moment are
+    plantarflexion-positive, so both change sign)."""
+    moments = passive_moments(np.array(angles_deg) * DEG)
+    assert [float(m) for m in moments] == pytest.approx(published, abs=2e-3)
+
+
+def test_passive_moments_resist_the_ends_of_the_ranges():
+    """Each joint's own moment falls as its angle rises (a stiffness, no negative spring) over
+    the running ranges +- 15 deg, the other joints anywhere in theirs."""
+    rng = np.random.default_rng(SEED)
+    angle = ca.SX.sym("angle", 3)
+    stiffness = ca.Function("k", [angle], [ca.diag(ca.jacobian(ca.vertcat(*passive_moments(angle)), angle))])
+    lo, hi = np.array([-55, -15, -65]) * DEG, np.array([125, 155, 45]) * DEG
+    for angles in rng.uniform(lo, hi, (200, 3)):
+        assert np.all(np.asarray(stiffness(angles), float) < 0)

@@ -85,12 +85,15 @@ def test_forward_simulation_reproduces_each_phase(solved):
 
 def test_warm_start_from_a_neighbouring_speed_returns(solved):
     """Continuation in speed: solved at 3.3 m/s from the 3.5 m/s optimum, then back at 3.5
-    m/s from that, the optimum is the same (objective to 1e-4, cadence to 0.5 steps/min)."""
+    m/s from that, an optimum at least as good (objective to 1e-4), in fewer iterations. Not
+    always the same one: with Riener & Edrich's passive moments the forefoot strike at 24 nodes
+    comes back 1.8 % cheaper (0.9288 against the generic guess's 0.9462, 2026-11-27): the
+    landscape has several optima, which the global search (optim.stride.search) is for."""
     nlp, stride = solved
     near = nlp.solve(stride.solved.blocks, SPEED - 0.2)
     back = nlp.solve(near.blocks, SPEED)
     assert near.success and back.success
-    assert back.objective == pytest.approx(stride.objective_value, rel=1e-4)
+    assert back.objective <= stride.objective_value * (1 + 1e-4)
     assert back.iterations < stride.iterations
 
 

@@ -5,15 +5,15 @@ the touchdown with the periodicity, and the cost terms.
 Node model (per phase, at every node; x = (theta, theta'), a = theta'', u the actuation's
 controls, f the contact forces, theta_td the touchdown state, p = (speed, slope, mu)):
 
-    M(theta) a + c(theta, theta') - g(theta) - tau_walls(theta) + [0; tau(z, u)] - J_c^T m g f = 0
+    M(theta) a + c(theta, theta') - g(theta) - tau_pass(theta) + [0; tau(z, u)] - J_c^T m g f = 0
 
 with the contact model's rows (contact.RigidContact) and, for the work objectives, the power
 split P_j = P_j+ - P_j- (W/kg, P+- >= 0; problem.py says why), and the actuation's own rows
 (the muscles' activation dynamics and Hill equilibrium; actuation.py). Its integrands
 (`INTEGRANDS`): effort sum tau_active^2, the split's sums, the joint-level metabolic power
 (costs.joint_metabolic_rate; zero unless the objective is joint-metabolic), the held contacts' power (`ground`),
-the power the budget balances (`balance`: active joints, walls, tendons and contacts), a slide's
-friction power, each active joint's power (6), the walls', the tendons' and the contacts' power,
+the power the budget balances (`balance`: active joints, passive joint moments, tendons and contacts), a slide's
+friction power, each active joint's power (6), the passive joint moments' (`passive`), the tendons' and the contacts' power,
 and the actuation's own (actuation.OWN_INTEGRANDS: the muscles' activation cost, metabolic rate
 (W), volume-weighted squared tendon-force rates (the force-rate term), plain squared tendon-force
 rates (their regularisation) and squared reserves).
@@ -42,7 +42,7 @@ from .problem import Phase, StrideSettings, other_leg
 
 NX, NU = len(THETA), len(JOINTS)
 INTEGRANDS = ("effort", "positive", "negative", "joint_metabolic", "ground", "balance", "slide", *[f"power_{j}" for j in JOINTS],
-              "walls", "spring", "contact", *OWN_INTEGRANDS)
+              "passive", "spring", "contact", *OWN_INTEGRANDS)
 
 
 def shift(step, slope):
@@ -76,18 +76,18 @@ class NodeModel:
         active = self.actuation.active(z, u)
         self.actuation.rows(rows, theta, thetad, z, u)
         spring = self.actuation.passive(theta, theta_td, bool(self.phase.points))
-        walls = js.passive(theta)
+        passive = js.passive(theta)  # the joints' passive moments, tau_pass (mechanics.joint_space)
         ground_force = self.contact.node(rows, theta, thetad, a, f, slope, mu, m)
-        rows.add((js.mass(theta) @ a + js.bias(theta, thetad) - js.gravity(theta) - walls
+        rows.add((js.mass(theta) @ a + js.bias(theta, thetad) - js.gravity(theta) - passive
                   + ca.vertcat(0, 0, 0, active + spring) - ground_force) / m)
         power = -active * thetad[3:]  # W, extensor moment times extension rate
         contact, held, slide = self.contact.power(theta, thetad, f, slope, m)
         out = {"effort": ca.sumsqr(active), "positive": 0.0, "negative": 0.0, "ground": held,
                "joint_metabolic": costs.joint_metabolic_rate(active, thetad[3:], m) if self.joint_metabolic else 0.0,
-               "slide": -slide, "walls": ca.dot(walls, thetad), "spring": ca.dot(spring, thetad[3:]),
+               "slide": -slide, "passive": ca.dot(passive, thetad), "spring": ca.dot(spring, thetad[3:]),
                "contact": contact, **{f"power_{j}": power[k] for k, j in enumerate(JOINTS)},
                **self.actuation.integrands(theta, thetad, z, u)}
-        out["balance"] = ca.sum1(power) + out["walls"] - out["spring"] + contact
+        out["balance"] = ca.sum1(power) + out["passive"] - out["spring"] + contact
         if self.split:
             rows.add(power / m - (s[:NU] - s[NU:]))
             out["positive"], out["negative"] = m * ca.sum1(s[:NU]), m * ca.sum1(s[NU:])

@@ -6,7 +6,7 @@ Energy budget over the half stride (J), every integral by the trapezoidal rule o
     W+ = int sum max(P_j, 0) dt,  W- = int sum max(-P_j, 0) dt,  P_j = -tau_j phi_j' (W)
     impacts = sum of T_c (the flat-foot impact, if any, and the touchdown)
     friction = -int f . v_c dt (the work the held contacts take: zero if they do not move)
-    passive = -int tau_pass . theta' dt (the work the range-of-motion walls take)
+    passive = -int tau_pass . theta' dt (the work the joints' passive moments take)
     spring = int tau_spring . phi' dt (what the tendons still hold at toe-off, lost when they
              let go; problem.TENDON_JOINTS; W+- count the active moments only)
     balance = W+ - W- - impacts - friction - passive - spring - m g d sin(slope)
@@ -215,7 +215,7 @@ def budget(nlp: StrideNLP, solved: Solved, impacts: float) -> dict:
         sums["positive"] += float(np.maximum(power, 0).sum(axis=0) @ w)
         sums["negative"] += float(np.maximum(-power, 0).sum(axis=0) @ w)
         sums["friction"] -= float(L[INTEGRANDS.index("contact")] @ w)
-        sums["passive"] -= float(L[INTEGRANDS.index("walls")] @ w)
+        sums["passive"] -= float(L[INTEGRANDS.index("passive")] @ w)
         sums["spring"] += float(L[INTEGRANDS.index("spring")] @ w)
     par = solved.parameters
     climb = nlp.mass * GRAVITY * step_length(par["speed"], half_period(nlp, solved.blocks)) * np.sin(par["slope"])
