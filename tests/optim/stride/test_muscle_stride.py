@@ -1,8 +1,8 @@
 """A solved muscle-driven stride (the paper's body, heel strike, 18 nodes, 3.5 m/s, the default
 settings: the reserves' weight reached by local.muscle_start's continuation) and its forward
 check (checks.forward), which replays the excitations through the muscles: within its tolerance
-for the optimum, beyond it when the stance leg is driven at half its excitations. The cheapest
-muscle stride there is (18 nodes is the heel strike's least mesh): about 25 s of CPU."""
+for the optimum, beyond it when the stance leg's muscles are switched off. The cheapest muscle
+stride there is (18 nodes is the heel strike's least mesh): about 21 s of CPU."""
 
 import numpy as np
 import pytest
@@ -34,15 +34,16 @@ def test_the_muscles_make_the_stride_without_their_reserves(muscle_stride):
     assert len(stride.checks["forward_moments_reset_per_phase"]) == len(stride.phases)
 
 
-def test_half_the_stance_legs_excitations_do_not_make_the_stride(muscle_stride):
-    """The stance leg's (R) excitations halved at every node: the replay leaves the path by more
-    than the tolerance (0.25 rad here; 0.8 of them stay within it: the muscles' force-length-
-    velocity pulls the motion back), while the unchanged moments' replay cannot see it."""
+def test_the_stance_leg_switched_off_does_not_make_the_stride(muscle_stride):
+    """The stance leg's (R) excitations zero at every node: the replay leaves the path by more
+    than the tolerance (0.19 rad here, against 0.044 for the optimum; each phase starts from the
+    NLP's activations, which decay over tens of milliseconds, so halved excitations reach only
+    0.12 rad), while the unchanged moments' replay cannot see it."""
     nlp, stride = muscle_stride
     n = nlp.ocp.models[0].actuation.n
     blocks = {k: v.copy() for k, v in stride.solved.blocks.items()}
     for phase in nlp.phases:
-        blocks[f"U_{phase.name}"][:n] *= 0.5
+        blocks[f"U_{phase.name}"][:n] = 0.0
     perturbed = forward(nlp, blocks, stride.solved.parameters)
     assert perturbed["reset_theta"] > TOLERANCES["forward_theta"]
     assert perturbed["moments_reset_theta"] == pytest.approx(stride.checks["forward_moments_reset_theta"])
