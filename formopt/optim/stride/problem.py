@@ -112,8 +112,11 @@ SMOOTHING = 1e-6
 # activation weight this replaces, 0 / 1 / 10, moved it to 226 / 221 / 218). Calibrated once on
 # RBDS001 at 3.5 m/s, 24 nodes (python problems/muscle_calibration.py --weights 16 32 64 80
 # --steps 0: 188.1 / 185.2 / 174.6 / 174.3 steps/min; 160 gives 173.5, the reserves 0.54 N m/kg)
-# and frozen; 2.5 and 4.5 m/s and a 75 kg body held out give 145.4 / 181.5 and 173.4 steps/min
-# (docs/concepts/muscles.md, "In the stride").
+# and frozen; 2.5 and 4.5 m/s and a 75 kg body held out gave 145.4 / 181.5 and 173.4 steps/min
+# (reserve weight 100, the joints' soft walls). With the reserves at 10000 and Riener & Edrich's
+# passive moments: 166.0 / 202.1 / 218.7 at 2.5 / 3.5 / 4.5 m/s, 6-20 % above the runner's, the
+# 75 kg body 200.5: the calibration predates the passive moments (problems/stride_ladder.py
+# --nodes 24 --rungs muscles, 2026-11-27; docs/concepts/muscles.md, "In the stride").
 FORCE_RATE_WEIGHT = 80.0
 # The muscles' reserve moments' weight (m/s per (N m/kg)^2; costs' `reserves` term): at 100,
 # 1 N m/kg held over a step costs about 30, four to twelve times a stride's whole objective
@@ -123,9 +126,9 @@ FORCE_RATE_WEIGHT = 80.0
 # RBDS001, 3.5 m/s, 24 nodes, problems/muscle_calibration.py --weights 16 --steps 0
 # --reserve-weight 10). At 100 they still buy the fast moment changes at the contact's events
 # (0.18-0.58 N m/kg in bursts at 2.5-4.5 m/s, beyond the 0.1 tolerance: invalid strides); at
-# 10000 the muscles make those moments (reserves 0.01-0.05 N m/kg, RBDS001, 24 nodes), but only
-# when the solve is continued from the optimum at 100: a cold solve at 10000 ends in a costlier
-# optimum (192.9 steps/min at 3.5 m/s, objective 6.03 against 5.80 from 100;
+# 10000 the muscles make those moments (reserves 0.01-0.07 N m/kg, RBDS001, 24 nodes, valid), but
+# only when the solve is continued from the optimum at 100: a cold solve at 10000 ended in a
+# costlier optimum (192.9 steps/min at 3.5 m/s, objective 6.03 against 5.80 from 100, soft walls;
 # docs/concepts/muscles.md, "Where the reserves act"). So the muscles' start
 # (local.muscle_start) solves at each weight of RESERVE_CONTINUATION below the setting's, in turn,
 # before the setting's own.
