@@ -158,7 +158,8 @@ if LoadFileScheduling is not None:
 
 # The slowest files (CPU seconds of the file's tests, pytest -n 2 with a fresh compile cache,
 # 2026-11-26): they are handed out first. A stale list costs only balance, never a test.
-SLOW = ("test_examples.py",  # 25
+SLOW = ("optim/stride/test_muscle_stride.py",  # 28 (2026-11-27, pytest --cpu-times, alone)
+        "test_examples.py",  # 25
         "optim/stride/test_derivatives.py",  # 21
         "studies/test_stride_sweep.py",  # 18
         "test_notebooks.py",  # 17
