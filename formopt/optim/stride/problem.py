@@ -155,19 +155,22 @@ RUNNER_TENDONS = {"knee": 2.5, "ankle": 4.0}
 
 
 # How far a stride's optimum moved with its mesh, N to 2N intervals (docs/concepts/stride.md,
-# "One answer"; python problems/stride_search.py on RBDS001's body, heel, torque+springs, effort,
-# 2.5-4.5 m/s; the trapezoid 2026-11-25, Hermite-Simpson 2026-11-26, without its release's force
-# row): every stride says it beside its numbers (`mesh_note`). Hermite-Simpson from MESH_FINE
-# intervals on: on RBDS001's body 40 -> 80 moved under issue 34's 1 % (free cadence, each mesh
-# warm from the one before: python problems/stride_mesh.py --cadence 0 --speed 3.5, and 4.5), but
-# the shipped `stride` scene (the paper's body, 3.5 m/s, heel, 4 cold starts per mesh: formopt
-# stride with nodes 40 and 80, transcription "hermite-simpson", 2026-11-26) moved 129.8 -> 127.1
-# steps/min and 0.1542 -> 0.1462, its forefoot phase reaching its 0.25 s bound at 80.
-MESH_SHIFT = {"trapezoid": "12-21 % in cadence and 21-38 % in cost from 40 to 80 nodes",
+# "One answer"): every stride says it beside its numbers (`mesh_note`). Measured with Riener &
+# Edrich's passive moments on RBDS001's body, heel, torque+springs, effort, free cadence, each
+# mesh warm from the one before (python problems/stride_mesh.py --cadence 0 --speed 2.5 / 3.5 /
+# 4.5 --meshes trapezoid:40 trapezoid:80 hermite-simpson:40 hermite-simpson:80, 2026-11-27):
+# the trapezoid 156.0 -> 153.1, 169.5 -> 167.0 and 180.3 -> 178.3 steps/min, its cost 4.4, 16.2
+# and 13.9 % lower; Hermite-Simpson (without its release's force row) 124.8 -> 124.8 (an invalid,
+# grazing touchdown), 155.8 -> 155.4 and 163.3 -> 162.8, its cost 4.0, 0.01 and 0.17 % lower,
+# and 20 -> 40 intervals at 3.5 m/s 158.1 -> 155.8 (cost -1.9 %). Hermite-Simpson converges but
+# its torque sources end the stance pushing 1.3 body weights, and its global optimum at 3.5 m/s
+# (problems/stride_search.py --transcription hermite-simpson) is 139.2 steps/min with the forefoot
+# phase on its 0.25 s ceiling: a converged answer held by a bound, so the scenes stay trapezoid.
+MESH_SHIFT = {"trapezoid": "1-2 % in cadence but 4-16 % in cost from 40 to 80 nodes",
               "hermite-simpson": "under 2 % in cadence and 1-6 % in cost from 20 to 40 intervals"}
-MESH_FINE = {"hermite-simpson": (40, "0.2 % in cost and under 0.1 % in cadence from 40 to 80 intervals on "
-                                     "RBDS001's body at 3.5 and 4.5 m/s, but 5 % and 2 % on the paper's body at "
-                                     "3.5 m/s (its forefoot phase reaching its duration bound)")}
+MESH_FINE = {"hermite-simpson": (40, "under 0.3 % in cadence and 0.2 % in cost from 40 to 80 intervals on "
+                                     "RBDS001's body at 3.5 and 4.5 m/s, but its torque sources end the stance "
+                                     "pushing 1.3 body weights and hold the forefoot phase on its duration bound")}
 
 
 def other_leg(point: str) -> str:
@@ -299,7 +302,7 @@ def mesh_note(settings: StrideSettings) -> str:
     if least is not None and settings.nodes >= least:
         return (f"{settings.transcription} at {settings.nodes} intervals: the effort optimum moved {shift} "
                 "(docs/concepts/stride.md, 'One answer')")
-    finer = "; ".join(f"{t} from {n} intervals moves less" for t, (n, _) in MESH_FINE.items())
+    finer = "; ".join(f"{t} moves less from {n} intervals, with limits of its own" for t, (n, _) in MESH_FINE.items())
     return (f"{settings.transcription} at {settings.nodes} intervals is not mesh-converged: on RBDS001's body "
             f"the effort optimum moved {MESH_SHIFT[settings.transcription]} ({finer}: "
             "docs/concepts/stride.md, 'One answer')")
