@@ -31,7 +31,8 @@ from formopt.optim.stride.problem import StrideSettings
 
 def passive_energy(nlp, stride) -> list[tuple[str, float, float, float]]:
     """Per joint: (name, J given, J taken, largest |tau| N m) of the passive moments over the stride."""
-    tau = np.array([np.asarray(nlp.js.passive(ca.DM(theta)), float).ravel() for theta in stride.theta])[:, 3:]
+    passive = nlp.ocp.models[0].actuation.joint_passive
+    tau = np.array([np.asarray(passive(nlp.js, ca.DM(theta)), float).ravel() for theta in stride.theta])[:, 3:]
     power = tau * stride.thetad[:, 3:]  # W: the passive moments' power on the body
     given = np.trapezoid(np.maximum(power, 0.0), stride.t, axis=0)
     taken = np.trapezoid(np.maximum(-power, 0.0), stride.t, axis=0)

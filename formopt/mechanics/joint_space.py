@@ -51,6 +51,16 @@ RANGES = {"hip": (math.radians(-40.0), math.radians(110.0)),
           "knee": (math.radians(0.0), math.radians(140.0)),
           "ankle": (math.radians(-50.0), math.radians(30.0))}
 LIMIT_MARGIN = math.radians(5.0)  # rad, how far beyond RANGES a solve may go
+# The range walls (`limits`): the joint capsule's and ligaments' moments beyond RANGES, without
+# the muscles' passive force, for a body whose muscles hold their own (the stride's muscle rung:
+# Riener & Edrich's relaxed-leg moments include the muscles' passive elasticity, which the Hill
+# units' parallel elements model already). A smooth exponential wall on each flexion angle phi,
+# K [exp((phi_min - phi) / w) - exp((phi - phi_max) / w)], K = 1 N m, w = 5 deg: 0.14 N m inside
+# the range 10 deg away from a limit, 2.7 N m at 5 deg beyond it (the exponential limit of
+# Riener & Edrich 1999 and Anderson & Pandy 1999; the values chosen so the wall matters only
+# beyond the range; the stride's passive moments before 2026-11-27).
+WALL_K = 1.0  # N m
+WALL_WIDTH = math.radians(5.0)  # rad
 
 
 def passive_moments(angles):
@@ -70,6 +80,12 @@ def passive_moments(angles):
             - ca.exp(-3.971 - 0.0004 * p + 0.0495 * k - 0.0128 * h) - 4.820 + ca.exp(2.220 - 0.150 * k))
     plantar = ca.exp(2.1016 - 0.0843 * p - 0.0176 * k) - ca.exp(-7.9763 + 0.1949 * p + 0.0008 * k) - 1.792
     return hip, knee, -plantar
+
+
+def range_wall(phi, low: float, high: float):
+    """The range wall's moment (N m) on a flexion angle phi (rad) with the range (low, high):
+    WALL_K [exp((low - phi) / WALL_WIDTH) - exp((phi - high) / WALL_WIDTH)]."""
+    return WALL_K * (ca.exp((low - phi) / WALL_WIDTH) - ca.exp((phi - high) / WALL_WIDTH))
 
 
 def swap_legs(theta):
@@ -112,6 +128,8 @@ class JointSpace:
         self.com = ca.Function("com", [th], [com])
         self.passive = ca.Function("passive", [th], [ca.vertcat(0, 0, 0, *[
             m for k in (3, 6) for m in passive_moments(th[k:k + 3])])], ["theta"], ["tau"])
+        self.limits = ca.Function("limits", [th], [ca.vertcat(0, 0, 0, *[
+            range_wall(th[3 + k], *RANGES[j[:-2]]) for k, j in enumerate(JOINTS)])], ["theta"], ["tau"])
         slope = ca.SX.sym("slope")
         t, n = ca.vertcat(ca.cos(slope), ca.sin(slope)), ca.vertcat(-ca.sin(slope), ca.cos(slope))
         axes = ca.horzcat(t, n).T

@@ -10,7 +10,7 @@ from helpers import SEED
 
 from formopt.mechanics.body import paper_body, scaled_body
 from formopt.mechanics.impact import projection
-from formopt.mechanics.joint_space import JOINTS, POINTS, JointSpace, passive_moments, swap_legs
+from formopt.mechanics.joint_space import JOINTS, POINTS, WALL_K, JointSpace, passive_moments, swap_legs
 from formopt.mechanics.landing import Joints, LandingModel
 from formopt.mechanics.model import build_model
 from formopt.optim.stride.checks import joint_impact
@@ -167,3 +167,15 @@ def test_passive_moments_resist_the_ends_of_the_ranges():
     lo, hi = np.array([-55, -15, -65]) * DEG, np.array([125, 155, 45]) * DEG
     for angles in rng.uniform(lo, hi, (200, 3)):
         assert np.all(np.asarray(stiffness(angles), float) < 0)
+
+
+def test_the_range_walls_act_beyond_the_ranges_only(js):
+    """js.limits, the muscle rung's joint moments (the muscles hold their own passive force):
+    2.7 N m at 5 deg beyond a limit (e^1 K), 0.14 N m 10 deg inside (e^-2 K), against the limit."""
+    theta = np.zeros(9)
+    theta[3:] = np.array([0, 40, 0, 0, 40, 0]) * DEG  # mid-range: every wall nearly silent
+    assert np.abs(np.asarray(js.limits(theta), float)).max() < 5e-3  # the ankle 30 deg from its limit: e^-6 K
+    theta[4] = -5 * DEG  # the stance knee 5 deg into hyperextension: the wall flexes it
+    theta[5] = 20 * DEG  # the stance ankle 10 deg short of its 30 deg of dorsiflexion
+    tau = np.asarray(js.limits(theta), float).ravel()
+    assert tau[4] == pytest.approx(WALL_K * np.e, rel=1e-3) and tau[5] == pytest.approx(-WALL_K * np.exp(-2.0), rel=1e-3)

@@ -85,6 +85,11 @@ class Torques:
         """The passive elements' joint moments (N m, 6): none."""
         return ca.DM.zeros(NU)
 
+    def joint_passive(self, js, theta):
+        """The joints' generalised passive moments (N m, 9) this body feels: Riener & Edrich's
+        (mechanics.joint_space.passive_moments)."""
+        return js.passive(theta)
+
 
 class TorquesWithSprings(Torques):
     """Torque sources with a spring in parallel at the stance leg's joints (tendons):
@@ -200,6 +205,15 @@ class MuscleDriven(Torques):
     @cached_property
     def _tendon_rate(self) -> ca.Function:
         return hill.tendon_force_rate(self.muscles)
+
+    def joint_passive(self, js, theta):
+        """The joints' generalised passive moments (N m, 9): the range walls alone
+        (mechanics.joint_space's `limits`), since the muscles' parallel elements hold their own
+        passive force, which Riener & Edrich's relaxed-leg moments include too. With both, the
+        hip's passive moment swung the leg (20.6 J taken at the stance hip, 15.4 J returned at the
+        swing hip, 3.5 m/s) and the cadence rose to 166 / 202 / 219 steps/min at 2.5 / 3.5 / 4.5 m/s
+        (problems/muscle_passive.py, 2026-11-27)."""
+        return js.limits(theta)
 
     def initial(self, theta, thetad, tau):
         """(z, u) of a guess that makes the moments tau (N m, 6 x c) at node angles and rates

@@ -103,7 +103,7 @@ def accelerations(nlp: StrideNLP, i: int) -> Compiled:
     tau, slope, mu = ca.SX.sym("tau", NU), ca.SX.sym("slope"), ca.SX.sym("mu")
     phase = nlp.phases[i]
     moments = ca.vertcat(0, 0, 0, tau + nlp.ocp.models[i].actuation.passive(th, td, bool(phase.points)))
-    rhs = js.gravity(th) + js.passive(th) - js.bias(th, thd) - moments
+    rhs = js.gravity(th) + nlp.ocp.models[i].actuation.joint_passive(js, th) - js.bias(th, thd) - moments
     M, rows = js.mass(th), phase.rows
     if rows:
         sliding = (phase.sliding, nlp.settings.slip, mu) if phase.sliding else None

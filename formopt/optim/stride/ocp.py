@@ -76,7 +76,7 @@ class NodeModel:
         active = self.actuation.active(z, u)
         self.actuation.rows(rows, theta, thetad, z, u)
         spring = self.actuation.passive(theta, theta_td, bool(self.phase.points))
-        passive = js.passive(theta)  # the joints' passive moments, tau_pass (mechanics.joint_space)
+        passive = self.actuation.joint_passive(js, theta)  # tau_pass (mechanics.joint_space)
         ground_force = self.contact.node(rows, theta, thetad, a, f, slope, mu, m)
         rows.add((js.mass(theta) @ a + js.bias(theta, thetad) - js.gravity(theta) - passive
                   + ca.vertcat(0, 0, 0, active + spring) - ground_force) / m)

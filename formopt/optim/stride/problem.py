@@ -113,10 +113,11 @@ SMOOTHING = 1e-6
 # RBDS001 at 3.5 m/s, 24 nodes (python problems/muscle_calibration.py --weights 16 32 64 80
 # --steps 0: 188.1 / 185.2 / 174.6 / 174.3 steps/min; 160 gives 173.5, the reserves 0.54 N m/kg)
 # and frozen; 2.5 and 4.5 m/s and a 75 kg body held out gave 145.4 / 181.5 and 173.4 steps/min
-# (reserve weight 100, the joints' soft walls). With the reserves at 10000 and Riener & Edrich's
-# passive moments: 166.0 / 202.1 / 218.7 at 2.5 / 3.5 / 4.5 m/s, 6-20 % above the runner's, the
-# 75 kg body 200.5: the calibration predates the passive moments (problems/stride_ladder.py
-# --nodes 24 --rungs muscles, 2026-11-27; docs/concepts/muscles.md, "In the stride").
+# (reserve weight 100, the joints' soft walls). With the reserves at 10000 (the muscles' joints
+# still the range walls alone: actuation.MuscleDriven.joint_passive): 155.5 / 179.1 / 196.8 at
+# 2.5 / 3.5 / 4.5 m/s, all valid (problems/stride_ladder.py --nodes 24 --rungs muscles,
+# 2026-11-27; docs/concepts/muscles.md, "In the stride"); with Riener & Edrich's moments added to
+# the muscles' own passive fibres 166.0 / 202.1 / 218.7: their passive elasticity counted twice.
 FORCE_RATE_WEIGHT = 80.0
 # The muscles' reserve moments' weight (m/s per (N m/kg)^2; costs' `reserves` term): at 100,
 # 1 N m/kg held over a step costs about 30, four to twelve times a stride's whole objective
