@@ -1,8 +1,11 @@
-"""What the joints' passive moments (mechanics.joint_space: Riener & Edrich 1999) give and take in
-the muscle-driven stride, per joint: RBDS001's body, heel strike, the muscles' defaults, the
-cadence free and then imposed (each imposed solve warm from the free optimum).
+"""What the joints' passive moments give and take in the muscle-driven stride, per joint: RBDS001's
+body, heel strike, the muscles' defaults, the cadence free and then imposed (each imposed solve
+warm from the free optimum). The muscle rung's joints feel the range walls alone
+(actuation.MuscleDriven.joint_passive); `--riener-edrich` gives them Riener & Edrich (1999)'s
+relaxed-leg moments as well, as before 2026-11-27 (docs/concepts/muscles.md's table: a what-if).
 
     python problems/muscle_passive.py [--speed 3.5] [--nodes 24] [--mass 62] [--cadences 171.4]
+                                      [--riener-edrich]
 
 Per stride: cadence (steps/min), objective, the budget's passive term (J, the work the passive
 moments take over the half stride), and per joint (R the stance leg, L the swing leg) the energy
@@ -24,6 +27,7 @@ import numpy as np
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import JOINTS
+from formopt.optim.stride.actuation import MuscleDriven, Torques
 from formopt.optim.stride.collocation import build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.problem import StrideSettings
@@ -45,7 +49,11 @@ def main(argv=None) -> int:
     parser.add_argument("--nodes", type=int, default=24)
     parser.add_argument("--mass", type=float, default=62.0)
     parser.add_argument("--cadences", type=float, nargs="*", default=[171.4])
+    parser.add_argument("--riener-edrich", action="store_true",
+                        help="the muscles' joints with Riener & Edrich's passive moments (a what-if)")
     args = parser.parse_args(argv)
+    if args.riener_edrich:
+        MuscleDriven.joint_passive = Torques.joint_passive
     body = scaled_body(args.mass, 1.81)
     nlp = build(body, StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic", muscles=body_muscles(body)))
     free = optimum(nlp, args.speed, simulate=False)

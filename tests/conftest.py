@@ -66,11 +66,11 @@ def compile_cache(request, tmp_path_factory):
     """One cache of compiled functions for the tests (FORMOPT_CACHE), kept between runs in
     pytest's cache folder (.pytest_cache/d/formopt-cache; `pytest --cache-clear` empties it;
     without it, the session's temp folder: kept_cache) and shared by the pytest-xdist workers:
-    a library is keyed by its C source, compiler and flags and written by an atomic rename
-    (compiled._compile), so a graph compiles once, not once per run (test_speed_paths: 5 s of
-    cc), and no test reads the user's own cache. CC compiles at -O0 (FAST_CC) through a wrapper
-    at a fixed path in that folder (the compiler's path is part of the key). Subprocesses (the
-    CLI, examples, notebooks) inherit both."""
+    a library is keyed by its C source, flags and the compiler's path and written by an atomic
+    rename (compiled._compile), so a graph compiles once, not once per run (test_speed_paths: 5 s
+    of cc), and no test reads the user's own cache. CC compiles at -O0 (FAST_CC) through a
+    wrapper at a fixed path in that folder: the key does not see a compiler upgrade (then
+    `pytest --cache-clear`). Subprocesses (the CLI, examples, notebooks) inherit both."""
     mp = pytest.MonkeyPatch()
     root = kept_cache(request.config)
     if root is None:

@@ -468,6 +468,8 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
         tasks = [(_variant, (name, part, scene, curves[0]), f"variant {name} done") for name, part, scene in variants]
     else:
         curves += [Curve(name, cadences, why_not="no nominal", part=part) for name, part, _ in variants]
+        for name, _, _ in variants:  # each variant's stage, told as the band's are
+            say(f"variant {name}: no nominal")
     tasks += [(_strike, (_with(nominal, strike=s), speed), f"strike {s} done") for s in others]
     solved = independent(tasks, workers, say)
     curves += solved[:len(tasks) - len(others)]

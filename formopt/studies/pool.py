@@ -18,8 +18,8 @@ WATCH = 0.1  # s: how often a pool worker looks for its parent where the kernel 
 @contextlib.contextmanager
 def local_pool(workers: int):
     """A multiprocessing Pool of `workers` processes (the platform's start method: fork on
-    Linux, so each inherits what the run built), closed when the block ends and terminated
-    (`end`) when it ends by an exception."""
+    Linux, so each inherits what the run built), closed when the block ends, then terminated
+    (`end`) whichever way it ends."""
     pool = multiprocessing.Pool(workers, _worker_start, (os.getpid(),))
     try:
         yield pool

@@ -26,7 +26,7 @@ def spring():
 
 def landing(scene, joints, integrator="adaptive", dt=1e-3, state=None, strike=None, law="no-slip"):
     """One landing, its functions interpreted: compiling them costs more than the landing (21 C
-    builds in this file), and the compiled ones give the same numbers (io/test_numerics.py)."""
+    builds in this file); compiled against interpreted is compared in studies/test_bench.py (one scene)."""
     lm = LandingModel(scene.model(), joints, scene.slope, False, integrator, law)
     return simulate_state(lm, strike or scene.strike, scene.state if state is None else state,
                           scene.friction, dt, 0.2)
@@ -128,7 +128,7 @@ def test_a_diverged_landing_exits_1_with_its_reason(tmp_path, capsys):
 def test_no_foot_point_below_the_ground_in_random_landings(spring, strike):
     """252 landings in all (3 joint models x 2 strikes x 42 random touchdowns, seeded): no
     recorded sample has a foot point below -1e-6 m, and each ends for a named reason. The
-    functions are interpreted: the compiled ones give the same numbers (io/test_numerics.py),
+    functions are interpreted (compiled against interpreted: studies/test_bench.py, one scene),
     and compiling them would cost more than these landings."""
     model = spring.model()
     joints = (Joints("free"), spring.joints, Joints("locked", locked=("knee", "ankle")))

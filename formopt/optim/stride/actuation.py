@@ -129,8 +129,8 @@ class MuscleDriven(Torques):
     (`Stride.checks["reserve_nm_per_kg"]`) and is invalid beyond TOLERANCES["reserve_nm_per_kg"].
 
     a' is a control tied to the activation dynamics by a row (the defects stay linear: the
-    node model holds every nonlinearity). The joints' passive moments (mechanics.joint_space,
-    Riener & Edrich's) stay; the muscles' tendons are in series, so there are no parallel springs.
+    node model holds every nonlinearity). The joints feel the range walls alone (`joint_passive`);
+    the muscles' tendons are in series, so there are no parallel springs.
     """
 
     RATE_SCALE = 10.0  # F' = 10 g (De Groote et al. 2016 scale the rate so)

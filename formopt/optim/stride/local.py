@@ -80,7 +80,8 @@ def muscle_start(nlp: StrideNLP, speed: float, slope: float, mu: float, cadence:
     base = nlp.variant(muscles=None, objective="effort", tendons=RUNNER_TENDONS, transcription="trapezoid")
     start = from_torques(nlp, base, base.solve(ballistic(base, speed), speed, slope, mu, cadence))
     for weight in (w for w in RESERVE_CONTINUATION if w < nlp.settings.reserve_weight):
-        start = nlp.variant(reserve_weight=weight).solve(start, speed, slope, mu, cadence).blocks
+        solved = nlp.variant(reserve_weight=weight).solve(start, speed, slope, mu, cadence)
+        start = solved.blocks if solved.success else start  # a failed step's iterate is no start
     return start
 
 

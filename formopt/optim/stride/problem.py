@@ -127,7 +127,7 @@ FORCE_RATE_WEIGHT = 80.0
 # RBDS001, 3.5 m/s, 24 nodes, problems/muscle_calibration.py --weights 16 --steps 0
 # --reserve-weight 10). At 100 they still buy the fast moment changes at the contact's events
 # (0.18-0.58 N m/kg in bursts at 2.5-4.5 m/s, beyond the 0.1 tolerance: invalid strides); at
-# 10000 the muscles make those moments (reserves 0.01-0.07 N m/kg, RBDS001, 24 nodes, valid), but
+# 10000 the muscles make those moments (reserves 0.01-0.05 N m/kg, RBDS001, 24 nodes, valid), but
 # only when the solve is continued from the optimum at 100: a cold solve at 10000 ended in a
 # costlier optimum (192.9 steps/min at 3.5 m/s, objective 6.03 against 5.80 from 100, soft walls;
 # docs/concepts/muscles.md, "Where the reserves act"). So the muscles' start
