@@ -27,7 +27,7 @@ and the legs' share of the body's mass (LEG_MASS_BAND); `WhatIf.parts` is each p
 width (the span of dP over the nominal and that part's variants). A variant that fails to converge at any cadence is
 left out of the band and named in `notes`. A change whose band holds zero is "no change the
 model can resolve". The variants and the other strikes' free optima are solved on WORKERS
-processes (`independent`): RBDS001 T35's section took 77 s of wall time against 108 s in one
+processes (studies.pool.independent): RBDS001 T35's section took 77 s of wall time against 108 s in one
 process, on a 2-core machine under a load of 5 (2026-11-27).
 """
 
@@ -42,7 +42,7 @@ import numpy as np
 from ..mechanics.body import scaled_body
 from ..optim.stride import Stride, rank, summarise
 from ..optim.stride.problem import STRIKES, mesh_note
-from .pool import local_pool
+from .pool import independent
 from .stride_form import NODES, joint_work, placement_m, stride_scene, with_body
 from .stride_map import better, cadence_curve, free, warm
 
@@ -79,7 +79,7 @@ ROUNDS = 2  # the curve solved again from a better free optimum found on it, at 
 FAMILY = 1e-3
 BAND_PARTS = ("friction", "objective", "body")  # the band's parts, in `Curve.part`
 # the band's variants and the other strikes' free optima are independent of each other: solved
-# on this many processes (`independent`; the brief's budget for compare is 2 cores)
+# on this many processes (studies.pool.independent; the brief's budget for compare is 2 cores)
 WORKERS = min(2, os.cpu_count() or 1)
 
 
@@ -414,36 +414,13 @@ def _strike(task: tuple) -> Stride | None:
     return _free_or_none(*task)
 
 
-def independent(tasks: list[tuple], workers: int, say) -> list:
-    """[fn(args) for fn, args, name in tasks] on a local pool of `workers` processes
-    (studies.pool: fork, each inherits the NLPs built so far; 1: in this process), `say(name)`
-    as each ends; the results in the tasks' order."""
-    results: list = [None] * len(tasks)
-    if workers <= 1 or len(tasks) <= 1:
-        for k, task in enumerate(tasks):
-            results[k] = _numbered((k, task))[1]
-            say(task[2])
-        return results
-    with local_pool(min(workers, len(tasks))) as pool:
-        for k, result in pool.imap_unordered(_numbered, list(enumerate(tasks))):
-            results[k] = result
-            say(tasks[k][2])
-    return results
-
-
-def _numbered(item: tuple) -> tuple:
-    """(k, fn(args)) of a numbered task (k, (fn, args, name))."""
-    k, (fn, args, _) = item
-    return k, fn(args)
-
-
 def answer(c, progress=None, nodes: int = NODES, band: bool = True,
            changes: tuple[float, ...] = WHAT_IF_PCT, workers: int = WORKERS) -> StrideAnswer:
     """compare's stride section for a Comparison `c` (its speed, main side, body settings,
     friction and law); `progress(text)` is told of each stage; `band` False: the nominal
     variant and strike only (every band then the nominal value, no other strike: a cheap check,
     not a report); `changes`: the what-ifs' cadence changes (% of the runner's); `workers`: the
-    processes solving the band's variants and the other strikes (`independent`)."""
+    processes solving the band's variants and the other strikes (studies.pool.independent)."""
     say = progress or (lambda text: None)
     start = time.perf_counter()
     measured = measured_form(c)

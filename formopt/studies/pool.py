@@ -28,6 +28,29 @@ def local_pool(workers: int):
         end(pool)
 
 
+def independent(tasks: list[tuple], workers: int, say) -> list:
+    """[fn(args) for fn, args, name in tasks] on a local pool of `workers` processes (fork:
+    each inherits what the run built, e.g. compare's NLPs; 1: in this process), `say(name)` as
+    each ends; the results in the tasks' order. fn must be picklable (a module's function)."""
+    results: list = [None] * len(tasks)
+    if workers <= 1 or len(tasks) <= 1:
+        for k, task in enumerate(tasks):
+            results[k] = _numbered((k, task))[1]
+            say(task[2])
+        return results
+    with local_pool(min(workers, len(tasks))) as pool:
+        for k, result in pool.imap_unordered(_numbered, list(enumerate(tasks))):
+            results[k] = result
+            say(tasks[k][2])
+    return results
+
+
+def _numbered(item: tuple) -> tuple:
+    """(k, fn(args)) of a numbered task (k, (fn, args, name))."""
+    k, (fn, args, _) = item
+    return k, fn(args)
+
+
 def end(pool) -> None:
     """Terminate a process pool, waiting at most POOL_END_S: CPython's Pool.terminate can wait
     forever on the result queue's lock when it kills a worker that held it (seen once on a full

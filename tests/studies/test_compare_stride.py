@@ -17,7 +17,6 @@ from formopt.studies.compare_stride import (
     Curve,
     WhatIf,
     answer,
-    independent,
     optima_notes,
     what_ifs,
 )
@@ -30,15 +29,6 @@ def test_a_change_inside_its_band_is_not_advised():
     assert not inside.resolvable and inside.words() == "no change the model can resolve"
     assert WhatIf(5.0, 180.0, -2.0, 1.0, -4.0, -0.5, 0, 2).words() == "saves power"
     assert WhatIf(-5.0, 160.0, 3.0, 1.0, 0.5, 4.0, 0, 2).words() == "costs more"
-
-
-def test_independent_tasks_on_a_pool_keep_their_order():
-    """The band's variants and strikes on two processes: results in the tasks' order, each told."""
-    tasks = [(abs, -2, "a"), (abs, 3, "b"), (float, "4", "c")]
-    for workers in (1, 2):
-        told: list[str] = []
-        assert independent(tasks, workers, told.append) == [2, 3, 4.0]
-        assert sorted(told) == ["a", "b", "c"]
 
 
 def test_what_ifs_span_every_converged_variant():
