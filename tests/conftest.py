@@ -70,7 +70,7 @@ def compile_cache(request, tmp_path_factory):
     rename (compiled._compile), so a graph compiles once, not once per run (test_speed_paths: 5 s
     of cc), and no test reads the user's own cache. CC compiles at -O0 (FAST_CC) through a
     wrapper at a fixed path in that folder: the key does not see a compiler upgrade (then
-    `pytest --cache-clear`). Subprocesses (the CLI, examples, notebooks) inherit both."""
+    `pytest --cache-clear`). Subprocesses (the CLI's, the notebooks' kernels) inherit both."""
     mp = pytest.MonkeyPatch()
     root = kept_cache(request.config)
     if root is None:
