@@ -23,12 +23,15 @@ points too.
 
 from __future__ import annotations
 
+import ctypes
+import functools
 import hashlib
 import math
 import pickle
 import time
 import warnings
 from dataclasses import replace
+from pathlib import Path
 
 import casadi as ca
 import numpy as np
@@ -47,12 +50,23 @@ PARAMETERS = ("speed", "slope", "mu")
 ACCELERATION = 1000.0  # rad/s^2 (m/s^2 for the hip): bound on theta''
 TRUNK = (math.radians(-20.0), math.radians(45.0))  # rad, the trunk's lean (forward positive)
 STATE_RATE = 15.0  # m/s and rad/s: bound on theta'
+# MUMPS with 100 % room over its estimated workspace (IPOPT's default, 1000 %, mapped a 77 MB
+# block afresh at each factorisation of the muscles' KKT matrix: 256,000 page faults and 1.3-4.4 s
+# of system time in 40 iterations of the muscles' solve below, against 6,500 and 0.06 s; 100 %
+# stays on the heap). The iterates are the same (the torque rung's bit for bit:
+# benchmarks/stride_speed.py --same).
 IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive",
-                  "nlp_scaling_method": "gradient-based", "linear_solver": "mumps"}
+                  "nlp_scaling_method": "gradient-based", "linear_solver": "mumps", "mumps_mem_percent": 100}
 # The muscles' NLP with IPOPT's adaptive barrier: the barrier rose to 1e5 and the dual
 # infeasibility to 1e13 in 100 iterations (RBDS001, heel, 40 nodes, from the torque rung's
 # optimum); with a monotone barrier from 0.01 it converges (24 nodes: 270 iterations).
-MUSCLE_IPOPT = {"mu_strategy": "monotone", "mu_init": 1e-2}
+# MUMPS's ordering METIS instead of its own choice (PORD here) factorises the muscles' KKT matrix
+# (5,064 variables, 4,299 rows) faster: 40 iterations of the solve at reserve weight 10000 from
+# the one at 100 (RBDS001, heel, 40 nodes, 3.5 m/s, one BLAS thread) 2.53 instead of 3.71 s of
+# user CPU, the same optima to round-off (5.161650, 177.81 steps/min). Not for the torque rungs:
+# no faster on their 3,027 rows (docs/reference/performance.md), and its round-off moved RBDS001's
+# torque optimum at 3.5 m/s to another local one (217.2 -> 188.7 steps/min).
+MUSCLE_IPOPT = {"mu_strategy": "monotone", "mu_init": 1e-2, "mumps_pivot_order": 5}
 # IPOPT's warm start from a neighbouring solution's primal and dual values (StrideNLP.resolve):
 # the barrier starts small and decreases monotonically. Along a cadence chain (paper body, 30
 # nodes, tendons, 165-180 steps/min at 3.5 m/s) 12-20 iterations instead of 43-52, the same
@@ -174,6 +188,7 @@ class StrideNLP:
                 nodes = derivatives.node_derivatives(self, compiled)
             self._solver_compiled = compiled
             self._nlp = derivatives.problem(self, nodes) if compiled else self.problem
+            one_blas_thread()
             self._solver = ca.nlpsol("stride", "ipopt", self._nlp, {
                 "ipopt": self.options, "print_time": False, **derivatives.functions(self, nodes)})
             self._warm_solver = None  # it shares the cold solver's derivatives
@@ -411,6 +426,18 @@ def _has_compiler() -> bool:
     except RuntimeError:
         return False
     return True
+
+
+@functools.cache
+def one_blas_thread() -> None:
+    """CasADi's OpenBLAS (MUMPS's dense kernels) on one thread, once per process. Its own
+    default, a thread per core, spins its waiting thread on kernels too small to share: on the
+    muscles' solve (40 iterations, as IPOPT_DEFAULTS') 23,000-47,000 involuntary context switches
+    and 0.1-1.9 s of system time against 460-1,900 and 0.02-0.03 s on one thread, user time no
+    higher. Nothing is done where the library is not CasADi's own (another build of CasADi)."""
+    path = Path(ca.__file__).parent / "libcasadi-tp-openblas.so.0"
+    if path.exists():
+        ctypes.CDLL(str(path)).openblas_set_num_threads(1)
 
 
 def _column(bounds) -> tuple[np.ndarray, np.ndarray]:
