@@ -67,6 +67,12 @@ IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive",
 # no faster on their 3,027 rows (docs/reference/performance.md), and its round-off moved RBDS001's
 # torque optimum at 3.5 m/s to another local one (217.2 -> 188.7 steps/min).
 MUSCLE_IPOPT = {"mu_strategy": "monotone", "mu_init": 1e-2, "mumps_pivot_order": 5}
+# The muscles' start's solves at a lower reserve weight (local.muscle_start) from a barrier of 1e-3:
+# from the torque+springs optimum at weight 100, RBDS001 (heel, 40 nodes) at 2.5 / 3.5 / 4.5 m/s,
+# 325 / 191 / 370 iterations instead of 369 / 299 / 448, the same optima (2.24417, 3.99212,
+# 6.40699), and the solve at 10000 from them the same (3.01449, 5.16165, 9.99639). The solve at
+# 10000 stays at 1e-2: from 1e-3 it ended elsewhere at 2.5 m/s (184.9 instead of 172.0 steps/min).
+CONTINUATION_IPOPT = {"mu_init": 1e-3}
 # IPOPT's warm start from a neighbouring solution's primal and dual values (StrideNLP.resolve):
 # the barrier starts small and decreases monotonically. Along a cadence chain (paper body, 30
 # nodes, tendons, 165-180 steps/min at 3.5 m/s) 12-20 iterations instead of 43-52, the same
@@ -341,14 +347,15 @@ class StrideNLP:
                                                           act.passive(theta, td, bool(model.phase.points))]
                            ).map(self.columns[i])
 
-    def variant(self, **changes) -> StrideNLP:
-        """The NLP of the same body, IPOPT options and compilation with settings changed (e.g.
-        touchdown="slide"), built once and kept."""
-        key = tuple(sorted((k, repr(v)) for k, v in changes.items()))  # values may be dicts
+    def variant(self, ipopt: dict | None = None, **changes) -> StrideNLP:
+        """The NLP of the same body, IPOPT options (`ipopt` over them) and compilation with
+        settings changed (e.g. touchdown="slide"), built once and kept."""
+        key = tuple(sorted((k, repr(v)) for k, v in {**changes, " ipopt": ipopt}.items()))  # values may be dicts
         if not hasattr(self, "_variants"):
             self._variants: dict = {}
         if key not in self._variants:
-            self._variants[key] = StrideNLP(self.js, replace(self.settings, **changes), self.ipopt, self.compile)
+            self._variants[key] = StrideNLP(self.js, replace(self.settings, **changes),
+                                            {**(self.ipopt or {}), **(ipopt or {})}, self.compile)
         return self._variants[key]
 
     # -- solve -----------------------------------------------------------------------
