@@ -80,10 +80,10 @@ CONTINUATION_IPOPT = {"mu_init": 1e-3}
 WARM_START = {"warm_start_init_point": "yes", "mu_strategy": "monotone", "mu_init": 1e-5,
               "warm_start_bound_push": 1e-6, "warm_start_mult_bound_push": 1e-6,
               "warm_start_slack_bound_push": 1e-6}
-# The muscles' warm start from a barrier of 1e-4: RBDS001 (heel, 40 nodes) 3.6 m/s from 3.5 in 27
-# iterations and 1.8 s of CPU instead of 56 and 4.0 s from 1e-5 (97 from 1e-6; 27-33 from 3e-5 to
-# 1e-3), the same optimum (5.47877, 179.54 steps/min).
-MUSCLE_WARM_START = {"mu_init": 1e-4}
+# The muscles' warm start from a barrier of 3e-4: RBDS001 (heel, 40 nodes) 0.1 m/s faster from
+# the optimum at 2.5 / 3.5 / 4.5 m/s in 32 / 28 / 31 iterations instead of 23 / 56 / 173 from
+# 1e-5 (1e-4: 23 / 27 / 113; 1e-3: 38 / 33 / 31), the same optima (3.17067, 5.47877, 10.75843).
+MUSCLE_WARM_START = {"mu_init": 3e-4}
 
 
 # The node models and their derivatives in C (derivatives.py, mechanics.compiled's disk cache):
