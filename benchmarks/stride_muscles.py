@@ -17,16 +17,23 @@ counted in build); `--rungs` a subset, `--ipopt` IPOPT options over collocation'
 targets for the muscles at 40 nodes: cold <= 30 s and warm <= 3 s on one core, judged on CPU
 (user + system, the process's threads; cold counts the start's). Measure only.
 
-Measured 2026-11-27 (2-core machine shared with two other helpers, load 4-5; one run each; CPU s):
-the muscles' start 67.5 -> 27.9, cold 28.5 (176 iterations) -> 15.8 (192), start + cold 96.0
--> 43.7, warm 5.94 (56) -> 1.62 (27), interpreted (`--compiled false`), the same optima (177.8
-steps/min); compiled (`--compiled true --rungs muscles`, its libraries built once, 55 s):
-start 17.9, cold 9.4, start + cold 27.4, warm 0.84 s. What moved it (collocation.py): MUMPS's
-workspace 100 % over its estimate instead of IPOPT's 1000 % (a 77 MB block mapped afresh at
-each factorisation: a third of the CPU was system time), CasADi's OpenBLAS on one thread (its
-second thread spun), METIS's ordering for the muscles' KKT matrix, and the muscles' warm start
-from a barrier of 1e-4 (MUSCLE_WARM_START). The torque rungs' rows unchanged (217.2 and 169.5
-steps/min, 183 and 79 iterations).
+Measured 2026-11-27 (2-core machine shared with two other helpers; one run each; CPU s, the
+muscles' start + cold, then warm, with its iterations), before (main 4ed7000) and after:
+
+| muscles, interpreted | 2.5 m/s | 3.5 m/s | 4.5 m/s |
+| --- | --- | --- | --- |
+| before | 96.8, 3.70 (23) | 96.0, 5.94 (56) | 118.5, 20.9 (181) |
+| after, load 4-5 (warm from 1e-4) | 40.4, 1.63 (23) | 29.6, 1.97 (27) | 38.5, 8.12 (116) |
+| after, load about 2 | 29.6, 1.68 (32) | 23.8, 1.41 (28) | 29.7, 1.54 (31) |
+
+the same optima (172.0 / 177.8 / 192.0 steps/min); compiled at 3.5 m/s (`--compiled true
+--rungs muscles`, its libraries built once, 55 s): 16.9 and 0.72 s. The torque rungs' rows
+unchanged (217.2 and 169.5 steps/min in 183 and 79 iterations). What moved it (collocation.py):
+MUMPS's workspace 100 % over its estimate instead of IPOPT's 1000 % (a 77 MB block mapped afresh
+at each factorisation: a third of the CPU was system time), CasADi's OpenBLAS on one thread
+(its second thread spun), METIS's ordering for the muscles' KKT matrix, the start's solve at
+reserve weight 100 from a barrier of 1e-3 (CONTINUATION_IPOPT) and the muscles' warm start
+from 3e-4 (MUSCLE_WARM_START).
 """
 
 from __future__ import annotations
