@@ -23,12 +23,15 @@ points too.
 
 from __future__ import annotations
 
+import ctypes
+import functools
 import hashlib
 import math
 import pickle
 import time
 import warnings
 from dataclasses import replace
+from pathlib import Path
 
 import casadi as ca
 import numpy as np
@@ -47,12 +50,29 @@ PARAMETERS = ("speed", "slope", "mu")
 ACCELERATION = 1000.0  # rad/s^2 (m/s^2 for the hip): bound on theta''
 TRUNK = (math.radians(-20.0), math.radians(45.0))  # rad, the trunk's lean (forward positive)
 STATE_RATE = 15.0  # m/s and rad/s: bound on theta'
+# MUMPS with 100 % room over its estimated workspace (IPOPT's default, 1000 %, mapped a 77 MB
+# block afresh at each factorisation of the muscles' KKT matrix: 256,000 page faults and 1.3-4.4 s
+# of system time in 40 iterations of the muscles' solve below, against 6,500 and 0.06 s; 100 %
+# stays on the heap). The iterates are the same (the torque rung's bit for bit:
+# benchmarks/stride_speed.py --same).
 IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive",
-                  "nlp_scaling_method": "gradient-based", "linear_solver": "mumps"}
+                  "nlp_scaling_method": "gradient-based", "linear_solver": "mumps", "mumps_mem_percent": 100}
 # The muscles' NLP with IPOPT's adaptive barrier: the barrier rose to 1e5 and the dual
 # infeasibility to 1e13 in 100 iterations (RBDS001, heel, 40 nodes, from the torque rung's
 # optimum); with a monotone barrier from 0.01 it converges (24 nodes: 270 iterations).
-MUSCLE_IPOPT = {"mu_strategy": "monotone", "mu_init": 1e-2}
+# MUMPS's ordering METIS instead of its own choice (PORD here) factorises the muscles' KKT matrix
+# (5,064 variables, 4,299 rows) faster: 40 iterations of the solve at reserve weight 10000 from
+# the one at 100 (RBDS001, heel, 40 nodes, 3.5 m/s, one BLAS thread) 2.53 instead of 3.71 s of
+# user CPU, the same optima to round-off (5.161650, 177.81 steps/min). Not for the torque rungs:
+# no faster on their 3,027 rows (docs/reference/performance.md), and its round-off moved RBDS001's
+# torque optimum at 3.5 m/s to another local one (217.2 -> 188.7 steps/min).
+MUSCLE_IPOPT = {"mu_strategy": "monotone", "mu_init": 1e-2, "mumps_pivot_order": 5}
+# The muscles' start's solves at a lower reserve weight (local.muscle_start) from a barrier of 1e-3:
+# from the torque+springs optimum at weight 100, RBDS001 (heel, 40 nodes) at 2.5 / 3.5 / 4.5 m/s,
+# 325 / 191 / 370 iterations instead of 369 / 299 / 448, the same optima (2.24417, 3.99212,
+# 6.40699), and the solve at 10000 from them the same (3.01449, 5.16165, 9.99639). The solve at
+# 10000 stays at 1e-2: from 1e-3 it ended elsewhere at 2.5 m/s (184.9 instead of 172.0 steps/min).
+CONTINUATION_IPOPT = {"mu_init": 1e-3}
 # IPOPT's warm start from a neighbouring solution's primal and dual values (StrideNLP.resolve):
 # the barrier starts small and decreases monotonically. Along a cadence chain (paper body, 30
 # nodes, tendons, 165-180 steps/min at 3.5 m/s) 12-20 iterations instead of 43-52, the same
@@ -60,6 +80,10 @@ MUSCLE_IPOPT = {"mu_strategy": "monotone", "mu_init": 1e-2}
 WARM_START = {"warm_start_init_point": "yes", "mu_strategy": "monotone", "mu_init": 1e-5,
               "warm_start_bound_push": 1e-6, "warm_start_mult_bound_push": 1e-6,
               "warm_start_slack_bound_push": 1e-6}
+# The muscles' warm start from a barrier of 3e-4: RBDS001 (heel, 40 nodes) 0.1 m/s faster from
+# the optimum at 2.5 / 3.5 / 4.5 m/s in 32 / 28 / 31 iterations instead of 23 / 56 / 173 from
+# 1e-5 (1e-4: 23 / 27 / 113; 1e-3: 38 / 33 / 31), the same optima (3.17067, 5.47877, 10.75843).
+MUSCLE_WARM_START = {"mu_init": 3e-4}
 
 
 # The node models and their derivatives in C (derivatives.py, mechanics.compiled's disk cache):
@@ -174,6 +198,7 @@ class StrideNLP:
                 nodes = derivatives.node_derivatives(self, compiled)
             self._solver_compiled = compiled
             self._nlp = derivatives.problem(self, nodes) if compiled else self.problem
+            one_blas_thread()
             self._solver = ca.nlpsol("stride", "ipopt", self._nlp, {
                 "ipopt": self.options, "print_time": False, **derivatives.functions(self, nodes)})
             self._warm_solver = None  # it shares the cold solver's derivatives
@@ -322,14 +347,15 @@ class StrideNLP:
                                                           act.passive(theta, td, bool(model.phase.points))]
                            ).map(self.columns[i])
 
-    def variant(self, **changes) -> StrideNLP:
-        """The NLP of the same body, IPOPT options and compilation with settings changed (e.g.
-        touchdown="slide"), built once and kept."""
-        key = tuple(sorted((k, repr(v)) for k, v in changes.items()))  # values may be dicts
+    def variant(self, ipopt: dict | None = None, **changes) -> StrideNLP:
+        """The NLP of the same body, IPOPT options (`ipopt` over them) and compilation with
+        settings changed (e.g. touchdown="slide"), built once and kept."""
+        key = tuple(sorted((k, repr(v)) for k, v in {**changes, " ipopt": ipopt}.items()))  # values may be dicts
         if not hasattr(self, "_variants"):
             self._variants: dict = {}
         if key not in self._variants:
-            self._variants[key] = StrideNLP(self.js, replace(self.settings, **changes), self.ipopt, self.compile)
+            self._variants[key] = StrideNLP(self.js, replace(self.settings, **changes),
+                                            {**(self.ipopt or {}), **(ipopt or {})}, self.compile)
         return self._variants[key]
 
     # -- solve -----------------------------------------------------------------------
@@ -376,7 +402,8 @@ class StrideNLP:
             shared = {k: solver.get_function(f"nlp_{f}")
                       for k, f in (("grad_f", "grad_f"), ("jac_g", "jac_g"), ("hess_lag", "hess_l"))}
             self._warm_solver = ca.nlpsol("stride_warm", "ipopt", self._nlp, {
-                "ipopt": {**self.options, **WARM_START}, "print_time": False, **shared})
+                "ipopt": {**self.options, **WARM_START, **(MUSCLE_WARM_START if self.settings.muscles is not None else {})},
+                "print_time": False, **shared})
             self.build_s += time.perf_counter() - start
         got = self._run(self._warm_solver, {"x0": previous.x, "lam_x0": previous.lam_x,
                                             "lam_g0": previous.lam_g}, speed, slope, mu, cadence)
@@ -411,6 +438,18 @@ def _has_compiler() -> bool:
     except RuntimeError:
         return False
     return True
+
+
+@functools.cache
+def one_blas_thread() -> None:
+    """CasADi's OpenBLAS (MUMPS's dense kernels) on one thread, once per process. Its own
+    default, a thread per core, spins its waiting thread on kernels too small to share: on the
+    muscles' solve (40 iterations, as IPOPT_DEFAULTS') 23,000-47,000 involuntary context switches
+    and 0.1-1.9 s of system time against 460-1,900 and 0.02-0.03 s on one thread, user time no
+    higher. Nothing is done where the library is not CasADi's own (another build of CasADi)."""
+    path = Path(ca.__file__).parent / "libcasadi-tp-openblas.so.0"
+    if path.exists():
+        ctypes.CDLL(str(path)).openblas_set_num_threads(1)
 
 
 def _column(bounds) -> tuple[np.ndarray, np.ndarray]:

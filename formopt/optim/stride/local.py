@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from .checks import impact_check
-from .collocation import NX, StrideNLP
+from .collocation import CONTINUATION_IPOPT, NX, StrideNLP
 from .guess import ballistic, fitted, from_torques, perturbed, slide_guess
 from .layout import Solved
 from .problem import RESERVE_CONTINUATION, RUNNER_TENDONS, SLIDING_PHASES
@@ -73,14 +73,14 @@ def muscle_start(nlp: StrideNLP, speed: float, slope: float, mu: float, cadence:
     """The muscles' start: the torque+springs rung's optimum (effort, problem.RUNNER_TENDONS,
     trapezoid) of the same strike and mesh from the generic guess, its net moments split among
     the muscles (guess.from_torques), then the muscles' optimum at each reserve weight of
-    problem.RESERVE_CONTINUATION below the setting's, each from the one before (a cold solve at
-    the default 10000 ends in a costlier optimum: problem.RESERVE_WEIGHT). From the generic
-    guess itself the muscle NLP did not converge in 600 iterations (RBDS001, heel, 40 nodes,
-    3.5 m/s, 2026-11-25)."""
+    problem.RESERVE_CONTINUATION below the setting's, each from the one before (IPOPT's barrier
+    from collocation.CONTINUATION_IPOPT's; a cold solve at the default 10000 ends in a costlier
+    optimum: problem.RESERVE_WEIGHT). From the generic guess itself the muscle NLP did not
+    converge in 600 iterations (RBDS001, heel, 40 nodes, 3.5 m/s, 2026-11-25)."""
     base = nlp.variant(muscles=None, objective="effort", tendons=RUNNER_TENDONS, transcription="trapezoid")
     start = from_torques(nlp, base, base.solve(ballistic(base, speed), speed, slope, mu, cadence))
     for weight in (w for w in RESERVE_CONTINUATION if w < nlp.settings.reserve_weight):
-        solved = nlp.variant(reserve_weight=weight).solve(start, speed, slope, mu, cadence)
+        solved = nlp.variant(CONTINUATION_IPOPT, reserve_weight=weight).solve(start, speed, slope, mu, cadence)
         start = solved.blocks if solved.success else start  # a failed step's iterate is no start
     return start
 

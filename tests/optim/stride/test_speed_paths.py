@@ -2,6 +2,9 @@
 interpreted ones do: the same iterations and optimum to round-off (no timing here: speed
 lives in benchmarks/stride_speed.py)."""
 
+import ctypes
+from pathlib import Path
+
 import casadi as ca
 import numpy as np
 import pytest
@@ -34,6 +37,14 @@ def test_compiled_solves_as_interpreted(solves):
     for got, want in ((b.lam_g, a.lam_g), (b.lam_x, a.lam_x)):  # the warm start's multipliers
         np.testing.assert_allclose(got, want, rtol=0, atol=1e-9 * max(1.0, np.max(np.abs(want))))
     assert b.objective == pytest.approx(a.objective, rel=1e-12)
+
+
+def test_a_built_solver_leaves_casadis_blas_on_one_thread(solves):
+    """collocation.one_blas_thread: MUMPS's dense kernels on one thread, not one per core."""
+    path = Path(ca.__file__).parent / "libcasadi-tp-openblas.so.0"
+    if not path.exists():
+        pytest.skip("not CasADi's own OpenBLAS")
+    assert ctypes.CDLL(str(path)).openblas_get_num_threads() == 1
 
 
 def test_compiled_problem_is_the_same_nlp(solves):
