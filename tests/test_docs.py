@@ -29,6 +29,7 @@ import runpy
 import subprocess
 import sys
 import tomllib
+import warnings
 from dataclasses import dataclass
 
 import pytest
@@ -133,11 +134,15 @@ PLAIN = re.compile(r"formopt(\s+[\w./=:-]+)*")  # `formopt ARGS` that bash would
 
 def run_formopt(command: str) -> tuple[int, str]:
     """A plain `formopt ARGS` run by formopt.cli.main in this process: its exit status and its
-    standard output and error in one stream, as a terminal shows them."""
+    standard output and error in one stream, as a terminal shows them, Python's warnings
+    included (a new interpreter would print them; pytest would keep them to itself)."""
     printed = io.StringIO()
-    with contextlib.redirect_stdout(printed), contextlib.redirect_stderr(printed):
+    with contextlib.redirect_stdout(printed), contextlib.redirect_stderr(printed), \
+            warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("default")
         code = main(command.split()[1:])
-    return code, printed.getvalue()
+    shown = "".join(warnings.formatwarning(w.message, w.category, w.filename, w.lineno) for w in caught)
+    return code, printed.getvalue() + shown
 
 
 def run_shell(command: str, env: dict) -> tuple[int, str]:

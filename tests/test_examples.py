@@ -1,7 +1,10 @@
 """Every example runs as a user would run it, prints its result and writes its figure. The
 examples and scripts run in this process (`run_script`: as __main__, with their sys.argv), not
 as subprocesses: a new interpreter's start, imports and first models cost about 1.2 s of CPU an
-example; the CLI's own entry point is tested as a subprocess elsewhere (tests/io/test_scene.py)."""
+example; the CLI's own entry point is tested as a subprocess elsewhere (tests/io/test_scene.py).
+Given up with the subprocess: a crash or hang at the interpreter's exit, and a fresh process (an
+example may reuse a stride NLP an earlier test built: collocation's cache); `make docs` still
+runs every example as a new interpreter."""
 
 import runpy
 import sys

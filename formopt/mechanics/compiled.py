@@ -14,6 +14,8 @@ The cache folder is $FORMOPT_CACHE, or ~/.cache/formopt.
 from __future__ import annotations
 
 import contextlib
+import ctypes
+import functools
 import hashlib
 import os
 import shutil
@@ -59,6 +61,7 @@ def cached_nlpsol(name: str, nlp: dict, opts: dict, compiled: bool = False) -> c
     The objective, constraints, gradient, Jacobian and Hessian of the Lagrangian are generated
     once (CasADi's generate_dependencies), compiled and cached like `library`.
     """
+    one_blas_thread()
     solver = ca.nlpsol(name, "ipopt", nlp, opts)
     if not compiled:
         return solver
@@ -142,3 +145,19 @@ class Compiled:
                 out[name] = np.zeros(shape)
                 out[name][pattern] = values
         return out
+
+
+@functools.cache
+def one_blas_thread() -> None:
+    """CasADi's OpenBLAS (MUMPS's dense kernels) on one thread, once per process. Its own
+    default, a thread per core, spins its waiting thread on kernels too small to share: on the
+    muscles' solve (40 iterations, as IPOPT_DEFAULTS') 23,000-47,000 involuntary context switches
+    and 0.1-1.9 s of system time against 460-1,900 and 0.02-0.03 s on one thread, user time no
+    higher. Nothing is done where the library is not CasADi's own (another build of CasADi) or
+    where the user set OPENBLAS_NUM_THREADS. Called where a solver is built (cached_nlpsol,
+    optim.stride's StrideNLP), so a run's speed does not depend on which solver came first."""
+    if "OPENBLAS_NUM_THREADS" in os.environ:
+        return
+    path = Path(ca.__file__).parent / "libcasadi-tp-openblas.so.0"
+    if path.exists():
+        ctypes.CDLL(str(path)).openblas_set_num_threads(1)

@@ -165,7 +165,7 @@ def test_effective_mass_on_a_slope_needs_tan_slope(body):
     assert r.mu_c_momentum == pytest.approx(r.mu_c, rel=1e-9)
 
 
-def test_impact_json_shows_every_law(tmp_path, capsys):
+def test_impact_json_shows_every_law(tmp_path, capfd):
     import json
 
     from helpers import SHIPPED
@@ -177,7 +177,7 @@ def test_impact_json_shows_every_law(tmp_path, capsys):
     scene = tmp_path / "coulomb.toml"
     scene.write_text(text)
     assert main(["impact", str(scene), "--json"]) == 0
-    report = json.loads(capsys.readouterr().out)
+    report = json.loads(capfd.readouterr().out)  # file descriptor 1 holds the JSON alone
     assert set(report["contact_laws"]) == set(contact.LAWS) and report["law"] == "coulomb"
     coulomb = report["contact_laws"]["coulomb"]
     assert report["T_c"] == coulomb["T_c"] < report["contact_laws"]["no-slip"]["T_c"]

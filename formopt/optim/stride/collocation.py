@@ -23,20 +23,17 @@ points too.
 
 from __future__ import annotations
 
-import ctypes
-import functools
 import hashlib
 import math
 import pickle
 import time
 import warnings
 from dataclasses import replace
-from pathlib import Path
 
 import casadi as ca
 import numpy as np
 
-from ...mechanics.compiled import compiler
+from ...mechanics.compiled import compiler, one_blas_thread
 from ...mechanics.joint_space import GRAVITY, JOINTS, LIMIT_MARGIN, RANGES, THETA, JointSpace
 from . import derivatives
 from .layout import Blocks, Rows, Solved
@@ -391,7 +388,8 @@ class StrideNLP:
     def resolve(self, previous: Solved, speed: float, slope: float = 0.0, mu: float = 0.8,
                 cadence: float | None = None) -> Solved:
         """Solve from a solution of this NLP (its layout; or another body's) at neighbouring
-        parameters, with its multipliers (IPOPT's warm start, WARM_START; the solver built on first use, with the
+        parameters, with its multipliers (IPOPT's warm start, WARM_START, the muscles' barrier from
+        MUSCLE_WARM_START; the solver built on first use, with the
         cold solver's derivative functions: 0.2 s instead of 2.7 s at 22 nodes); from
         its primal values alone (`solve`) when that fails."""
         if previous.layout != self.layout or previous.lam_x is None:
@@ -402,7 +400,8 @@ class StrideNLP:
             shared = {k: solver.get_function(f"nlp_{f}")
                       for k, f in (("grad_f", "grad_f"), ("jac_g", "jac_g"), ("hess_lag", "hess_l"))}
             self._warm_solver = ca.nlpsol("stride_warm", "ipopt", self._nlp, {
-                "ipopt": {**self.options, **WARM_START, **(MUSCLE_WARM_START if self.settings.muscles is not None else {})},
+                "ipopt": {**self.options, **WARM_START,
+                          **(MUSCLE_WARM_START if self.settings.muscles is not None else {})},
                 "print_time": False, **shared})
             self.build_s += time.perf_counter() - start
         got = self._run(self._warm_solver, {"x0": previous.x, "lam_x0": previous.lam_x,
@@ -438,18 +437,6 @@ def _has_compiler() -> bool:
     except RuntimeError:
         return False
     return True
-
-
-@functools.cache
-def one_blas_thread() -> None:
-    """CasADi's OpenBLAS (MUMPS's dense kernels) on one thread, once per process. Its own
-    default, a thread per core, spins its waiting thread on kernels too small to share: on the
-    muscles' solve (40 iterations, as IPOPT_DEFAULTS') 23,000-47,000 involuntary context switches
-    and 0.1-1.9 s of system time against 460-1,900 and 0.02-0.03 s on one thread, user time no
-    higher. Nothing is done where the library is not CasADi's own (another build of CasADi)."""
-    path = Path(ca.__file__).parent / "libcasadi-tp-openblas.so.0"
-    if path.exists():
-        ctypes.CDLL(str(path)).openblas_set_num_threads(1)
 
 
 def _column(bounds) -> tuple[np.ndarray, np.ndarray]:

@@ -74,13 +74,14 @@ def muscle_start(nlp: StrideNLP, speed: float, slope: float, mu: float, cadence:
     trapezoid) of the same strike and mesh from the generic guess, its net moments split among
     the muscles (guess.from_torques), then the muscles' optimum at each reserve weight of
     problem.RESERVE_CONTINUATION below the setting's, each from the one before (IPOPT's barrier
-    from collocation.CONTINUATION_IPOPT's; a cold solve at the default 10000 ends in a costlier
-    optimum: problem.RESERVE_WEIGHT). From the generic guess itself the muscle NLP did not
+    from collocation.CONTINUATION_IPOPT's unless the NLP's own options set it; a cold solve at
+    the default 10000 ends in a costlier optimum: problem.RESERVE_WEIGHT). From the generic guess itself the muscle NLP did not
     converge in 600 iterations (RBDS001, heel, 40 nodes, 3.5 m/s, 2026-11-25)."""
     base = nlp.variant(muscles=None, objective="effort", tendons=RUNNER_TENDONS, transcription="trapezoid")
     start = from_torques(nlp, base, base.solve(ballistic(base, speed), speed, slope, mu, cadence))
     for weight in (w for w in RESERVE_CONTINUATION if w < nlp.settings.reserve_weight):
-        solved = nlp.variant(CONTINUATION_IPOPT, reserve_weight=weight).solve(start, speed, slope, mu, cadence)
+        step = nlp.variant({**CONTINUATION_IPOPT, **(nlp.ipopt or {})}, reserve_weight=weight)
+        solved = step.solve(start, speed, slope, mu, cadence)
         start = solved.blocks if solved.success else start  # a failed step's iterate is no start
     return start
 

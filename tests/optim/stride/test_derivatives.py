@@ -22,7 +22,7 @@ CASES = [{"strike": "heel", "tendons": RUNNER_TENDONS},
          {"strike": "forefoot", "objective": "metabolic", "impact_weight": 1.0},
          {"strike": "flat", "transcription": "hermite-simpson", "nodes": 14, "tendons": RUNNER_TENDONS,
           "objective": "work"},
-         {"strike": "flat", "objective": "metabolic", "muscles": "gait2d", "nodes": 14},
+         {"strike": "heel", "objective": "metabolic", "muscles": "gait2d", "nodes": 18},  # an impact mid-stance
          FORCE_RATE,
          {"strike": "flat", "objective": "joint-metabolic", "nodes": 14}]
 
