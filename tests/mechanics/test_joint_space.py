@@ -44,7 +44,7 @@ def test_kinematics_and_kinetic_energy_match_the_natural_model(js):
         assert np.allclose(np.asarray(js.q(theta)).ravel(), q + hip, atol=1e-13)
         assert np.allclose(np.asarray(js.J(theta)) @ thetad, qd, atol=1e-12)
         assert float(js.kinetic(theta, thetad)) == pytest.approx(float(model.kinetic_energy(qd)), rel=1e-13)
-        assert np.max(np.abs(model.constraints(ca.DM(np.asarray(js.q(theta)).ravel())))) < 1e-13
+        assert np.max(np.abs(np.asarray(model.constraints(ca.DM(np.asarray(js.q(theta)).ravel()))))) < 1e-13
 
 
 @pytest.mark.parametrize("active", [(), ("heel",), ("forefoot",)])
