@@ -75,8 +75,9 @@ def muscle_start(nlp: StrideNLP, speed: float, slope: float, mu: float, cadence:
     the muscles (guess.from_torques), then the muscles' optimum at each reserve weight of
     problem.RESERVE_CONTINUATION below the setting's, each from the one before (IPOPT's barrier
     from collocation.CONTINUATION_IPOPT's unless the NLP's own options set it; a cold solve at
-    the default 10000 ends in a costlier optimum: problem.RESERVE_WEIGHT). From the generic guess itself the muscle NLP did not
-    converge in 600 iterations (RBDS001, heel, 40 nodes, 3.5 m/s, 2026-11-25)."""
+    the default 10000 ends in a costlier optimum: problem.RESERVE_WEIGHT). From the generic
+    guess itself the muscle NLP did not converge in 600 iterations (RBDS001, heel, 40 nodes,
+    3.5 m/s, 2026-11-25)."""
     base = nlp.variant(muscles=None, objective="effort", tendons=RUNNER_TENDONS, transcription="trapezoid")
     start = from_torques(nlp, base, base.solve(ballistic(base, speed), speed, slope, mu, cadence))
     for weight in (w for w in RESERVE_CONTINUATION if w < nlp.settings.reserve_weight):
