@@ -11,9 +11,9 @@ optim.stride.search at each speed, spend and node count.
 One row per speed, node count and spend (the spends innermost, then the node counts): cost
 (the objective, per distance), cadence (steps/min), their change (%) from the row before at the
 same speed (doubling the spend, or the nodes when --nodes gives two counts), solves, IPOPT
-iterations and seconds spent, the distinct local optima met (cadence:objective) and their
-spread (%), validity, the held contact points' drift (mm) and the energy budget's balance (% of
-W+), the forward simulation's largest error per phase (rad, each phase from the NLP's state at
+iterations and seconds spent, the distinct local optima met (cadence:objective; an invalid one
+with its failed checks) and their spread (%), validity, the held contact points' drift (mm) and
+the energy budget's balance (% of W+), the forward simulation's largest error per phase (rad, each phase from the NLP's state at
 its start), any phase on its duration bound and the grid's least objective
 per cadence (cadence=objective). `--starts` adds, first, the local search's optimum with each
 number of starts (optim.stride.optimum: the generic guess and seeded perturbations of it), for
@@ -44,7 +44,8 @@ def row(label: str, speed: float, nodes: int, stride, before, spent: dict | None
               f"{(stride.objective_value / before.objective_value - 1) * 100:+7.2f} "
               f"{(stride.cadence_spm / before.cadence_spm - 1) * 100:+7.2f}  ")
     s = stride.search or {**(spent or {}), "iterations": stride.iterations, "optima": [], "spread_pct": float("nan")}
-    optima = " ".join(f"{o['cadence_spm']:.0f}:{o['objective']:.4f}" for o in s["optima"])
+    optima = " ".join(f"{o['cadence_spm']:.0f}:{o['objective']:.4f}"
+                      + ("" if o["valid"] else f"(invalid: {'; '.join(o['failed'])})") for o in s["optima"])
     profile = " ".join(f"{c:.0f}={'-' if v is None else f'{v:.4f}'}"
                        for c, v in zip(s.get("grid_spm", []), s.get("grid_objective", [])))
     phases = " ".join(f"{e:.3f}" for e in stride.checks.get("forward_per_phase", []))
