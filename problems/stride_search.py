@@ -13,9 +13,9 @@ One row per speed, node count and spend (the spends innermost, then the node cou
 same speed (doubling the spend, or the nodes when --nodes gives two counts), solves, IPOPT
 iterations and seconds spent, the distinct local optima met (cadence:objective; an invalid one
 with its failed checks) and their spread (%), validity, the held contact points' drift (mm) and
-the energy budget's balance (% of W+), the forward simulation's largest error per phase (rad, each phase from the NLP's state at
-its start), any phase on its duration bound and the grid's least objective
-per cadence (cadence=objective). `--starts` adds, first, the local search's optimum with each
+the energy budget's balance (% of W+), the forward simulation's largest error per phase (rad,
+each phase from the NLP's state at its start), any phase on its duration bound and the grid's
+least objective per cadence (cadence=objective). `--starts` adds, first, the local search's optimum with each
 number of starts (optim.stride.optimum: the generic guess and seeded perturbations of it), for
 comparison. `--clearance` (m): the swing foot's least height (StrideSettings.clearance); the
 tables of docs/concepts/stride.md were measured before it existed, as `--clearance 0`. Each
