@@ -1,22 +1,25 @@
 """The global search's answer against its spend and its mesh (issue 34): RBDS001's body (62 kg,
-1.81 m), torque+springs (problem.RUNNER_TENDONS), effort objective, the free optimum found by
+1.81 m), torque+springs (problem.RUNNER_TENDONS), effort objective, or with `--actuation muscles`
+the muscle rung (io.muscle_table.body_muscles, "metabolic" objective, the default force-rate and
+reserve weights, as problems/stride_ladder.py builds it), the free optimum found by
 optim.stride.search at each speed, spend and node count.
 
     python problems/stride_search.py [--speeds 2.5 3.5 4.5] [--nodes 40] [--spend 1 2]
                                      [--strike heel] [--transcription trapezoid] [--starts 1 4]
-                                     [--clearance 0.01]
+                                     [--clearance 0.01] [--actuation torque+springs|muscles]
 
 One row per speed, node count and spend (the spends innermost, then the node counts): cost
 (the objective, per distance), cadence (steps/min), their change (%) from the row before at the
 same speed (doubling the spend, or the nodes when --nodes gives two counts), solves, IPOPT
-iterations and seconds spent, the distinct local optima met (cadence:objective) and their
-spread (%), validity, the held contact points' drift (mm) and the energy budget's balance (% of
-W+), the forward simulation's largest error per phase (rad, each phase from the NLP's state at
-its start), any phase on its duration bound and the grid's least objective
-per cadence (cadence=objective). `--starts` adds, first, the local search's optimum with each
+iterations and seconds spent, the distinct local optima met (cadence:objective; an invalid one
+with its failed checks) and their spread (%), validity, the held contact points' drift (mm) and
+the energy budget's balance (% of W+), the forward simulation's largest error per phase (rad,
+each phase from the NLP's state at its start), any phase on its duration bound and the grid's
+least objective per cadence (cadence=objective). `--starts` adds, first, the local search's optimum with each
 number of starts (optim.stride.optimum: the generic guess and seeded perturbations of it), for
 comparison. `--clearance` (m): the swing foot's least height (StrideSettings.clearance); the
-tables of docs/concepts/stride.md were measured before it existed, as `--clearance 0`.
+tables of docs/concepts/stride.md were measured before it existed, as `--clearance 0`. Each
+row ends with the CPU seconds of its search (time.process_time, this process's cores together).
 """
 
 from __future__ import annotations
@@ -25,6 +28,7 @@ import argparse
 import sys
 import time
 
+from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
 from formopt.optim.stride import problem
 from formopt.optim.stride.collocation import build
@@ -40,7 +44,8 @@ def row(label: str, speed: float, nodes: int, stride, before, spent: dict | None
               f"{(stride.objective_value / before.objective_value - 1) * 100:+7.2f} "
               f"{(stride.cadence_spm / before.cadence_spm - 1) * 100:+7.2f}  ")
     s = stride.search or {**(spent or {}), "iterations": stride.iterations, "optima": [], "spread_pct": float("nan")}
-    optima = " ".join(f"{o['cadence_spm']:.0f}:{o['objective']:.4f}" for o in s["optima"])
+    optima = " ".join(f"{o['cadence_spm']:.0f}:{o['objective']:.4f}"
+                      + ("" if o["valid"] else f"(invalid: {'; '.join(o['failed'])})") for o in s["optima"])
     profile = " ".join(f"{c:.0f}={'-' if v is None else f'{v:.4f}'}"
                        for c, v in zip(s.get("grid_spm", []), s.get("grid_objective", [])))
     phases = " ".join(f"{e:.3f}" for e in stride.checks.get("forward_per_phase", []))
@@ -61,29 +66,36 @@ def main(argv=None) -> int:
     parser.add_argument("--transcription", default="trapezoid", choices=problem.TRANSCRIPTIONS)
     parser.add_argument("--starts", type=int, nargs="*", default=[])
     parser.add_argument("--clearance", type=float, default=StrideSettings.clearance)
+    parser.add_argument("--actuation", default="torque+springs", choices=("torque+springs", "muscles"))
     args = parser.parse_args(argv)
     body = scaled_body(62.0, 1.81)
-    print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, torque+springs, effort, {args.transcription}, "
+    actuation = ({"muscles": body_muscles(body), "objective": "metabolic"} if args.actuation == "muscles"
+                 else {"tendons": dict(RUNNER_TENDONS)})
+    print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, "
+          f"{'muscles, metabolic' if args.actuation == 'muscles' else 'torque+springs, effort'}, {args.transcription}, "
           f"swing clearance {args.clearance:g} m",
           flush=True)
     print(f"{'v':>4s} {'nodes':>5s} {'spend':>6s} {'cost':>8s} {'spm':>7s} {'dcost%':>7s} {'dspm%':>7s}  "
           f"{'solves':>6s} {'iter':>6s} {'s':>7s} {'spread%':>7s}  {'valid':>5s} {'drift mm':>8s} {'balance%':>9s}  "
           "[forward rad per phase]  "
-          "on bound  {optima cadence:cost}  grid cadence=cost", flush=True)
+          "on bound  {optima cadence:cost}  grid cadence=cost  cpu s", flush=True)
     for speed in args.speeds:
         before = None
         for nodes in args.nodes:
-            settings = StrideSettings(strike=args.strike, nodes=nodes, tendons=dict(RUNNER_TENDONS),
-                                      transcription=args.transcription, clearance=args.clearance)
+            settings = StrideSettings(strike=args.strike, nodes=nodes, transcription=args.transcription,
+                                      clearance=args.clearance, **actuation)
             nlp = build(body, settings)
             for starts in args.starts:
-                clock = time.perf_counter()
+                clock, cpu = time.perf_counter(), time.process_time()
                 local = optimum(nlp, speed, starts=starts)
                 spent = {"solves": starts, "seconds": time.perf_counter() - clock}
-                print(row(f"s{starts}", speed, nodes, local, None, spent), flush=True)
+                print(row(f"s{starts}", speed, nodes, local, None, spent) + f"  cpu {time.process_time() - cpu:.1f}",
+                      flush=True)
             for spend in args.spend:
+                cpu = time.process_time()
                 stride = global_optimum(nlp, speed, spend=spend)
-                print(row(str(spend), speed, nodes, stride, before), flush=True)
+                print(row(str(spend), speed, nodes, stride, before) + f"  cpu {time.process_time() - cpu:.1f}",
+                      flush=True)
                 before = stride
     return 0
 
