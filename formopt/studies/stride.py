@@ -124,18 +124,31 @@ def predicted_cycle(stride: Stride) -> dict:
     return {"percent": percent, "angles": angles, "moments": moments, "powers": powers, "vertical": vertical}
 
 
+def cycle_angles(stride: Stride, percent) -> dict:
+    """The predicted right-leg joint angles (deg; predicted_cycle) at the cycle's `percent`."""
+    predicted = predicted_cycle(stride)
+    order = np.argsort(predicted["percent"], kind="stable")
+    return {j: np.interp(percent, predicted["percent"][order], predicted["angles"][j][order])
+            for j in CYCLE_JOINTS}
+
+
 def compare_cycle(stride: Stride, measured: dict) -> dict:
-    """Predicted against measured: joint-angle RMS over the cycle (deg), stance time (s, the
+    """Predicted against measured: joint angles over the cycle (deg): the RMS of the difference
+    d = predicted - measured, its mean (`angle_offset_deg`) and its RMS with the mean removed
+    (`angle_rms_shape_deg`; rms^2 = offset^2 + shape^2): the data set's hip is the thigh against
+    the pelvis's ASIS-PSIS frame (tilted about 18 deg forward in RBDS001's running: problems/stride_angles.py --markers), formopt's
+    the thigh against the trunk, so the hip's offset is part definition; stance time (s, the
     measured from the vertical force above 0.5 N/kg over a cycle of 120 / cadence), peak
     vertical force (N/kg)."""
     predicted = predicted_cycle(stride)
-    order = np.argsort(predicted["percent"], kind="stable")
-    rms = {}
-    for j in CYCLE_JOINTS:
-        curve = np.interp(measured["percent"], predicted["percent"][order], predicted["angles"][j][order])
-        rms[j] = float(np.sqrt(np.mean((curve - measured["angles"][j]) ** 2)))
+    curves = cycle_angles(stride, measured["percent"])
+    diff = {j: curves[j] - measured["angles"][j] for j in CYCLE_JOINTS}
+    offset = {j: float(np.mean(d)) for j, d in diff.items()}
     stance_share = float(np.mean(measured["vertical"][:-1] > 0.5))
-    return {"angle_rms_deg": rms, "stance_share_measured": stance_share,
+    return {"angle_rms_deg": {j: float(np.sqrt(np.mean(d ** 2))) for j, d in diff.items()},
+            "angle_offset_deg": offset,
+            "angle_rms_shape_deg": {j: float(np.sqrt(np.mean((d - offset[j]) ** 2))) for j, d in diff.items()},
+            "stance_share_measured": stance_share,
             "stance_share_predicted": stride.duty_factor,
             "peak_vertical_n_per_kg": {"predicted": float(np.max(predicted["vertical"])),
                                        "measured": float(np.max(measured["vertical"]))}}
