@@ -26,7 +26,6 @@ the offset (Visual3D - formopt), its sd, and the sd left after the best shift.
 from __future__ import annotations
 
 import argparse
-import itertools
 import sys
 import time
 import tomllib
@@ -37,7 +36,7 @@ import numpy as np
 from formopt import api
 from formopt.io.mocap import read
 from formopt.io.stride_scene import parse
-from formopt.measure import measure
+from formopt.measure import mean_cycle, measure
 from formopt.studies.stride import CYCLE_JOINTS, cycle_angles, measured_cycle
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -100,12 +99,8 @@ def measured_segments(speed: float) -> dict:
     """formopt's measurement of RBDS001's trial at `speed` (2.5 or 3.5 m/s): the mean right cycle
     between force-plate touchdowns (101 rows, deg) of the thigh, shank, foot and pelvis (`trunk`)."""
     m = measure(read(*(DATA / f for f in TRIALS[speed])), read(DATA / "RBDS001static.c3d"), 1.81)
-    a, t = m.kinematics.angles, m.kinematics.t
-    right = [td.time for td in m.steps.valid if td.side == "R"]
-    cycles = [(t0, t1) for t0, t1 in itertools.pairwise(right) if t1 - t0 < 1.0]  # no step missed
-    mean = {k: np.degrees(np.mean([np.interp(np.linspace(t0, t1, 101), t, a[f"R.{k}"] if k != "trunk" else a[k])
-                                   for t0, t1 in cycles], axis=0)) for k in ("thigh", "shank", "foot", "trunk")}
-    return {**mean, "cycles": len(cycles)}
+    angles, cycles = mean_cycle(m)
+    return {**{k: np.degrees(v) for k, v in angles.items()}, "cycles": cycles}
 
 
 def markers(segments: dict, measured: dict) -> None:
@@ -141,7 +136,7 @@ def figure(strides: dict, measured: dict, path: str) -> None:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5, choices=[2.5, 3.5, 4.5])
-    parser.add_argument("--rungs", nargs="+", default=["torque+springs", "muscles"], choices=["torque+springs", "muscles"])
+    parser.add_argument("--rungs", nargs="*", default=["torque+springs", "muscles"], choices=["torque+springs", "muscles"])
     parser.add_argument("--strikes", nargs="+", default=["heel"], choices=["heel", "forefoot"])
     parser.add_argument("--figure", default=None)
     parser.add_argument("--markers", action="store_true")

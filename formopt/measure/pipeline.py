@@ -4,7 +4,10 @@ labels, axes, joint centres, kinematics and touchdowns, every check on the way."
 from __future__ import annotations
 
 import copy
+import itertools
 from dataclasses import dataclass
+
+import numpy as np
 
 from ..io import markerset as msets
 from ..io.mocap import Trial
@@ -14,7 +17,7 @@ from .filters import CUTOFF_HZ
 from .joints import Calibration, calibrate
 from .kinematics import Kinematics, kinematics
 from .labels import check_labels, check_static
-from .touchdowns import FOOT_SPEED_FRACTION, FORCE_THRESHOLD_N, Steps, touchdowns
+from .touchdowns import FOOT_SPEED_FRACTION, FORCE_THRESHOLD_N, MISSED_STRIDES, Steps, touchdowns
 from .units import resolve_units
 
 
@@ -59,3 +62,17 @@ def measure(trial: Trial, static: Trial, height: float, options: Options = Optio
     steps = touchdowns(trial, kin, cal, options.force_threshold_n, options.foot_speed_fraction)
     steps.notes[:0] = [f"marker map: {ms.name} ({ms.title})"] + static.notes
     return Measurement(trial, cal, kin, steps)
+
+
+def mean_cycle(m: Measurement, side: str = "R", points: int = 101) -> tuple[dict[str, np.ndarray], int]:
+    """The mean gait cycle of `side`: its thigh, shank and foot angles and the pelvis's tilt
+    (`trunk`) (rad, kinematics.py's conventions) at `points` from 0 to 100 % of each cycle
+    between consecutive valid touchdowns of `side`, averaged; a cycle that misses a touchdown
+    (longer than MISSED_STRIDES strides) is left out. Returns (angles, the cycles averaged)."""
+    stride = 120.0 / m.steps.cadence_spm  # s, one cycle: two steps
+    times = [td.time for td in m.steps.valid if td.side == side]
+    cycles = [(t0, t1) for t0, t1 in itertools.pairwise(times) if t1 - t0 < MISSED_STRIDES * stride]
+    kin = m.kinematics
+    names = {"thigh": f"{side}.thigh", "shank": f"{side}.shank", "foot": f"{side}.foot", "trunk": "trunk"}
+    return {k: np.mean([np.interp(np.linspace(t0, t1, points), kin.t, kin.angles[name]) for t0, t1 in cycles], axis=0)
+            for k, name in names.items()}, len(cycles)
