@@ -8,9 +8,11 @@ runner's speeds, against the runner's processed mean cycle (its joint powers the
 
 Prints per rung and speed: cadence (steps/min; measured 156.5 at 2.5 and 171.4 at 3.5 m/s,
 runners choose about 175-183 at 4.5), stance (s), peak vertical force (N/kg), the joint angles'
-RMS against the mean cycle (deg), the peak ankle power (W/kg, positive), the tendons' energy
-stored per step (J: soleus and gastrocnemius, all), reserves (N m/kg), the muscles' metabolic
-energy (J/kg/m), the swing foot's least height (m, while
+RMS against the mean cycle (deg) and their RMS with the mean offset removed (`Sh`: the data
+set's hip is against the pelvis, formopt's against the trunk; studies.stride.compare_cycle),
+the peak ankle power (W/kg, positive), the tendons' energy stored per step (J: soleus and
+gastrocnemius, all), reserves (N m/kg), the muscles' metabolic energy (J/kg/m), the swing
+foot's least height (m, while
 the other foot is down: Stride.swing_clearance_m), the objective J (per distance), validity,
 iterations and seconds (build, solve), and the phases a duration bound holds; for the muscles
 last their forward check (rad, the excitations replayed through the muscles: the validity's) and
@@ -75,7 +77,9 @@ def row(rung, speed, stride, measured) -> str:
         measured_stance = cycle["stance_share_measured"] * 120.0 / CYCLE_CADENCE[speed]
         m_power = float(np.nanmax(measured["powers"]["ankle"]))  # the data set's own joint power
         text += (f" {measured_stance:6.3f} {cycle['peak_vertical_n_per_kg']['measured']:6.1f}"
-                 f" {rms['hip']:5.1f} {rms['knee']:5.1f} {rms['ankle']:5.1f} {power:5.1f} {m_power:5.1f}")
+                 f" {rms['hip']:5.1f} {rms['knee']:5.1f} {rms['ankle']:5.1f}"
+                 + "".join(f" {cycle['angle_rms_shape_deg'][j]:5.1f}" for j in ("hip", "knee", "ankle"))
+                 + f" {power:5.1f} {m_power:5.1f}")
     m = stride.muscles
     energy = m["metabolic_J"] / (stride.mass_kg * stride.step_length_m) if m else float("nan")
     tendons = (f"{m['achilles_stored_J']:5.1f} {m['tendon_stored_J']:5.1f} {m['reserve_nm_per_kg']:5.2f} {energy:6.2f}"
@@ -114,7 +118,7 @@ def main(argv=None) -> int:
     print(f"RBDS001's height (1.81 m), {args.mass:g} kg, {args.strike} strike, {args.nodes} nodes, {args.starts} start(s), "
           f"force-rate weight {weight:g}, reserve weight {args.reserve_weight:g}", flush=True)
     print(f"{'rung objective':30s} {'v':>4s} {'spm':>7s} {'meas':>6s} {'stance':>6s} {'GRF':>6s} {'m.st':>6s} {'m.GRF':>6s}"
-          f" {'hipRMS':>5s} {'knRMS':>5s} {'anRMS':>5s} {'P+ank':>5s} {'m.P+':>5s} {'Ach J':>5s} {'all J':>5s}"
+          f" {'hipRMS':>5s} {'knRMS':>5s} {'anRMS':>5s} {'hipSh':>5s} {'knSh':>5s} {'anSh':>5s} {'P+ank':>5s} {'m.P+':>5s} {'Ach J':>5s} {'all J':>5s}"
           f" {'res':>5s} {'E/kg/m':>6s} {'swing':>6s} {'J':>6s} {'valid':>5s} {'iter':>5s} {'build':>5s} {'solve':>6s}", flush=True)
     runs = [(rung, objective) for rung in args.rungs
             for objective in (["metabolic"] if rung == "muscles" else args.objectives)]
