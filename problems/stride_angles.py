@@ -116,19 +116,24 @@ def markers(segments: dict, measured: dict) -> None:
     print(f"the pelvis's tilt against standing while running: {segments['trunk'].mean():+.1f} deg (mean)")
 
 
-def figure(strides: dict, measured: dict, path: str) -> None:
+def figure(strides: dict, measured: dict, segments: dict | None, path: str) -> None:
+    """hip, knee and ankle (and the thigh, with `segments`) of each stride beside the measured."""
     from matplotlib.figure import Figure
-    fig = Figure(figsize=(12, 4), layout="constrained")
-    axes = fig.subplots(1, 3)
-    for ax, j in zip(axes, CYCLE_JOINTS):
-        ax.plot(measured["percent"], measured["angles"][j], "k", lw=2.5, label="RBDS001 (Visual3D)")
+    panels = [*CYCLE_JOINTS, *(["thigh"] if segments is not None else [])]
+    fig = Figure(figsize=(4 * len(panels), 4), layout="constrained")
+    percent = measured["percent"]
+    for ax, j in zip(fig.subplots(1, len(panels)), panels):
+        ax.plot(percent, measured["angles"][j] if j != "thigh" else segments["thigh"], "k", lw=2.5,
+                label="RBDS001 (Visual3D; the thigh: formopt's markers)")
         for name, stride in strides.items():
-            line, = ax.plot(measured["percent"], cycle_angles(stride, measured["percent"])[j], label=name)
+            curve = cycle_angles(stride, percent)["hip"] - np.interp(percent, *trunk_cycle(stride)) if j == "thigh" \
+                else cycle_angles(stride, percent)[j]
+            line, = ax.plot(percent, curve, label=name)
             ax.axvline(100 * stride.duty_factor, color=line.get_color(), ls=":", lw=1)
         ax.axvline(100 * np.mean(measured["vertical"][:-1] > 0.5), color="k", ls=":", lw=1)
-        ax.set(title=f"{j} ({'dorsiflexion' if j == 'ankle' else 'flexion'} +)", xlabel="% of the cycle from"
-               " right touchdown (dotted: toe-off)", ylabel="deg")
-    axes[0].legend(fontsize=7)
+        what = {"ankle": "dorsiflexion +", "thigh": "from the vertical, knee ahead +"}.get(j, "flexion +")
+        ax.set(title=f"{j} ({what})", xlabel="% of the cycle from right touchdown (dotted: toe-off)", ylabel="deg")
+    fig.axes[0].legend(fontsize=7)
     fig.savefig(path, dpi=110)
     print(f"\nfigure: {path}")
 
@@ -153,7 +158,7 @@ def main(argv=None) -> int:
             strides[f"{rung} {strike}"] = stride = solve(rung, strike, args.speed)
             table(f"{rung}, {strike} strike, {args.speed} m/s ({time.process_time() - clock:.0f} s CPU)", stride, measured, segments)
     if args.figure:
-        figure(strides, measured, args.figure)
+        figure(strides, measured, segments, args.figure)
     return 0
 
 
