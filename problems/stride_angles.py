@@ -56,13 +56,6 @@ def solve(rung: str, strike: str, speed: float):
     return api.stride(parse(data, str(SCENE)), speed, strike).best
 
 
-def trunk_cycle(stride) -> tuple[np.ndarray, np.ndarray]:
-    """The trunk's lean (deg) over the whole cycle: (percent, lean), the half stride twice."""
-    T = stride.half_period_s
-    lean = np.degrees(stride.theta[:, 2])
-    return np.r_[stride.t / T * 50.0, 50.0 + stride.t / T * 50.0], np.r_[lean, lean]
-
-
 def decompose(predicted, measured) -> dict:
     """One joint's curves over 0-99 % of the cycle (deg): rms, offset, shape (rms of d - mean d),
     shift (%, the circular shift of the prediction that least leaves, positive: it is late) and
@@ -82,10 +75,9 @@ def table(name: str, stride, measured: dict, segments: dict | None) -> None:
     curves = cycle_angles(stride, percent)
     against = {j: measured["angles"][j][:100] for j in CYCLE_JOINTS}
     if segments is not None:
-        lean = np.interp(percent, *trunk_cycle(stride))
-        curves["thigh"], against["thigh"] = curves["hip"] - lean, segments["thigh"][:100]
-    print(f"\n{name}: {stride.cadence_spm:.1f} steps/min, duty {stride.duty_factor:.3f} (measured 0.35 by the"
-          f" force), trunk lean {np.degrees(stride.theta[:, 2].mean()):+.1f} deg, valid {stride.valid}")
+        against["thigh"] = segments["thigh"][:100]
+    print(f"\n{name}: {stride.cadence_spm:.1f} steps/min, duty {stride.duty_factor:.3f} (measured"
+          f" {np.mean(measured['vertical'][:-1] > 0.5):.2f} by the force), trunk lean {np.degrees(stride.theta[:, 2].mean()):+.1f} deg, valid {stride.valid}")
     print(f"{'joint':6s} {'RMS':>5s} {'offset':>6s} {'shape':>5s} {'shift%':>6s} {'left':>5s}"
           f" {'ROM pred/meas':>13s} {'max at %':>9s} {'min at %':>9s}")
     for j in against:
@@ -126,9 +118,7 @@ def figure(strides: dict, measured: dict, segments: dict | None, path: str) -> N
         ax.plot(percent, measured["angles"][j] if j != "thigh" else segments["thigh"], "k", lw=2.5,
                 label="RBDS001 (Visual3D; the thigh: formopt's markers)")
         for name, stride in strides.items():
-            curve = cycle_angles(stride, percent)["hip"] - np.interp(percent, *trunk_cycle(stride)) if j == "thigh" \
-                else cycle_angles(stride, percent)[j]
-            line, = ax.plot(percent, curve, label=name)
+            line, = ax.plot(percent, cycle_angles(stride, percent)[j], label=name)
             ax.axvline(100 * stride.duty_factor, color=line.get_color(), ls=":", lw=1)
         ax.axvline(100 * np.mean(measured["vertical"][:-1] > 0.5), color="k", ls=":", lw=1)
         what = {"ankle": "dorsiflexion +", "thigh": "from the vertical, knee ahead +"}.get(j, "flexion +")

@@ -109,27 +109,32 @@ def measured_cycle(path, speed: float) -> dict | None:
 
 def predicted_cycle(stride: Stride) -> dict:
     """The right leg over a whole gait cycle from the half stride (its left leg gives the second
-    half, by symmetry): percent, angles (deg), net moments (N m/kg: the active moments and the
-    tendons'), their powers (W/kg, P = -tau theta': generation positive), vertical force (N/kg)."""
+    half, by symmetry): percent, angles (deg), the thigh from the downward vertical (deg, knee
+    ahead positive: thigh = hip - trunk, mechanics.model.segment_angles), net moments (N m/kg: the
+    active moments and the tendons'), their powers (W/kg, P = -tau theta': generation positive),
+    vertical force (N/kg)."""
     T = stride.half_period_s
     percent = np.r_[stride.t / T * 50.0, 50.0 + stride.t / T * 50.0]
     m = stride.mass_kg
     angles = {j: np.degrees(np.r_[stride.theta[:, 3 + k], stride.theta[:, 6 + k]])
               for k, j in enumerate(CYCLE_JOINTS)}
+    thigh = angles["hip"] - np.degrees(np.r_[stride.theta[:, 2], stride.theta[:, 2]])
     net = stride.tau + (0.0 if stride.tau_spring is None else stride.tau_spring)
     moments = {j: np.r_[net[:, k], net[:, 3 + k]] / m for k, j in enumerate(CYCLE_JOINTS)}
     rates = {j: np.r_[stride.thetad[:, 3 + k], stride.thetad[:, 6 + k]] for k, j in enumerate(CYCLE_JOINTS)}
     powers = {j: -moments[j] * rates[j] for j in CYCLE_JOINTS}
     vertical = np.r_[stride.force[:, :, 1].sum(axis=1), np.zeros(len(stride.t))] / m
-    return {"percent": percent, "angles": angles, "moments": moments, "powers": powers, "vertical": vertical}
+    return {"percent": percent, "angles": angles, "thigh": thigh, "moments": moments, "powers": powers,
+            "vertical": vertical}
 
 
 def cycle_angles(stride: Stride, percent) -> dict:
-    """The predicted right-leg joint angles (deg; predicted_cycle) at the cycle's `percent`."""
+    """The predicted right-leg joint angles and the thigh's (deg; predicted_cycle) at the cycle's
+    `percent`."""
     predicted = predicted_cycle(stride)
     order = np.argsort(predicted["percent"], kind="stable")
-    return {j: np.interp(percent, predicted["percent"][order], predicted["angles"][j][order])
-            for j in CYCLE_JOINTS}
+    curves = {**predicted["angles"], "thigh": predicted["thigh"]}
+    return {j: np.interp(percent, predicted["percent"][order], curve[order]) for j, curve in curves.items()}
 
 
 def compare_cycle(stride: Stride, measured: dict) -> dict:

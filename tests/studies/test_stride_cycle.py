@@ -45,8 +45,10 @@ def test_the_offset_and_the_shape_split_the_rms():
 
 def test_the_cycle_is_the_right_leg_then_the_left():
     stride = half_stride()
+    stride.theta[:, 2] = np.radians(8.0)  # the trunk leaning forward
     angles = cycle_angles(stride, np.array([25.0, 50.0, 75.0]))
     assert angles["knee"] == pytest.approx([40.0, 0.0, -40.0], abs=0.05)  # sin at 25 / 50 / 75 % (41 nodes)
+    assert angles["thigh"] == pytest.approx(angles["hip"] - 8.0)  # thigh = hip - trunk
 
 
 @pytest.mark.skipif(not RBDS.exists(), reason="the RBDS data are not shipped here")
