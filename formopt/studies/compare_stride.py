@@ -26,9 +26,10 @@ the objective (effort, the nominal; metabolic: OBJECTIVE_BAND), the friction (FR
 and the legs' share of the body's mass (LEG_MASS_BAND); `WhatIf.parts` is each part's own
 width (the span of dP over the nominal and that part's variants). A variant that fails to converge at any cadence is
 left out of the band and named in `notes`. A change whose band holds zero is "no change the
-model can resolve". The variants and the other strikes' free optima are solved on WORKERS
-processes (studies.pool.independent): RBDS001 T35's section took 77 s of wall time against 108 s in one
-process, on a 2-core machine under a load of 5 (2026-11-27).
+model can resolve". The other strikes' free optima are solved on WORKERS processes beside the
+nominal curve, the band's solves (independent of each other) on WORKERS processes after it, the
+longest variants' first (studies.pool.Background; benchmarks/compare_speed.py --stride times
+each stage, docs/reference/performance.md).
 """
 
 from __future__ import annotations
