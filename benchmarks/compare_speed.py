@@ -144,9 +144,11 @@ def stride_stages(runner: str, workers: int | None, out: str | None) -> None:
         return got
 
     collocation.StrideNLP._run = timed
-    wall, cpu = time.perf_counter(), cpu_s()
-    section = answer(c, workers=workers) if workers else answer(c)
+    wall, cpu, told = time.perf_counter(), cpu_s(), []
+    stages = {"progress": lambda text: told.append((time.perf_counter() - wall, text))}
+    section = answer(c, workers=workers, **stages) if workers else answer(c, **stages)
     wall, cpu = time.perf_counter() - wall, cpu_s() - cpu
+    print("timeline (s, the stage told): " + "; ".join(f"{t:.1f} {text}" for t, text in told))
     print(f"compare's stride section, {runner}: {wall:.1f} s wall, {cpu:.1f} s CPU (this process and its "
           f"pool's), load {os.getloadavg()[0]:.1f} at the end")
     print("stage (this process) | compiled | solves | iterations | CPU s | ms/iteration")

@@ -87,6 +87,11 @@ WORKERS = min(2, os.cpu_count() or 1)
 # process, CPU s: the metabolic objective 15.3, from the nominal's primal values alone, another
 # objective's NLP; each legs' mass 3-4; each friction 1-1.5, the nominal's NLP; 2026-11-27)
 LONGEST_FIRST = ("objective", "body", "friction")
+# the section's wall time on 2 processes, shares (`stage_shares`): the nominal curve, its
+# family, the band until its first variant ends, the rest of the band (RBDS001 T25, 2 processes,
+# load 4-5: 50.5, 3.2, 38.8 and 12.2 s of 104.7, benchmarks/compare_speed.py --stride's timeline,
+# 2026-11-27)
+STAGE_SHARES = (0.48, 0.03, 0.37, 0.12)
 
 
 @dataclass
@@ -413,6 +418,18 @@ def stage_count(band: bool = True) -> int:
     """The stages `answer` tells its progress of: the nominal, the family, the band's start
     and, with the band, each other strike and each variant as it ends."""
     return 3 + (len(FRICTION_BAND) + len(OBJECTIVE_BAND) + len(LEG_MASS_BAND) + len(STRIKES) - 1 if band else 0)
+
+
+def stage_shares(band: bool = True) -> list[float]:
+    """Each of `stage_count`'s stages' expected share of the section's time, in the order
+    `answer` tells them (io.progress.Stages' `shares`): the nominal curve, its family, each
+    other strike (solved beside the nominal: done when told), the band until its first variant
+    ends (the longest, LONGEST_FIRST) and the rest of the band (STAGE_SHARES)."""
+    nominal, family, first, rest = STAGE_SHARES
+    if not band:
+        return [nominal, family, 0.0]
+    strikes, variants = len(STRIKES) - 1, stage_count() - 3 - len(STRIKES) + 1
+    return [nominal, family, *[0.0] * strikes, first, *[rest / (variants - 1)] * (variants - 1), 0.0]
 
 
 def _strike(task: tuple) -> Stride | None:

@@ -118,6 +118,16 @@ def test_the_band_is_solved_longest_first_and_kept_in_its_order(monkeypatch):
             assert [s.cadence_spm for s in curve.strides] == cadences
 
 
+def test_each_stage_told_has_its_share_of_the_time():
+    """The progress bar's shares (io.progress.Stages): one per stage told, the band's first
+    variant's wait the longest of the band's."""
+    for band in (True, False):
+        shares = compare_stride.stage_shares(band)
+        assert len(shares) == compare_stride.stage_count(band) and min(shares) >= 0
+    shares = compare_stride.stage_shares()
+    assert sum(shares) == pytest.approx(1.0) and shares[4] == max(shares[4:])
+
+
 CHANGES = (-5.0, 5.0)  # the section's what-ifs, two of WHAT_IF_PCT's four (the time: 3 cadences, not 5)
 
 
