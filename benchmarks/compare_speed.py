@@ -1,6 +1,7 @@
 """Speed of `formopt compare` on a 30 s trial (RBDS001 T35: 4500 frames, 85 touchdowns) with an
-optimum for every step, as a whole process (start-up, reading, checks, kinematics, the mean
-step's multi-start optimum, 85 per-step optima, figure, CSV, JSON, OpenSim files).
+optimum for every step, without the stride section (`--stride` below), as a whole process
+(start-up, reading, checks, kinematics, the mean step's multi-start optimum, 85 per-step
+optima, figure, CSV, JSON, OpenSim files).
 
     python benchmarks/compare_speed.py [--repeats 5]
 
@@ -8,11 +9,28 @@ Prints the median wall time of the whole process (target <= 3 s), and the time o
 one process; side by side, the per-step optima done the way the NLP was built before the
 reference became one of its parameters: one PostureProblem (symbolic build and solver) per
 step. No peer tool computes this (OpenSim and Visual3D give the angles, not an optimum).
+
+    python benchmarks/compare_speed.py --stride T25 [--workers 1] [--json FILE]
+    python benchmarks/compare_speed.py --diff BEFORE.json AFTER.json
+
+`--stride`: compare's stride section (studies.compare_stride.answer) for one runner of
+problems/compare/runners.toml (a part of its trial's name: T35, T25, 20160226): its wall and
+CPU time (this process and its pool's, resource.getrusage), and per stage of this process (the
+caller of each IPOPT run: the free optimum, the cadence curve's attempts, the family, the band's
+variants, the other strikes) the solves, iterations, CPU and ms an iteration, interpreted or
+compiled; `--workers 1` puts every stage in this process. `--diff`: the stride sections of two
+comparison.json files (or --json files), number by number: each relative difference over 1e-9
+and the largest, and any other value that differs (the section's `seconds` left out).
 """
 
 from __future__ import annotations
 
 import argparse
+import collections
+import inspect
+import json
+import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -22,13 +40,21 @@ from pathlib import Path
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "rbds"
 ARGS = ["compare", "--trial", str(DATA / "RBDS001runT35.c3d"), "--static", str(DATA / "RBDS001static.c3d"),
-        "--mass", "62", "--height", "1.81"]
+        "--mass", "62", "--height", "1.81", "--no-stride"]  # the stride section: --stride
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--stride", help="compare's stride section of this runner (runners.toml)")
+    parser.add_argument("--workers", type=int, default=None, help="--stride's processes (default: answer's)")
+    parser.add_argument("--json", help="--stride: write the section's JSON here")
+    parser.add_argument("--diff", nargs=2, metavar=("BEFORE", "AFTER"))
     args = parser.parse_args()
+    if args.diff:
+        return diff(*args.diff)
+    if args.stride:
+        return stride_stages(args.stride, args.workers, args.json)
     exe = str(Path(sys.executable).with_name("formopt"))
     walls = []
     for _ in range(args.repeats):
@@ -69,6 +95,94 @@ def main():
     rebuilt = time.perf_counter() - t
     print(f"  side by side: one PostureProblem per step (build + solve): {rebuilt:.2f} s "
           f"({rebuilt / n * 1e3:.1f} ms per step)")
+
+
+SCENE = Path(__file__).resolve().parents[1] / "problems" / "compare" / "runners.toml"
+# a solve's stage: the first of these among its callers (studies.compare_stride, stride_map,
+# optim.stride.local)
+STAGES = ("_free_or_none", "sticking_free", "family", "_at", "_better_free", "optimum", "attempt")
+
+
+def comparison(runner: str):
+    """compare (no per-step optima) of the runners.toml trial whose file name holds `runner`,
+    with the scene's settings as `formopt compare --scene` reads them."""
+    from formopt.cli.compare import SETTINGS, read_scene
+    from formopt.io import mocap
+    from formopt.measure import Options
+    from formopt.studies.compare import compare
+
+    shared, trials = read_scene(SCENE)
+    s = {**{k: d for k, (d, _) in SETTINGS.items()}, **shared,
+         **next(t for t in trials if runner in Path(t["trial"]).name)}
+    options = Options(s["markers"], s["cutoff"], s["force_threshold"], s["foot_speed_fraction"])
+    return compare(mocap.read(s["trial"], s["forces"]), mocap.read(s["static"]), s["mass"], s["height"],
+                   s["sex"], friction=s["friction"], starts=s["starts"], seed=s["seed"], law=s["contact"],
+                   bounds_deg=s["bounds"], support=s["support"], options=options, per_step=False)
+
+
+def cpu_s() -> float:
+    """CPU s of this process and its ended children (user + system)."""
+    own, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+
+def stride_stages(runner: str, workers: int | None, out: str | None) -> None:
+    """The stride section's time for one runner, and per stage of this process (module doc)."""
+    from formopt.optim.stride import collocation
+    from formopt.studies.compare_stride import answer
+
+    c = comparison(runner)
+    runs: dict = collections.defaultdict(lambda: [0, 0, 0.0])  # (stage, compiled): solves, iterations, CPU
+    solve = collocation.StrideNLP._run
+
+    def timed(nlp, solver, *args):
+        stage = next((f.function for f in inspect.stack()[1:16] if f.function in STAGES), "other")
+        start = time.process_time()
+        got = solve(nlp, solver, *args)
+        row = runs[(stage, nlp._solver_compiled)]
+        row[0], row[1], row[2] = row[0] + 1, row[1] + got.iterations, row[2] + time.process_time() - start
+        return got
+
+    collocation.StrideNLP._run = timed
+    wall, cpu, told = time.perf_counter(), cpu_s(), []
+    stages = {"progress": lambda text: told.append((time.perf_counter() - wall, text))}
+    section = answer(c, workers=workers, **stages) if workers else answer(c, **stages)
+    wall, cpu = time.perf_counter() - wall, cpu_s() - cpu
+    print("timeline (s, the stage told): " + "; ".join(f"{t:.1f} {text}" for t, text in told))
+    print(f"compare's stride section, {runner}: {wall:.1f} s wall, {cpu:.1f} s CPU (this process and its "
+          f"pool's), load {os.getloadavg()[0]:.1f} at the end")
+    print("stage (this process) | compiled | solves | iterations | CPU s | ms/iteration")
+    for (stage, compiled), (n, its, s) in sorted(runs.items(), key=lambda kv: -kv[1][2]):
+        print(f"{stage} | {compiled} | {n} | {its} | {s:.2f} | {s / max(its, 1) * 1e3:.1f}")
+    if out:
+        Path(out).write_text(json.dumps(section.to_dict(), default=str))
+
+
+def diff(before: str, after: str) -> None:
+    """The two stride sections' numbers compared (module doc)."""
+    def flat(x, at=""):
+        if isinstance(x, dict):
+            return {k: v for key, item in x.items() for k, v in flat(item, f"{at}.{key}").items()}
+        if isinstance(x, list):
+            return {k: v for i, item in enumerate(x) for k, v in flat(item, f"{at}[{i}]").items()}
+        return {at: x}
+
+    def numbers(file: str) -> dict:
+        data = json.loads(Path(file).read_text())  # a comparison.json, or --json's section alone
+        return {k: v for k, v in flat(data.get("stride", data)).items() if k not in (".seconds", ".figure")}
+
+    a, b = numbers(before), numbers(after)
+    worst = (0.0, "")
+    for key in sorted(a.keys() | b.keys()):
+        x, y = a.get(key), b.get(key)
+        if isinstance(x, float) and isinstance(y, float):
+            rel = abs(x - y) / max(abs(x), abs(y), 1e-300)
+            worst = max(worst, (rel, key))
+            if rel > 1e-9:
+                print(f"{key}: {x!r} -> {y!r} ({rel:.1e})")
+        elif x != y:
+            print(f"{key}: {x!r} -> {y!r}")
+    print(f"{len(a)} values; the largest relative difference {worst[0]:.1e}" + (f" ({worst[1]})" if worst[0] else ""))
 
 
 if __name__ == "__main__":

@@ -24,7 +24,7 @@ from ..mechanics.errors import InputError
 from ..report.figures import comparison_figure, stride_cadence_figure
 from ..report.tables import comparison_table, trials_table
 from ..studies.compare import BOUNDS_DEG, JOINTS, SIDES, SUPPORT, compare
-from ..studies.compare_stride import answer, stage_count
+from ..studies.compare_stride import answer, stage_count, stage_shares
 from .common import add_format, emit, out_folder
 
 # every setting: its default and what it is (the option's help)
@@ -207,7 +207,7 @@ def run_one(s: dict, args, out: Path, show: bool = True):
                          support=s["support"], options=options, per_step=s["per_step"],
                          progress=None if quiet else say)
     if s["stride"]:
-        with Stages(stage_count(), "compare: stride") as say:
+        with Stages(stage_count(), "compare: stride", stage_shares()) as say:
             result.stride = answer(result, progress=None if quiet else say)
     rep = result.to_dict()
     rep["figure"] = str(save_figure(comparison_figure(result, rep), out / f"comparison.{args.format}"))

@@ -22,15 +22,22 @@ def bar(total: int | None, desc: str, unit: str = "step", initial: int = 0):
 
 class Stages:
     """`say(text)` for a run of `total` stages: each call completes the stage before it and names
-    the next on the bar (`total` None: stages not counted, the elapsed time only). Use as a
-    context manager (the bar closes on leaving)."""
+    the next on the bar (`total` None: stages not counted, the elapsed time only). `shares`:
+    each stage's expected share of the run, in the order they are told (any unit): the bar then
+    counts percent, and the remaining time is estimated from the shares done, not the count.
+    Use as a context manager (the bar closes on leaving)."""
 
-    def __init__(self, total: int | None, desc: str):
-        self.bar, self.started = bar(total, desc, unit="stage"), False
+    def __init__(self, total: int | None, desc: str, shares: list[float] | None = None):
+        if shares is not None and len(shares) != total:
+            raise ValueError(f"Stages: {len(shares)} shares for {total} stages")
+        self.shares = None if shares is None else [100.0 * w / sum(shares) for w in shares]
+        self.bar = bar(100 if shares else total, desc, unit="%" if shares else "stage")
+        self.done, self.started = 0, False
 
     def __call__(self, text: str) -> None:
         if self.started:
-            self.bar.update(1)
+            self.bar.update(self.shares[self.done] if self.shares else 1)
+            self.done += 1
         self.started = True
         self.bar.set_postfix_str(text, refresh=True)
 

@@ -48,11 +48,22 @@ def compiler() -> str:
 def library(function: ca.Function, jacobian: bool = False) -> Path:
     """Path of the compiled shared library of `function` (built once, then cached); with
     `jacobian`, its Jacobian too (`jac_<name>`, which CasADi differentiates a loaded external by)."""
+    return _compile(_source(function, jacobian), function.name(), FUNCTION_OPT)
+
+
+def cached(function: ca.Function, jacobian: bool = False) -> bool:
+    """Whether `library(function, jacobian)` is in the disk cache already (nothing is compiled;
+    generating the C source costs tens of milliseconds)."""
+    return _target(_source(function, jacobian), function.name(), FUNCTION_OPT).exists()
+
+
+def _source(function: ca.Function, jacobian: bool) -> str:
+    """The C source of `function` (and of its Jacobian, `jacobian`)."""
     generator = ca.CodeGenerator(f"{function.name()}.c", {"with_header": False})
     generator.add(function)
     if jacobian:
         generator.add(function.jacobian())
-    return _compile(generator.dump(), function.name(), FUNCTION_OPT)
+    return generator.dump()
 
 
 def cached_nlpsol(name: str, nlp: dict, opts: dict, compiled: bool = False) -> ca.Function:
@@ -71,11 +82,14 @@ def cached_nlpsol(name: str, nlp: dict, opts: dict, compiled: bool = False) -> c
     return ca.nlpsol(name, "ipopt", str(_compile(source, f"{name}_nlp", NLP_OPT)), opts)
 
 
+def _target(source: str, name: str, level: str) -> Path:
+    """The cached library's path: keyed by the source, the compiler and its flags."""
+    key = hashlib.sha256("\0".join([source, compiler(), level, *FLAGS]).encode()).hexdigest()[:20]
+    return cache_dir() / f"{name}_{key}.so"
+
+
 def _compile(source: str, name: str, level: str) -> Path:
-    cc = compiler()
-    flags = (level, *FLAGS)
-    key = hashlib.sha256("\0".join([source, cc, *flags]).encode()).hexdigest()[:20]
-    target = cache_dir() / f"{name}_{key}.so"
+    cc, flags, target = compiler(), (level, *FLAGS), _target(source, name, level)
     if target.exists():
         return target
     target.parent.mkdir(parents=True, exist_ok=True)

@@ -26,9 +26,10 @@ the objective (effort, the nominal; metabolic: OBJECTIVE_BAND), the friction (FR
 and the legs' share of the body's mass (LEG_MASS_BAND); `WhatIf.parts` is each part's own
 width (the span of dP over the nominal and that part's variants). A variant that fails to converge at any cadence is
 left out of the band and named in `notes`. A change whose band holds zero is "no change the
-model can resolve". The variants and the other strikes' free optima are solved on WORKERS
-processes (studies.pool.independent): RBDS001 T35's section took 77 s of wall time against 108 s in one
-process, on a 2-core machine under a load of 5 (2026-11-27).
+model can resolve". The other strikes' free optima are solved on WORKERS processes beside the
+nominal curve, the band's solves (independent of each other) on WORKERS processes after it, the
+longest variants' first (studies.pool.Background; benchmarks/compare_speed.py --stride times
+each stage, docs/reference/performance.md).
 """
 
 from __future__ import annotations
@@ -42,7 +43,7 @@ import numpy as np
 from ..mechanics.body import scaled_body
 from ..optim.stride import Stride, rank, summarise
 from ..optim.stride.problem import STRIKES, mesh_note
-from .pool import independent
+from .pool import Background
 from .stride_form import NODES, joint_work, placement_m, stride_scene, with_body
 from .stride_map import better, cadence_curve, free, warm
 
@@ -78,9 +79,19 @@ ROUNDS = 2  # the curve solved again from a better free optimum found on it, at 
 # one family: a continuation that reaches a curve's stride within this (relative objective)
 FAMILY = 1e-3
 BAND_PARTS = ("friction", "objective", "body")  # the band's parts, in `Curve.part`
-# the band's variants and the other strikes' free optima are independent of each other: solved
-# on this many processes (studies.pool.independent; the brief's budget for compare is 2 cores)
+# the other strikes' free optima (beside the nominal) and the band's variants (after it) are
+# independent of each other: solved on this many processes (studies.pool.Background; the
+# brief's budget for compare is 2 cores)
 WORKERS = min(2, os.cpu_count() or 1)
+# the band's parts, their variants started in this order: the longest first (RBDS001 T25, one
+# process, CPU s: the metabolic objective 15.3, from the nominal's primal values alone, another
+# objective's NLP; each legs' mass 3-4; each friction 1-1.5, the nominal's NLP; 2026-11-27)
+LONGEST_FIRST = ("objective", "body", "friction")
+# the section's wall time on 2 processes, shares (`stage_shares`): the nominal curve, its
+# family, the band until its first variant ends, the rest of the band (RBDS001 T25, 2 processes,
+# load 4-5: 50.5, 3.2, 38.8 and 12.2 s of 104.7, benchmarks/compare_speed.py --stride's timeline,
+# 2026-11-27)
+STAGE_SHARES = (0.48, 0.03, 0.37, 0.12)
 
 
 @dataclass
@@ -290,22 +301,28 @@ def run_curve(name: str, scene, speed: float, cadences: list[float]) -> Curve:
     return curve
 
 
-def variant_curve(name: str, scene, nominal: Curve) -> Curve:
+def variant_curve(name: str, scene, nominal: Curve, solved: list[Stride] | None = None) -> Curve:
     """A variant's strides, each warm-started from the nominal's at the same cadence (and its
     free optimum from the nominal's): the band then measures the variant's effect on the same
     family of strides. (Warm-started along its own cadences instead, the mass -5 % variant
     of RBDS001 at 3.58 m/s jumped at -10 % to another local optimum, 565 W against the
-    nominal's 463 W, and made the band 10 times wider, 2026-11-23.)"""
+    nominal's 463 W, and made the band 10 times wider, 2026-11-23.) `solved`: its
+    `variant_solves` solved already (the free optimum first), else they are solved here."""
     if nominal.free is None:
         raise ValueError(f"{name}: the nominal curve has no free optimum to start from")
     curve = Curve(name, nominal.cadences)
-    curve.free = _at(scene, nominal.free, None)
-    curve.strides = [_at(scene, s, c) for s, c in zip(nominal.strides, nominal.cadences)]
+    curve.free, *curve.strides = solved or [_at(task) for task in variant_solves(scene, nominal)]
     failed = [f"{s.cadence_spm:.0f} steps/min" for s in curve.strides if not s.success]
     failed += [] if curve.free.success else ["the free optimum"]
     if failed:
         curve.why_not = f"no convergence at {', '.join(failed)}"
     return curve
+
+
+def variant_solves(scene, nominal: Curve) -> list[tuple]:
+    """A variant's solves, independent of each other: (scene, start, cadence) of its free
+    optimum from the nominal's, then of each cadence from the nominal's stride there (`_at`)."""
+    return [(scene, nominal.free, None), *[(scene, s, c) for s, c in zip(nominal.strides, nominal.cadences)]]
 
 
 def touchdown_mode(stride: Stride) -> str:
@@ -398,15 +415,21 @@ def what_ifs(curves: list[Curve], cadences: list[float],
 
 
 def stage_count(band: bool = True) -> int:
-    """The stages `answer` tells its progress of: the nominal, the family, the strikes' start
-    and, with the band, each variant and each other strike as it ends."""
+    """The stages `answer` tells its progress of: the nominal, the family, the band's start
+    and, with the band, each other strike and each variant as it ends."""
     return 3 + (len(FRICTION_BAND) + len(OBJECTIVE_BAND) + len(LEG_MASS_BAND) + len(STRIKES) - 1 if band else 0)
 
 
-def _variant(task: tuple) -> Curve:
-    """One band variant's curve (`variant_curve`, its part set), from (name, part, scene, nominal)."""
-    name, part, scene, nominal = task
-    return replace(variant_curve(name, scene, nominal), part=part)
+def stage_shares(band: bool = True) -> list[float]:
+    """Each of `stage_count`'s stages' expected share of the section's time, in the order
+    `answer` tells them (io.progress.Stages' `shares`): the nominal curve, its family, each
+    other strike (solved beside the nominal: done when told), the band until its first variant
+    ends (the longest, LONGEST_FIRST) and the rest of the band (STAGE_SHARES)."""
+    nominal, family, first, rest = STAGE_SHARES
+    if not band:
+        return [nominal, family, 0.0]
+    strikes, variants = len(STRIKES) - 1, stage_count() - 3 - len(STRIKES) + 1
+    return [nominal, family, *[0.0] * strikes, first, *[rest / (variants - 1)] * (variants - 1), 0.0]
 
 
 def _strike(task: tuple) -> Stride | None:
@@ -420,7 +443,8 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
     friction and law); `progress(text)` is told of each stage; `band` False: the nominal
     variant and strike only (every band then the nominal value, no other strike: a cheap check,
     not a report); `changes`: the what-ifs' cadence changes (% of the runner's); `workers`: the
-    processes solving the band's variants and the other strikes (studies.pool.independent)."""
+    processes solving the other strikes (beside the nominal) and the band's variants (after
+    it), studies.pool.Background."""
     say = progress or (lambda text: None)
     start = time.perf_counter()
     measured = measured_form(c)
@@ -431,31 +455,41 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
     cadences = [runner] + [runner * (1 + p / 100) for p in changes]
     nominal = stride_scene(scaled_body(body["mass_kg"], body["height_m"], body["sex"]), speed,
                            measured["strike"], "effort", c.settings["friction"], law, nodes)
-    say(f"stride: the nominal (effort) at {len(cadences)} cadences")
-    curves = [run_curve("effort (nominal)", nominal, speed, cadences)]
-    say("stride: the free optimum's family along the cadences")
-    if curves[0].ok and curves[0].free is not None:
-        family(nominal, speed, curves[0])
-    variants = _variants(nominal, body) if band else []
     others = [s for s in STRIKES if s != measured["strike"]] if band else []
-    say(f"stride: {len(variants)} variants warm from the nominal and {len(others)} other strikes "
-        f"on {min(workers, len(variants) + len(others)) or 1} processes")
-    tasks: list[tuple] = []
-    if curves[0].ok:
-        tasks = [(_variant, (name, part, scene, curves[0]), f"variant {name} done") for name, part, scene in variants]
-    else:
-        curves += [Curve(name, cadences, why_not="no nominal", part=part) for name, part, _ in variants]
-        for name, _, _ in variants:  # each variant's stage, told as the band's are
-            say(f"variant {name}: no nominal")
-    tasks += [(_strike, (_with(nominal, strike=s), speed), f"strike {s} done") for s in others]
-    solved = independent(tasks, workers, say)
-    curves += solved[:len(tasks) - len(others)]
-    best = {s: curves[0].free if s == measured["strike"] else None for s in STRIKES}
-    best.update(zip(others, solved[len(tasks) - len(others):]))
+    with Background(min(workers, len(others))) as beside:
+        strikes = beside.start([(_strike, (_with(nominal, strike=s), speed), f"strike {s} done") for s in others])
+        say(f"stride: the nominal (effort) at {len(cadences)} cadences, {len(others)} other strikes beside it")
+        curves = [run_curve("effort (nominal)", nominal, speed, cadences)]
+        say("stride: the free optimum's family along the cadences")
+        if curves[0].ok and curves[0].free is not None:
+            family(nominal, speed, curves[0])
+        best = {s: curves[0].free if s == measured["strike"] else None for s in STRIKES}
+        best.update(zip(others, beside.results(strikes, say)))
+    variants = _variants(nominal, body) if band else []
+    say(f"stride: {len(variants)} variants warm from the nominal on {min(workers, len(variants)) or 1} processes")
+    curves += _band(curves[0], variants, workers, say)
     notes += _notes(curves, best, runner, nominal)
     return StrideAnswer(speed, law, measured, curves, best,
                         what_ifs(curves, cadences, changes) if curves[0].ok else [], notes,
                         time.perf_counter() - start, nominal.settings.nodes)
+
+
+def _band(nominal: Curve, variants: list[tuple], workers: int, say) -> list[Curve]:
+    """The band's variants' curves (variant_curve), in `variants`' order, their solves
+    (variant_solves) on `workers` processes, the longest variants' first (LONGEST_FIRST; forked
+    after the nominal: each worker holds its NLP); without a nominal each is named and left out."""
+    if not nominal.ok:
+        for name, _, _ in variants:  # each variant's stage, told as the band's are
+            say(f"variant {name}: no nominal")
+        return [Curve(name, nominal.cadences, why_not="no nominal", part=part) for name, part, _ in variants]
+    solves = {name: variant_solves(scene, nominal) for name, _, scene in variants}
+    order = sorted(variants, key=lambda v: LONGEST_FIRST.index(v[1]))
+    tasks = [(_at, task, f"variant {name} done" if k == len(solves[name]) - 1 else "")
+             for name, _, _ in order for k, task in enumerate(solves[name])]
+    with Background(min(workers, len(tasks))) as pool:
+        strides = iter(pool.results(pool.start(tasks), say))
+    solved = {name: [next(strides) for _ in solves[name]] for name, _, _ in order}
+    return [replace(variant_curve(name, scene, nominal, solved[name]), part=part) for name, part, scene in variants]
 
 
 def _variants(nominal, body: dict) -> list[tuple]:
@@ -493,8 +527,9 @@ def _with(scene, **changes):
     return replace(scene, settings=settings, strike=settings.strike)
 
 
-def _at(scene, start: Stride, cadence: float | None) -> Stride:
-    """The scene's stride at `cadence`, warm-started from `start`."""
+def _at(task: tuple) -> Stride:
+    """The scene's stride at `cadence`, warm-started from `start`, from (scene, start, cadence)."""
+    scene, start, cadence = task
     nlp = scene.nlp()
     return summarise(nlp, warm(nlp, start, scene.speed, scene.slope, scene.friction, cadence), False)
 

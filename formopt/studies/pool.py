@@ -1,5 +1,5 @@
 """A local process pool whose workers end with their run (studies.sweep's chunks, compare's
-band): the workers ignore Ctrl-C (the run stops them), die with a killed parent, and are
+band and strikes, `Background`): the workers ignore Ctrl-C (the run stops them), die with a killed parent, and are
 terminated when the run ends, by an error or an interrupt as well."""
 
 from __future__ import annotations
@@ -28,27 +28,40 @@ def local_pool(workers: int):
         end(pool)
 
 
-def independent(tasks: list[tuple], workers: int, say) -> list:
-    """[fn(args) for fn, args, name in tasks] on a local pool of `workers` processes (fork:
-    each inherits what the run built, e.g. compare's NLPs; 1: in this process), `say(name)` as
-    each ends; the results in the tasks' order. fn must be picklable (a module's function)."""
-    results: list = [None] * len(tasks)
-    if workers <= 1 or len(tasks) <= 1:
-        for k, task in enumerate(tasks):
-            results[k] = _numbered((k, task))[1]
-            say(task[2])
-        return results
-    with local_pool(min(workers, len(tasks))) as pool:
-        for k, result in pool.imap_unordered(_numbered, list(enumerate(tasks))):
-            results[k] = result
-            say(tasks[k][2])
-    return results
+class Background:
+    """Independent tasks (fn, args, name) started on a local pool of `workers` processes as soon
+    as they are `start`ed, while this process works on (fork: each worker inherits what the run
+    built when the pool started; 1 worker: each task runs here when its result is asked);
+    `results` waits for them, in their order, `say(name)` as each is got. fn must be picklable
+    (a module's function). Use as a context manager: the pool ends with the block (local_pool)."""
 
+    def __init__(self, workers: int):
+        self.workers, self.pool, self._stack = workers, None, contextlib.ExitStack()
 
-def _numbered(item: tuple) -> tuple:
-    """(k, fn(args)) of a numbered task (k, (fn, args, name))."""
-    k, (fn, args, _) = item
-    return k, fn(args)
+    def __enter__(self) -> Background:
+        if self.workers > 1:
+            self.pool = self._stack.enter_context(local_pool(self.workers))
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._stack.__exit__(*exc)
+
+    def start(self, tasks: list[tuple]) -> list[tuple]:
+        """The tasks started (on the pool; here, their handles only), longest first where the
+        caller orders them so."""
+        if self.pool is None:
+            return [(None, task) for task in tasks]
+        return [(self.pool.apply_async(task[0], (task[1],)), task) for task in tasks]
+
+    def results(self, started: list[tuple], say) -> list:
+        """[fn(args) for each started task], in their order, `say(name)` as each is got (a task
+        named "" is not told: a part of a stage)."""
+        out = []
+        for handle, (fn, args, name) in started:
+            out.append(fn(args) if handle is None else handle.get())
+            if name:
+                say(name)
+        return out
 
 
 def end(pool) -> None:

@@ -11,6 +11,7 @@ import pytest
 from formopt.mechanics.body import scaled_body
 from formopt.optim.stride import summarise
 from formopt.report.tables import stride_lines
+from formopt.studies import compare_stride
 from formopt.studies.compare_stride import (
     ENVELOPE,
     WHAT_IF_PCT,
@@ -89,6 +90,42 @@ def test_a_what_if_between_two_families_and_a_free_optimum_off_the_envelope_are_
     nominal.strides[2].held = nominal.free.held
     assert optima_notes(nominal)[-1] == ("the solve's bounds hold the strides at 162 steps/min (each stride's "
                                          "`held` in the JSON; the optimum's are printed under it)")
+
+
+def _solved(task):
+    """Stands for compare_stride._at: which scene, from which start, at which cadence."""
+    scene, start, cadence = task
+    return SimpleNamespace(scene=scene, start=start, success=True, cadence_spm=cadence or start.cadence_spm)
+
+
+def test_the_band_is_solved_longest_first_and_kept_in_its_order(monkeypatch):
+    """_band: every variant's solves (variant_solves: the free optimum, then each cadence) as
+    tasks on two processes, the objective's first (LONGEST_FIRST); each curve assembled from its
+    own solves, in the variants' order, each told once."""
+    monkeypatch.setattr(compare_stride, "_at", _solved)
+    cadences = [170.0, 153.0, 187.0]
+    nominal = Curve("effort (nominal)", cadences, free=SimpleNamespace(cadence_spm=165.0),
+                    strides=[SimpleNamespace(cadence_spm=c) for c in cadences])
+    variants = [("friction 0.6", "friction", "mu"), ("metabolic", "objective", "met"), ("legs' mass +5 %", "body", "legs")]
+    for workers in (1, 2):
+        told: list[str] = []
+        curves = compare_stride._band(nominal, variants, workers, told.append)
+        assert told == ["variant metabolic done", "variant legs' mass +5 % done", "variant friction 0.6 done"]
+        assert [(c.name, c.part) for c in curves] == [(n, p) for n, p, _ in variants]
+        for curve, (_, _, scene) in zip(curves, variants):
+            assert curve.ok and curve.free.scene == scene and curve.free.cadence_spm == 165.0
+            assert [s.scene for s in curve.strides] == [scene] * 3
+            assert [s.cadence_spm for s in curve.strides] == cadences
+
+
+def test_each_stage_told_has_its_share_of_the_time():
+    """The progress bar's shares (io.progress.Stages): one per stage told, the band's first
+    variant's wait the longest of the band's."""
+    for band in (True, False):
+        shares = compare_stride.stage_shares(band)
+        assert len(shares) == compare_stride.stage_count(band) and min(shares) >= 0
+    shares = compare_stride.stage_shares()
+    assert sum(shares) == pytest.approx(1.0) and shares[4] == max(shares[4:])
 
 
 CHANGES = (-5.0, 5.0)  # the section's what-ifs, two of WHAT_IF_PCT's four (the time: 3 cadences, not 5)

@@ -1,12 +1,15 @@
-"""studies.pool: the local process pool's ordered map (compare's band and strikes)."""
+"""studies.pool: tasks started on a local process pool while the caller works on (compare's
+strikes beside its nominal, then its band)."""
 
-from formopt.studies.pool import independent
+from formopt.studies.pool import Background
 
 
-def test_independent_tasks_on_a_pool_keep_their_order():
-    """Tasks on two processes (compare's band and strikes): results in the tasks' order, each told."""
+def test_background_tasks_keep_their_order():
+    """Tasks on two processes and in this one: results in the tasks' order, each told."""
     tasks = [(abs, -2, "a"), (abs, 3, "b"), (float, "4", "c")]
     for workers in (1, 2):
         told: list[str] = []
-        assert independent(tasks, workers, told.append) == [2, 3, 4.0]
-        assert sorted(told) == ["a", "b", "c"]
+        with Background(workers) as pool:
+            started = pool.start(tasks)
+            assert pool.results(started, told.append) == [2, 3, 4.0]
+        assert told == ["a", "b", "c"]

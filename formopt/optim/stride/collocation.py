@@ -91,7 +91,10 @@ MUSCLE_WARM_START = {"mu_init": 3e-4}
 # benchmarks/stride_speed.py, 2026-11-26. "auto" rents before it buys: it compiles once the
 # chain's interpreted solves have cost about what the build does (28 s / 1.4 s saved a solve),
 # so a long chain (a search at a larger spend, a map) ends compiled and a short one (a stride, a
-# cadence curve, the tests) never pays a build. The iterates are the same to round-off.
+# cadence curve, the tests) never pays a build; a build in the disk cache already (the same body
+# and phase models solved before) is used from the first solve. The iterates are the same to
+# round-off (compare's stride section on RBDS001 T25, 2688 iterations, all compiled against
+# "auto" from the 20th solve: the same numbers bit for bit, 2026-11-27).
 COMPILED: bool | str = "auto"
 COMPILE_FROM = 20
 
@@ -162,6 +165,7 @@ class StrideNLP:
         self._solver: ca.Function | None = None
         self._warm_solver: ca.Function | None = None
         self._solver_compiled = False  # whether _solver's node models and derivatives are C
+        self._in_cache: bool | None = None  # whether they are in the disk cache (`compiled`)
         self._nlp = self.problem  # the solvers' problem (derivatives.problem when compiled)
         self.solves = 0  # IPOPT runs of this NLP
         self.lbg = np.concatenate(self.node_rows.lower + self.rows.lower)
@@ -171,11 +175,16 @@ class StrideNLP:
     @property
     def compiled(self) -> bool:
         """Whether the next solve's node models and derivatives run as C (`compile`: True, or
-        "auto" from the COMPILE_FROM-th solve on when a C compiler is found; "auto" becomes
-        False, with a RuntimeWarning, when compiling fails)."""
+        "auto" when a C compiler is found, from the first solve when they are in the disk cache
+        already, else from the COMPILE_FROM-th; "auto" becomes False, with a RuntimeWarning,
+        when compiling fails)."""
         if self.compile != "auto":
             return bool(self.compile)
-        return self.solves >= COMPILE_FROM - 1 and _has_compiler()
+        if not _has_compiler():
+            return False
+        if self._in_cache is None:  # looked up once: a library in the cache costs nothing to use
+            self._in_cache = derivatives.cached(self)
+        return self._in_cache or self.solves >= COMPILE_FROM - 1
 
     @property
     def solver(self) -> ca.Function:

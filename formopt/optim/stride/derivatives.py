@@ -27,6 +27,7 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
+from ...mechanics.compiled import cached as is_cached
 from ...mechanics.compiled import external
 from .ocp import INTEGRANDS
 
@@ -38,18 +39,30 @@ class NodeDerivatives:
     so that CasADi can differentiate a graph calling them), else SX."""
 
     def __init__(self, node: ca.Function, compiled: bool = False):
-        sizes = [node.size1_in(k) for k in range(node.n_in() - 1)]  # all inputs but p
-        z, p = ca.SX.sym("z", sum(sizes)), ca.SX.sym("p", node.size1_in(node.n_in() - 1))
-        parts = ca.vertsplit(z, np.cumsum([0, *sizes]).tolist())
-        rows, ell = node(*parts, p)
-        out = ca.vertcat(rows, ell)
-        w = ca.SX.sym("w", out.shape[0])
-        self.rows = rows.shape[0]
-        value = ca.Function(f"{node.name()}_value", [z, p], [out])
-        jacobian = ca.Function(f"{node.name()}_jacobian", [z, p], [out, ca.jacobian(out, z)])
-        hessian = ca.Function(f"{node.name()}_hessian", [z, p, w], [ca.hessian(ca.dot(w, out), z)[0]])
+        self.rows = node.size1_out(0)
+        value, jacobian, hessian = _functions(node)
         self.value, self.jacobian, self.hessian = ((external(value, jacobian=True), external(jacobian), external(hessian))
                                                    if compiled else (value, jacobian, hessian))
+
+
+def _functions(node: ca.Function) -> tuple[ca.Function, ca.Function, ca.Function]:
+    """The node Function's value [rows; integrands], its Jacobian and the Hessian of w . value,
+    SX functions of the stacked node vector z (and p, w)."""
+    sizes = [node.size1_in(k) for k in range(node.n_in() - 1)]  # all inputs but p
+    z, p = ca.SX.sym("z", sum(sizes)), ca.SX.sym("p", node.size1_in(node.n_in() - 1))
+    parts = ca.vertsplit(z, np.cumsum([0, *sizes]).tolist())
+    out = ca.vertcat(*node(*parts, p))
+    w = ca.SX.sym("w", out.shape[0])
+    return (ca.Function(f"{node.name()}_value", [z, p], [out]),
+            ca.Function(f"{node.name()}_jacobian", [z, p], [out, ca.jacobian(out, z)]),
+            ca.Function(f"{node.name()}_hessian", [z, p, w], [ca.hessian(ca.dot(w, out), z)[0]]))
+
+
+def cached(nlp) -> bool:
+    """Whether every phase's node model, compiled, is in the disk cache already
+    (mechanics.compiled.cached; compiled as NodeDerivatives compiles it)."""
+    return all(is_cached(f, jacobian=k == 0) for node in nlp.node_functions
+               for k, f in enumerate(_functions(node)))
 
 
 def node_indices(nlp, i: int, k: int) -> np.ndarray:

@@ -13,7 +13,7 @@ import pytest
 from formopt.mechanics import compiled as compiled_functions
 from formopt.mechanics.body import paper_body
 from formopt.mechanics.joint_space import JointSpace
-from formopt.optim.stride import StrideNLP, StrideSettings, collocation
+from formopt.optim.stride import StrideNLP, StrideSettings, collocation, derivatives
 from formopt.optim.stride.guess import ballistic
 
 SETTINGS = StrideSettings(strike="flat", nodes=14)
@@ -64,6 +64,7 @@ def test_compiled_problem_is_the_same_nlp(solves):
 def test_auto_compiles_from_a_chains_nth_solve(solves, monkeypatch):
     (_, first), _ = solves
     monkeypatch.setattr(collocation, "COMPILE_FROM", 3)  # a short chain stands for a long one
+    monkeypatch.setattr(derivatives, "cached", lambda nlp: False)  # not compiled before
     nlp = StrideNLP(JointSpace(paper_body()), SETTINGS)  # compiled="auto"
     seen = []
     for speed in (3.5, 3.6, 3.7):
@@ -75,6 +76,18 @@ def test_auto_compiles_from_a_chains_nth_solve(solves, monkeypatch):
     assert warm.success and nlp.compiled
 
 
+def test_auto_uses_a_cached_build_from_the_first_solve(solves, tmp_path, monkeypatch):
+    """A node model compiled before (the fixture's, in the disk cache) costs nothing to use:
+    "auto" solves compiled from the first solve, as True does; another cache holds none."""
+    _, (_, fast_first) = solves
+    nlp = StrideNLP(JointSpace(paper_body()), SETTINGS)  # compiled="auto"
+    assert nlp.compiled
+    again = nlp.solve(ballistic(nlp, 3.5), 3.5)
+    assert nlp._nlp is not nlp.problem and again.iterations == fast_first.iterations
+    monkeypatch.setenv("FORMOPT_CACHE", str(tmp_path))
+    assert not StrideNLP(JointSpace(paper_body()), SETTINGS).compiled
+
+
 def test_auto_goes_on_interpreted_when_compiling_fails(solves, monkeypatch):
     """A C compiler that is found but fails: "auto" warns and solves interpreted (a long chain
     goes on), True raises."""
@@ -84,6 +97,7 @@ def test_auto_goes_on_interpreted_when_compiling_fails(solves, monkeypatch):
         raise RuntimeError(f"compiling {name} failed")
     monkeypatch.setattr(compiled_functions, "_compile", broken)
     monkeypatch.setattr(collocation, "COMPILE_FROM", 2)
+    monkeypatch.setattr(derivatives, "cached", lambda nlp: False)  # not compiled before
     nlp = StrideNLP(JointSpace(paper_body()), SETTINGS, compiled="auto")
     assert nlp.solve(first.blocks, 3.5).success and nlp.compiled  # the next solve would compile
     with pytest.warns(RuntimeWarning, match="did not compile"):
