@@ -23,7 +23,8 @@ Every start is fixed (no random draw): the same call gives the same answer. Step
 seconds; in the seconds only: the generic start's own solve for Hermite-Simpson or muscles, a
 warm start's failed run before StrideNLP.resolve's cold one, the touchdown's sliding re-solve
 under Coulomb and the optima's forward checks), the
-grid's least objective per cadence, and the distinct local optima it met (step 4's, or at an
+grid's least objective per cadence (with `check_grid` its validity, the forward check included:
+`grid_checks`), and the distinct local optima it met (step 4's, or at an
 imposed cadence every stride met there): their cadences, objectives, validity (the forward check
 included) and spread (how much costlier the costliest is than the least, %; None when none
 converged). An optimum less costly than the answer is an invalid one: `rank` puts validity first.
