@@ -15,7 +15,8 @@ iterations and seconds spent, the distinct local optima met (cadence:objective; 
 with its failed checks) and their spread (%), validity, the held contact points' drift (mm) and
 the energy budget's balance (% of W+), the forward simulation's largest error per phase (rad,
 each phase from the NLP's state at its start), any phase on its duration bound and the grid's
-least objective per cadence (cadence=objective). `--starts` adds, first, the local search's optimum with each
+least objective per cadence (cadence=objective), each forward-checked (an invalid one with its
+failed checks). `--starts` adds, first, the local search's optimum with each
 number of starts (optim.stride.optimum: the generic guess and seeded perturbations of it), for
 comparison. `--clearance` (m): the swing foot's least height (StrideSettings.clearance); the
 tables of docs/concepts/stride.md were measured before it existed, as `--clearance 0`. Each
@@ -46,8 +47,10 @@ def row(label: str, speed: float, nodes: int, stride, before, spent: dict | None
     s = stride.search or {**(spent or {}), "iterations": stride.iterations, "optima": [], "spread_pct": float("nan")}
     optima = " ".join(f"{o['cadence_spm']:.0f}:{o['objective']:.4f}"
                       + ("" if o["valid"] else f"(invalid: {'; '.join(o['failed'])})") for o in s["optima"])
+    checked = zip(s.get("grid_spm", []), s.get("grid_objective", []), s.get("grid_valid", []),
+                  s.get("grid_failed", []))
     profile = " ".join(f"{c:.0f}={'-' if v is None else f'{v:.4f}'}"
-                       for c, v in zip(s.get("grid_spm", []), s.get("grid_objective", [])))
+                       + ("" if ok is not False else f"(invalid: {'; '.join(failed)})") for c, v, ok, failed in checked)
     phases = " ".join(f"{e:.3f}" for e in stride.checks.get("forward_per_phase", []))
     bound = "; ".join(f"{b['phase']} {b['side']}" for b in stride.on_bound) or "-"
     drift, balance = stride.checks["drift_m"] * 1e3, stride.checks["balance_relative"] * 100
@@ -93,7 +96,7 @@ def main(argv=None) -> int:
                       flush=True)
             for spend in args.spend:
                 cpu = time.process_time()
-                stride = global_optimum(nlp, speed, spend=spend)
+                stride = global_optimum(nlp, speed, spend=spend, check_grid=True)
                 print(row(str(spend), speed, nodes, stride, before) + f"  cpu {time.process_time() - cpu:.1f}",
                       flush=True)
                 before = stride

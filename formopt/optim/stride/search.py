@@ -23,7 +23,8 @@ Every start is fixed (no random draw): the same call gives the same answer. Step
 seconds; in the seconds only: the generic start's own solve for Hermite-Simpson or muscles, a
 warm start's failed run before StrideNLP.resolve's cold one, the touchdown's sliding re-solve
 under Coulomb and the optima's forward checks), the
-grid's least objective per cadence, and the distinct local optima it met (step 4's, or at an
+grid's least objective per cadence (with `check_grid` its validity, the forward check included:
+`grid_checks`), and the distinct local optima it met (step 4's, or at an
 imposed cadence every stride met there): their cadences, objectives, validity (the forward check
 included) and spread (how much costlier the costliest is than the least, %; None when none
 converged). An optimum less costly than the answer is an invalid one: `rank` puts validity first.
@@ -109,10 +110,11 @@ class _Spend:
 
 def global_optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
                    cadence: float | None = None, spend: int = 1, simulate: bool = True,
-                   progress: Callable[[str], None] | None = None) -> Stride:
+                   progress: Callable[[str], None] | None = None, check_grid: bool = False) -> Stride:
     """The stride found by the module's procedure at `spend` (cadence None: free; else imposed,
     steps/min), its `search` the record of what it spent and met; `progress(text)` is told of
-    each solve (solves_planned of them)."""
+    each solve (solves_planned of them); `check_grid`: the grid's strides forward-checked too
+    (`grid_checks`; one forward simulation per grid cadence)."""
     cadences = grid(speed, spend, cadence)
     spent = _Spend(nlp, speed, slope, mu, progress)
     met: dict[float, list[tuple[Solved, Stride]]] = {c: [] for c in cadences}
@@ -140,6 +142,8 @@ def global_optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float =
     stride = best_of(nlp, [solved for solved, _ in found], simulate)
     stride.search = record(spend, spent, cadences, kept, cadence)
     stride.search["optima"] = distinct(nlp, [s for _, s in found if s.success], stride, simulate)
+    if check_grid:
+        stride.search["grid_valid"], stride.search["grid_failed"] = grid_checks(nlp, cadences, kept)
     stride.search["seconds"] = time.perf_counter() - spent.start  # the optima's forward checks too
     values = [o["objective"] for o in stride.search["optima"]]
     # None, not NaN, where no solve converged: the JSON writer refuses NaN (io.files.write_json)
@@ -154,6 +158,15 @@ def record(spend: int, spent: _Spend, cadences: list[float], kept: dict, cadence
             "solves": spent.solves, "iterations": spent.iterations,
             "grid_spm": cadences, "grid_objective": [kept[c][1].objective_value if kept[c][1].success else None
                                                      for c in cadences]}
+
+
+def grid_checks(nlp: StrideNLP, cadences: list[float], kept: dict) -> tuple[list, list]:
+    """Whether each grid cadence's least costly stride (`record`'s grid_objective) is valid with
+    the forward check (result.summarise, simulate), and its failed checks; None and [] where no
+    solve converged there."""
+    checked = [summarise(nlp, kept[c][0], simulate=True) if kept[c][1].success else None for c in cadences]
+    return ([None if s is None else s.valid for s in checked],
+            [[] if s is None else s.failed_checks for s in checked])
 
 
 def distinct(nlp: StrideNLP, strides: list[Stride], answer: Stride, simulate: bool) -> list[dict]:

@@ -16,14 +16,14 @@ SPEED = 3.5
 
 @pytest.fixture(scope="module")
 def searched():
-    """A small search (flat strike, 14 nodes, two grid cadences, one released: six solves), run twice, and
-    the one-start optimum of the same NLP."""
+    """A small search (flat strike, 14 nodes, two grid cadences, one released: six solves), run twice (the
+    second with the grid forward-checked), and the one-start optimum of the same NLP."""
     mp = pytest.MonkeyPatch()
     mp.setattr(search, "GRID_POINTS", 1)
     mp.setattr(search, "RELEASED", 1)
     mp.setattr(search, "GRID_SPM", (150.0, 190.0))
     nlp = build(scaled_body(62.0, 1.81), StrideSettings(strike="flat", nodes=14, tendons=dict(RUNNER_TENDONS)))
-    runs = [search.global_optimum(nlp, SPEED, simulate=False) for _ in range(2)]
+    runs = [search.global_optimum(nlp, SPEED, simulate=False, check_grid=check) for check in (False, True)]
     planned = search.solves_planned(SPEED)
     mp.undo()
     return runs, optimum(nlp, SPEED, simulate=False), planned
@@ -50,6 +50,18 @@ def test_the_search_states_its_spend_and_the_optima_it_met(searched):
     assert all(o["valid"] == (not o["failed"]) for o in optima)
     assert record["spread_pct"] >= 0.0
     assert "search" in stride.to_dict()
+
+
+def test_the_grid_is_forward_checked_when_asked(searched):
+    """check_grid: each grid cadence's least costly stride summarised with the forward check, its
+    validity and failed checks beside its objective (None where no solve converged)."""
+    (plain, checked), _, _ = searched
+    assert "grid_valid" not in plain.search
+    record = checked.search
+    assert record["grid_objective"] == plain.search["grid_objective"]
+    assert len(record["grid_valid"]) == len(record["grid_failed"]) == len(record["grid_spm"])
+    for objective, valid, failed in zip(record["grid_objective"], record["grid_valid"], record["grid_failed"]):
+        assert (valid is None) == (objective is None) and (valid is not False) == (not failed)
 
 
 def test_the_search_is_no_worse_than_one_start(searched):
