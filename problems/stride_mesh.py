@@ -40,10 +40,10 @@ def phase_terms(nlp, b, speed: float) -> tuple[dict, float]:
     """({phase: effort term per joint (6,)}, smoothing term): the objective's parts (per distance)."""
     d = speed * sum(b[f"T_{p.name}"].item() for p in nlp.phases)
     effort, smooth = {}, 0.0
-    for phase, n in zip(nlp.phases, nlp.split):
+    for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
         T, A = b[f"T_{phase.name}"].item(), b[f"A_{phase.name}"]
         w = np.asarray(nlp.transcription.weights(n, T / n), float).ravel()
-        effort[phase.name] = (nlp.mass * b[f"U_{phase.name}"]) ** 2 @ w * 100 / (nlp.mass * GRAVITY) ** 2 / d
+        effort[phase.name] = nlp.moments(b, i)[0] ** 2 @ w * 100 / (nlp.mass * GRAVITY) ** 2 / d
         smooth += SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n)) / d
     return effort, smooth
 
@@ -136,11 +136,13 @@ def main(argv=None) -> int:
     parser.add_argument("--meshes", nargs="+", default=[f"hermite-simpson:{n}" for n in (20, 40, 80)],
                         help="transcription:intervals, e.g. trapezoid:40")
     parser.add_argument("--figure", default="")
+    parser.add_argument("--moment-rate", type=float, default=0.0,
+                        help="StrideSettings.moment_rate_weight: > 0, the moments as states (moment dynamics)")
     args = parser.parse_args(argv)
     body, guess, solved = scaled_body(62.0, 1.81), None, []
     for transcription, nodes in ((m.split(":")[0], int(m.split(":")[1])) for m in args.meshes):
         nlp = build(body, StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
-                                         transcription=transcription))
+                                         transcription=transcription, moment_rate_weight=args.moment_rate))
         clock = time.process_time()
         stride = optimum(nlp, args.speed, cadence=args.cadence or None, guess=guess)
         seconds = time.process_time() - clock

@@ -155,7 +155,9 @@ def terms(settings: StrideSettings, mass: float) -> tuple[CostTerm, ...]:
     out = own_terms(settings.objective, mass, muscles, settings.force_rate_weight)
     if muscles:
         out += [CostTerm("muscle_rates", 1.0, MUSCLE_RATE_REGULARISATION), CostTerm("reserves", 1.0, settings.reserve_weight)]
-    elif needs_power_split(settings):
+    if settings.moment_rate_weight:
+        out.append(CostTerm("moment_rates", 1.0, settings.moment_rate_weight))
+    if not muscles and needs_power_split(settings):
         out.append(CostTerm("effort", own_terms("effort", mass)[0].scale, WORK_REGULARISATION))
     if settings.impact_weight:
         out.append(CostTerm("impacts", 1.0 / (mass * GRAVITY), settings.impact_weight))

@@ -143,7 +143,8 @@ class StrideProblem:
     def __init__(self, js: JointSpace, settings: StrideSettings):
         self.js, self.settings, self.mass = js, settings, js.mass_total
         self.phases = settings.phases
-        act = actuation(self.mass, settings.torque_limit, settings.tendons, settings.muscles)
+        act = actuation(self.mass, settings.torque_limit, settings.tendons, settings.muscles,
+                        settings.moment_rate_weight > 0)
         split = costs.needs_power_split(settings)
         joint_metabolic = settings.objective == "joint-metabolic"
         self.models = [NodeModel(ph, act, RigidContact(js, ph.rows, ph.sliding, settings.slip, settings.clearance),

@@ -219,6 +219,8 @@ class StrideSettings:
     muscles: Muscles | None = None  # one leg's muscles scaled to the body: the "muscles" rung
     force_rate_weight: float = FORCE_RATE_WEIGHT  # the muscles' metabolic objective's one weight (calibration only)
     reserve_weight: float = RESERVE_WEIGHT  # the muscles' reserves' weight (a what-if only)
+    # > 0: the torque rungs' moments as states, this weight on their squared rates (actuation.Torques)
+    moment_rate_weight: float = 0.0
     clearance: float = CLEARANCE  # m: the swing foot's least height while the other holds the ground
 
     def __post_init__(self):
@@ -253,6 +255,9 @@ class StrideSettings:
         check("impact_weight", self.impact_weight)
         if not 0.0 <= self.force_rate_weight < math.inf:
             raise InputError(f"force_rate_weight = {self.force_rate_weight}: expected a finite number >= 0")
+        if not 0.0 <= self.moment_rate_weight < math.inf or (self.moment_rate_weight and self.muscles is not None):
+            raise InputError(f"moment_rate_weight = {self.moment_rate_weight}: expected a finite number >= 0, "
+                             "0 with muscles (their moments are their tendons' forces)")
         if not 0.0 < self.reserve_weight < math.inf:
             raise InputError(f"reserve_weight = {self.reserve_weight}: expected a finite number > 0")
         check("torque_limit_nm_per_kg", self.torque_limit)
