@@ -4,10 +4,10 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
 
     python problems/stride_mesh.py [--speed 3.5] [--cadence 130 (0: free)]
                                    [--meshes hermite-simpson:20 hermite-simpson:40 hermite-simpson:80]
-                                   [--figure mesh.png]
+                                   [--moment-time 0.012 (s; moment dynamics)] [--figure mesh.png]
 
 Prints per mesh (transcription:intervals): the objective, the smoothing term (problem.SMOOTHING),
-the effort term per phase and per joint, the phase durations, the dropped points' normal force
+with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint, the phase durations, the dropped points' normal force
 (body weights) at the last column of their phase (heel-off, toe-off), the decision variables on
 a finite bound by row and columns (A at collocation.ACCELERATION, F at contact.FORCE_LIMIT, X at
 the joint ranges or STATE_RATE, U at the torque limit, T at a duration bound) with their largest
@@ -30,6 +30,7 @@ from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY, JOINTS, THETA
 from formopt.optim.stride.collocation import build
 from formopt.optim.stride.local import optimum
+from formopt.optim.stride.ocp import INTEGRANDS
 from formopt.optim.stride.problem import RUNNER_TENDONS, SMOOTHING, StrideSettings
 
 matplotlib.use("Agg")
@@ -46,6 +47,14 @@ def phase_terms(nlp, b, speed: float) -> tuple[dict, float]:
         effort[phase.name] = nlp.moments(b, i)[0] ** 2 @ w * 100 / (nlp.mass * GRAVITY) ** 2 / d
         smooth += SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n)) / d
     return effort, smooth
+
+
+def rate_term(nlp, solved, speed: float) -> float:
+    """The moment-rate term of the objective (costs.py; 0 without moment dynamics)."""
+    b, k = solved.blocks, INTEGRANDS.index("moment_rates")
+    d = speed * sum(b[f"T_{p.name}"].item() for p in nlp.phases)
+    integral = sum(float(L[k] @ w) for L, w in nlp.integrands(b, solved.parameters))
+    return nlp.settings.moment_time ** 2 * 100 / (nlp.mass * GRAVITY) ** 2 * integral / d
 
 
 def near(values, bounds):
@@ -136,13 +145,13 @@ def main(argv=None) -> int:
     parser.add_argument("--meshes", nargs="+", default=[f"hermite-simpson:{n}" for n in (20, 40, 80)],
                         help="transcription:intervals, e.g. trapezoid:40")
     parser.add_argument("--figure", default="")
-    parser.add_argument("--moment-rate", type=float, default=0.0,
-                        help="StrideSettings.moment_rate_weight: > 0, the moments as states (moment dynamics)")
+    parser.add_argument("--moment-time", type=float, default=0.0,
+                        help="StrideSettings.moment_time (s): > 0, the moments as states (moment dynamics)")
     args = parser.parse_args(argv)
     body, guess, solved = scaled_body(62.0, 1.81), None, []
     for transcription, nodes in ((m.split(":")[0], int(m.split(":")[1])) for m in args.meshes):
         nlp = build(body, StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
-                                         transcription=transcription, moment_rate_weight=args.moment_rate))
+                                         transcription=transcription, moment_time=args.moment_time))
         clock = time.process_time()
         stride = optimum(nlp, args.speed, cadence=args.cadence or None, guess=guess)
         seconds = time.process_time() - clock
@@ -151,7 +160,8 @@ def main(argv=None) -> int:
         blocks, rows = on_bounds(nlp, stride.solved)
         print(f"{transcription} {nodes} (split {nlp.split}): objective {stride.objective_value:.5f} at "
               f"{stride.cadence_spm:.1f} steps/min, effort "
-              f"{sum(e.sum() for e in effort.values()):.5f}, smoothing {smooth:.5f}; converged {stride.success} "
+              f"{sum(e.sum() for e in effort.values()):.5f}, smoothing {smooth:.5f}, moment rates "
+              f"{rate_term(nlp, stride.solved, args.speed):.5f}; converged {stride.success} "
               f"in {stride.iterations} iterations, {seconds:.1f} s CPU; valid {stride.valid} "
               f"{' '.join(stride.failed_checks)}; forward rad per phase "
               f"{' '.join(f'{e:.3f}' for e in stride.checks['forward_per_phase'])}", flush=True)

@@ -35,10 +35,11 @@ RESERVE_LIMIT = 1.0  # N m/kg: the muscles' reserve moments at each joint (Muscl
 MIN_FORCE_PENALTY = 5.0  # N m per unit F: the guess's least-squares split of a moment (MuscleDriven.initial)
 OWN_INTEGRANDS = ("activation", "muscle_metabolic", "force_rate", "muscle_rates", "reserves",
                   "moment_rates")  # zero for the torque sources
-# Moment dynamics (StrideSettings.moment_rate_weight > 0): the torque rungs' moments are states
-# and their rates the controls, so a moment cannot jump (a muscle's force rises and falls over
-# tens of ms, activation dynamics of 15-60 ms: mechanics.muscles); u = tau' / (m MOMENT_RATE_SCALE)
-# within +-MOMENT_RATE_LIMIT, about 1000 N m/kg/s (0 to 3 N m/kg in 3 ms).
+# Moment dynamics (StrideSettings.moment_time > 0): the torque rungs' moments are states and
+# their rates the controls, so a moment cannot jump (a muscle's force rises and falls over tens
+# of ms, activation dynamics of 15-60 ms: mechanics.muscles); u = tau' / (m MOMENT_RATE_SCALE),
+# of order one for a moment of 3 N m/kg rising in 30 ms, within +-MOMENT_RATE_LIMIT: 1000
+# N m/kg/s (0 to 3 N m/kg in 3 ms), a numerical box the rate's cost keeps the optimum off.
 MOMENT_RATE_SCALE = 100.0  # N m/kg/s per unit control
 MOMENT_RATE_LIMIT = 10.0
 
@@ -46,7 +47,8 @@ MOMENT_RATE_LIMIT = 10.0
 class Torques:
     """Joint torque sources: tau = m u, u (N m/kg, one per joint) within +-`limit`; with
     `dynamic`, moment dynamics: tau = m z, z (N m/kg) a state within +-`limit`, z' =
-    MOMENT_RATE_SCALE u, u within +-MOMENT_RATE_LIMIT."""
+    MOMENT_RATE_SCALE u, u within +-MOMENT_RATE_LIMIT, its integrand `moment_rates` |tau'|^2
+    ((N m/s)^2; costs.py weighs it)."""
 
     def __init__(self, mass: float, limit: float, dynamic: bool = False):
         self.mass, self.limit, self.dynamic = mass, limit, dynamic
@@ -78,9 +80,10 @@ class Torques:
         """The actuation's algebraic rows at a node: none."""
 
     def integrands(self, theta, thetad, z, u) -> dict:
-        """Its own cost integrands (OWN_INTEGRANDS): the scaled moment rates' sum of squares
-        with `dynamic`, else none."""
-        return {**dict.fromkeys(OWN_INTEGRANDS, 0.0), **({"moment_rates": ca.sumsqr(u)} if self.dynamic else {})}
+        """Its own cost integrands (OWN_INTEGRANDS): with `dynamic` the moments' squared rates
+        |tau'|^2 ((N m/s)^2), else none."""
+        rates = ca.sumsqr(self.mass * MOMENT_RATE_SCALE * u) if self.dynamic else 0.0
+        return {**dict.fromkeys(OWN_INTEGRANDS, 0.0), "moment_rates": rates}
 
     def swap(self, z):
         """z with the legs exchanged (the periodicity)."""

@@ -135,6 +135,14 @@ FORCE_RATE_WEIGHT = 80.0
 # before the setting's own.
 RESERVE_WEIGHT = 10000.0
 RESERVE_CONTINUATION = (100.0,)
+# Moment dynamics' time T (StrideSettings.moment_time, s): with effort the torque rungs pay
+# int (tau^2 + T^2 tau'^2) dt (costs.py), whose Euler-Lagrange equation tau - T^2 tau'' = demand
+# filters what the motion asks with the kernel exp(-|t|/T) / 2T: a step rises from 10 to 90 %
+# in 2 ln 5 T = 3.2 T. A muscle's force rises in about 30-50 ms (activation 15 ms and
+# deactivation 60 ms time constants, De Groote et al. 2016; twitch contraction times of
+# 30-50 ms), so T = 40 ms / 3.2 = 12 ms; MOMENT_TIME_MAX bounds the setting.
+MOMENT_TIME = 0.012
+MOMENT_TIME_MAX = 0.2
 
 
 # Tendons: a spring in parallel with the stance leg's joint, engaged unloaded at the touchdown
@@ -219,8 +227,9 @@ class StrideSettings:
     muscles: Muscles | None = None  # one leg's muscles scaled to the body: the "muscles" rung
     force_rate_weight: float = FORCE_RATE_WEIGHT  # the muscles' metabolic objective's one weight (calibration only)
     reserve_weight: float = RESERVE_WEIGHT  # the muscles' reserves' weight (a what-if only)
-    # > 0: the torque rungs' moments as states, this weight on their squared rates (actuation.Torques)
-    moment_rate_weight: float = 0.0
+    # s, > 0: the torque rungs' moments as states, their squared rates weighed by its square
+    # (actuation.Torques, costs.py: the time below which a change costs more than its moment)
+    moment_time: float = 0.0
     clearance: float = CLEARANCE  # m: the swing foot's least height while the other holds the ground
 
     def __post_init__(self):
@@ -255,8 +264,8 @@ class StrideSettings:
         check("impact_weight", self.impact_weight)
         if not 0.0 <= self.force_rate_weight < math.inf:
             raise InputError(f"force_rate_weight = {self.force_rate_weight}: expected a finite number >= 0")
-        if not 0.0 <= self.moment_rate_weight < math.inf or (self.moment_rate_weight and self.muscles is not None):
-            raise InputError(f"moment_rate_weight = {self.moment_rate_weight}: expected a finite number >= 0, "
+        if not 0.0 <= self.moment_time <= MOMENT_TIME_MAX or (self.moment_time and self.muscles is not None):
+            raise InputError(f"moment_time = {self.moment_time}: expected 0 to {MOMENT_TIME_MAX} s, "
                              "0 with muscles (their moments are their tendons' forces)")
         if not 0.0 < self.reserve_weight < math.inf:
             raise InputError(f"reserve_weight = {self.reserve_weight}: expected a finite number > 0")
