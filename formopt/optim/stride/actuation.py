@@ -10,7 +10,8 @@ with the active part's power P_j = -tau_j phi_j' (W; what W+ and W- count) apart
 passive elements' (the budget's `spring_J`), and its own cost integrands (`OWN_INTEGRANDS`).
 Symbolic (SX) or numeric arguments.
 
-- "torque": joint torque sources (`Torques`);
+- "torque": joint torque sources (`Torques`; with StrideSettings.moment_time, moment dynamics:
+  the moments states, their rates the controls);
 - "torque+springs": the same with springs in parallel at the stance leg (`TorquesWithSprings`);
 - "muscles": gait2d's eight Hill-type muscle-tendon units per leg (`MuscleDriven`,
   mechanics.muscles) in De Groote et al. 2016's form: states a and F (normalised tendon force),
@@ -34,7 +35,7 @@ ACTIVATION_RATE = 200.0
 RESERVE_LIMIT = 1.0  # N m/kg: the muscles' reserve moments at each joint (MuscleDriven)
 MIN_FORCE_PENALTY = 5.0  # N m per unit F: the guess's least-squares split of a moment (MuscleDriven.initial)
 OWN_INTEGRANDS = ("activation", "muscle_metabolic", "force_rate", "muscle_rates", "reserves",
-                  "moment_rates")  # zero for the torque sources
+                  "moment_rates")  # zero for the torque sources without moment dynamics
 # Moment dynamics (StrideSettings.moment_time > 0): the torque rungs' moments are states and
 # their rates the controls, so a moment cannot jump (a muscle's force rises and falls over tens
 # of ms, activation dynamics of 15-60 ms: mechanics.muscles); u = tau' / (m MOMENT_RATE_SCALE),

@@ -88,7 +88,7 @@ def _rows(nlp, key: str) -> list[tuple[str, str]] | None:
     if kind == ("Z" if dynamic else "U") and nlp.settings.muscles is None:  # the torque rungs' limit
         return [(f"{j} torque", "N m/kg") for j in JOINTS]
     if kind == "U" and dynamic:
-        return [(f"{j} torque rate", "100 N m/kg/s") for j in JOINTS]
+        return [(f"{j} torque rate", "x100 N m/kg/s") for j in JOINTS]
     if kind == "F":
         rows = nlp.ocp.models[[p.name for p in nlp.phases].index(phase)].contact.rows
         return [(f"{p} {'tangential' if a == 't' else 'normal'} force", "BW") for p, a in rows]

@@ -16,7 +16,7 @@ the power the budget balances (`balance`: active joints, passive joint moments, 
 friction power, each active joint's power (6), the passive joint moments' (`passive`), the tendons' and the contacts' power,
 and the actuation's own (actuation.OWN_INTEGRANDS: the muscles' activation cost, metabolic rate
 (W), volume-weighted squared tendon-force rates (the force-rate term), plain squared tendon-force
-rates (their regularisation) and squared reserves).
+rates (their regularisation) and squared reserves; with moment dynamics the moments' squared rates).
 
 Transitions (phase i-1 -> i): `Impact` where phase i adds a point (it reaches the ground moving
 into it; contact.RigidContact.impact), `Release` where it drops one (the dropped point's normal
@@ -114,8 +114,8 @@ class Impact:
 class Release:
     """Phase `before` ends when its dropped points leave the ground (heel-off, toe-off), or
     when its sliding point's slip reaches zero; `dropped`: the rows whose normal force is zero
-    at its end. With muscles (moments that are states) and on the trapezoid, every dropped
-    point's; with torque sources on Hermite-Simpson none: there the force is the controls' at
+    at its end. Where the moments are states (muscles, moment dynamics: StrideSettings.moment_time)
+    and on the trapezoid, every dropped point's; with torque sources on Hermite-Simpson none: there the force is the controls' at
     one instant, a row the continuous problem meets by a jump of the moments (a rigid contact
     lets go with any f_n >= 0 when the moments change so that the point rises: the next phase
     holds it at or above the ground) and the transcription only by a layer one interval wide
