@@ -140,7 +140,13 @@ RESERVE_CONTINUATION = (100.0,)
 # filters what the motion asks with the kernel exp(-|t|/T) / 2T: a step rises from 10 to 90 %
 # in 2 ln 5 T = 3.2 T. A muscle's force rises in about 30-50 ms (activation 15 ms and
 # deactivation 60 ms time constants, De Groote et al. 2016; twitch contraction times of
-# 30-50 ms), so T = 40 ms / 3.2 = 12 ms; MOMENT_TIME_MAX bounds the setting.
+# 30-50 ms), so T = 40 ms / 3.2 = 12 ms; MOMENT_TIME_MAX bounds the setting. Off by default
+# (StrideSettings.moment_time = 0): at 12 ms (RBDS001, heel, springs, free cadence, 2.5 / 3.5 /
+# 4.5 m/s; problems/stride_mesh.py --moment-time 0.012, 2026-11-27) the trapezoid's cadence moved
+# under 0.4 % from 40 to 80 nodes but its cost 5-10 %, and Hermite-Simpson's optima were another
+# stride (131 / 151 / 166 steps/min against the trapezoid's 161 / 173 / 182), held by the forefoot
+# phase's ceiling at 2.5 m/s or landing the forefoot grazing on the friction cone's edge (invalid),
+# and not converged in 1000 iterations at 40 intervals.
 MOMENT_TIME = 0.012
 MOMENT_TIME_MAX = 0.2
 
