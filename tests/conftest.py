@@ -70,7 +70,7 @@ def compile_cache(request, tmp_path_factory):
     rename (compiled._compile), so a graph compiles once, not once per run (test_speed_paths: 5 s
     of cc), and no test reads the user's own cache. CC compiles at -O0 (FAST_CC) through a
     wrapper at a fixed path in that folder: the key does not see a compiler upgrade (then
-    `pytest --cache-clear`). Subprocesses (the CLI, examples, notebooks) inherit both."""
+    `pytest --cache-clear`). Subprocesses (the CLI's, the notebooks' kernels) inherit both."""
     mp = pytest.MonkeyPatch()
     root = kept_cache(request.config)
     if root is None:
@@ -156,19 +156,24 @@ if LoadFileScheduling is not None:
         return ByFile(config, log) if config.getvalue("dist") == "loadfile" else None
 
 
-# The slowest files (CPU seconds of the file's tests, pytest -n 2 with a fresh compile cache,
-# 2026-11-26): they are handed out first. A stale list costs only balance, never a test.
-SLOW = ("optim/stride/test_muscle_stride.py",  # 28 (2026-11-27, pytest --cpu-times, alone)
-        "test_examples.py",  # 25
-        "optim/stride/test_derivatives.py",  # 21
-        "studies/test_stride_sweep.py",  # 18
-        "test_notebooks.py",  # 17
-        "test_bad_input.py",  # 14
-        "studies/test_compare_stride.py",  # 12
-        "optim/stride/test_speed_paths.py",  # 12 (5 with the compile cache of an earlier run)
-        "cli/test_compare_command.py",  # 11
-        "test_docs.py",  # 11
-        "optim/test_stride.py",  # 11
+# The slowest files (CPU seconds of the file's tests, pytest -n 2 --cpu-times with a fresh compile
+# cache, 2026-11-27, a machine loaded by two other solves: about 1.2 times a quiet machine's CPU):
+# they are handed out first. A stale list costs only balance, never a test.
+SLOW = ("studies/test_stride_sweep.py",  # 25
+        "test_notebooks.py",  # 21
+        "test_examples.py",  # 18
+        "optim/stride/test_muscle_stride.py",  # 17
+        "optim/stride/test_derivatives.py",  # 17
+        "test_bad_input.py",  # 16
+        "optim/test_stride.py",  # 16
+        "cli/test_compare_command.py",  # 14
+        "optim/stride/test_speed_paths.py",  # 13 (5 with the compile cache of an earlier run, 2026-11-26)
+        "optim/stride/test_collocation.py",  # 11
         "optim/test_posture.py",  # 10
-        "optim/stride/test_search.py",  # 10
-        "optim/stride/test_collocation.py")  # 9
+        "mechanics/test_contact.py",  # 9
+        "mechanics/test_impact.py",  # 8
+        "optim/stride/test_search.py",  # 8
+        "measure/test_corruption.py",  # 8
+        "studies/test_bench.py",  # 7
+        "studies/test_compare_stride.py",  # 7
+        "test_docs.py")  # 6

@@ -5,7 +5,10 @@ Every fenced block of README.md and docs/**/*.md runs, page by page in a fresh f
   right after one is its printed output;
 - shell blocks (```console, ```sh): each `$ command` line through bash, with `formopt` and
   `python` the interpreter running these tests; the lines after it, up to the next `$`, are
-  its output (stdout and stderr, as a terminal shows them);
+  its output (stdout and stderr, as a terminal shows them). A plain `formopt ARGS` (no quotes,
+  pipes, redirections or variables) runs in this process (`run_formopt`: formopt.cli.main, a
+  new interpreter's start and imports, about 1 s of CPU a command, spared; the CLI's entry
+  point is tested as a subprocess in tests/io/test_scene.py);
 - ```toml blocks parse.
 Pages run in a fresh folder that holds `data` (the repository's shipped trials).
 Output is compared line by line (trailing spaces ignored; `...` inside a line stands for any
@@ -32,6 +35,7 @@ import pytest
 from helpers import ROOT
 
 import formopt
+from formopt.cli import main
 
 PAGES = [ROOT / "README.md"] + sorted(p for p in (ROOT / "docs").rglob("*.md")
                                       if "_build" not in p.parts and "auto_examples" not in p.parts)
@@ -124,6 +128,28 @@ def shell_env(tmp_path):
             "MPLBACKEND": "Agg"}
 
 
+PLAIN = re.compile(r"formopt(\s+[\w./=:-]+)*")  # `formopt ARGS` that bash would pass on unchanged
+
+
+def run_formopt(command: str) -> tuple[int, str]:
+    """A plain `formopt ARGS` run by formopt.cli.main in this process: its exit status and its
+    standard output and error in one stream, as a terminal shows them."""
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed), contextlib.redirect_stderr(printed):
+        code = main(command.split()[1:])
+    return code, printed.getvalue()
+
+
+def run_shell(command: str, env: dict) -> tuple[int, str]:
+    """A shell command: plain `formopt ARGS` in this process (run_formopt), any other through
+    bash; its exit status and printed output (stdout and stderr in one stream)."""
+    if PLAIN.fullmatch(command.strip()):
+        return run_formopt(command)
+    run = subprocess.run(["bash", "-c", command], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                         text=True, env=env, timeout=300)
+    return run.returncode, run.stdout
+
+
 def run_python(block: Block, namespace: dict) -> str:
     out = io.StringIO()
     with contextlib.redirect_stdout(out):
@@ -153,10 +179,8 @@ def test_page_does_what_it_shows(page, tmp_path, shell_env, monkeypatch):
             tomllib.loads(block.text)
         elif block.lang in SHELL:
             for cmd, shown in commands(block.text):
-                run = subprocess.run(["bash", "-c", cmd], stdout=subprocess.PIPE,
-                                     stderr=subprocess.STDOUT, text=True, env=shell_env, timeout=300)
-                printed = run.stdout
-                assert shown or run.returncode == 0, f"{where}:{block.line}: {cmd}\n{printed}"
+                code, printed = run_shell(cmd, shell_env)
+                assert shown or code == 0, f"{where}:{block.line}: {cmd}\n{printed}"
                 assert not shown or matches(shown, printed, abridged), \
                     f"{where}:{block.line}: {cmd} printed\n{printed}"
 

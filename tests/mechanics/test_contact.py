@@ -165,21 +165,19 @@ def test_effective_mass_on_a_slope_needs_tan_slope(body):
     assert r.mu_c_momentum == pytest.approx(r.mu_c, rel=1e-9)
 
 
-def test_impact_json_shows_every_law(tmp_path):
+def test_impact_json_shows_every_law(tmp_path, capsys):
     import json
-    import subprocess
-    import sys
 
     from helpers import SHIPPED
+
+    from formopt.cli import main
 
     text = (SHIPPED / "forefoot_strike.toml").read_text().replace(
         "friction = 0.8", 'friction = 0.8\ncontact = "coulomb"')
     scene = tmp_path / "coulomb.toml"
     scene.write_text(text)
-    out = subprocess.run([sys.executable, "-m", "formopt.cli", "impact", str(scene), "--json"],
-                         capture_output=True, text=True)
-    assert out.returncode == 0, out.stderr
-    report = json.loads(out.stdout)
+    assert main(["impact", str(scene), "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
     assert set(report["contact_laws"]) == set(contact.LAWS) and report["law"] == "coulomb"
     coulomb = report["contact_laws"]["coulomb"]
     assert report["T_c"] == coulomb["T_c"] < report["contact_laws"]["no-slip"]["T_c"]
