@@ -4,7 +4,8 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
 
     python problems/stride_mesh.py [--speed 3.5] [--cadence 130 (0: free)]
                                    [--meshes hermite-simpson:20 hermite-simpson:40 hermite-simpson:80]
-                                   [--moment-time 0.012 (s; moment dynamics)] [--figure mesh.png]
+                                   [--moment-time 0.012 (s; moment dynamics)] [--approach-speed 0.05 (m/s)]
+                                   [--figure mesh.png]
 
 Prints per mesh (transcription:intervals): the objective, the smoothing term (problem.SMOOTHING),
 with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint, the phase durations, the dropped points' normal force
@@ -147,11 +148,14 @@ def main(argv=None) -> int:
     parser.add_argument("--figure", default="")
     parser.add_argument("--moment-time", type=float, default=0.0,
                         help="StrideSettings.moment_time (s): > 0, the moments as states (moment dynamics)")
+    parser.add_argument("--approach-speed", type=float, default=0.0,
+                        help="StrideSettings.approach_speed (m/s): each impact's least approach speed")
     args = parser.parse_args(argv)
     body, guess, solved = scaled_body(62.0, 1.81), None, []
     for transcription, nodes in ((m.split(":")[0], int(m.split(":")[1])) for m in args.meshes):
         nlp = build(body, StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
-                                         transcription=transcription, moment_time=args.moment_time))
+                                         transcription=transcription, moment_time=args.moment_time,
+                                         approach_speed=args.approach_speed))
         clock = time.process_time()
         stride = optimum(nlp, args.speed, cadence=args.cadence or None, guess=guess)
         seconds = time.process_time() - clock

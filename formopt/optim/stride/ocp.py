@@ -97,16 +97,18 @@ class NodeModel:
 @dataclass(frozen=True)
 class Impact:
     """Phase `after` (or the touchdown, after = None) starts with the impact of the points its
-    contact model adds; `contact` holds after it."""
+    contact model adds; `contact` holds after it; each point approaches the ground at least at
+    `approach` (m/s, StrideSettings.approach_speed)."""
 
     points: tuple[str, ...]
     contact: RigidContact
+    approach: float = 0.0
 
     def rows(self, rows: Rows, js, theta, v_minus, v_plus, impulse, p, mass):
         """The points on the ground moving into it, the impact's rows; T_c (J)."""
         for point in self.points:
             rows.add(height(js, point, theta, p[1]))
-            rows.add(normal_velocity(js, point, theta, v_minus, p[1]), -np.inf, 0.0)
+            rows.add(normal_velocity(js, point, theta, v_minus, p[1]), -np.inf, -self.approach)
         return self.contact.impact(rows, theta, v_minus, v_plus, impulse, p[1], p[2], mass)
 
 
@@ -154,14 +156,14 @@ class StrideProblem:
         rows = tuple((other_leg(p), a) for p, a in first.rows)
         sliding = other_leg(first.sliding) if first.sliding else ""
         self.touchdown = Impact(tuple(dict.fromkeys(p for p, _ in rows)),
-                                RigidContact(js, rows, sliding, settings.slip))
+                                RigidContact(js, rows, sliding, settings.slip), settings.approach_speed)
         self.cost_terms = costs.terms(settings, self.mass)
 
     def _transition(self, i: int) -> Impact | Release:
         before, after = self.phases[i - 1], self.phases[i]
         added = tuple(p for p in after.points if p not in before.points)
         if added:
-            return Impact(added, self.models[i].contact)
+            return Impact(added, self.models[i].contact, self.settings.approach_speed)
         if not (self.models[i].actuation.states or self.settings.transcription == "trapezoid"):
             return Release((), before.sliding)  # torque sources on Hermite-Simpson: `Release` says why
         dropped = tuple(k for k, (p, a) in enumerate(before.rows) if a == "n" and p not in after.points)

@@ -237,6 +237,10 @@ class StrideSettings:
     # (actuation.Torques, costs.py: the time below which a change costs more than its moment)
     moment_time: float = 0.0
     clearance: float = CLEARANCE  # m: the swing foot's least height while the other holds the ground
+    # m/s, >= 0: each impact's points reach the ground at least this fast (v_n- <= -approach_speed;
+    # 0, the default, allows a grazing touchdown, where the impulse and its friction cone's rows
+    # vanish together)
+    approach_speed: float = 0.0
 
     def __post_init__(self):
         if self.strike not in STRIKE_PHASES:
@@ -277,6 +281,7 @@ class StrideSettings:
             raise InputError(f"reserve_weight = {self.reserve_weight}: expected a finite number > 0")
         check("torque_limit_nm_per_kg", self.torque_limit)
         check("clearance_m", self.clearance)
+        check("approach_speed_mps", self.approach_speed)
         check("max_iterations", self.max_iter, whole=True)
         for joint, k in self.tendons.items():
             if joint not in TENDON_JOINTS:
