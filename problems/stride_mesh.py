@@ -5,11 +5,12 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
     python problems/stride_mesh.py [--speed 3.5] [--cadence 130 (0: free)]
                                    [--meshes hermite-simpson:20 hermite-simpson:40 hermite-simpson:80]
                                    [--moment-time 0.012 (s; moment dynamics)] [--approach-speed 0.05 (m/s)]
-                                   [--figure mesh.png]
+                                   [--ipopt-print 5] [--figure mesh.png]
 
 Prints per mesh (transcription:intervals): the objective, the smoothing term (problem.SMOOTHING),
 with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint, the phase durations, the dropped points' normal force
-(body weights) at the last column of their phase (heel-off, toe-off), the decision variables on
+(body weights) at the last column of their phase (heel-off, toe-off), each impact's approach speed
+and impulse, the decision variables on
 a finite bound by row and columns (A at collocation.ACCELERATION, F at contact.FORCE_LIMIT, X at
 the joint ranges or STATE_RATE, U at the torque limit, T at a duration bound) with their largest
 multiplier, and per phase its node rows on a bound (heights and clearance, friction cones) and
@@ -28,8 +29,8 @@ import matplotlib
 import numpy as np
 
 from formopt.mechanics.body import scaled_body
-from formopt.mechanics.joint_space import GRAVITY, JOINTS, THETA
-from formopt.optim.stride.collocation import build
+from formopt.mechanics.joint_space import GRAVITY, JOINTS, THETA, JointSpace
+from formopt.optim.stride.collocation import StrideNLP, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS
 from formopt.optim.stride.problem import RUNNER_TENDONS, SMOOTHING, StrideSettings
@@ -150,12 +151,15 @@ def main(argv=None) -> int:
                         help="StrideSettings.moment_time (s): > 0, the moments as states (moment dynamics)")
     parser.add_argument("--approach-speed", type=float, default=0.0,
                         help="StrideSettings.approach_speed (m/s): each impact's least approach speed")
+    parser.add_argument("--ipopt-print", type=int, default=0, help="IPOPT's print_level (5: a line per iteration)")
     args = parser.parse_args(argv)
     body, guess, solved = scaled_body(62.0, 1.81), None, []
     for transcription, nodes in ((m.split(":")[0], int(m.split(":")[1])) for m in args.meshes):
-        nlp = build(body, StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
-                                         transcription=transcription, moment_time=args.moment_time,
-                                         approach_speed=args.approach_speed))
+        settings = StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
+                                  transcription=transcription, moment_time=args.moment_time,
+                                  approach_speed=args.approach_speed)
+        nlp = (StrideNLP(JointSpace(body), settings, {"print_level": args.ipopt_print}) if args.ipopt_print
+               else build(body, settings))
         clock = time.process_time()
         stride = optimum(nlp, args.speed, cadence=args.cadence or None, guess=guess)
         seconds = time.process_time() - clock
@@ -172,7 +176,9 @@ def main(argv=None) -> int:
         for phase, e in effort.items():
             print(f"  {phase:9s} {b[f'T_{phase}'].item() * 1e3:6.1f} ms  effort {e.sum():.5f}: "
                   + " ".join(f"{j} {v:.5f}" for j, v in zip(JOINTS, e)), flush=True)
-        print(f"  released with (BW): {', '.join(release_forces(nlp, b))}")
+        print(f"  released with (BW): {', '.join(release_forces(nlp, b))}; impacts: "
+              + ", ".join(f"{i['point']} {i['leg']} approach {i['approach_mps']:.4f} m/s, impulse (t, n) "
+                          f"{i['impulse_Ns'][0]:.4g} {i['impulse_Ns'][1]:.4g} N s" for i in stride.impacts))
         print("  variables on a bound: " + ("; ".join(blocks) or "-"))
         print("\n".join(f"  node rows, {r}" for r in rows), flush=True)
         guess = b
