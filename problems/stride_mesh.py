@@ -5,7 +5,8 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
     python problems/stride_mesh.py [--speed 3.5] [--cadence 130 (0: free)]
                                    [--meshes hermite-simpson:20 hermite-simpson:40 hermite-simpson:80]
                                    [--moment-time 0.012 (s; moment dynamics)] [--approach-speed 0.05 (m/s)]
-                                   [--ipopt-print 5] [--figure mesh.png]
+                                   [--ipopt print_level=5 mu_strategy=monotone]
+                                   [--figure mesh.png]
 
 Prints per mesh (transcription:intervals): the objective, the smoothing term (problem.SMOOTHING),
 with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint, the phase durations, the dropped points' normal force
@@ -140,6 +141,17 @@ def figure(path: str, meshes: list) -> None:
     fig.savefig(path, dpi=60)
 
 
+def ipopt_option(text: str) -> tuple[str, int | float | str]:
+    """An IPOPT option "key=value" as (key, value): an integer, a number or a string."""
+    key, _, value = text.partition("=")
+    for kind in (int, float):
+        try:
+            return key, kind(value)
+        except ValueError:
+            pass
+    return key, value
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
@@ -151,15 +163,15 @@ def main(argv=None) -> int:
                         help="StrideSettings.moment_time (s): > 0, the moments as states (moment dynamics)")
     parser.add_argument("--approach-speed", type=float, default=0.0,
                         help="StrideSettings.approach_speed (m/s): each impact's least approach speed")
-    parser.add_argument("--ipopt-print", type=int, default=0, help="IPOPT's print_level (5: a line per iteration)")
+    parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
+                        help="IPOPT options over the stride's (key=value), e.g. print_level=5")
     args = parser.parse_args(argv)
     body, guess, solved = scaled_body(62.0, 1.81), None, []
     for transcription, nodes in ((m.split(":")[0], int(m.split(":")[1])) for m in args.meshes):
         settings = StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
                                   transcription=transcription, moment_time=args.moment_time,
                                   approach_speed=args.approach_speed)
-        nlp = (StrideNLP(JointSpace(body), settings, {"print_level": args.ipopt_print}) if args.ipopt_print
-               else build(body, settings))
+        nlp = StrideNLP(JointSpace(body), settings, dict(args.ipopt)) if args.ipopt else build(body, settings)
         clock = time.process_time()
         stride = optimum(nlp, args.speed, cadence=args.cadence or None, guess=guess)
         seconds = time.process_time() - clock
