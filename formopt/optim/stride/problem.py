@@ -149,6 +149,20 @@ RESERVE_CONTINUATION = (100.0,)
 # and not converged in 1000 iterations at 40 intervals.
 MOMENT_TIME = 0.012
 MOMENT_TIME_MAX = 0.2
+# A least approach speed at every impact (StrideSettings.approach_speed, m/s), against the
+# grazing touchdowns of Hermite-Simpson's optima: a point that reaches the ground at v_n- = 0
+# takes a zero impulse, so p_n >= 0 and both cone rows mu p_n -+ p_t >= 0 hold with equality at
+# once (four rows' gradients in three impulses: no unique multipliers), and formopt's check reads
+# mu_c = |p_t| / p_n from round-off (0.81-7.5 at mu 0.8: invalid). 5 cm/s is a floor, not a
+# runner's: RBDS001's forefoot reaches the ground at 0.64 m/s (median; least 0.11) and the heel at
+# 0.32-0.59 m/s (problems/approach_speed.py). Measured (RBDS001, heel, springs, free cadence,
+# problems/stride_mesh.py --cadence 0 --approach-speed 0.05, 2026-11-27): every grazing optimum
+# made valid at a cost of 0.05-0.4 %, the floor active where it grazed; without moment dynamics
+# Hermite-Simpson 40 at 2.5 m/s 124.9 steps/min (its forefoot phase on its 0.25 s ceiling), the
+# trapezoid 40 at 3.5 m/s unmoved (169.5); with moment dynamics (12 ms) Hermite-Simpson 40
+# converged at 4.5 m/s (165.7, 561 iterations) but not at 2.5 and 3.5 m/s (1000 iterations, a
+# slow descent at IPOPT's least barrier, not a degenerate row). So it stays off by default.
+APPROACH_SPEED = 0.05
 
 
 # Tendons: a spring in parallel with the stance leg's joint, engaged unloaded at the touchdown
@@ -239,7 +253,7 @@ class StrideSettings:
     clearance: float = CLEARANCE  # m: the swing foot's least height while the other holds the ground
     # m/s, >= 0: each impact's points reach the ground at least this fast (v_n- <= -approach_speed;
     # 0, the default, allows a grazing touchdown, where the impulse and its friction cone's rows
-    # vanish together)
+    # vanish together). APPROACH_SPEED says what it does and why it stays off.
     approach_speed: float = 0.0
 
     def __post_init__(self):

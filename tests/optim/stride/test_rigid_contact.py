@@ -15,6 +15,7 @@ from formopt.optim.stride.contact import RigidContact
 from formopt.optim.stride.guess import ballistic
 from formopt.optim.stride.layout import Rows
 from formopt.optim.stride.ocp import Impact
+from formopt.optim.stride.problem import APPROACH_SPEED
 
 MU, SLOPE = 0.8, 0.05
 
@@ -109,7 +110,7 @@ def test_the_swing_leg_has_its_clearance_and_the_rest_the_ground(js, states, row
 
 
 
-@pytest.mark.parametrize("approach", [0.0, 0.05])
+@pytest.mark.parametrize("approach", [0.0, APPROACH_SPEED])
 def test_an_impact_holds_its_least_approach_speed(js, states, approach):
     """Impact's rows for each point: its height, then its normal velocity before the impact
     with v_n- <= -approach (StrideSettings.approach_speed; 0 allows a grazing touchdown)."""
