@@ -156,12 +156,15 @@ MOMENT_TIME_MAX = 0.2
 # mu_c = |p_t| / p_n from round-off (0.81-7.5 at mu 0.8: invalid). 5 cm/s is a floor, not a
 # runner's: RBDS001's forefoot reaches the ground at 0.64 m/s (median; least 0.11) and the heel at
 # 0.32-0.59 m/s (problems/approach_speed.py). Measured (RBDS001, heel, springs, free cadence,
-# problems/stride_mesh.py --cadence 0 --approach-speed 0.05, 2026-11-27): every grazing optimum
+# problems/stride_mesh.py --cadence 0 --approach-speed 0.05, 2026-11-27): each grazing optimum
 # made valid at a cost of 0.05-0.4 %, the floor active where it grazed; without moment dynamics
-# Hermite-Simpson 40 at 2.5 m/s 124.9 steps/min (its forefoot phase on its 0.25 s ceiling), the
-# trapezoid 40 at 3.5 m/s unmoved (169.5); with moment dynamics (12 ms) Hermite-Simpson 40
-# converged at 4.5 m/s (165.7, 561 iterations) but not at 2.5 and 3.5 m/s (1000 iterations, a
-# slow descent at IPOPT's least barrier, not a degenerate row). So it stays off by default.
+# Hermite-Simpson 40 at 2.5 m/s 124.9 steps/min (0.04309 against the grazing 0.04307; its forefoot
+# phase on its 0.25 s ceiling), the trapezoid 40 at 3.5 m/s unmoved (169.5); with moment dynamics
+# (12 ms) Hermite-Simpson 40 at 3.5 m/s 150.9 steps/min in 1002 iterations (the grazing one 150.8
+# in 1102: the grazing does not make it slow, a descent at IPOPT's least barrier with the Hessian
+# regularised at every step does), at 4.5 m/s 165.7 in 561, at 2.5 m/s not converged in 3000
+# (705 s CPU, the objective still falling, no impact grazing, the forefoot phase on its 0.25 s
+# ceiling). Held by the floor and the bounds, it stays off by default.
 APPROACH_SPEED = 0.05
 
 
