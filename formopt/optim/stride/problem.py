@@ -162,7 +162,8 @@ MOMENT_TIME_MAX = 0.2
 # phase on its 0.25 s ceiling), the trapezoid 40 at 3.5 m/s unmoved (169.5); with moment dynamics
 # (12 ms) Hermite-Simpson 40 at 3.5 m/s 150.9 steps/min in 1002 iterations (the grazing one 150.8
 # in 1102: the grazing does not make it slow, a descent at IPOPT's least barrier with the Hessian
-# regularised at every step does), at 4.5 m/s 165.7 in 561, at 2.5 m/s not converged in 3000
+# regularised at every step does), at 4.5 m/s 165.7 in 561 (124 s CPU; without the floor 165.8 in
+# 2556, 415 s, a 0.09 % costlier optimum landing the forefoot at 3 mm/s), at 2.5 m/s not converged in 3000
 # (705 s CPU, the objective still falling, no impact grazing, the forefoot phase on its 0.25 s
 # ceiling). Held by the floor and the bounds, it stays off by default.
 APPROACH_SPEED = 0.05
