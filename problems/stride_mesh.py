@@ -5,10 +5,12 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
     python problems/stride_mesh.py [--speed 3.5] [--cadence 130 (0: free)]
                                    [--meshes hermite-simpson:20 hermite-simpson:40 hermite-simpson:80]
                                    [--moment-time 0.012 (s; moment dynamics)] [--approach-speed 0.05 (m/s)]
+                                   [--smoothing 1e-5 (problem.SMOOTHING's weight, for this run)]
                                    [--ipopt print_level=5 mu_strategy=monotone]
                                    [--figure mesh.png]
 
-Prints per mesh (transcription:intervals): the objective, the smoothing term (problem.SMOOTHING),
+Prints per mesh (transcription:intervals): the objective, the smoothing term (problem.SMOOTHING, or
+--smoothing's weight: it replaces costs.SMOOTHING for the run),
 with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint, the phase durations, the dropped points' normal force
 (body weights) at the last column of their phase (heel-off, toe-off), each impact's approach speed
 and impulse, the decision variables on
@@ -31,6 +33,7 @@ import numpy as np
 
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY, JOINTS, THETA, JointSpace
+from formopt.optim.stride import costs
 from formopt.optim.stride.collocation import StrideNLP, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS
@@ -48,7 +51,7 @@ def phase_terms(nlp, b, speed: float) -> tuple[dict, float]:
         T, A = b[f"T_{phase.name}"].item(), b[f"A_{phase.name}"]
         w = np.asarray(nlp.transcription.weights(n, T / n), float).ravel()
         effort[phase.name] = nlp.moments(b, i)[0] ** 2 @ w * 100 / (nlp.mass * GRAVITY) ** 2 / d
-        smooth += SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n)) / d
+        smooth += costs.SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n)) / d
     return effort, smooth
 
 
@@ -163,9 +166,14 @@ def main(argv=None) -> int:
                         help="StrideSettings.moment_time (s): > 0, the moments as states (moment dynamics)")
     parser.add_argument("--approach-speed", type=float, default=0.0,
                         help="StrideSettings.approach_speed (m/s): each impact's least approach speed")
+    parser.add_argument("--smoothing", type=float, default=SMOOTHING,
+                        help="the smoothing term's weight (problem.SMOOTHING) for this run")
     parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
                         help="IPOPT options over the stride's (key=value), e.g. print_level=5")
     args = parser.parse_args(argv)
+    if args.smoothing < 0:
+        parser.error(f"--smoothing {args.smoothing}: a weight >= 0")
+    costs.SMOOTHING = args.smoothing  # costs.terms reads it when each NLP is built
     body, guess, solved = scaled_body(62.0, 1.81), None, []
     for transcription, nodes in ((m.split(":")[0], int(m.split(":")[1])) for m in args.meshes):
         settings = StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
