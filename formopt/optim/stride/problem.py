@@ -102,7 +102,13 @@ WORK_REGULARISATION = 1e-2
 # its null mode, not a smooth motion): 1.0 / 0.2 / 0.08 % of the objective at 20 / 40 / 80
 # intervals, where the change between columns took 3.1 / 1.3 / 0.4 % (the same stride, release
 # rows gone: problems/stride_mesh.py, 2026-11-26); without any smoothing its swing ankle
-# oscillates column to column and the forward check fails (1.45 rad at 20 intervals).
+# oscillates column to column and the forward check fails (1.45 rad at 20 intervals). A larger
+# weight is not what Hermite-Simpson's slow descents with moment dynamics need (12 ms, 5 cm/s
+# approach floor, 3.5 m/s, free cadence; problems/stride_mesh.py --smoothing, 2026-11-27): at 1e-5
+# Hermite-Simpson 40 took 1270 iterations (1002 at 1e-6) to 158.1 steps/min and +4.1 % of cost
+# without the term (150.9 at 1e-6); at 1e-4 Hermite-Simpson 20 did not converge in 3000 (193).
+# Nor is the free cadence: imposed at 150.9, Hermite-Simpson 40 converged in 124 iterations
+# (0.5 % below the free solve's optimum at that cadence), but imposed at 155 it had not in 1500.
 SMOOTHING = 1e-6
 # The one weight of the muscles' "metabolic" objective: FORCE_RATE_WEIGHT times the force-rate
 # term (costs.FORCE_RATE_SCALE: the volume-weighted squared tendon-force rates per distance, Kipp
