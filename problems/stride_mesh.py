@@ -4,11 +4,16 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
 
     python problems/stride_mesh.py [--speed 3.5] [--cadence 130 (0: free)]
                                    [--meshes hermite-simpson:20 hermite-simpson:40 hermite-simpson:80]
+                                   [--moment-time 0.012 (s; moment dynamics)] [--approach-speed 0.05 (m/s)]
+                                   [--smoothing 1e-5 (problem.SMOOTHING's weight, for this run)]
+                                   [--ipopt print_level=5 mu_strategy=monotone]
                                    [--figure mesh.png]
 
-Prints per mesh (transcription:intervals): the objective, the smoothing term (problem.SMOOTHING),
-the effort term per phase and per joint, the phase durations, the dropped points' normal force
-(body weights) at the last column of their phase (heel-off, toe-off), the decision variables on
+Prints per mesh (transcription:intervals): the objective, the smoothing term (problem.SMOOTHING, or
+--smoothing's weight: it replaces costs.SMOOTHING for the run),
+with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint, the phase durations, the dropped points' normal force
+(body weights) at the last column of their phase (heel-off, toe-off), each impact's approach speed
+and impulse, the decision variables on
 a finite bound by row and columns (A at collocation.ACCELERATION, F at contact.FORCE_LIMIT, X at
 the joint ranges or STATE_RATE, U at the torque limit, T at a duration bound) with their largest
 multiplier, and per phase its node rows on a bound (heights and clearance, friction cones) and
@@ -27,9 +32,11 @@ import matplotlib
 import numpy as np
 
 from formopt.mechanics.body import scaled_body
-from formopt.mechanics.joint_space import GRAVITY, JOINTS, THETA
-from formopt.optim.stride.collocation import build
+from formopt.mechanics.joint_space import GRAVITY, JOINTS, THETA, JointSpace
+from formopt.optim.stride import costs
+from formopt.optim.stride.collocation import StrideNLP, build
 from formopt.optim.stride.local import optimum
+from formopt.optim.stride.ocp import INTEGRANDS
 from formopt.optim.stride.problem import RUNNER_TENDONS, SMOOTHING, StrideSettings
 
 matplotlib.use("Agg")
@@ -40,12 +47,20 @@ def phase_terms(nlp, b, speed: float) -> tuple[dict, float]:
     """({phase: effort term per joint (6,)}, smoothing term): the objective's parts (per distance)."""
     d = speed * sum(b[f"T_{p.name}"].item() for p in nlp.phases)
     effort, smooth = {}, 0.0
-    for phase, n in zip(nlp.phases, nlp.split):
+    for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
         T, A = b[f"T_{phase.name}"].item(), b[f"A_{phase.name}"]
         w = np.asarray(nlp.transcription.weights(n, T / n), float).ravel()
-        effort[phase.name] = (nlp.mass * b[f"U_{phase.name}"]) ** 2 @ w * 100 / (nlp.mass * GRAVITY) ** 2 / d
-        smooth += SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n)) / d
+        effort[phase.name] = nlp.moments(b, i)[0] ** 2 @ w * 100 / (nlp.mass * GRAVITY) ** 2 / d
+        smooth += costs.SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n)) / d
     return effort, smooth
+
+
+def rate_term(nlp, solved, speed: float) -> float:
+    """The moment-rate term of the objective (costs.py; 0 without moment dynamics)."""
+    b, k = solved.blocks, INTEGRANDS.index("moment_rates")
+    d = speed * sum(b[f"T_{p.name}"].item() for p in nlp.phases)
+    integral = sum(float(L[k] @ w) for L, w in nlp.integrands(b, solved.parameters))
+    return nlp.settings.moment_time ** 2 * 100 / (nlp.mass * GRAVITY) ** 2 * integral / d
 
 
 def near(values, bounds):
@@ -129,6 +144,17 @@ def figure(path: str, meshes: list) -> None:
     fig.savefig(path, dpi=60)
 
 
+def ipopt_option(text: str) -> tuple[str, int | float | str]:
+    """An IPOPT option "key=value" as (key, value): an integer, a number or a string."""
+    key, _, value = text.partition("=")
+    for kind in (int, float):
+        try:
+            return key, kind(value)
+        except ValueError:
+            pass
+    return key, value
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
@@ -136,11 +162,24 @@ def main(argv=None) -> int:
     parser.add_argument("--meshes", nargs="+", default=[f"hermite-simpson:{n}" for n in (20, 40, 80)],
                         help="transcription:intervals, e.g. trapezoid:40")
     parser.add_argument("--figure", default="")
+    parser.add_argument("--moment-time", type=float, default=0.0,
+                        help="StrideSettings.moment_time (s): > 0, the moments as states (moment dynamics)")
+    parser.add_argument("--approach-speed", type=float, default=0.0,
+                        help="StrideSettings.approach_speed (m/s): each impact's least approach speed")
+    parser.add_argument("--smoothing", type=float, default=SMOOTHING,
+                        help="the smoothing term's weight (problem.SMOOTHING) for this run")
+    parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
+                        help="IPOPT options over the stride's (key=value), e.g. print_level=5")
     args = parser.parse_args(argv)
+    if args.smoothing < 0:
+        parser.error(f"--smoothing {args.smoothing}: a weight >= 0")
+    costs.SMOOTHING = args.smoothing  # costs.terms reads it when each NLP is built
     body, guess, solved = scaled_body(62.0, 1.81), None, []
     for transcription, nodes in ((m.split(":")[0], int(m.split(":")[1])) for m in args.meshes):
-        nlp = build(body, StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
-                                         transcription=transcription))
+        settings = StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
+                                  transcription=transcription, moment_time=args.moment_time,
+                                  approach_speed=args.approach_speed)
+        nlp = StrideNLP(JointSpace(body), settings, dict(args.ipopt)) if args.ipopt else build(body, settings)
         clock = time.process_time()
         stride = optimum(nlp, args.speed, cadence=args.cadence or None, guess=guess)
         seconds = time.process_time() - clock
@@ -149,14 +188,17 @@ def main(argv=None) -> int:
         blocks, rows = on_bounds(nlp, stride.solved)
         print(f"{transcription} {nodes} (split {nlp.split}): objective {stride.objective_value:.5f} at "
               f"{stride.cadence_spm:.1f} steps/min, effort "
-              f"{sum(e.sum() for e in effort.values()):.5f}, smoothing {smooth:.5f}; converged {stride.success} "
+              f"{sum(e.sum() for e in effort.values()):.5f}, smoothing {smooth:.5f}, moment rates "
+              f"{rate_term(nlp, stride.solved, args.speed):.5f}; converged {stride.success} "
               f"in {stride.iterations} iterations, {seconds:.1f} s CPU; valid {stride.valid} "
               f"{' '.join(stride.failed_checks)}; forward rad per phase "
               f"{' '.join(f'{e:.3f}' for e in stride.checks['forward_per_phase'])}", flush=True)
         for phase, e in effort.items():
             print(f"  {phase:9s} {b[f'T_{phase}'].item() * 1e3:6.1f} ms  effort {e.sum():.5f}: "
                   + " ".join(f"{j} {v:.5f}" for j, v in zip(JOINTS, e)), flush=True)
-        print(f"  released with (BW): {', '.join(release_forces(nlp, b))}")
+        print(f"  released with (BW): {', '.join(release_forces(nlp, b))}; impacts: "
+              + ", ".join(f"{i['point']} {i['leg']} approach {i['approach_mps']:.4f} m/s, impulse (t, n) "
+                          f"{i['impulse_Ns'][0]:.4g} {i['impulse_Ns'][1]:.4g} N s" for i in stride.impacts))
         print("  variables on a bound: " + ("; ".join(blocks) or "-"))
         print("\n".join(f"  node rows, {r}" for r in rows), flush=True)
         guess = b
