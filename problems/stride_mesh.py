@@ -6,11 +6,14 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
                                    [--meshes hermite-simpson:20 hermite-simpson:40 hermite-simpson:80]
                                    [--moment-time 0.012 (s; moment dynamics)] [--approach-speed 0.05 (m/s)]
                                    [--smoothing 1e-5 (problem.SMOOTHING's weight, for this run)]
+                                   [--smoothing-order 2 (that weight times (N / N_first)^2 at N)]
                                    [--ipopt print_level=5 mu_strategy=monotone]
                                    [--figure mesh.png]
 
 Prints per mesh (transcription:intervals): the objective, the smoothing term (problem.SMOOTHING, or
---smoothing's weight: it replaces costs.SMOOTHING for the run),
+--smoothing's weight: it replaces costs.SMOOTHING for the run; with --smoothing-order q, times
+(N / N_first)^q at N intervals: q = 2 keeps the trapezoid's term, w h sum |A_k+1 - A_k|^2 ~ w h^2 int |A'|^2 dt,
+one continuous penalty on every mesh),
 with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint, the phase durations, the dropped points' normal force
 (body weights) at the last column of their phase (heel-off, toe-off), each impact's approach speed
 and impulse, the decision variables on
@@ -24,6 +27,8 @@ contact forces per phase on normalised phase time, the meshes overlaid (PNG).
 from __future__ import annotations
 
 import argparse
+import itertools
+import math
 import sys
 import time
 
@@ -33,7 +38,8 @@ import numpy as np
 
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY, JOINTS, THETA, JointSpace
-from formopt.optim.stride import costs
+from formopt.mechanics.limits import Range
+from formopt.optim.stride import costs, ranges
 from formopt.optim.stride.collocation import StrideNLP, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS
@@ -155,6 +161,24 @@ def ipopt_option(text: str) -> tuple[str, int | float | str]:
     return key, value
 
 
+def convergence(name: str, values: list[float], nodes: list[int]) -> str:
+    """The successive changes of `values` on meshes each twice the one before, in % of the
+    coarser; with three or more, the observed order p = log2(d1 / d2) of the last three, the
+    Richardson limit J_2N + d2 / (2^p - 1) (d2 = J_2N - J_N) and the change predicted from the
+    last mesh to twice it, d2 / 2^p, in % (an order p <= 0 predicts nothing)."""
+    text = f"  {name}: " + ", ".join(f"{n} -> {m} {(b / a - 1) * 100:+.2f} %"
+                                      for a, b, n, m in zip(values, values[1:], nodes, nodes[1:]))
+    if len(values) < 3 or any(m != 2 * n for n, m in itertools.pairwise(nodes)):
+        return text
+    d1, d2 = values[-2] - values[-3], values[-1] - values[-2]
+    if d1 == 0 or d2 / d1 <= 0 or abs(d2) >= abs(d1):
+        return text + f"; no order (d1 {d1:+.4g}, d2 {d2:+.4g})"
+    p = math.log2(d1 / d2)
+    limit, step = values[-1] + d2 / (2 ** p - 1), d2 / 2 ** p
+    return (text + f"; order p {p:.2f}, Richardson limit {limit:.5g} ({(limit / values[-1] - 1) * 100:+.2f} % "
+            f"from {nodes[-1]}), predicted {nodes[-1]} -> {2 * nodes[-1]} {step / values[-1] * 100:+.2f} %")
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
@@ -168,14 +192,21 @@ def main(argv=None) -> int:
                         help="StrideSettings.approach_speed (m/s): each impact's least approach speed")
     parser.add_argument("--smoothing", type=float, default=SMOOTHING,
                         help="the smoothing term's weight (problem.SMOOTHING) for this run")
+    parser.add_argument("--smoothing-order", type=float, default=0.0,
+                        help="q: the smoothing's weight times (N / N_first)^q at N intervals")
     parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
                         help="IPOPT options over the stride's (key=value), e.g. print_level=5")
     args = parser.parse_args(argv)
     if args.smoothing < 0:
         parser.error(f"--smoothing {args.smoothing}: a weight >= 0")
-    costs.SMOOTHING = args.smoothing  # costs.terms reads it when each NLP is built
+    meshes = [(m.split(":")[0], int(m.split(":")[1])) for m in args.meshes]
+    # a study past the scenes' 120 intervals (ranges.py: what solves cold); each mesh here is warm
+    ranges.RANGES["nodes"] = Range(14, max([n for _, n in meshes] + [120]))
     body, guess, solved = scaled_body(62.0, 1.81), None, []
-    for transcription, nodes in ((m.split(":")[0], int(m.split(":")[1])) for m in args.meshes):
+    objectives, cadences = [], []
+    for transcription, nodes in meshes:
+        # costs.terms reads it when each NLP is built
+        costs.SMOOTHING = args.smoothing * (nodes / meshes[0][1]) ** args.smoothing_order
         settings = StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
                                   transcription=transcription, moment_time=args.moment_time,
                                   approach_speed=args.approach_speed)
@@ -202,7 +233,13 @@ def main(argv=None) -> int:
         print("  variables on a bound: " + ("; ".join(blocks) or "-"))
         print("\n".join(f"  node rows, {r}" for r in rows), flush=True)
         guess = b
+        objectives.append(stride.objective_value)
+        cadences.append(stride.cadence_spm)
         solved.append((f"{transcription} {nodes}", nlp, b))
+    print("mesh convergence (each mesh twice the one before; converged or not, as printed above):")
+    nodes = [n for _, n in meshes]
+    for name, values in (("objective", objectives), ("cadence", cadences)):
+        print(convergence(name, values, nodes))
     if args.figure:
         figure(args.figure, solved)
     return 0
