@@ -7,6 +7,7 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
                                    [--moment-time 0.012 (s; moment dynamics)] [--approach-speed 0.05 (m/s)]
                                    [--smoothing 1e-5 (problem.SMOOTHING's weight, for this run)]
                                    [--smoothing-order 2 (that weight times (N / N_first)^2 at N)]
+                                   [--no-release-row (no f_n = 0 row at a release)]
                                    [--ipopt print_level=5 mu_strategy=monotone]
                                    [--figure mesh.png]
 
@@ -14,19 +15,22 @@ Prints per mesh (transcription:intervals): the objective, the smoothing term (pr
 --smoothing's weight: it replaces costs.SMOOTHING for the run; with --smoothing-order q, times
 (N / N_first)^q at N intervals: q = 2 keeps the trapezoid's term, w h sum |A_k+1 - A_k|^2 ~ w h^2 int |A'|^2 dt,
 one continuous penalty on every mesh),
-with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint, the phase durations, the dropped points' normal force
+with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint (and its first and last columns' part), the phase durations, the dropped points' normal force
 (body weights) at the last column of their phase (heel-off, toe-off), each impact's approach speed
 and impulse, the decision variables on
 a finite bound by row and columns (A at collocation.ACCELERATION, F at contact.FORCE_LIMIT, X at
 the joint ranges or STATE_RATE, U at the torque limit, T at a duration bound) with their largest
 multiplier, and per phase its node rows on a bound (heights and clearance, friction cones) and
-the three with the largest multipliers; IPOPT's iterations and CPU seconds. `--figure`: the torques, accelerations and
+the three with the largest multipliers; IPOPT's iterations and CPU seconds; at the end, per
+quantity, the change from each mesh to the next and (three meshes, each twice the one before)
+the observed order and Richardson's limit (`convergence`). `--figure`: the torques, accelerations and
 contact forces per phase on normalised phase time, the meshes overlaid (PNG).
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import itertools
 import math
 import sys
@@ -39,7 +43,7 @@ import numpy as np
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY, JOINTS, THETA, JointSpace
 from formopt.mechanics.limits import Range
-from formopt.optim.stride import costs, ranges
+from formopt.optim.stride import costs, ocp, ranges
 from formopt.optim.stride.collocation import StrideNLP, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS
@@ -49,16 +53,19 @@ matplotlib.use("Agg")
 TIGHT = 1e-6  # a value this close to its bound (relative to max(1, |bound|)) is on it
 
 
-def phase_terms(nlp, b, speed: float) -> tuple[dict, float]:
-    """({phase: effort term per joint (6,)}, smoothing term): the objective's parts (per distance)."""
+def phase_terms(nlp, b, speed: float) -> tuple[dict, dict, float]:
+    """({phase: effort term per joint (6,)}, {phase: the part of its effort at its first and last
+    columns}, smoothing term): the objective's parts (per distance)."""
     d = speed * sum(b[f"T_{p.name}"].item() for p in nlp.phases)
-    effort, smooth = {}, 0.0
+    effort, ends, smooth = {}, {}, 0.0
     for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
         T, A = b[f"T_{phase.name}"].item(), b[f"A_{phase.name}"]
         w = np.asarray(nlp.transcription.weights(n, T / n), float).ravel()
-        effort[phase.name] = nlp.moments(b, i)[0] ** 2 @ w * 100 / (nlp.mass * GRAVITY) ** 2 / d
+        squares = nlp.moments(b, i)[0] ** 2 * 100 / (nlp.mass * GRAVITY) ** 2 / d
+        effort[phase.name] = squares @ w
+        ends[phase.name] = float(squares[:, [0, -1]].sum(axis=0) @ w[[0, -1]])
         smooth += costs.SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n)) / d
-    return effort, smooth
+    return effort, ends, smooth
 
 
 def rate_term(nlp, solved, speed: float) -> float:
@@ -161,6 +168,13 @@ def ipopt_option(text: str) -> tuple[str, int | float | str]:
     return key, value
 
 
+def without_release_rows() -> None:
+    """ocp.Release without its force rows (the dropped points' f_n = 0 at their phase's last
+    column, which the trapezoid keeps), for this process: what the row's layer costs."""
+    rows = ocp.Release.rows
+    ocp.Release.rows = lambda self, *args: rows(dataclasses.replace(self, dropped=()), *args)  # type: ignore[method-assign]
+
+
 def convergence(name: str, values: list[float], nodes: list[int]) -> str:
     """The successive changes of `values` on meshes each twice the one before, in % of the
     coarser; with three or more, the observed order p = log2(d1 / d2) of the last three, the
@@ -194,12 +208,16 @@ def main(argv=None) -> int:
                         help="the smoothing term's weight (problem.SMOOTHING) for this run")
     parser.add_argument("--smoothing-order", type=float, default=0.0,
                         help="q: the smoothing's weight times (N / N_first)^q at N intervals")
+    parser.add_argument("--no-release-row", action="store_true",
+                        help="the releases without their f_n = 0 row (as Hermite-Simpson's torque sources)")
     parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
                         help="IPOPT options over the stride's (key=value), e.g. print_level=5")
     args = parser.parse_args(argv)
     if args.smoothing < 0:
         parser.error(f"--smoothing {args.smoothing}: a weight >= 0")
     meshes = [(m.split(":")[0], int(m.split(":")[1])) for m in args.meshes]
+    if args.no_release_row:
+        without_release_rows()
     # a study past the scenes' 120 intervals (ranges.py: what solves cold); each mesh here is warm
     ranges.RANGES["nodes"] = Range(14, max([n for _, n in meshes] + [120]))
     body, guess, solved = scaled_body(62.0, 1.81), None, []
@@ -215,7 +233,7 @@ def main(argv=None) -> int:
         stride = optimum(nlp, args.speed, cadence=args.cadence or None, guess=guess)
         seconds = time.process_time() - clock
         b = stride.solved.blocks
-        effort, smooth = phase_terms(nlp, b, args.speed)
+        effort, ends, smooth = phase_terms(nlp, b, args.speed)
         blocks, rows = on_bounds(nlp, stride.solved)
         print(f"{transcription} {nodes} (split {nlp.split}): objective {stride.objective_value:.5f} at "
               f"{stride.cadence_spm:.1f} steps/min, effort "
@@ -225,7 +243,8 @@ def main(argv=None) -> int:
               f"{' '.join(stride.failed_checks)}; forward rad per phase "
               f"{' '.join(f'{e:.3f}' for e in stride.checks['forward_per_phase'])}", flush=True)
         for phase, e in effort.items():
-            print(f"  {phase:9s} {b[f'T_{phase}'].item() * 1e3:6.1f} ms  effort {e.sum():.5f}: "
+            print(f"  {phase:9s} {b[f'T_{phase}'].item() * 1e3:6.1f} ms  effort {e.sum():.5f} (end columns "
+                  f"{ends[phase]:.5f}): "
                   + " ".join(f"{j} {v:.5f}" for j, v in zip(JOINTS, e)), flush=True)
         print(f"  released with (BW): {', '.join(release_forces(nlp, b))}; impacts: "
               + ", ".join(f"{i['point']} {i['leg']} approach {i['approach_mps']:.4f} m/s, impulse (t, n) "
