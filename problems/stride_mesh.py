@@ -8,6 +8,7 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
                                    [--smoothing 1e-5 (problem.SMOOTHING's weight, for this run)]
                                    [--smoothing-order 2 (that weight times (N / N_first)^2 at N)]
                                    [--no-release-row (no f_n = 0 row at a release)]
+                                   [--acceleration 3000 (rad/s^2: collocation.ACCELERATION, for this run)]
                                    [--ipopt print_level=5 mu_strategy=monotone]
                                    [--figure mesh.png]
 
@@ -15,7 +16,7 @@ Prints per mesh (transcription:intervals): the objective, the smoothing term (pr
 --smoothing's weight: it replaces costs.SMOOTHING for the run; with --smoothing-order q, times
 (N / N_first)^q at N intervals: q = 2 keeps the trapezoid's term, w h sum |A_k+1 - A_k|^2 ~ w h^2 int |A'|^2 dt,
 one continuous penalty on every mesh),
-with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint (and its first and last columns' part), the phase durations, the dropped points' normal force
+with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint (and its end columns' layer: what their moments cost beyond their neighbours'), the phase durations, the dropped points' normal force
 (body weights) at the last column of their phase (heel-off, toe-off), each impact's approach speed
 and impulse, the decision variables on
 a finite bound by row and columns (A at collocation.ACCELERATION, F at contact.FORCE_LIMIT, X at
@@ -43,7 +44,7 @@ import numpy as np
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY, JOINTS, THETA, JointSpace
 from formopt.mechanics.limits import Range
-from formopt.optim.stride import costs, ocp, ranges
+from formopt.optim.stride import collocation, costs, ocp, ranges
 from formopt.optim.stride.collocation import StrideNLP, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS
@@ -54,8 +55,9 @@ TIGHT = 1e-6  # a value this close to its bound (relative to max(1, |bound|)) is
 
 
 def phase_terms(nlp, b, speed: float) -> tuple[dict, dict, float]:
-    """({phase: effort term per joint (6,)}, {phase: the part of its effort at its first and last
-    columns}, smoothing term): the objective's parts (per distance)."""
+    """({phase: effort term per joint (6,)}, {phase: its end columns' layer, the effort their
+    moments cost beyond their neighbours', w_0 (u_0^2 - u_1^2) + w_n (u_n^2 - u_n-1^2) summed over
+    the joints}, smoothing term): the objective's parts (per distance)."""
     d = speed * sum(b[f"T_{p.name}"].item() for p in nlp.phases)
     effort, ends, smooth = {}, {}, 0.0
     for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
@@ -63,7 +65,7 @@ def phase_terms(nlp, b, speed: float) -> tuple[dict, dict, float]:
         w = np.asarray(nlp.transcription.weights(n, T / n), float).ravel()
         squares = nlp.moments(b, i)[0] ** 2 * 100 / (nlp.mass * GRAVITY) ** 2 / d
         effort[phase.name] = squares @ w
-        ends[phase.name] = float(squares[:, [0, -1]].sum(axis=0) @ w[[0, -1]])
+        ends[phase.name] = float((squares[:, [0, -1]] - squares[:, [1, -2]]).sum(axis=0) @ w[[0, -1]])
         smooth += costs.SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n)) / d
     return effort, ends, smooth
 
@@ -208,6 +210,8 @@ def main(argv=None) -> int:
                         help="the smoothing term's weight (problem.SMOOTHING) for this run")
     parser.add_argument("--smoothing-order", type=float, default=0.0,
                         help="q: the smoothing's weight times (N / N_first)^q at N intervals")
+    parser.add_argument("--acceleration", type=float, default=collocation.ACCELERATION,
+                        help="the accelerations' bound (rad/s^2, collocation.ACCELERATION) for this run")
     parser.add_argument("--no-release-row", action="store_true",
                         help="the releases without their f_n = 0 row (as Hermite-Simpson's torque sources)")
     parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
@@ -218,6 +222,7 @@ def main(argv=None) -> int:
     meshes = [(m.split(":")[0], int(m.split(":")[1])) for m in args.meshes]
     if args.no_release_row:
         without_release_rows()
+    collocation.ACCELERATION = args.acceleration  # read when each NLP's bounds are built
     # a study past the scenes' 120 intervals (ranges.py: what solves cold); each mesh here is warm
     ranges.RANGES["nodes"] = Range(14, max([n for _, n in meshes] + [120]))
     body, guess, solved = scaled_body(62.0, 1.81), None, []
@@ -243,7 +248,7 @@ def main(argv=None) -> int:
               f"{' '.join(stride.failed_checks)}; forward rad per phase "
               f"{' '.join(f'{e:.3f}' for e in stride.checks['forward_per_phase'])}", flush=True)
         for phase, e in effort.items():
-            print(f"  {phase:9s} {b[f'T_{phase}'].item() * 1e3:6.1f} ms  effort {e.sum():.5f} (end columns "
+            print(f"  {phase:9s} {b[f'T_{phase}'].item() * 1e3:6.1f} ms  effort {e.sum():.5f} (end layers "
                   f"{ends[phase]:.5f}): "
                   + " ".join(f"{j} {v:.5f}" for j, v in zip(JOINTS, e)), flush=True)
         print(f"  released with (BW): {', '.join(release_forces(nlp, b))}; impacts: "
