@@ -9,6 +9,7 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
                                    [--smoothing-order 2 (that weight times (N / N_first)^2 at N)]
                                    [--no-release-row (no f_n = 0 row at a release)]
                                    [--acceleration 3000 (rad/s^2: collocation.ACCELERATION, for this run)]
+                                   [--ankle-max 40 (deg: the ankle's dorsiflexion range, for this run)]
                                    [--ipopt print_level=5 mu_strategy=monotone]
                                    [--figure mesh.png]
 
@@ -42,7 +43,7 @@ import matplotlib
 import numpy as np
 
 from formopt.mechanics.body import scaled_body
-from formopt.mechanics.joint_space import GRAVITY, JOINTS, THETA, JointSpace
+from formopt.mechanics.joint_space import GRAVITY, JOINTS, RANGES, THETA, JointSpace
 from formopt.mechanics.limits import Range
 from formopt.optim.stride import collocation, costs, ocp, ranges
 from formopt.optim.stride.collocation import StrideNLP, build
@@ -212,6 +213,8 @@ def main(argv=None) -> int:
                         help="q: the smoothing's weight times (N / N_first)^q at N intervals")
     parser.add_argument("--acceleration", type=float, default=collocation.ACCELERATION,
                         help="the accelerations' bound (rad/s^2, collocation.ACCELERATION) for this run")
+    parser.add_argument("--ankle-max", type=float, default=0.0,
+                        help="deg: the ankle's dorsiflexion range's end for this run (0: joint_space.RANGES')")
     parser.add_argument("--no-release-row", action="store_true",
                         help="the releases without their f_n = 0 row (as Hermite-Simpson's torque sources)")
     parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
@@ -223,6 +226,8 @@ def main(argv=None) -> int:
     if args.no_release_row:
         without_release_rows()
     collocation.ACCELERATION = args.acceleration  # read when each NLP's bounds are built
+    if args.ankle_max:
+        collocation.RANGES = {**RANGES, "ankle": (RANGES["ankle"][0], math.radians(args.ankle_max))}
     # a study past the scenes' 120 intervals (ranges.py: what solves cold); each mesh here is warm
     ranges.RANGES["nodes"] = Range(14, max([n for _, n in meshes] + [120]))
     body, guess, solved = scaled_body(62.0, 1.81), None, []
