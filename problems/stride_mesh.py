@@ -196,7 +196,8 @@ def convergence(name: str, values: list[float], nodes: list[int]) -> str:
             f"from {nodes[-1]}), predicted {nodes[-1]} -> {2 * nodes[-1]} {step / values[-1] * 100:+.2f} %")
 
 
-def main(argv=None) -> int:
+def parse(argv) -> argparse.Namespace:
+    """The command line (module docstring)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--cadence", type=float, default=130.0, help="steps/min; 0: free")
@@ -222,53 +223,66 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     if args.smoothing < 0:
         parser.error(f"--smoothing {args.smoothing}: a weight >= 0")
-    meshes = [(m.split(":")[0], int(m.split(":")[1])) for m in args.meshes]
+    args.meshes = [(m.split(":")[0], int(m.split(":")[1])) for m in args.meshes]
+    return args
+
+
+def study_overrides(args) -> None:
+    """The module constants a study changes for this process (read when each NLP is built):
+    the release rows, the accelerations' and the ankle's bounds, and the nodes' range (a study
+    past the scenes' 120 intervals, ranges.py: what solves cold; each mesh here is warm)."""
     if args.no_release_row:
         without_release_rows()
-    collocation.ACCELERATION = args.acceleration  # read when each NLP's bounds are built
+    collocation.ACCELERATION = args.acceleration
     if args.ankle_max:
         collocation.RANGES = {**RANGES, "ankle": (RANGES["ankle"][0], math.radians(args.ankle_max))}
-    # a study past the scenes' 120 intervals (ranges.py: what solves cold); each mesh here is warm
-    ranges.RANGES["nodes"] = Range(14, max([n for _, n in meshes] + [120]))
-    body, guess, solved = scaled_body(62.0, 1.81), None, []
-    objectives, cadences = [], []
-    for transcription, nodes in meshes:
+    ranges.RANGES["nodes"] = Range(14, max([n for _, n in args.meshes] + [120]))
+
+
+def report(label: str, nlp, stride, seconds: float, speed: float) -> None:
+    """One mesh's optimum as the module docstring lists."""
+    b = stride.solved.blocks
+    effort, ends, smooth = phase_terms(nlp, b, speed)
+    blocks, rows = on_bounds(nlp, stride.solved)
+    print(f"{label} (split {nlp.split}): objective {stride.objective_value:.5f} at "
+          f"{stride.cadence_spm:.1f} steps/min, effort "
+          f"{sum(e.sum() for e in effort.values()):.5f}, smoothing {smooth:.5f}, moment rates "
+          f"{rate_term(nlp, stride.solved, speed):.5f}; converged {stride.success} "
+          f"in {stride.iterations} iterations, {seconds:.1f} s CPU; valid {stride.valid} "
+          f"{' '.join(stride.failed_checks)}; forward rad per phase "
+          f"{' '.join(f'{e:.3f}' for e in stride.checks['forward_per_phase'])}", flush=True)
+    for phase, e in effort.items():
+        print(f"  {phase:9s} {b[f'T_{phase}'].item() * 1e3:6.1f} ms  effort {e.sum():.5f} (end layers "
+              f"{ends[phase]:.5f}): " + " ".join(f"{j} {v:.5f}" for j, v in zip(JOINTS, e)), flush=True)
+    print(f"  released with (BW): {', '.join(release_forces(nlp, b))}; impacts: "
+          + ", ".join(f"{i['point']} {i['leg']} approach {i['approach_mps']:.4f} m/s, impulse (t, n) "
+                      f"{i['impulse_Ns'][0]:.4g} {i['impulse_Ns'][1]:.4g} N s" for i in stride.impacts))
+    print("  variables on a bound: " + ("; ".join(blocks) or "-"))
+    print("\n".join(f"  node rows, {r}" for r in rows), flush=True)
+
+
+def main(argv=None) -> int:
+    args = parse(argv)
+    study_overrides(args)
+    body, guess, solved, objectives, cadences = scaled_body(62.0, 1.81), None, [], [], []
+    for transcription, nodes in args.meshes:
         # costs.terms reads it when each NLP is built
-        costs.SMOOTHING = args.smoothing * (nodes / meshes[0][1]) ** args.smoothing_order
+        costs.SMOOTHING = args.smoothing * (nodes / args.meshes[0][1]) ** args.smoothing_order
         settings = StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
                                   transcription=transcription, moment_time=args.moment_time,
                                   approach_speed=args.approach_speed)
         nlp = StrideNLP(JointSpace(body), settings, dict(args.ipopt)) if args.ipopt else build(body, settings)
         clock = time.process_time()
         stride = optimum(nlp, args.speed, cadence=args.cadence or None, guess=guess)
-        seconds = time.process_time() - clock
-        b = stride.solved.blocks
-        effort, ends, smooth = phase_terms(nlp, b, args.speed)
-        blocks, rows = on_bounds(nlp, stride.solved)
-        print(f"{transcription} {nodes} (split {nlp.split}): objective {stride.objective_value:.5f} at "
-              f"{stride.cadence_spm:.1f} steps/min, effort "
-              f"{sum(e.sum() for e in effort.values()):.5f}, smoothing {smooth:.5f}, moment rates "
-              f"{rate_term(nlp, stride.solved, args.speed):.5f}; converged {stride.success} "
-              f"in {stride.iterations} iterations, {seconds:.1f} s CPU; valid {stride.valid} "
-              f"{' '.join(stride.failed_checks)}; forward rad per phase "
-              f"{' '.join(f'{e:.3f}' for e in stride.checks['forward_per_phase'])}", flush=True)
-        for phase, e in effort.items():
-            print(f"  {phase:9s} {b[f'T_{phase}'].item() * 1e3:6.1f} ms  effort {e.sum():.5f} (end layers "
-                  f"{ends[phase]:.5f}): "
-                  + " ".join(f"{j} {v:.5f}" for j, v in zip(JOINTS, e)), flush=True)
-        print(f"  released with (BW): {', '.join(release_forces(nlp, b))}; impacts: "
-              + ", ".join(f"{i['point']} {i['leg']} approach {i['approach_mps']:.4f} m/s, impulse (t, n) "
-                          f"{i['impulse_Ns'][0]:.4g} {i['impulse_Ns'][1]:.4g} N s" for i in stride.impacts))
-        print("  variables on a bound: " + ("; ".join(blocks) or "-"))
-        print("\n".join(f"  node rows, {r}" for r in rows), flush=True)
-        guess = b
+        report(f"{transcription} {nodes}", nlp, stride, time.process_time() - clock, args.speed)
+        guess = stride.solved.blocks
         objectives.append(stride.objective_value)
         cadences.append(stride.cadence_spm)
-        solved.append((f"{transcription} {nodes}", nlp, b))
-    print("mesh convergence (each mesh twice the one before; converged or not, as printed above):")
-    nodes = [n for _, n in meshes]
-    for name, values in (("objective", objectives), ("cadence", cadences)):
-        print(convergence(name, values, nodes))
+        solved.append((f"{transcription} {nodes}", nlp, guess))
+    if len(args.meshes) > 1:
+        print("mesh convergence (each mesh twice the one before; converged or not, as printed above):")
+        for name, values in (("objective", objectives), ("cadence", cadences)):
+            print(convergence(name, values, [n for _, n in args.meshes]))
     if args.figure:
         figure(args.figure, solved)
     return 0
