@@ -4,21 +4,37 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
 
     python problems/stride_mesh.py [--speed 3.5] [--cadence 130 (0: free)]
                                    [--meshes hermite-simpson:20 hermite-simpson:40 hermite-simpson:80]
+                                   [--moment-time 0.012 (s; moment dynamics)] [--approach-speed 0.05 (m/s)]
+                                   [--smoothing 1e-5 (problem.SMOOTHING's weight, for this run)]
+                                   [--smoothing-order 2 (that weight times (N / N_first)^2 at N)]
+                                   [--no-release-row (no f_n = 0 row at a release)]
+                                   [--acceleration 3000 (rad/s^2: collocation.ACCELERATION, for this run)]
+                                   [--ankle-max 40 (deg: the ankle's dorsiflexion range, for this run)]
+                                   [--ipopt print_level=5 mu_strategy=monotone]
                                    [--figure mesh.png]
 
-Prints per mesh (transcription:intervals): the objective, the smoothing term (problem.SMOOTHING),
-the effort term per phase and per joint, the phase durations, the dropped points' normal force
-(body weights) at the last column of their phase (heel-off, toe-off), the decision variables on
+Prints per mesh (transcription:intervals): the objective, the smoothing term (problem.SMOOTHING, or
+--smoothing's weight: it replaces costs.SMOOTHING for the run; with --smoothing-order q, times
+(N / N_first)^q at N intervals: q = 2 keeps the trapezoid's term, w h sum |A_k+1 - A_k|^2 ~ w h^2 int |A'|^2 dt,
+one continuous penalty on every mesh),
+with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint (and its end columns' layer: what their moments cost beyond their neighbours'), the phase durations, the dropped points' normal force
+(body weights) at the last column of their phase (heel-off, toe-off), each impact's approach speed
+and impulse, the decision variables on
 a finite bound by row and columns (A at collocation.ACCELERATION, F at contact.FORCE_LIMIT, X at
 the joint ranges or STATE_RATE, U at the torque limit, T at a duration bound) with their largest
 multiplier, and per phase its node rows on a bound (heights and clearance, friction cones) and
-the three with the largest multipliers; IPOPT's iterations and CPU seconds. `--figure`: the torques, accelerations and
+the three with the largest multipliers; IPOPT's iterations and CPU seconds; at the end, per
+quantity, the change from each mesh to the next and (three meshes, each twice the one before)
+the observed order and Richardson's limit (`convergence`). `--figure`: the torques, accelerations and
 contact forces per phase on normalised phase time, the meshes overlaid (PNG).
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
+import itertools
+import math
 import sys
 import time
 
@@ -27,25 +43,40 @@ import matplotlib
 import numpy as np
 
 from formopt.mechanics.body import scaled_body
-from formopt.mechanics.joint_space import GRAVITY, JOINTS, THETA
-from formopt.optim.stride.collocation import build
+from formopt.mechanics.joint_space import GRAVITY, JOINTS, RANGES, THETA, JointSpace
+from formopt.mechanics.limits import Range
+from formopt.optim.stride import collocation, costs, ocp, ranges
+from formopt.optim.stride.collocation import StrideNLP, build
 from formopt.optim.stride.local import optimum
+from formopt.optim.stride.ocp import INTEGRANDS
 from formopt.optim.stride.problem import RUNNER_TENDONS, SMOOTHING, StrideSettings
 
 matplotlib.use("Agg")
 TIGHT = 1e-6  # a value this close to its bound (relative to max(1, |bound|)) is on it
 
 
-def phase_terms(nlp, b, speed: float) -> tuple[dict, float]:
-    """({phase: effort term per joint (6,)}, smoothing term): the objective's parts (per distance)."""
+def phase_terms(nlp, b, speed: float) -> tuple[dict, dict, float]:
+    """({phase: effort term per joint (6,)}, {phase: its end columns' layer, the effort their
+    moments cost beyond their neighbours', w_0 (u_0^2 - u_1^2) + w_n (u_n^2 - u_n-1^2) summed over
+    the joints}, smoothing term): the objective's parts (per distance)."""
     d = speed * sum(b[f"T_{p.name}"].item() for p in nlp.phases)
-    effort, smooth = {}, 0.0
-    for phase, n in zip(nlp.phases, nlp.split):
+    effort, ends, smooth = {}, {}, 0.0
+    for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
         T, A = b[f"T_{phase.name}"].item(), b[f"A_{phase.name}"]
         w = np.asarray(nlp.transcription.weights(n, T / n), float).ravel()
-        effort[phase.name] = (nlp.mass * b[f"U_{phase.name}"]) ** 2 @ w * 100 / (nlp.mass * GRAVITY) ** 2 / d
-        smooth += SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n)) / d
-    return effort, smooth
+        squares = nlp.moments(b, i)[0] ** 2 * 100 / (nlp.mass * GRAVITY) ** 2 / d
+        effort[phase.name] = squares @ w
+        ends[phase.name] = float((squares[:, [0, -1]] - squares[:, [1, -2]]).sum(axis=0) @ w[[0, -1]])
+        smooth += costs.SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n)) / d
+    return effort, ends, smooth
+
+
+def rate_term(nlp, solved, speed: float) -> float:
+    """The moment-rate term of the objective (costs.py; 0 without moment dynamics)."""
+    b, k = solved.blocks, INTEGRANDS.index("moment_rates")
+    d = speed * sum(b[f"T_{p.name}"].item() for p in nlp.phases)
+    integral = sum(float(L[k] @ w) for L, w in nlp.integrands(b, solved.parameters))
+    return nlp.settings.moment_time ** 2 * 100 / (nlp.mass * GRAVITY) ** 2 * integral / d
 
 
 def near(values, bounds):
@@ -129,38 +160,129 @@ def figure(path: str, meshes: list) -> None:
     fig.savefig(path, dpi=60)
 
 
-def main(argv=None) -> int:
+def ipopt_option(text: str) -> tuple[str, int | float | str]:
+    """An IPOPT option "key=value" as (key, value): an integer, a number or a string."""
+    key, _, value = text.partition("=")
+    for kind in (int, float):
+        try:
+            return key, kind(value)
+        except ValueError:
+            pass
+    return key, value
+
+
+def without_release_rows() -> None:
+    """ocp.Release without its force rows (the dropped points' f_n = 0 at their phase's last
+    column, which the trapezoid keeps), for this process: what the row's layer costs."""
+    rows = ocp.Release.rows
+    ocp.Release.rows = lambda self, *args: rows(dataclasses.replace(self, dropped=()), *args)  # type: ignore[method-assign]
+
+
+def convergence(name: str, values: list[float], nodes: list[int]) -> str:
+    """The successive changes of `values` on meshes each twice the one before, in % of the
+    coarser; with three or more, the observed order p = log2(d1 / d2) of the last three, the
+    Richardson limit J_2N + d2 / (2^p - 1) (d2 = J_2N - J_N) and the change predicted from the
+    last mesh to twice it, d2 / 2^p, in % (an order p <= 0 predicts nothing)."""
+    text = f"  {name}: " + ", ".join(f"{n} -> {m} {(b / a - 1) * 100:+.2f} %"
+                                      for a, b, n, m in zip(values, values[1:], nodes, nodes[1:]))
+    if len(values) < 3 or any(m != 2 * n for n, m in itertools.pairwise(nodes)):
+        return text
+    d1, d2 = values[-2] - values[-3], values[-1] - values[-2]
+    if d1 == 0 or d2 / d1 <= 0 or abs(d2) >= abs(d1):
+        return text + f"; no order (d1 {d1:+.4g}, d2 {d2:+.4g})"
+    p = math.log2(d1 / d2)
+    limit, step = values[-1] + d2 / (2 ** p - 1), d2 / 2 ** p
+    return (text + f"; order p {p:.2f}, Richardson limit {limit:.5g} ({(limit / values[-1] - 1) * 100:+.2f} % "
+            f"from {nodes[-1]}), predicted {nodes[-1]} -> {2 * nodes[-1]} {step / values[-1] * 100:+.2f} %")
+
+
+def parse(argv) -> argparse.Namespace:
+    """The command line (module docstring)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--cadence", type=float, default=130.0, help="steps/min; 0: free")
     parser.add_argument("--meshes", nargs="+", default=[f"hermite-simpson:{n}" for n in (20, 40, 80)],
                         help="transcription:intervals, e.g. trapezoid:40")
     parser.add_argument("--figure", default="")
+    parser.add_argument("--moment-time", type=float, default=0.0,
+                        help="StrideSettings.moment_time (s): > 0, the moments as states (moment dynamics)")
+    parser.add_argument("--approach-speed", type=float, default=0.0,
+                        help="StrideSettings.approach_speed (m/s): each impact's least approach speed")
+    parser.add_argument("--smoothing", type=float, default=SMOOTHING,
+                        help="the smoothing term's weight (problem.SMOOTHING) for this run")
+    parser.add_argument("--smoothing-order", type=float, default=0.0,
+                        help="q: the smoothing's weight times (N / N_first)^q at N intervals")
+    parser.add_argument("--acceleration", type=float, default=collocation.ACCELERATION,
+                        help="the accelerations' bound (rad/s^2, collocation.ACCELERATION) for this run")
+    parser.add_argument("--ankle-max", type=float, default=0.0,
+                        help="deg: the ankle's dorsiflexion range's end for this run (0: joint_space.RANGES')")
+    parser.add_argument("--no-release-row", action="store_true",
+                        help="the releases without their f_n = 0 row (as Hermite-Simpson's torque sources)")
+    parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
+                        help="IPOPT options over the stride's (key=value), e.g. print_level=5")
     args = parser.parse_args(argv)
-    body, guess, solved = scaled_body(62.0, 1.81), None, []
-    for transcription, nodes in ((m.split(":")[0], int(m.split(":")[1])) for m in args.meshes):
-        nlp = build(body, StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
-                                         transcription=transcription))
+    if args.smoothing < 0:
+        parser.error(f"--smoothing {args.smoothing}: a weight >= 0")
+    args.meshes = [(m.split(":")[0], int(m.split(":")[1])) for m in args.meshes]
+    return args
+
+
+def study_overrides(args) -> None:
+    """The module constants a study changes for this process (read when each NLP is built):
+    the release rows, the accelerations' and the ankle's bounds, and the nodes' range (a study
+    past the scenes' 120 intervals, ranges.py: what solves cold; each mesh here is warm)."""
+    if args.no_release_row:
+        without_release_rows()
+    collocation.ACCELERATION = args.acceleration
+    if args.ankle_max:
+        collocation.RANGES = {**RANGES, "ankle": (RANGES["ankle"][0], math.radians(args.ankle_max))}
+    ranges.RANGES["nodes"] = Range(14, max([n for _, n in args.meshes] + [120]))
+
+
+def report(label: str, nlp, stride, seconds: float, speed: float) -> None:
+    """One mesh's optimum as the module docstring lists."""
+    b = stride.solved.blocks
+    effort, ends, smooth = phase_terms(nlp, b, speed)
+    blocks, rows = on_bounds(nlp, stride.solved)
+    print(f"{label} (split {nlp.split}): objective {stride.objective_value:.5f} at "
+          f"{stride.cadence_spm:.1f} steps/min, effort "
+          f"{sum(e.sum() for e in effort.values()):.5f}, smoothing {smooth:.5f}, moment rates "
+          f"{rate_term(nlp, stride.solved, speed):.5f}; converged {stride.success} "
+          f"in {stride.iterations} iterations, {seconds:.1f} s CPU; valid {stride.valid} "
+          f"{' '.join(stride.failed_checks)}; forward rad per phase "
+          f"{' '.join(f'{e:.3f}' for e in stride.checks['forward_per_phase'])}", flush=True)
+    for phase, e in effort.items():
+        print(f"  {phase:9s} {b[f'T_{phase}'].item() * 1e3:6.1f} ms  effort {e.sum():.5f} (end layers "
+              f"{ends[phase]:.5f}): " + " ".join(f"{j} {v:.5f}" for j, v in zip(JOINTS, e)), flush=True)
+    print(f"  released with (BW): {', '.join(release_forces(nlp, b))}; impacts: "
+          + ", ".join(f"{i['point']} {i['leg']} approach {i['approach_mps']:.4f} m/s, impulse (t, n) "
+                      f"{i['impulse_Ns'][0]:.4g} {i['impulse_Ns'][1]:.4g} N s" for i in stride.impacts))
+    print("  variables on a bound: " + ("; ".join(blocks) or "-"))
+    print("\n".join(f"  node rows, {r}" for r in rows), flush=True)
+
+
+def main(argv=None) -> int:
+    args = parse(argv)
+    study_overrides(args)
+    body, guess, solved, objectives, cadences = scaled_body(62.0, 1.81), None, [], [], []
+    for transcription, nodes in args.meshes:
+        # costs.terms reads it when each NLP is built
+        costs.SMOOTHING = args.smoothing * (nodes / args.meshes[0][1]) ** args.smoothing_order
+        settings = StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
+                                  transcription=transcription, moment_time=args.moment_time,
+                                  approach_speed=args.approach_speed)
+        nlp = StrideNLP(JointSpace(body), settings, dict(args.ipopt)) if args.ipopt else build(body, settings)
         clock = time.process_time()
         stride = optimum(nlp, args.speed, cadence=args.cadence or None, guess=guess)
-        seconds = time.process_time() - clock
-        b = stride.solved.blocks
-        effort, smooth = phase_terms(nlp, b, args.speed)
-        blocks, rows = on_bounds(nlp, stride.solved)
-        print(f"{transcription} {nodes} (split {nlp.split}): objective {stride.objective_value:.5f} at "
-              f"{stride.cadence_spm:.1f} steps/min, effort "
-              f"{sum(e.sum() for e in effort.values()):.5f}, smoothing {smooth:.5f}; converged {stride.success} "
-              f"in {stride.iterations} iterations, {seconds:.1f} s CPU; valid {stride.valid} "
-              f"{' '.join(stride.failed_checks)}; forward rad per phase "
-              f"{' '.join(f'{e:.3f}' for e in stride.checks['forward_per_phase'])}", flush=True)
-        for phase, e in effort.items():
-            print(f"  {phase:9s} {b[f'T_{phase}'].item() * 1e3:6.1f} ms  effort {e.sum():.5f}: "
-                  + " ".join(f"{j} {v:.5f}" for j, v in zip(JOINTS, e)), flush=True)
-        print(f"  released with (BW): {', '.join(release_forces(nlp, b))}")
-        print("  variables on a bound: " + ("; ".join(blocks) or "-"))
-        print("\n".join(f"  node rows, {r}" for r in rows), flush=True)
-        guess = b
-        solved.append((f"{transcription} {nodes}", nlp, b))
+        report(f"{transcription} {nodes}", nlp, stride, time.process_time() - clock, args.speed)
+        guess = stride.solved.blocks
+        objectives.append(stride.objective_value)
+        cadences.append(stride.cadence_spm)
+        solved.append((f"{transcription} {nodes}", nlp, guess))
+    if len(args.meshes) > 1:
+        print("mesh convergence (each mesh twice the one before; converged or not, as printed above):")
+        for name, values in (("objective", objectives), ("cadence", cadences)):
+            print(convergence(name, values, [n for _, n in args.meshes]))
     if args.figure:
         figure(args.figure, solved)
     return 0

@@ -135,7 +135,9 @@ def test_nlp_derivatives_match_finite_differences(js):
                                            ({"law": "frictionless"}, "law"),
                                            ({"torque_limit": 100.0}, "torque_limit"),
                                            ({"clearance": -0.01}, "clearance_m"),
-                                           ({"clearance": float("nan")}, "clearance_m")])
+                                           ({"clearance": float("nan")}, "clearance_m"),
+                                           ({"approach_speed": -0.01}, "approach_speed_mps"),
+                                           ({"approach_speed": 2.0}, "approach_speed_mps")])
 def test_bad_settings_name_their_key(settings, key):
     with pytest.raises(InputError, match=key):
         StrideSettings(**settings)

@@ -10,7 +10,8 @@ with the active part's power P_j = -tau_j phi_j' (W; what W+ and W- count) apart
 passive elements' (the budget's `spring_J`), and its own cost integrands (`OWN_INTEGRANDS`).
 Symbolic (SX) or numeric arguments.
 
-- "torque": joint torque sources (`Torques`);
+- "torque": joint torque sources (`Torques`; with StrideSettings.moment_time, moment dynamics:
+  the moments states, their rates the controls);
 - "torque+springs": the same with springs in parallel at the stance leg (`TorquesWithSprings`);
 - "muscles": gait2d's eight Hill-type muscle-tendon units per leg (`MuscleDriven`,
   mechanics.muscles) in De Groote et al. 2016's form: states a and F (normalised tendon force),
@@ -33,52 +34,67 @@ NU = len(JOINTS)
 ACTIVATION_RATE = 200.0
 RESERVE_LIMIT = 1.0  # N m/kg: the muscles' reserve moments at each joint (MuscleDriven)
 MIN_FORCE_PENALTY = 5.0  # N m per unit F: the guess's least-squares split of a moment (MuscleDriven.initial)
-OWN_INTEGRANDS = ("activation", "muscle_metabolic", "force_rate", "muscle_rates", "reserves")  # zero for the torque rungs
+OWN_INTEGRANDS = ("activation", "muscle_metabolic", "force_rate", "muscle_rates", "reserves",
+                  "moment_rates")  # zero for the torque sources without moment dynamics
+# Moment dynamics (StrideSettings.moment_time > 0): the torque rungs' moments are states and
+# their rates the controls, so a moment cannot jump (a muscle's force rises and falls over tens
+# of ms, activation dynamics of 15-60 ms: mechanics.muscles); u = tau' / (m MOMENT_RATE_SCALE),
+# of order one for a moment of 3 N m/kg rising in 30 ms, within +-MOMENT_RATE_LIMIT: 1000
+# N m/kg/s (0 to 3 N m/kg in 3 ms), a numerical box the rate's cost keeps the optimum off.
+MOMENT_RATE_SCALE = 100.0  # N m/kg/s per unit control
+MOMENT_RATE_LIMIT = 10.0
 
 
 class Torques:
-    """Joint torque sources: tau = m u, u (N m/kg, one per joint) within +-`limit`."""
+    """Joint torque sources: tau = m u, u (N m/kg, one per joint) within +-`limit`; with
+    `dynamic`, moment dynamics: tau = m z, z (N m/kg) a state within +-`limit`, z' =
+    MOMENT_RATE_SCALE u, u within +-MOMENT_RATE_LIMIT, its integrand `moment_rates` |tau'|^2
+    ((N m/s)^2; costs.py weighs it)."""
 
-    def __init__(self, mass: float, limit: float):
-        self.mass, self.limit = mass, limit
+    def __init__(self, mass: float, limit: float, dynamic: bool = False):
+        self.mass, self.limit, self.dynamic = mass, limit, dynamic
 
     @property
     def controls(self) -> int:
         return NU
 
     def bounds(self) -> tuple[float, float]:
-        """(lower, upper) of each control (N m/kg)."""
-        return -self.limit, self.limit
+        """(lower, upper) of each control (N m/kg; with `dynamic` its rate's, scaled)."""
+        return (-MOMENT_RATE_LIMIT, MOMENT_RATE_LIMIT) if self.dynamic else (-self.limit, self.limit)
 
     @property
     def states(self) -> int:
-        return 0
+        return NU if self.dynamic else 0
 
     def state_bounds(self) -> tuple[float, float]:
-        return 0.0, 0.0
+        return (-self.limit, self.limit) if self.dynamic else (0.0, 0.0)
 
     def active(self, z, u):
-        """The active joint moments (N m, 6) of controls u (N m/kg, 6)."""
-        return self.mass * u
+        """The active joint moments (N m, 6) of states z or controls u (N m/kg, 6)."""
+        return self.mass * (z if self.dynamic else u)
 
     def rates(self, U):
-        """z' of the controls (a column per node): no states."""
-        return U[:0, :]
+        """z' of the controls (a column per node): the moments' rates, or no states."""
+        return MOMENT_RATE_SCALE * U if self.dynamic else U[:0, :]
 
     def rows(self, rows, theta, thetad, z, u) -> None:
         """The actuation's algebraic rows at a node: none."""
 
     def integrands(self, theta, thetad, z, u) -> dict:
-        """Its own cost integrands (OWN_INTEGRANDS): none."""
-        return dict.fromkeys(OWN_INTEGRANDS, 0.0)
+        """Its own cost integrands (OWN_INTEGRANDS): with `dynamic` the moments' squared rates
+        |tau'|^2 ((N m/s)^2), else none."""
+        rates = ca.sumsqr(self.mass * MOMENT_RATE_SCALE * u) if self.dynamic else 0.0
+        return {**dict.fromkeys(OWN_INTEGRANDS, 0.0), "moment_rates": rates}
 
     def swap(self, z):
-        """z with the legs exchanged (the periodicity): no states."""
-        return z
+        """z with the legs exchanged (the periodicity)."""
+        return ca.vertcat(z[3:], z[:3]) if self.dynamic else z
 
     def initial(self, theta, thetad, tau) -> tuple[np.ndarray, np.ndarray]:
         """(z, u) of a guess that makes the active moments tau (N m, 6 x c) at node angles and
-        rates theta, theta' (9 x c)."""
+        rates theta, theta' (9 x c) (with `dynamic`: held, their rates zero)."""
+        if self.dynamic:
+            return tau / self.mass, np.zeros_like(tau)
         return np.zeros((0, tau.shape[1])), tau / self.mass
 
     def passive(self, theta, theta_td, stance: bool):
@@ -100,8 +116,8 @@ class TorquesWithSprings(Torques):
     touchdown and released at toe-off: what it still holds then is lost (budget's `spring_J`).
     """
 
-    def __init__(self, mass: float, limit: float, stiffness: dict):
-        super().__init__(mass, limit)
+    def __init__(self, mass: float, limit: float, stiffness: dict, dynamic: bool = False):
+        super().__init__(mass, limit, dynamic)
         self.stiffness = {f"{joint}_R": k for joint, k in stiffness.items() if k}
 
     def passive(self, theta, theta_td, stance: bool):
@@ -189,7 +205,7 @@ class MuscleDriven(Torques):
                                         for k, (a, F, _, _, Fd) in enumerate(legs)),
                 "force_rate": sum(self.leg.force_rate_cost(Fd) for *_, Fd in legs),
                 "muscle_rates": sum(ca.sumsqr(Fd / self.RATE_SCALE) for *_, Fd in legs),
-                "reserves": ca.sumsqr(u[6 * self.n:])}
+                "reserves": ca.sumsqr(u[6 * self.n:]), "moment_rates": 0.0}
 
     def swap(self, z):
         return ca.vertcat(z[2 * self.n:], z[:2 * self.n])
@@ -237,9 +253,10 @@ class MuscleDriven(Torques):
         return z, u
 
 
-def actuation(mass: float, limit: float, tendons: dict, muscles: hill.Muscles | None = None) -> Torques:
-    """The actuation model of a stride's settings: muscles where given, else torques, with
-    springs where tendons are set."""
+def actuation(mass: float, limit: float, tendons: dict, muscles: hill.Muscles | None = None,
+              dynamic: bool = False) -> Torques:
+    """The actuation model of a stride's settings: muscles where given, else torques (moment
+    dynamics with `dynamic`), with springs where tendons are set."""
     if muscles is not None:
         return MuscleDriven(mass, muscles)
-    return TorquesWithSprings(mass, limit, tendons) if any(tendons.values()) else Torques(mass, limit)
+    return TorquesWithSprings(mass, limit, tendons, dynamic) if any(tendons.values()) else Torques(mass, limit, dynamic)

@@ -84,8 +84,11 @@ def _rows(nlp, key: str) -> list[tuple[str, str]] | None:
         return [(f"{n} after the touchdown", u) for n, u in rates]
     if kind == "A":
         return [(f"{n} acceleration", u + "/s^2") for n, u in zip(THETA, _STATE_UNITS)]
-    if kind == "U" and nlp.settings.muscles is None:  # the torque rungs' limit
+    dynamic = nlp.settings.moment_time > 0
+    if kind == ("Z" if dynamic else "U") and nlp.settings.muscles is None:  # the torque rungs' limit
         return [(f"{j} torque", "N m/kg") for j in JOINTS]
+    if kind == "U" and dynamic:
+        return [(f"{j} torque rate", "x100 N m/kg/s") for j in JOINTS]
     if kind == "F":
         rows = nlp.ocp.models[[p.name for p in nlp.phases].index(phase)].contact.rows
         return [(f"{p} {'tangential' if a == 't' else 'normal'} force", "BW") for p, a in rows]

@@ -19,6 +19,8 @@ with the integrals I_k (the transcription's quadrature of the node integrands, o
                       forces' rates, mechanics.muscles.force_rate_cost), scale FORCE_RATE_SCALE
     muscle_rates      int sum_i (F'_i / 10)^2 dt  (s^-1)
     reserves          int sum_j r_j^2 dt  ((N m/kg)^2 s; the muscles' reserve moments)
+    moment_rates      int sum_j tau_j'^2 dt  (N^2 m^2 / s; the torque rungs' moment dynamics),
+                      scale the effort's, weight T^2 (StrideSettings.moment_time, s)
 
 The objectives (problem.OBJECTIVES): effort; work = W+ (scale 1 / (m g)); metabolic =
 W+/0.25 + W-/1.2 (Margaria 1968); joint-metabolic = joint_metabolic (scale 1 / (m g): a cost of
@@ -29,7 +31,11 @@ RBDS001 at 3.5 m/s and frozen) times the force-rate term: Bhargava's heat is pai
 and time, the same per distance for short contacts as for long, while runners pay for
 generating force quickly (Kram & Taylor 1990; Kipp, Grabowski & Kram 2018); activation = the
 activation term; both add MUSCLE_RATE_REGULARISATION times muscle_rates and
-StrideSettings.reserve_weight (problem.RESERVE_WEIGHT) times reserves. Any objective adds
+StrideSettings.reserve_weight (problem.RESERVE_WEIGHT) times reserves. With moment dynamics
+(StrideSettings.moment_time = T > 0) the torque rungs add T^2 times the moments' squared rates
+at the effort's scale: with effort, J = 100/(m g)^2 int sum_j (tau_j^2 + T^2 tau_j'^2) dt / d,
+so a moment that changes by dtau within a time t costs about dtau^2 t for being held and
+T^2 dtau^2 / t for its change: changes faster than T cost more than the moment itself. Any objective adds
 impact_weight times the impacts (scale 1 / (m g)) and SMOOTHING.
 """
 
@@ -155,7 +161,9 @@ def terms(settings: StrideSettings, mass: float) -> tuple[CostTerm, ...]:
     out = own_terms(settings.objective, mass, muscles, settings.force_rate_weight)
     if muscles:
         out += [CostTerm("muscle_rates", 1.0, MUSCLE_RATE_REGULARISATION), CostTerm("reserves", 1.0, settings.reserve_weight)]
-    elif needs_power_split(settings):
+    if settings.moment_time:  # T^2 times the effort's scale: sum_j tau_j^2 + T^2 tau_j'^2
+        out.append(CostTerm("moment_rates", own_terms("effort", mass)[0].scale, settings.moment_time ** 2))
+    if not muscles and needs_power_split(settings):
         out.append(CostTerm("effort", own_terms("effort", mass)[0].scale, WORK_REGULARISATION))
     if settings.impact_weight:
         out.append(CostTerm("impacts", 1.0 / (mass * GRAVITY), settings.impact_weight))

@@ -16,7 +16,7 @@ the power the budget balances (`balance`: active joints, passive joint moments, 
 friction power, each active joint's power (6), the passive joint moments' (`passive`), the tendons' and the contacts' power,
 and the actuation's own (actuation.OWN_INTEGRANDS: the muscles' activation cost, metabolic rate
 (W), volume-weighted squared tendon-force rates (the force-rate term), plain squared tendon-force
-rates (their regularisation) and squared reserves).
+rates (their regularisation) and squared reserves; with moment dynamics the moments' squared rates).
 
 Transitions (phase i-1 -> i): `Impact` where phase i adds a point (it reaches the ground moving
 into it; contact.RigidContact.impact), `Release` where it drops one (the dropped point's normal
@@ -97,16 +97,18 @@ class NodeModel:
 @dataclass(frozen=True)
 class Impact:
     """Phase `after` (or the touchdown, after = None) starts with the impact of the points its
-    contact model adds; `contact` holds after it."""
+    contact model adds; `contact` holds after it; each point approaches the ground at least at
+    `approach` (m/s, StrideSettings.approach_speed)."""
 
     points: tuple[str, ...]
     contact: RigidContact
+    approach: float = 0.0
 
     def rows(self, rows: Rows, js, theta, v_minus, v_plus, impulse, p, mass):
         """The points on the ground moving into it, the impact's rows; T_c (J)."""
         for point in self.points:
             rows.add(height(js, point, theta, p[1]))
-            rows.add(normal_velocity(js, point, theta, v_minus, p[1]), -np.inf, 0.0)
+            rows.add(normal_velocity(js, point, theta, v_minus, p[1]), -np.inf, -self.approach)
         return self.contact.impact(rows, theta, v_minus, v_plus, impulse, p[1], p[2], mass)
 
 
@@ -114,8 +116,8 @@ class Impact:
 class Release:
     """Phase `before` ends when its dropped points leave the ground (heel-off, toe-off), or
     when its sliding point's slip reaches zero; `dropped`: the rows whose normal force is zero
-    at its end. With muscles (moments that are states) and on the trapezoid, every dropped
-    point's; with torque sources on Hermite-Simpson none: there the force is the controls' at
+    at its end. Where the moments are states (muscles, moment dynamics: StrideSettings.moment_time)
+    and on the trapezoid, every dropped point's; with torque sources on Hermite-Simpson none: there the force is the controls' at
     one instant, a row the continuous problem meets by a jump of the moments (a rigid contact
     lets go with any f_n >= 0 when the moments change so that the point rises: the next phase
     holds it at or above the ground) and the transcription only by a layer one interval wide
@@ -143,7 +145,8 @@ class StrideProblem:
     def __init__(self, js: JointSpace, settings: StrideSettings):
         self.js, self.settings, self.mass = js, settings, js.mass_total
         self.phases = settings.phases
-        act = actuation(self.mass, settings.torque_limit, settings.tendons, settings.muscles)
+        act = actuation(self.mass, settings.torque_limit, settings.tendons, settings.muscles,
+                        settings.moment_time > 0)
         split = costs.needs_power_split(settings)
         joint_metabolic = settings.objective == "joint-metabolic"
         self.models = [NodeModel(ph, act, RigidContact(js, ph.rows, ph.sliding, settings.slip, settings.clearance),
@@ -153,14 +156,14 @@ class StrideProblem:
         rows = tuple((other_leg(p), a) for p, a in first.rows)
         sliding = other_leg(first.sliding) if first.sliding else ""
         self.touchdown = Impact(tuple(dict.fromkeys(p for p, _ in rows)),
-                                RigidContact(js, rows, sliding, settings.slip))
+                                RigidContact(js, rows, sliding, settings.slip), settings.approach_speed)
         self.cost_terms = costs.terms(settings, self.mass)
 
     def _transition(self, i: int) -> Impact | Release:
         before, after = self.phases[i - 1], self.phases[i]
         added = tuple(p for p in after.points if p not in before.points)
         if added:
-            return Impact(added, self.models[i].contact)
+            return Impact(added, self.models[i].contact, self.settings.approach_speed)
         if not (self.models[i].actuation.states or self.settings.transcription == "trapezoid"):
             return Release((), before.sliding)  # torque sources on Hermite-Simpson: `Release` says why
         dropped = tuple(k for k, (p, a) in enumerate(before.rows) if a == "n" and p not in after.points)

@@ -102,7 +102,13 @@ WORK_REGULARISATION = 1e-2
 # its null mode, not a smooth motion): 1.0 / 0.2 / 0.08 % of the objective at 20 / 40 / 80
 # intervals, where the change between columns took 3.1 / 1.3 / 0.4 % (the same stride, release
 # rows gone: problems/stride_mesh.py, 2026-11-26); without any smoothing its swing ankle
-# oscillates column to column and the forward check fails (1.45 rad at 20 intervals).
+# oscillates column to column and the forward check fails (1.45 rad at 20 intervals). A larger
+# weight is not what Hermite-Simpson's slow descents with moment dynamics need (12 ms, 5 cm/s
+# approach floor, 3.5 m/s, free cadence; problems/stride_mesh.py --smoothing, 2026-11-27): at 1e-5
+# Hermite-Simpson 40 took 1270 iterations (1002 at 1e-6) to 158.1 steps/min and +4.1 % of cost
+# without the term (150.9 at 1e-6); at 1e-4 Hermite-Simpson 20 did not converge in 3000 (193).
+# Nor is the free cadence: imposed at 150.9, Hermite-Simpson 40 converged in 124 iterations
+# (0.5 % below the free solve's optimum at that cadence), but imposed at 155 it had not in 1500.
 SMOOTHING = 1e-6
 # The one weight of the muscles' "metabolic" objective: FORCE_RATE_WEIGHT times the force-rate
 # term (costs.FORCE_RATE_SCALE: the volume-weighted squared tendon-force rates per distance, Kipp
@@ -135,6 +141,38 @@ FORCE_RATE_WEIGHT = 80.0
 # before the setting's own.
 RESERVE_WEIGHT = 10000.0
 RESERVE_CONTINUATION = (100.0,)
+# Moment dynamics' time T (StrideSettings.moment_time, s): with effort the torque rungs pay
+# int (tau^2 + T^2 tau'^2) dt (costs.py), whose Euler-Lagrange equation tau - T^2 tau'' = demand
+# filters what the motion asks with the kernel exp(-|t|/T) / 2T: a step rises from 10 to 90 %
+# in 2 ln 5 T = 3.2 T. A muscle's force rises in about 30-50 ms (activation 15 ms and
+# deactivation 60 ms time constants, De Groote et al. 2016; twitch contraction times of
+# 30-50 ms), so T = 40 ms / 3.2 = 12 ms; MOMENT_TIME_MAX bounds the setting. Off by default
+# (StrideSettings.moment_time = 0): at 12 ms (RBDS001, heel, springs, free cadence, 2.5 / 3.5 /
+# 4.5 m/s; problems/stride_mesh.py --moment-time 0.012, 2026-11-27) the trapezoid's cadence moved
+# under 0.4 % from 40 to 80 nodes but its cost 5-10 %, and Hermite-Simpson's optima were another
+# stride (131 / 151 / 166 steps/min against the trapezoid's 161 / 173 / 182), held by the forefoot
+# phase's ceiling at 2.5 m/s or landing the forefoot grazing on the friction cone's edge (invalid),
+# and not converged in 1000 iterations at 40 intervals.
+MOMENT_TIME = 0.012
+MOMENT_TIME_MAX = 0.2
+# A least approach speed at every impact (StrideSettings.approach_speed, m/s), against the
+# grazing touchdowns of Hermite-Simpson's optima: a point that reaches the ground at v_n- = 0
+# takes a zero impulse, so p_n >= 0 and both cone rows mu p_n -+ p_t >= 0 hold with equality at
+# once (four rows' gradients in three impulses: no unique multipliers), and formopt's check reads
+# mu_c = |p_t| / p_n from round-off (0.81-7.5 at mu 0.8: invalid). 5 cm/s is a floor, not a
+# runner's: RBDS001's forefoot reaches the ground at 0.64 m/s (median; least 0.11) and the heel at
+# 0.32-0.59 m/s (problems/approach_speed.py). Measured (RBDS001, heel, springs, free cadence,
+# problems/stride_mesh.py --cadence 0 --approach-speed 0.05, 2026-11-27): each grazing optimum
+# made valid at a cost of 0.05-0.4 %, the floor active where it grazed; without moment dynamics
+# Hermite-Simpson 40 at 2.5 m/s 124.9 steps/min (0.04309 against the grazing 0.04307; its forefoot
+# phase on its 0.25 s ceiling), the trapezoid 40 at 3.5 m/s unmoved (169.5); with moment dynamics
+# (12 ms) Hermite-Simpson 40 at 3.5 m/s 150.9 steps/min in 1002 iterations (the grazing one 150.8
+# in 1102: the grazing does not make it slow, a descent at IPOPT's least barrier with the Hessian
+# regularised at every step does), at 4.5 m/s 165.7 in 561 (124 s CPU; without the floor 165.8 in
+# 2556, 415 s, a 0.09 % costlier optimum landing the forefoot at 3 mm/s), at 2.5 m/s not converged in 3000
+# (705 s CPU, the objective still falling, no impact grazing, the forefoot phase on its 0.25 s
+# ceiling). Held by the floor and the bounds, it stays off by default.
+APPROACH_SPEED = 0.05
 
 
 # Tendons: a spring in parallel with the stance leg's joint, engaged unloaded at the touchdown
@@ -219,7 +257,14 @@ class StrideSettings:
     muscles: Muscles | None = None  # one leg's muscles scaled to the body: the "muscles" rung
     force_rate_weight: float = FORCE_RATE_WEIGHT  # the muscles' metabolic objective's one weight (calibration only)
     reserve_weight: float = RESERVE_WEIGHT  # the muscles' reserves' weight (a what-if only)
+    # s, > 0: the torque rungs' moments as states, their squared rates weighed by its square
+    # (actuation.Torques, costs.py: the time below which a change costs more than its moment)
+    moment_time: float = 0.0
     clearance: float = CLEARANCE  # m: the swing foot's least height while the other holds the ground
+    # m/s, >= 0: each impact's points reach the ground at least this fast (v_n- <= -approach_speed;
+    # 0, the default, allows a grazing touchdown, where the impulse and its friction cone's rows
+    # vanish together). APPROACH_SPEED says what it does and why it stays off.
+    approach_speed: float = 0.0
 
     def __post_init__(self):
         if self.strike not in STRIKE_PHASES:
@@ -253,10 +298,14 @@ class StrideSettings:
         check("impact_weight", self.impact_weight)
         if not 0.0 <= self.force_rate_weight < math.inf:
             raise InputError(f"force_rate_weight = {self.force_rate_weight}: expected a finite number >= 0")
+        if not 0.0 <= self.moment_time <= MOMENT_TIME_MAX or (self.moment_time and self.muscles is not None):
+            raise InputError(f"moment_time = {self.moment_time}: expected 0 to {MOMENT_TIME_MAX} s, "
+                             "0 with muscles (their moments are their tendons' forces)")
         if not 0.0 < self.reserve_weight < math.inf:
             raise InputError(f"reserve_weight = {self.reserve_weight}: expected a finite number > 0")
         check("torque_limit_nm_per_kg", self.torque_limit)
         check("clearance_m", self.clearance)
+        check("approach_speed_mps", self.approach_speed)
         check("max_iterations", self.max_iter, whole=True)
         for joint, k in self.tendons.items():
             if joint not in TENDON_JOINTS:

@@ -50,6 +50,9 @@ RANGES = {
     # swing foot is a flight's time from the ground at the stance's start and end, and a floor
     # far above walking's 1-2 cm minimum toe clearance would set the swing, not bound it.
     "clearance_m": Range(0.0, 0.1, "m"),
+    # an impact's least approach speed (StrideSettings.approach_speed): 0 (grazing allowed) to
+    # 1 m/s (a heel reaches the ground at about 0.5-1 m/s in running)
+    "approach_speed_mps": Range(0.0, 1.0, "m/s"),
     "max_iterations": limits.MAX_ITERATIONS,
     "starts": Range(1, 100),
     # the global search's spend (optim.stride.search): 1-8; spend 8 is 33 grid cadences and

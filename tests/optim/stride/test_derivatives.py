@@ -24,7 +24,8 @@ CASES = [{"strike": "heel", "tendons": RUNNER_TENDONS},
           "objective": "work"},
          {"strike": "heel", "objective": "metabolic", "muscles": "gait2d", "nodes": 18},  # an impact mid-stance
          FORCE_RATE,
-         {"strike": "flat", "objective": "joint-metabolic", "nodes": 14}]
+         {"strike": "flat", "objective": "joint-metabolic", "nodes": 14},
+         {"strike": "heel", "transcription": "hermite-simpson", "tendons": RUNNER_TENDONS, "moment_time": 0.012}]
 
 
 @pytest.fixture(scope="module", params=CASES)
@@ -35,7 +36,8 @@ def case(request):
     nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(**{"nodes": 18, **settings}))
     rng = np.random.default_rng(SEED)
     guess = nlp._with_power_split(perturbed(ballistic(nlp, 3.5), rng))
-    if nlp.settings.objective == "joint-metabolic":  # moments well beyond its smoothing (0.2 N m/kg)
+    if nlp.settings.objective == "joint-metabolic" or nlp.settings.moment_time:  # moments (or with moment
+        # dynamics their rates) of order one: beyond the joint-metabolic smoothing (0.2 N m/kg)
         for phase in nlp.phases:
             guess[f"U_{phase.name}"] = rng.uniform(-2.0, 2.0, np.shape(guess[f"U_{phase.name}"]))
     x = nlp.blocks.join(guess)

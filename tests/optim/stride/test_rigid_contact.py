@@ -14,6 +14,8 @@ from formopt.optim.stride.checks import impact_check, joint_impact
 from formopt.optim.stride.contact import RigidContact
 from formopt.optim.stride.guess import ballistic
 from formopt.optim.stride.layout import Rows
+from formopt.optim.stride.ocp import Impact
+from formopt.optim.stride.problem import APPROACH_SPEED
 
 MU, SLOPE = 0.8, 0.05
 
@@ -105,3 +107,18 @@ def test_the_swing_leg_has_its_clearance_and_the_rest_the_ground(js, states, row
     contact.node(node, theta, ca.DM(states[0][9:]), ca.DM.zeros(9), ca.DM.zeros(len(rows)), SLOPE, MU, 70.0)
     lower = np.concatenate(node.lower)[:len(contact.free)]
     assert list(lower) == [0.02 if p in swing else 0.0 for p in contact.free]
+
+
+
+@pytest.mark.parametrize("approach", [0.0, APPROACH_SPEED])
+def test_an_impact_holds_its_least_approach_speed(js, states, approach):
+    """Impact's rows for each point: its height, then its normal velocity before the impact
+    with v_n- <= -approach (StrideSettings.approach_speed; 0 allows a grazing touchdown)."""
+    rows = (("heel_R", "t"), ("heel_R", "n"))
+    theta, v_minus = ca.DM(states[0][:9]), ca.DM(states[0][9:])
+    out = Rows()
+    Impact(("heel_R",), RigidContact(js, rows), approach).rows(
+        out, js, theta, v_minus, v_minus, ca.DM.zeros(2), [3.5, SLOPE, MU], js.mass_total)
+    v_n = float(js.points["heel_R"](theta, v_minus, SLOPE)[1][1])
+    assert float(out.expr[1]) == pytest.approx(v_n, abs=1e-12)
+    assert (out.lower[1].item(), out.upper[1].item()) == (-np.inf, -approach)
