@@ -41,7 +41,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..mechanics.body import scaled_body
-from ..optim.stride import Stride, rank, summarise
+from ..optim.stride import Stride, forward_checked, rank, summarise
 from ..optim.stride.problem import STRIKES, mesh_note
 from .pool import Background
 from .stride_form import NODES, joint_work, placement_m, stride_scene, with_body
@@ -433,8 +433,15 @@ def stage_shares(band: bool = True) -> list[float]:
 
 
 def _strike(task: tuple) -> Stride | None:
-    """One other strike's free optimum (`_free_or_none`), from (scene, speed)."""
-    return _free_or_none(*task)
+    """One other strike's free optimum (`_free_or_none`), forward-checked, from (scene, speed)."""
+    stride = _free_or_none(*task)
+    return None if stride is None else forward_checked(task[0].nlp(), stride)
+
+
+def _checked(task: tuple) -> Stride:
+    """A stride of the scene forward-checked (optim.stride.forward_checked), from (scene, stride)."""
+    scene, stride = task
+    return forward_checked(scene.nlp(), stride)
 
 
 def answer(c, progress=None, nodes: int = NODES, band: bool = True,
@@ -460,9 +467,13 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
         strikes = beside.start([(_strike, (_with(nominal, strike=s), speed), f"strike {s} done") for s in others])
         say(f"stride: the nominal (effort) at {len(cadences)} cadences, {len(others)} other strikes beside it")
         curves = [run_curve("effort (nominal)", nominal, speed, cadences)]
+        pair = (curves[0].free, curves[0].own_free)  # forward-checked beside the family
+        checking = beside.start([(_checked, (nominal, s), "") for s in pair if s is not None])
         say("stride: the free optimum's family along the cadences")
         if curves[0].ok and curves[0].free is not None:
             family(nominal, speed, curves[0])
+        checked = iter(beside.results(checking, say))
+        curves[0].free, curves[0].own_free = (None if s is None else next(checked) for s in pair)
         best = {s: curves[0].free if s == measured["strike"] else None for s in STRIKES}
         best.update(zip(others, beside.results(strikes, say)))
     variants = _variants(nominal, body) if band else []

@@ -3,6 +3,8 @@ fixtures, 24 nodes), checked against independent methods: formopt's impact map a
 impact's state, the optimal moments integrated forward, periodicity, the energy budget, the
 NLP's derivatives against finite differences, and other initial guesses."""
 
+from dataclasses import replace
+
 import casadi as ca
 import numpy as np
 import pytest
@@ -11,7 +13,7 @@ from helpers import SEED
 from formopt.mechanics.body import paper_body
 from formopt.mechanics.errors import InputError
 from formopt.mechanics.joint_space import JointSpace
-from formopt.optim.stride import StrideNLP, StrideSettings, optimum
+from formopt.optim.stride import StrideNLP, StrideSettings, forward_checked, optimum
 from formopt.optim.stride.guess import ballistic, perturbed
 
 NODES = 24
@@ -81,6 +83,20 @@ def test_forward_simulation_reproduces_each_phase(solved):
     _, stride = solved
     assert stride.checks["forward_theta"] < 0.25
     assert np.isfinite(stride.checks["open_loop_theta"])
+
+
+def test_the_forward_check_added_afterwards_is_the_same(solved):
+    """forward_checked adds the forward check to a stride summarised without it (compare's free
+    optima): the entries summarise's own check gives, under the NLP the stride was solved with
+    (the sliding variant where its touchdown slides), and the same validity."""
+    nlp, stride = solved
+    forward = [k for k in stride.checks if k.startswith(("forward_", "open_loop_"))]
+    bare = replace(stride, checks={k: v for k, v in stride.checks.items() if k not in forward})
+    checked = forward_checked(nlp, bare)
+    assert sorted(k for k in checked.checks if k in forward) == sorted(forward)
+    assert checked.checks["forward_theta"] == pytest.approx(stride.checks["forward_theta"], rel=1e-9)
+    assert checked.valid == stride.valid
+    assert forward_checked(nlp, checked) is checked  # checked once
 
 
 def test_warm_start_from_a_neighbouring_speed_returns(solved):

@@ -10,8 +10,9 @@ methods; local.py: the optimum from its starts; search.py: the global search for
 from .collocation import StrideNLP
 from .local import optimum
 from .problem import OBJECTIVES, STRIKE_PHASES, StrideSettings
-from .result import Stride, rank, summarise
+from .result import Stride, forward_checked, rank, summarise
 from .search import global_optimum
 
-__all__ = ["OBJECTIVES", "STRIKE_PHASES", "StrideSettings", "StrideNLP", "Stride", "optimum", "rank", "summarise",
+__all__ = ["OBJECTIVES", "STRIKE_PHASES", "StrideSettings", "StrideNLP", "Stride", "forward_checked", "optimum", "rank",
+           "summarise",
            "global_optimum"]

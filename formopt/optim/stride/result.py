@@ -20,7 +20,7 @@ and returned energy are in `Stride.muscles` (`muscle_outputs`), outside the bala
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -150,8 +150,8 @@ class Stride:
     def failed_checks(self) -> list[str]:
         """The checks beyond their TOLERANCES ("drift_m 0.24 > 0.005") and the impacts that
         break the scene's contact law. The forward check counts where it was run (`formopt
-        stride`, the API's strides); maps and compare's curves do not simulate, so their
-        `valid` holds every check but that one."""
+        stride`, the API's strides, compare's free optima: `forward_checked`); maps and
+        compare's curves do not simulate, so their `valid` holds every check but that one."""
         failed = [f"{k} {self.checks[k]:.3g} > {limit:g}" for k, limit in TOLERANCES.items()
                   if k in self.checks and not self.checks[k] <= limit]
         return failed + [f"{i['point']} impact of leg {i['leg']} invalid under {i['law']} "
@@ -334,12 +334,7 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
               "drift_m": drift(nlp, b, slope),
               "balance_relative": abs(energy["balance_J"]) / max(energy["positive_work_J"], 1e-9)}
     if simulate:
-        sim = forward(nlp, b, par)
-        checks.update(forward_theta=sim["reset_theta"], forward_per_phase=sim["reset_per_phase"],
-                      open_loop_theta=sim["theta"], open_loop_thetad=sim["thetad"],
-                      open_loop_per_phase=sim["per_phase_theta"],
-                      open_loop_periodicity=sim["periodicity"],
-                      **{f"forward_{k}": v for k, v in sim.items() if k.startswith(("slip_", "moments_"))})
+        checks.update(forward_checks(nlp, b, par))
     strike_point = "heel_R" if nlp.settings.strike != "forefoot" else "forefoot_R"
     r = np.asarray(nlp.js.points[strike_point](start, np.zeros(NX), slope)[0], float).ravel()
     end_v = b[f"X_{nlp.phases[-1].name}"][NX:, -1]
@@ -362,6 +357,29 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
         t=t, phase=names, theta=theta, thetad=thetad, tau=tau, force=force, solved=solved,
         tau_spring=tau_spring, muscles=muscle_outputs(nlp, solved, checks),
         on_bound=on_bounds(durations, nlp.settings.duration), held=held_by_bounds(nlp, b), swing_clearance_m=swing_clearance(nlp, b, slope))
+
+
+def forward_checks(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
+    """The forward check's entries of `Stride.checks` (checks.forward: the controls replayed
+    through the dynamics, reset to the trajectory at each phase, and open loop)."""
+    sim = forward(nlp, blocks, parameters)
+    return dict(forward_theta=sim["reset_theta"], forward_per_phase=sim["reset_per_phase"],
+                open_loop_theta=sim["theta"], open_loop_thetad=sim["thetad"],
+                open_loop_per_phase=sim["per_phase_theta"], open_loop_periodicity=sim["periodicity"],
+                **{f"forward_{k}": v for k, v in sim.items() if k.startswith(("slip_", "moments_"))})
+
+
+def forward_checked(nlp: StrideNLP, stride: Stride) -> Stride:
+    """`stride`, summarised without the forward check (`summarise(..., simulate=False)`), with it
+    added: under `nlp`, or its sliding variant where the stride's touchdown slides (the variant
+    local.touchdown_mode solved it with). A stride without its solution is returned as it is."""
+    if stride.solved is None or "forward_theta" in stride.checks:
+        return stride
+    touchdown = stride.impacts[-1]
+    if touchdown["mode"] == "slide":
+        nlp = nlp.variant(touchdown="slide", slip=touchdown["slip"])
+    checks = {**stride.checks, **forward_checks(nlp, stride.solved.blocks, stride.solved.parameters)}
+    return replace(stride, checks=checks)
 
 
 def muscle_outputs(nlp: StrideNLP, solved: Solved, checks: dict) -> dict | None:
