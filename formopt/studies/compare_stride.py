@@ -251,7 +251,8 @@ class StrideAnswer:
                 "strikes": {k: None if s is None else
                             {"success": s.success, "objective_value": s.objective_value,
                              "cadence_spm": s.cadence_spm, "mechanical_power_W": s.mechanical_power_W,
-                             "impacts_valid": all(i["valid"] for i in s.impacts), "valid": s.valid}
+                             "impacts_valid": all(i["valid"] for i in s.impacts), "valid": s.valid,
+                             "failed_checks": s.failed_checks}
                             for k, s in self.best.items()},
                 "what_if": [w.to_dict() for w in self.what_if], "band": band_text(),
                 "envelope_tolerance": ENVELOPE, "family_tolerance": FAMILY,

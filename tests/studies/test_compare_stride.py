@@ -216,3 +216,13 @@ def test_the_optimum_line_carries_its_remarks(section):
     k = next(i for i, line in enumerate(lines) if line.startswith("    the optimum"))
     assert lines[k + 1] == "      (forefoot impact of leg L solved sliding under coulomb: it slides 28 ms and 5.1 cm)"
     assert "the sticking strides' optimum (the what-ifs' reference): cadence  167.0" in lines[k + 2]
+
+
+def test_the_free_optimum_is_forward_checked_and_an_invalid_strike_says_why(section):
+    """compare's free optimum carries the forward check (optim.stride.forward_checked), and a
+    strike whose free optimum fails a check names it where the strikes are listed."""
+    assert "forward_theta" in section.nominal.free.checks
+    d = section.to_dict()
+    assert d["strikes"]["heel"]["failed_checks"] == section.nominal.free.failed_checks
+    d["strikes"]["flat"] = {**d["strikes"]["heel"], "valid": False, "failed_checks": ["forward_theta 0.08 > 0.05"]}
+    assert "(INVALID: forward_theta 0.08 > 0.05)" in "\n".join(stride_lines(d))
