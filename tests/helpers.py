@@ -9,6 +9,7 @@ import numpy as np
 
 import formopt
 from formopt.mechanics.model import STATE, Model, Point, PointMass, RigidBody
+from formopt.optim.stride import forward_checked
 
 SEED = 20261122
 ROOT = Path(__file__).resolve().parent.parent  # the repository
@@ -88,3 +89,11 @@ def central_difference(f, x, h=1e-4):
         e[k] = h
         cols.append((-f(x + 2 * e) + 8 * f(x + e) - 8 * f(x - e) + f(x - 2 * e)) / (12 * h))
     return np.column_stack(cols)
+
+
+def forward_check_again(nlp, stride):
+    """The stride's forward check taken off and added again by optim.stride.forward_checked
+    (compare's free optima): the stride with it, and the keys taken off."""
+    forward = [k for k in stride.checks if k.startswith(("forward_", "open_loop_"))]
+    bare = replace(stride, checks={k: v for k, v in stride.checks.items() if k not in forward})
+    return forward_checked(nlp, bare), forward

@@ -308,8 +308,9 @@ def stride_lines(s: dict) -> list[str]:
         lines.append(f"    the sticking strides' optimum (the what-ifs' reference): cadence "
                      f"{s['sticking_optimum_cadence_spm']:6.1f} steps/min; mechanical power "
                      f"{s['sticking_optimum_mechanical_power_W']:.0f} W")
-    strikes = ", ".join(f"{k} {v['objective_value']:.3f}" + ("" if v["valid"] else " (INVALID: " + (
-        "; ".join(v.get("failed_checks", [])) or "not converged") + ")") for k, v in s["strikes"].items() if v is not None)
+    strikes = ", ".join(f"{k} {v['objective_value']:.3f}" + ("" if v["valid"] else " (INVALID" + (
+        ": " + "; ".join(v["failed_checks"]) if v.get("failed_checks") else "" if v["success"] else ": not converged")
+        + ")") for k, v in s["strikes"].items() if v is not None)
     best = s["best_strike"] or "none valid"
     lines.append(f"    each strike's free optimum (objective per distance): {strikes}; best valid: {best}")
     if s["what_if"]:

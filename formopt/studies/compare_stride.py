@@ -247,6 +247,7 @@ class StrideAnswer:
                 "sticking_optimum_cadence_spm": self.nominal.own_free.cadence_spm if self.nominal.own_free else None,
                 "sticking_optimum_mechanical_power_W":
                     self.nominal.own_free.mechanical_power_W if self.nominal.own_free else None,
+                "sticking_optimum_valid": self.nominal.own_free.valid if self.nominal.own_free else None,
                 "best_strike": best,
                 "strikes": {k: None if s is None else
                             {"success": s.success, "objective_value": s.objective_value,
@@ -302,17 +303,15 @@ def run_curve(name: str, scene, speed: float, cadences: list[float]) -> Curve:
     return curve
 
 
-def variant_curve(name: str, scene, nominal: Curve, solved: list[Stride] | None = None) -> Curve:
+def variant_curve(name: str, nominal: Curve, solved: list[Stride]) -> Curve:
     """A variant's strides, each warm-started from the nominal's at the same cadence (and its
     free optimum from the nominal's): the band then measures the variant's effect on the same
     family of strides. (Warm-started along its own cadences instead, the mass -5 % variant
     of RBDS001 at 3.58 m/s jumped at -10 % to another local optimum, 565 W against the
     nominal's 463 W, and made the band 10 times wider, 2026-11-23.) `solved`: its
-    `variant_solves` solved already (the free optimum first), else they are solved here."""
-    if nominal.free is None:
-        raise ValueError(f"{name}: the nominal curve has no free optimum to start from")
+    `variant_solves` solved (the free optimum first)."""
     curve = Curve(name, nominal.cadences)
-    curve.free, *curve.strides = solved or [_at(task) for task in variant_solves(scene, nominal)]
+    curve.free, *curve.strides = solved
     failed = [f"{s.cadence_spm:.0f} steps/min" for s in curve.strides if not s.success]
     failed += [] if curve.free.success else ["the free optimum"]
     if failed:
@@ -386,7 +385,8 @@ def optima_notes(curve: Curve) -> list[str]:
         notes.append(f"at {', '.join(others)} steps/min the least costly stride found is of another family than "
                      "the free optimum's (continued from it, the stride is costlier or does not converge): "
                      "a what-if between two families says so")
-    invalid = [s for s in ([curve.free] if curve.free else []) + curve.strides if s.success and not s.valid]
+    free = [s for s in (curve.free, curve.own_free) if s is not None]
+    invalid = [s for s in free + curve.strides if s.success and not s.valid]
     notes += [f"the stride at {s.cadence_spm:.0f} steps/min is INVALID ({'; '.join(s.failed_checks)}): "
               "read what it says as the model's, not a runner's" for s in invalid]
     notes += [f"the stride at {s.cadence_spm:.0f} steps/min: {s.bound_text()}" for s in curve.strides if s.on_bound]
@@ -501,7 +501,7 @@ def _band(nominal: Curve, variants: list[tuple], workers: int, say) -> list[Curv
     with Background(min(workers, len(tasks))) as pool:
         strides = iter(pool.results(pool.start(tasks), say))
     solved = {name: [next(strides) for _ in solves[name]] for name, _, _ in order}
-    return [replace(variant_curve(name, scene, nominal, solved[name]), part=part) for name, part, scene in variants]
+    return [replace(variant_curve(name, nominal, solved[name]), part=part) for name, part, _ in variants]
 
 
 def _variants(nominal, body: dict) -> list[tuple]:

@@ -15,6 +15,7 @@ simulation."""
 import casadi as ca
 import numpy as np
 import pytest
+from helpers import forward_check_again
 
 from formopt.mechanics import contact
 from formopt.mechanics.body import paper_body
@@ -166,3 +167,13 @@ def test_a_sliding_solution_warm_starts_the_sticking_nlp(slid):
         X, solved = guess[f"X_{phase.name}"], stride.solved.blocks[f"X_{phase.name}"]
         assert np.allclose(X[:, [0, -1]], solved[:, [0, -1]])
     nlp.blocks.join(guess)  # the solver's initial point
+
+
+def test_the_forward_check_added_afterwards_takes_the_sliding_variant(slid):
+    """forward_checked on a sliding touchdown's stride replays it under the NLP's sliding variant
+    (its impact's slip sign): the entries summarise's own check gave."""
+    nlp, stride = slid
+    assert stride.impacts[-1]["mode"] == "slide"
+    checked, forward = forward_check_again(nlp, stride)
+    assert all(np.all(checked.checks[k] == stride.checks[k]) for k in forward)
+    assert checked.valid == stride.valid

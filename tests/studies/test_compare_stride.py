@@ -224,5 +224,5 @@ def test_the_free_optimum_is_forward_checked_and_an_invalid_strike_says_why(sect
     assert "forward_theta" in section.nominal.free.checks
     d = section.to_dict()
     assert d["strikes"]["heel"]["failed_checks"] == section.nominal.free.failed_checks
-    d["strikes"]["flat"] = {**d["strikes"]["heel"], "valid": False, "failed_checks": ["forward_theta 0.08 > 0.05"]}
-    assert "(INVALID: forward_theta 0.08 > 0.05)" in "\n".join(stride_lines(d))
+    d["strikes"]["flat"] = {**d["strikes"]["heel"], "valid": False, "failed_checks": ["forward_theta 0.291 > 0.1"]}
+    assert "(INVALID: forward_theta 0.291 > 0.1)" in "\n".join(stride_lines(d))

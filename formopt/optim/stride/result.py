@@ -371,13 +371,14 @@ def forward_checks(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
 
 def forward_checked(nlp: StrideNLP, stride: Stride) -> Stride:
     """`stride`, summarised without the forward check (`summarise(..., simulate=False)`), with it
-    added: under `nlp`, or its sliding variant where the stride's touchdown slides (the variant
-    local.touchdown_mode solved it with). A stride without its solution is returned as it is."""
+    added: under `nlp`, or its variant of the stride's touchdown mode (the sliding one, with the
+    impact's slip sign, that local.touchdown_mode solved it with). A stride without its solution
+    is returned as it is."""
     if stride.solved is None or "forward_theta" in stride.checks:
         return stride
     touchdown = stride.impacts[-1]
-    if touchdown["mode"] == "slide":
-        nlp = nlp.variant(touchdown="slide", slip=touchdown["slip"])
+    if touchdown["mode"] != nlp.settings.touchdown:
+        nlp = nlp.variant(touchdown=touchdown["mode"], slip=touchdown.get("slip", nlp.settings.slip))
     checks = {**stride.checks, **forward_checks(nlp, stride.solved.blocks, stride.solved.parameters)}
     return replace(stride, checks=checks)
 
