@@ -28,8 +28,9 @@ the three with the largest multipliers; IPOPT's iterations and CPU seconds; at t
 quantity, the change from each mesh to the next and (three meshes, each twice the one before)
 the observed order and Richardson's limit (`convergence`). `--fix-durations`: each phase's duration
 on the finer meshes held at the first mesh's optimum's (within PIN), and so the cadence: whether the
-objective's drift is the optimum's timing moving with the mesh or inside the phases. `--figure`: the torques, accelerations and
-contact forces per phase on normalised phase time, the meshes overlaid (PNG).
+objective's drift is the optimum's timing moving with the mesh or inside the phases. `--figure`:
+the torques, accelerations and contact forces per phase on normalised phase time, the meshes
+overlaid (PNG).
 """
 
 from __future__ import annotations
