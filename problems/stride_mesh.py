@@ -10,6 +10,7 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
                                    [--no-release-row (no f_n = 0 row at a release)]
                                    [--acceleration 3000 (rad/s^2: collocation.ACCELERATION, for this run)]
                                    [--ankle-max 40 (deg: the ankle's dorsiflexion range, for this run)]
+                                   [--fix-durations (the finer meshes' phase durations the first's)]
                                    [--ipopt print_level=5 mu_strategy=monotone]
                                    [--figure mesh.png]
 
@@ -25,8 +26,11 @@ the joint ranges or STATE_RATE, U at the torque limit, T at a duration bound) wi
 multiplier, and per phase its node rows on a bound (heights and clearance, friction cones) and
 the three with the largest multipliers; IPOPT's iterations and CPU seconds; at the end, per
 quantity, the change from each mesh to the next and (three meshes, each twice the one before)
-the observed order and Richardson's limit (`convergence`). `--figure`: the torques, accelerations and
-contact forces per phase on normalised phase time, the meshes overlaid (PNG).
+the observed order and Richardson's limit (`convergence`). `--fix-durations`: each phase's duration
+on the finer meshes held at the first mesh's optimum's (within PIN), and so the cadence: whether the
+objective's drift is the optimum's timing moving with the mesh or inside the phases. `--figure`:
+the torques, accelerations and contact forces per phase on normalised phase time, the meshes
+overlaid (PNG).
 """
 
 from __future__ import annotations
@@ -53,6 +57,7 @@ from formopt.optim.stride.problem import RUNNER_TENDONS, SMOOTHING, StrideSettin
 
 matplotlib.use("Agg")
 TIGHT = 1e-6  # a value this close to its bound (relative to max(1, |bound|)) is on it
+PIN = 1e-7  # s: --fix-durations' half band about each duration (a band: StrideSettings wants low < high)
 
 
 def phase_terms(nlp, b, speed: float) -> tuple[dict, dict, float]:
@@ -160,6 +165,13 @@ def figure(path: str, meshes: list) -> None:
     fig.savefig(path, dpi=60)
 
 
+def pinned(blocks: dict) -> dict:
+    """StrideSettings.duration with each solved phase's duration T (s) held to (T - PIN, T + PIN);
+    the other phases' (a slide the solve did not take) the default bounds."""
+    held = {k[2:]: (v.item() - PIN, v.item() + PIN) for k, v in blocks.items() if k.startswith("T_")}
+    return {**StrideSettings().duration, **held}
+
+
 def ipopt_option(text: str) -> tuple[str, int | float | str]:
     """An IPOPT option "key=value" as (key, value): an integer, a number or a string."""
     key, _, value = text.partition("=")
@@ -216,6 +228,8 @@ def parse(argv) -> argparse.Namespace:
                         help="the accelerations' bound (rad/s^2, collocation.ACCELERATION) for this run")
     parser.add_argument("--ankle-max", type=float, default=0.0,
                         help="deg: the ankle's dorsiflexion range's end for this run (0: joint_space.RANGES')")
+    parser.add_argument("--fix-durations", action="store_true",
+                        help="the finer meshes' phase durations (and cadence) held at the first mesh's optimum's")
     parser.add_argument("--no-release-row", action="store_true",
                         help="the releases without their f_n = 0 row (as Hermite-Simpson's torque sources)")
     parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
@@ -265,17 +279,20 @@ def main(argv=None) -> int:
     args = parse(argv)
     study_overrides(args)
     body, guess, solved, objectives, cadences = scaled_body(62.0, 1.81), None, [], [], []
+    durations = StrideSettings().duration
     for transcription, nodes in args.meshes:
         # costs.terms reads it when each NLP is built
         costs.SMOOTHING = args.smoothing * (nodes / args.meshes[0][1]) ** args.smoothing_order
         settings = StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
                                   transcription=transcription, moment_time=args.moment_time,
-                                  approach_speed=args.approach_speed)
+                                  approach_speed=args.approach_speed, duration=durations)
         nlp = StrideNLP(JointSpace(body), settings, dict(args.ipopt)) if args.ipopt else build(body, settings)
         clock = time.process_time()
         stride = optimum(nlp, args.speed, cadence=args.cadence or None, guess=guess)
         report(f"{transcription} {nodes}", nlp, stride, time.process_time() - clock, args.speed)
         guess = stride.solved.blocks
+        if args.fix_durations and not solved:
+            durations = pinned(guess)
         objectives.append(stride.objective_value)
         cadences.append(stride.cadence_spm)
         solved.append((f"{transcription} {nodes}", nlp, guess))
