@@ -51,7 +51,6 @@ def test_the_cycle_is_the_right_leg_then_the_left():
     assert angles["thigh"] == pytest.approx(angles["hip"] - 8.0)  # thigh = hip - trunk
 
 
-@pytest.mark.skipif(not RBDS.exists(), reason="the RBDS data are not shipped here")
 def test_the_measured_cycle_starts_at_right_touchdown():
     """RBDS001's mean cycle: row 0 is the right foot's touchdown (the vertical force rising
     from zero), its stance about 35 % of the cycle at 3.5 m/s, knee flexion positive (its
