@@ -93,8 +93,9 @@ def test_kinetic_energy_matches_segment_sums(body, leg):
 
 def test_mu_c_two_ways(leg):
     for strike in STRIKES:
+        impact = Impact(leg, strike, 0.0, 0.8)
         for x in random_states(20, strike=strike):
-            r = Impact(leg, strike, 0.0, 0.8)(x)
+            r = impact(x)
             assert (r.mu_c is None) == (r.mu_c_momentum is None) == (r.impulse_total[1] <= 0)
             if r.mu_c is not None:
                 assert abs(r.mu_c - r.mu_c_momentum) <= 1e-8 * max(1.0, r.mu_c)
@@ -131,8 +132,9 @@ def test_checks_name_what_each_warning_is(leg):
     """valid follows the check codes: every check but the flat foot's split fails."""
     from formopt.mechanics.impact import INFORMATION, Check
     for strike in ("heel", "forefoot", "flat"):
+        impact = Impact(leg, strike, 0.0, 0.8)
         for x in random_states(30, strike=strike):
-            r = Impact(leg, strike, 0.0, 0.8)(x)
+            r = impact(x)
             assert len(r.checks) == len(r.warnings)
             assert r.valid == all(c in INFORMATION for c in r.checks)
             assert (Check.FLAT_SPLIT in r.checks) == (strike == "flat")
