@@ -107,12 +107,14 @@ def no_compile_by_chance():
 
 @pytest.fixture(scope="session")
 def dask_scheduler():
-    """The address of a local Dask cluster (two worker processes), started once per session;
-    the tests that take it say "dask" in their names, so that ByFile runs them on one worker
-    (pytest_collection_modifyitems checks)."""
+    """The address of a local Dask cluster, started once per session; the tests that take it
+    say "dask" in their names, so that ByFile runs them on one worker
+    (pytest_collection_modifyitems checks). One worker process: the tests compare Dask's rows
+    with the serial and pool's, whose chains do not depend on the workers (test_stride_sweep);
+    a second worker cost 1.6 s of CPU (its spawn and imports, 2026-11-27)."""
     from dask.distributed import LocalCluster
 
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
                       dashboard_address=None) as cluster:
         yield cluster.scheduler_address
 
