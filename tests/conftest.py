@@ -158,24 +158,40 @@ if LoadFileScheduling is not None:
         return ByFile(config, log) if config.getvalue("dist") == "loadfile" else None
 
 
-# The slowest files (CPU seconds of the file's tests, pytest -n 2 --cpu-times with a fresh compile
-# cache, 2026-11-27, a machine loaded by two other solves: about 1.2 times a quiet machine's CPU):
-# they are handed out first. A stale list costs only balance, never a test.
-SLOW = ("studies/test_stride_sweep.py",  # 25
-        "test_notebooks.py",  # 21
-        "test_examples.py",  # 18
-        "optim/stride/test_muscle_stride.py",  # 17
-        "optim/stride/test_derivatives.py",  # 17
-        "test_bad_input.py",  # 16
-        "optim/test_stride.py",  # 16
-        "cli/test_compare_command.py",  # 14
-        "optim/stride/test_speed_paths.py",  # 13 (5 with the compile cache of an earlier run, 2026-11-26)
-        "optim/stride/test_collocation.py",  # 11
-        "optim/test_posture.py",  # 10
-        "mechanics/test_contact.py",  # 9
-        "mechanics/test_impact.py",  # 8
-        "optim/stride/test_search.py",  # 8
-        "measure/test_corruption.py",  # 8
-        "studies/test_bench.py",  # 7
-        "studies/test_compare_stride.py",  # 7
-        "test_docs.py")  # 6
+# The files (and the Dask tests' unit, "dask") by CPU seconds of their tests, slowest first: pytest
+# -n 2 --cpu-times -p no:cacheprovider (a fresh compile cache), 2026-11-27, on a machine loaded by
+# other solves (load 4-6 on 2 cores: about 1.2 times a quiet machine's CPU). They are handed out
+# in this order, then the others (under 2 s each) in xdist's: the longest first, so the two
+# workers end close together. A stale list costs only balance, never a test.
+SLOW = ("studies/test_stride_sweep.py",  # 22.8
+        "optim/stride/test_derivatives.py",  # 21.1
+        "optim/test_stride.py",  # 17.3
+        "test_examples.py",  # 15.3
+        "optim/stride/test_speed_paths.py",  # 14.5 (5 with the compile cache of an earlier run, 2026-11-26)
+        "test_bad_input.py",  # 14.3
+        "cli/test_compare_command.py",  # 14.2
+        "test_notebooks.py",  # 12.9
+        "optim/stride/test_collocation.py",  # 11.5
+        "optim/test_posture.py",  # 10.4
+        "optim/stride/test_search.py",  # 10.2
+        "optim/stride/test_muscle_stride.py",  # 9.8
+        "mechanics/test_contact.py",  # 9.3
+        "measure/test_corruption.py",  # 7.9
+        "studies/test_compare_stride.py",  # 7.5
+        "studies/test_bench.py",  # 7.2
+        "optim/test_gait.py",  # 5.9
+        "test_docs.py",  # 5.8
+        "mechanics/test_impact.py",  # 4.7
+        "optim/test_stride_slide.py",  # 4.6
+        "mechanics/test_joint_moments.py",  # 4.2
+        "studies/test_stride_scene.py",  # 4.0
+        "io/test_numerics.py",  # 4.0
+        "studies/test_compare.py",  # 3.7
+        "mechanics/test_extremes.py",  # 3.6
+        "dask",  # about 3.5: the cluster, its worker, the pools beside it and their files' fixtures
+        "measure/test_stance.py",  # 3.5
+        "mechanics/test_landing.py",  # about 3 without its Dask test
+        "studies/test_optimum_map.py",  # about 3 without its Dask test
+        "measure/test_pipeline.py",  # 2.8
+        "optim/test_stride_tendons.py",  # 2.5
+        "cli/test_reports.py")  # 2.4
