@@ -87,13 +87,13 @@ def assert_close(actual: sparse.sparray, desired: sparse.sparray, rtol: float, a
 
 def test_jacobian_against_finite_differences(case):
     nlp, ours, x, p, rng = case
-    J = np.asarray(ca.densify(ours["jac_g"](x, p)[1]), float)
+    J = ours["jac_g"](x, p)[1].sparse().tocsc()  # its columns read sparse (densified: 0.9 s of CPU at 2542 columns)
     g = ca.Function("g", [nlp.problem["x"], nlp.problem["p"]], [nlp.problem["g"]])
     for k in rng.choice(x.size, 20, replace=False):
         e = np.zeros(x.size)
         e[k] = 1e-6
         numeric = (np.asarray(g(x + e, p)) - np.asarray(g(x - e, p))).ravel() / 2e-6
-        np.testing.assert_allclose(J[:, k], numeric, rtol=1e-5, atol=1e-5)
+        np.testing.assert_allclose(J[:, [k]].toarray().ravel(), numeric, rtol=1e-5, atol=1e-5)
 
 
 def test_gradient_against_finite_differences(case):
