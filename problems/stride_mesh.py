@@ -10,7 +10,15 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
                                    [--no-release-row (no f_n = 0 row at a release)]
                                    [--acceleration 3000 (rad/s^2: collocation.ACCELERATION, for this run)]
                                    [--ankle-max 40 (deg: the ankle's dorsiflexion range, for this run)]
+                                   [--range-margin 60 (deg: every joint's range widened both ways, for this run)]
+                                   [--state-rate 15 (m/s and rad/s: collocation.STATE_RATE, for this run)]
+                                   [--no-release-height (no height row at a phase's first column for the
+                                    points the phase before held)]
+                                   [--no-stance-heights (no height row for the stance foot's free points)]
+                                   [--mu 0.8 (the friction coefficient)]
+                                   [--no-energy-rows (no rows on the held contacts' work and the energy budget)]
                                    [--fix-durations (the finer meshes' phase durations the first's)]
+                                   [--durations heel=0.0532 flat=0.0801 ... (s: every mesh's, held)]
                                    [--ipopt print_level=5 mu_strategy=monotone]
                                    [--figure mesh.png]
 
@@ -95,33 +103,40 @@ def row_name(block: str, row: int) -> str:
     return names[row] if names else str(row)
 
 
+def at_columns(on, lam) -> str:
+    """The columns where `on` holds with their |multiplier|: "3 (0.742), 4 (0.362)"."""
+    return ", ".join(f"{c} ({lam[c]:.3g})" for c in np.flatnonzero(on))
+
+
 def on_bounds(nlp, solved) -> tuple[list[str], list[str]]:
-    """(the blocks with entries on a bound: count and largest |multiplier|; per phase, its node
-    rows' inequalities on a bound: count and the rows' largest |multiplier|)."""
+    """(the blocks' entries on a bound, per row: its columns and their |multiplier|; per phase,
+    its node rows' inequalities on a bound, the same, and the three rows with the largest
+    |multiplier|; last, the other rows' inequalities on a bound: transitions, impacts)."""
     b, x = nlp.blocks, solved.x
     at = near(x, np.concatenate(b.lower)) | near(x, np.concatenate(b.upper))
     blocks = []
     for name in b.names:
         s = slice(b.offsets[name], b.offsets[name] + int(np.prod(b.shapes[name])))
         on, lam = (v[s].reshape(b.shapes[name], order="F") for v in (at, np.abs(solved.lam_x)))
-        blocks += [f"{name} {row_name(name, r)} at {on[r].sum()} of columns {np.flatnonzero(on[r]).min()}-"
-                   f"{np.flatnonzero(on[r]).max()}/{on.shape[1] - 1} (lam {lam[r].max():.3g})"
+        blocks += [f"{name} {row_name(name, r)} at {on[r].sum()} of {on.shape[1]} columns: {at_columns(on[r], lam[r])}"
                    for r in np.flatnonzero(on.any(axis=1))]
     p = [solved.parameters[k] for k in ("speed", "slope", "mu")]
     g = np.asarray(ca.Function("g", [b.vector(), nlp.p], [nlp.problem["g"]])(x, p), float).ravel()
+    on_row = (nlp.lbg < nlp.ubg) & (near(g, nlp.lbg) | near(g, nlp.ubg))  # lbg: as relaxed for the run
     rows, k = [], 0
     for i, phase in enumerate(nlp.phases):
-        lo, hi = nlp.node_bounds[i]
         c, labels = nlp.columns[i], node_row_names(nlp.ocp.models[i])
-        assert len(labels) == len(lo), "node_row_names: ocp.NodeModel's rows changed"
-        value, lam = (v[k:k + len(lo) * c].reshape(c, len(lo)) for v in (g, np.abs(solved.lam_g)))
-        on = (lo < hi) & (near(value, lo) | near(value, hi))
+        assert len(labels) == len(nlp.node_bounds[i][0]), "node_row_names: ocp.NodeModel's rows changed"
+        on, lam = (v[k:k + len(labels) * c].reshape(c, len(labels)) for v in (on_row, np.abs(solved.lam_g)))
         top = np.argsort(lam.max(axis=0))[::-1][:3]
-        rows.append(f"{phase.name}: on a bound " + (" ".join(f"{labels[r]} x{on[:, r].sum()}"
-                                                           for r in np.flatnonzero(on.any(axis=0))) or "-")
+        rows.append(f"{phase.name}: on a bound " + ("; ".join(f"{labels[r]} at {on[:, r].sum()} of {c}: "
+                                                            f"{at_columns(on[:, r], lam[:, r])}"
+                                                            for r in np.flatnonzero(on.any(axis=0))) or "-")
                     + "; largest lam " + " ".join(f"{labels[r]} {lam[:, r].max():.3g} at column "
                                                   f"{lam[:, r].argmax()}/{c - 1}" for r in top))
-        k += len(lo) * c
+        k += len(labels) * c
+    rest = np.flatnonzero(on_row[k:])
+    rows.append(f"other rows: {len(rest)} on a bound, |lam| " + " ".join(f"{abs(solved.lam_g[k + j]):.3g}" for j in rest))
     return blocks, rows
 
 
@@ -172,6 +187,12 @@ def pinned(blocks: dict) -> dict:
     return {**StrideSettings().duration, **held}
 
 
+def phase_duration(text: str) -> tuple[str, float]:
+    """A phase's duration "phase=seconds" as (phase, seconds)."""
+    phase, _, value = text.partition("=")
+    return phase, float(value)
+
+
 def ipopt_option(text: str) -> tuple[str, int | float | str]:
     """An IPOPT option "key=value" as (key, value): an integer, a number or a string."""
     key, _, value = text.partition("=")
@@ -188,6 +209,32 @@ def without_release_rows() -> None:
     column, which the trapezoid keeps), for this process: what the row's layer costs."""
     rows = ocp.Release.rows
     ocp.Release.rows = lambda self, *args: rows(dataclasses.replace(self, dropped=()), *args)  # type: ignore[method-assign]
+
+
+def relax_heights(nlp, release: bool, stance: bool) -> None:
+    """The NLP's node height rows made free (lower bound -inf) for this run: `release`, at each
+    phase's first column those of the points the phase before held (their held drift); `stance`,
+    at every column those of the free points of a leg that holds a point (the forefoot in the heel
+    phase, the heel in the forefoot phase)."""
+    k = 0
+    for i, (model, c) in enumerate(zip(nlp.ocp.models, nlp.columns)):
+        rows = len(nlp.node_bounds[i][0])
+        assert len(node_row_names(model)) == rows, "relax_heights: the node rows are not the torque rung's"
+        legs = {p[-1] for p in model.contact.points}
+        for r, point in enumerate(model.contact.free):  # the height rows come first (node_row_names)
+            held_before = i > 0 and point in nlp.phases[i - 1].points
+            if release and held_before:
+                nlp.lbg[k + r] = -np.inf
+            if stance and point[-1] in legs:
+                nlp.lbg[k + r:k + rows * c:rows] = -np.inf
+        k += rows * c
+
+
+def free_energy_rows(nlp) -> None:
+    """The NLP's last two rows, the held contacts' work and the energy budget (collocation.StrideNLP,
+    with springs), made free for this run: both hold in the continuous problem by themselves."""
+    assert any(nlp.settings.tendons.values()), "free_energy_rows: no energy rows without springs"
+    nlp.lbg[-2:], nlp.ubg[-2:] = -np.inf, np.inf
 
 
 def convergence(name: str, values: list[float], nodes: list[int]) -> str:
@@ -228,8 +275,21 @@ def parse(argv) -> argparse.Namespace:
                         help="the accelerations' bound (rad/s^2, collocation.ACCELERATION) for this run")
     parser.add_argument("--ankle-max", type=float, default=0.0,
                         help="deg: the ankle's dorsiflexion range's end for this run (0: joint_space.RANGES')")
+    parser.add_argument("--range-margin", type=float, default=0.0,
+                        help="deg: every joint's range (joint_space.RANGES) widened both ways, for this run")
+    parser.add_argument("--state-rate", type=float, default=collocation.STATE_RATE,
+                        help="the rates' bound (m/s and rad/s, collocation.STATE_RATE) for this run")
+    parser.add_argument("--no-release-height", action="store_true",
+                        help="no height row at a phase's first column for the points the phase before held")
+    parser.add_argument("--no-stance-heights", action="store_true",
+                        help="no height row for the free points of the leg that holds the ground")
+    parser.add_argument("--no-energy-rows", action="store_true",
+                        help="no rows on the held contacts' work and the energy budget (collocation, with springs)")
+    parser.add_argument("--mu", type=float, default=0.8, help="the friction coefficient")
     parser.add_argument("--fix-durations", action="store_true",
                         help="the finer meshes' phase durations (and cadence) held at the first mesh's optimum's")
+    parser.add_argument("--durations", nargs="*", default=[], type=phase_duration,
+                        help="phase=seconds: each named phase's duration held on every mesh (within PIN)")
     parser.add_argument("--no-release-row", action="store_true",
                         help="the releases without their f_n = 0 row (as Hermite-Simpson's torque sources)")
     parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
@@ -248,8 +308,11 @@ def study_overrides(args) -> None:
     if args.no_release_row:
         without_release_rows()
     collocation.ACCELERATION = args.acceleration
+    collocation.STATE_RATE = args.state_rate
+    widen = math.radians(args.range_margin)
+    collocation.RANGES = {j: (lo - widen, hi + widen) for j, (lo, hi) in RANGES.items()}
     if args.ankle_max:
-        collocation.RANGES = {**RANGES, "ankle": (RANGES["ankle"][0], math.radians(args.ankle_max))}
+        collocation.RANGES["ankle"] = (collocation.RANGES["ankle"][0], math.radians(args.ankle_max))
     ranges.RANGES["nodes"] = Range(14, max([n for _, n in args.meshes] + [120]))
 
 
@@ -279,7 +342,7 @@ def main(argv=None) -> int:
     args = parse(argv)
     study_overrides(args)
     body, guess, solved, objectives, cadences = scaled_body(62.0, 1.81), None, [], [], []
-    durations = StrideSettings().duration
+    durations = {**StrideSettings().duration, **{k: (v - PIN, v + PIN) for k, v in args.durations}}
     for transcription, nodes in args.meshes:
         # costs.terms reads it when each NLP is built
         costs.SMOOTHING = args.smoothing * (nodes / args.meshes[0][1]) ** args.smoothing_order
@@ -287,8 +350,11 @@ def main(argv=None) -> int:
                                   transcription=transcription, moment_time=args.moment_time,
                                   approach_speed=args.approach_speed, duration=durations)
         nlp = StrideNLP(JointSpace(body), settings, dict(args.ipopt)) if args.ipopt else build(body, settings)
+        relax_heights(nlp, args.no_release_height, args.no_stance_heights)
+        if args.no_energy_rows:
+            free_energy_rows(nlp)
         clock = time.process_time()
-        stride = optimum(nlp, args.speed, cadence=args.cadence or None, guess=guess)
+        stride = optimum(nlp, args.speed, mu=args.mu, cadence=args.cadence or None, guess=guess)
         report(f"{transcription} {nodes}", nlp, stride, time.process_time() - clock, args.speed)
         guess = stride.solved.blocks
         if args.fix_durations and not solved:
