@@ -8,6 +8,7 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
                                    [--smoothing 1e-5 (problem.SMOOTHING's weight, for this run)]
                                    [--smoothing-order 2 (that weight times (N / N_first)^2 at N)]
                                    [--no-release-row (no f_n = 0 row at a release)]
+                                   [--no-consistency-rows (StrideSettings.consistency_rows False)]
                                    [--acceleration 3000 (rad/s^2: collocation.ACCELERATION, for this run)]
                                    [--ankle-max 40 (deg: the ankle's dorsiflexion range, for this run)]
                                    [--range-margin 60 (deg: every joint's range widened both ways, for this run)]
@@ -19,6 +20,9 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
                                    [--no-energy-rows (no rows on the held contacts' work and the energy budget)]
                                    [--fix-durations (the finer meshes' phase durations the first's)]
                                    [--durations heel=0.0532 flat=0.0801 ... (s: every mesh's, held)]
+                                   [--hold-rate 100 (1/s: the held rows J a + dJ v + 2 r v_c + r^2 y_c = 0)]
+                                   [--smooth-ends (each phase's end columns' controls on the line through
+                                    their two neighbours: no one-column layer)]
                                    [--ipopt print_level=5 mu_strategy=monotone]
                                    [--figure mesh.png]
 
@@ -57,7 +61,7 @@ import numpy as np
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY, JOINTS, RANGES, THETA, JointSpace
 from formopt.mechanics.limits import Range
-from formopt.optim.stride import collocation, costs, ocp, ranges
+from formopt.optim.stride import collocation, contact, costs, ocp, ranges
 from formopt.optim.stride.collocation import StrideNLP, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS
@@ -204,6 +208,32 @@ def ipopt_option(text: str) -> tuple[str, int | float | str]:
     return key, value
 
 
+def smooth_ends() -> None:
+    """collocation.StrideNLP with rows u_0 - 2 u_1 + u_2 = 0 and u_n - 2 u_n-1 + u_n-2 = 0 on each
+    phase's controls, for this process: its end columns without the one-column layer the
+    transitions leave (a smooth optimum meets both to O(h^2))."""
+    phase = collocation.StrideNLP._phase
+
+    def with_ends(self, i):
+        phase(self, i)
+        U = self.v[f"U_{self.phases[i].name}"]
+        self.rows.add(ca.horzcat(U[:, 0] - 2 * U[:, 1] + U[:, 2], U[:, -1] - 2 * U[:, -2] + U[:, -3]))
+    collocation.StrideNLP._phase = with_ends  # type: ignore[method-assign]
+
+
+def held_feedback(rate: float) -> None:
+    """contact.RigidContact's held rows J a + dJ v = 0 as J a + dJ v + 2 r v_c + r^2 y_c = 0 (r = `rate`,
+    1/s; v_c the rows' velocities, y_c the normal rows' heights), for this process: the held
+    points' drift decays at r instead of growing with the transcription's error (Baumgarte)."""
+    kinematics = contact.RigidContact.kinematics
+
+    def fed_back(self, theta, thetad, slope):
+        J, drift, v = kinematics(self, theta, thetad, slope)
+        y = ca.vertcat(*[contact.height(self.js, p, theta, slope) if a == "n" else 0 for p, a in self.rows])
+        return J, drift + 2 * rate * v + rate ** 2 * y, v
+    contact.RigidContact.kinematics = fed_back  # type: ignore[method-assign]
+
+
 def without_release_rows() -> None:
     """ocp.Release without its force rows (the dropped points' f_n = 0 at their phase's last
     column, which the trapezoid keeps), for this process: what the row's layer costs."""
@@ -290,6 +320,12 @@ def parse(argv) -> argparse.Namespace:
                         help="the finer meshes' phase durations (and cadence) held at the first mesh's optimum's")
     parser.add_argument("--durations", nargs="*", default=[], type=phase_duration,
                         help="phase=seconds: each named phase's duration held on every mesh (within PIN)")
+    parser.add_argument("--hold-rate", type=float, default=0.0,
+                        help="1/s: the held rows with the contact's drift fed back (Baumgarte), for this run")
+    parser.add_argument("--smooth-ends", action="store_true",
+                        help="each phase's first and last columns' controls on the line through their two neighbours")
+    parser.add_argument("--no-consistency-rows", action="store_true",
+                        help="StrideSettings.consistency_rows = False")
     parser.add_argument("--no-release-row", action="store_true",
                         help="the releases without their f_n = 0 row (as Hermite-Simpson's torque sources)")
     parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
@@ -307,6 +343,10 @@ def study_overrides(args) -> None:
     past the scenes' 120 intervals, ranges.py: what solves cold; each mesh here is warm)."""
     if args.no_release_row:
         without_release_rows()
+    if args.smooth_ends:
+        smooth_ends()
+    if args.hold_rate:
+        held_feedback(args.hold_rate)
     collocation.ACCELERATION = args.acceleration
     collocation.STATE_RATE = args.state_rate
     widen = math.radians(args.range_margin)
@@ -348,7 +388,8 @@ def main(argv=None) -> int:
         costs.SMOOTHING = args.smoothing * (nodes / args.meshes[0][1]) ** args.smoothing_order
         settings = StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
                                   transcription=transcription, moment_time=args.moment_time,
-                                  approach_speed=args.approach_speed, duration=durations)
+                                  approach_speed=args.approach_speed, duration=durations,
+                                  consistency_rows=not args.no_consistency_rows)
         nlp = StrideNLP(JointSpace(body), settings, dict(args.ipopt)) if args.ipopt else build(body, settings)
         relax_heights(nlp, args.no_release_height, args.no_stance_heights)
         if args.no_energy_rows:
