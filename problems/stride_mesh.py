@@ -30,13 +30,15 @@ Prints per mesh (transcription:intervals): the objective, the smoothing term (pr
 --smoothing's weight: it replaces costs.SMOOTHING for the run; with --smoothing-order q, times
 (N / N_first)^q at N intervals: q = 2 keeps the trapezoid's term, w h sum |A_k+1 - A_k|^2 ~ w h^2 int |A'|^2 dt,
 one continuous penalty on every mesh),
-with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint (and its end columns' layer: what their moments cost beyond their neighbours'), the phase durations, the dropped points' normal force
+with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint (and its end columns' layer: what their moments cost beyond their neighbours', and how far they lie off the line of their two neighbours: `layers`), the phase durations, the dropped points' normal force
 (body weights) at the last column of their phase (heel-off, toe-off), each impact's approach speed
 and impulse, the decision variables on
-a finite bound by row and columns (A at collocation.ACCELERATION, F at contact.FORCE_LIMIT, X at
-the joint ranges or STATE_RATE, U at the torque limit, T at a duration bound) with their largest
-multiplier, and per phase its node rows on a bound (heights and clearance, friction cones) and
-the three with the largest multipliers; IPOPT's iterations and CPU seconds; at the end, per
+a finite bound by row, each column with its multiplier (A at collocation.ACCELERATION, F at
+contact.FORCE_LIMIT, X at the joint ranges or STATE_RATE, U at the torque limit, T at a duration
+bound), per phase its held rows' multipliers summed (a smooth optimum's fall as h: a sum that
+grows with the mesh is a row the transcription fights), its node rows on a bound (heights and
+clearance, friction cones) with their columns and multipliers and the three with the largest
+multipliers, and the other rows' inequalities on a bound (transitions, impacts); IPOPT's iterations and CPU seconds; at the end, per
 quantity, the change from each mesh to the next and (three meshes, each twice the one before)
 the observed order and Richardson's limit (`convergence`). `--fix-durations`: each phase's duration
 on the finer meshes held at the first mesh's optimum's (within PIN), and so the cadence: whether the
@@ -96,6 +98,14 @@ def rate_term(nlp, solved, speed: float) -> float:
     return nlp.settings.moment_time ** 2 * 100 / (nlp.mass * GRAVITY) ** 2 * integral / d
 
 
+def layers(U) -> tuple[float, float]:
+    """How far a phase's first and last columns' controls lie off the line through their two
+    neighbours (largest over the rows, N m/kg for torques): |u_0 - 2 u_1 + u_2|, |u_n - 2 u_n-1 + u_n-2|;
+    O(h^2) on a smooth optimum, O(1) in a one-column layer."""
+    U = np.asarray(U, float)
+    return float(np.abs(U[:, 0] - 2 * U[:, 1] + U[:, 2]).max()), float(np.abs(U[:, -1] - 2 * U[:, -2] + U[:, -3]).max())
+
+
 def near(values, bounds):
     """Which values are on their (finite) bounds (within TIGHT relative to max(1, |bound|))."""
     return np.isfinite(bounds) & (np.abs(values - bounds) <= TIGHT * np.maximum(1.0, np.abs(bounds)))
@@ -133,7 +143,8 @@ def on_bounds(nlp, solved) -> tuple[list[str], list[str]]:
         assert len(labels) == len(nlp.node_bounds[i][0]), "node_row_names: ocp.NodeModel's rows changed"
         on, lam = (v[k:k + len(labels) * c].reshape(c, len(labels)) for v in (on_row, np.abs(solved.lam_g)))
         top = np.argsort(lam.max(axis=0))[::-1][:3]
-        rows.append(f"{phase.name}: on a bound " + ("; ".join(f"{labels[r]} at {on[:, r].sum()} of {c}: "
+        held = [r for r, label in enumerate(labels) if label.startswith("held")]
+        rows.append(f"{phase.name}: held rows' |lam| summed {lam[:, held].sum():.3g}; on a bound " + ("; ".join(f"{labels[r]} at {on[:, r].sum()} of {c}: "
                                                             f"{at_columns(on[:, r], lam[:, r])}"
                                                             for r in np.flatnonzero(on.any(axis=0))) or "-")
                     + "; largest lam " + " ".join(f"{labels[r]} {lam[:, r].max():.3g} at column "
@@ -369,8 +380,10 @@ def report(label: str, nlp, stride, seconds: float, speed: float) -> None:
           f"{' '.join(stride.failed_checks)}; forward rad per phase "
           f"{' '.join(f'{e:.3f}' for e in stride.checks['forward_per_phase'])}", flush=True)
     for phase, e in effort.items():
+        first, last = layers(b[f"U_{phase}"])
         print(f"  {phase:9s} {b[f'T_{phase}'].item() * 1e3:6.1f} ms  effort {e.sum():.5f} (end layers "
-              f"{ends[phase]:.5f}): " + " ".join(f"{j} {v:.5f}" for j, v in zip(JOINTS, e)), flush=True)
+              f"{ends[phase]:.5f}; first / last column off the line of its neighbours {first:.2f} / {last:.2f} "
+              f"N m/kg): " + " ".join(f"{j} {v:.5f}" for j, v in zip(JOINTS, e)), flush=True)
     print(f"  released with (BW): {', '.join(release_forces(nlp, b))}; impacts: "
           + ", ".join(f"{i['point']} {i['leg']} approach {i['approach_mps']:.4f} m/s, impulse (t, n) "
                       f"{i['impulse_Ns'][0]:.4g} {i['impulse_Ns'][1]:.4g} N s" for i in stride.impacts))
