@@ -270,12 +270,14 @@ class StrideSettings:
     # with springs, collocation; a released point's height at the next phase's first column, its
     # held drift) or does not impose (a torque source's released f_n = 0 on the trapezoid, ocp.Release).
     # The trapezoid meets them through one-column layers of the moments at the phase ends, about
-    # 1.1-1.4 N m/kg at every mesh, whose cost falls as O(h); the held rows' multipliers do not
+    # 1.1-1.6 N m/kg at every mesh, whose cost falls as O(h); the held rows' multipliers do not
     # fall with h. Without them (RBDS001, heel, springs, 3.5 m/s, the phase durations held at the
     # shipped 40-node optimum's; problems/stride_mesh.py, 2026-11-27) the cost moves -3.3 and -1.4 %
-    # from 40 to 80 to 160 nodes instead of -14.5 and -7.8 % (docs/concepts/stride.md, "Rows the
-    # continuous stride meets by itself"); at 20 nodes the paper body's optimum fails the drift
-    # and forward checks (8.5 mm, 0.106 rad). True by default: every shipped figure has the rows.
+    # from 40 to 80 to 160 nodes instead of -14.5 and -7.8 %, to the same limit (docs/concepts/
+    # stride.md, "Rows the continuous stride meets by itself"); but the free optimum moves to
+    # another stride (140 steps/min, the forefoot phase on its 0.25 s ceiling, a grazing forefoot
+    # landing), and at 20 nodes the paper body's optimum fails the drift and forward checks
+    # (8.5 mm, 0.106 rad). True by default: every shipped figure has the rows.
     consistency_rows: bool = True
 
     def __post_init__(self):
