@@ -8,9 +8,21 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
                                    [--smoothing 1e-5 (problem.SMOOTHING's weight, for this run)]
                                    [--smoothing-order 2 (that weight times (N / N_first)^2 at N)]
                                    [--no-release-row (no f_n = 0 row at a release)]
+                                   [--no-consistency-rows (StrideSettings.consistency_rows False)]
                                    [--acceleration 3000 (rad/s^2: collocation.ACCELERATION, for this run)]
                                    [--ankle-max 40 (deg: the ankle's dorsiflexion range, for this run)]
+                                   [--range-margin 60 (deg: every joint's range widened both ways, for this run)]
+                                   [--state-rate 15 (m/s and rad/s: collocation.STATE_RATE, for this run)]
+                                   [--no-release-height (no height row at a phase's first column for the
+                                    points the phase before held)]
+                                   [--no-stance-heights (no height row for the stance foot's free points)]
+                                   [--mu 0.8 (the friction coefficient)]
+                                   [--no-energy-rows (no rows on the held contacts' work and the energy budget)]
                                    [--fix-durations (the finer meshes' phase durations the first's)]
+                                   [--durations heel=0.0532 flat=0.0801 ... (s: every mesh's, held)]
+                                   [--hold-rate 100 (1/s: the held rows J a + dJ v + 2 r v_c + r^2 y_c = 0)]
+                                   [--smooth-ends (each phase's end columns' controls on the line through
+                                    their two neighbours: no one-column layer)]
                                    [--ipopt print_level=5 mu_strategy=monotone]
                                    [--figure mesh.png]
 
@@ -18,13 +30,15 @@ Prints per mesh (transcription:intervals): the objective, the smoothing term (pr
 --smoothing's weight: it replaces costs.SMOOTHING for the run; with --smoothing-order q, times
 (N / N_first)^q at N intervals: q = 2 keeps the trapezoid's term, w h sum |A_k+1 - A_k|^2 ~ w h^2 int |A'|^2 dt,
 one continuous penalty on every mesh),
-with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint (and its end columns' layer: what their moments cost beyond their neighbours'), the phase durations, the dropped points' normal force
+with moment dynamics the moment-rate term (costs.py), the effort term per phase and per joint (and its end columns' layer: what their moments cost beyond their neighbours', and how far they lie off the line of their two neighbours: `layers`), the phase durations, the dropped points' normal force
 (body weights) at the last column of their phase (heel-off, toe-off), each impact's approach speed
 and impulse, the decision variables on
-a finite bound by row and columns (A at collocation.ACCELERATION, F at contact.FORCE_LIMIT, X at
-the joint ranges or STATE_RATE, U at the torque limit, T at a duration bound) with their largest
-multiplier, and per phase its node rows on a bound (heights and clearance, friction cones) and
-the three with the largest multipliers; IPOPT's iterations and CPU seconds; at the end, per
+a finite bound by row, each column with its multiplier (A at collocation.ACCELERATION, F at
+contact.FORCE_LIMIT, X at the joint ranges or STATE_RATE, U at the torque limit, T at a duration
+bound), per phase its held rows' multipliers summed (a smooth optimum's fall as h: a sum that
+grows with the mesh is a row the transcription fights), its node rows on a bound (heights and
+clearance, friction cones) with their columns and multipliers and the three with the largest
+multipliers, and the other rows' inequalities on a bound (transitions, impacts); IPOPT's iterations and CPU seconds; at the end, per
 quantity, the change from each mesh to the next and (three meshes, each twice the one before)
 the observed order and Richardson's limit (`convergence`). `--fix-durations`: each phase's duration
 on the finer meshes held at the first mesh's optimum's (within PIN), and so the cadence: whether the
@@ -49,7 +63,7 @@ import numpy as np
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY, JOINTS, RANGES, THETA, JointSpace
 from formopt.mechanics.limits import Range
-from formopt.optim.stride import collocation, costs, ocp, ranges
+from formopt.optim.stride import collocation, contact, costs, ocp, ranges
 from formopt.optim.stride.collocation import StrideNLP, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS
@@ -84,6 +98,14 @@ def rate_term(nlp, solved, speed: float) -> float:
     return nlp.settings.moment_time ** 2 * 100 / (nlp.mass * GRAVITY) ** 2 * integral / d
 
 
+def layers(U) -> tuple[float, float]:
+    """How far a phase's first and last columns' controls lie off the line through their two
+    neighbours (largest over the rows, N m/kg for torques): |u_0 - 2 u_1 + u_2|, |u_n - 2 u_n-1 + u_n-2|;
+    O(h^2) on a smooth optimum, O(1) in a one-column layer."""
+    U = np.asarray(U, float)
+    return float(np.abs(U[:, 0] - 2 * U[:, 1] + U[:, 2]).max()), float(np.abs(U[:, -1] - 2 * U[:, -2] + U[:, -3]).max())
+
+
 def near(values, bounds):
     """Which values are on their (finite) bounds (within TIGHT relative to max(1, |bound|))."""
     return np.isfinite(bounds) & (np.abs(values - bounds) <= TIGHT * np.maximum(1.0, np.abs(bounds)))
@@ -95,33 +117,41 @@ def row_name(block: str, row: int) -> str:
     return names[row] if names else str(row)
 
 
+def at_columns(on, lam) -> str:
+    """The columns where `on` holds with their |multiplier|: "3 (0.742), 4 (0.362)"."""
+    return ", ".join(f"{c} ({lam[c]:.3g})" for c in np.flatnonzero(on))
+
+
 def on_bounds(nlp, solved) -> tuple[list[str], list[str]]:
-    """(the blocks with entries on a bound: count and largest |multiplier|; per phase, its node
-    rows' inequalities on a bound: count and the rows' largest |multiplier|)."""
+    """(the blocks' entries on a bound, per row: its columns and their |multiplier|; per phase,
+    its node rows' inequalities on a bound, the same, and the three rows with the largest
+    |multiplier|; last, the other rows' inequalities on a bound: transitions, impacts)."""
     b, x = nlp.blocks, solved.x
     at = near(x, np.concatenate(b.lower)) | near(x, np.concatenate(b.upper))
     blocks = []
     for name in b.names:
         s = slice(b.offsets[name], b.offsets[name] + int(np.prod(b.shapes[name])))
         on, lam = (v[s].reshape(b.shapes[name], order="F") for v in (at, np.abs(solved.lam_x)))
-        blocks += [f"{name} {row_name(name, r)} at {on[r].sum()} of columns {np.flatnonzero(on[r]).min()}-"
-                   f"{np.flatnonzero(on[r]).max()}/{on.shape[1] - 1} (lam {lam[r].max():.3g})"
+        blocks += [f"{name} {row_name(name, r)} at {on[r].sum()} of {on.shape[1]} columns: {at_columns(on[r], lam[r])}"
                    for r in np.flatnonzero(on.any(axis=1))]
     p = [solved.parameters[k] for k in ("speed", "slope", "mu")]
     g = np.asarray(ca.Function("g", [b.vector(), nlp.p], [nlp.problem["g"]])(x, p), float).ravel()
+    on_row = (nlp.lbg < nlp.ubg) & (near(g, nlp.lbg) | near(g, nlp.ubg))  # lbg: as relaxed for the run
     rows, k = [], 0
     for i, phase in enumerate(nlp.phases):
-        lo, hi = nlp.node_bounds[i]
         c, labels = nlp.columns[i], node_row_names(nlp.ocp.models[i])
-        assert len(labels) == len(lo), "node_row_names: ocp.NodeModel's rows changed"
-        value, lam = (v[k:k + len(lo) * c].reshape(c, len(lo)) for v in (g, np.abs(solved.lam_g)))
-        on = (lo < hi) & (near(value, lo) | near(value, hi))
+        assert len(labels) == len(nlp.node_bounds[i][0]), "node_row_names: ocp.NodeModel's rows changed"
+        on, lam = (v[k:k + len(labels) * c].reshape(c, len(labels)) for v in (on_row, np.abs(solved.lam_g)))
         top = np.argsort(lam.max(axis=0))[::-1][:3]
-        rows.append(f"{phase.name}: on a bound " + (" ".join(f"{labels[r]} x{on[:, r].sum()}"
-                                                           for r in np.flatnonzero(on.any(axis=0))) or "-")
+        held = [r for r, label in enumerate(labels) if label.startswith("held")]
+        rows.append(f"{phase.name}: held rows' |lam| summed {lam[:, held].sum():.3g}; on a bound " + ("; ".join(f"{labels[r]} at {on[:, r].sum()} of {c}: "
+                                                            f"{at_columns(on[:, r], lam[:, r])}"
+                                                            for r in np.flatnonzero(on.any(axis=0))) or "-")
                     + "; largest lam " + " ".join(f"{labels[r]} {lam[:, r].max():.3g} at column "
                                                   f"{lam[:, r].argmax()}/{c - 1}" for r in top))
-        k += len(lo) * c
+        k += len(labels) * c
+    rest = np.flatnonzero(on_row[k:])
+    rows.append(f"other rows: {len(rest)} on a bound, |lam| " + " ".join(f"{abs(solved.lam_g[k + j]):.3g}" for j in rest))
     return blocks, rows
 
 
@@ -172,6 +202,12 @@ def pinned(blocks: dict) -> dict:
     return {**StrideSettings().duration, **held}
 
 
+def phase_duration(text: str) -> tuple[str, float]:
+    """A phase's duration "phase=seconds" as (phase, seconds)."""
+    phase, _, value = text.partition("=")
+    return phase, float(value)
+
+
 def ipopt_option(text: str) -> tuple[str, int | float | str]:
     """An IPOPT option "key=value" as (key, value): an integer, a number or a string."""
     key, _, value = text.partition("=")
@@ -183,11 +219,63 @@ def ipopt_option(text: str) -> tuple[str, int | float | str]:
     return key, value
 
 
+def smooth_ends() -> None:
+    """collocation.StrideNLP with rows u_0 - 2 u_1 + u_2 = 0 and u_n - 2 u_n-1 + u_n-2 = 0 on each
+    phase's controls, for this process: its end columns without the one-column layer the
+    transitions leave (a smooth optimum meets both to O(h^2))."""
+    phase = collocation.StrideNLP._phase
+
+    def with_ends(self, i):
+        phase(self, i)
+        U = self.v[f"U_{self.phases[i].name}"]
+        self.rows.add(ca.horzcat(U[:, 0] - 2 * U[:, 1] + U[:, 2], U[:, -1] - 2 * U[:, -2] + U[:, -3]))
+    collocation.StrideNLP._phase = with_ends  # type: ignore[method-assign]
+
+
+def held_feedback(rate: float) -> None:
+    """contact.RigidContact's held rows J a + dJ v = 0 as J a + dJ v + 2 r v_c + r^2 y_c = 0 (r = `rate`,
+    1/s; v_c the rows' velocities, y_c the normal rows' heights), for this process: the held
+    points' drift decays at r instead of growing with the transcription's error (Baumgarte)."""
+    kinematics = contact.RigidContact.kinematics
+
+    def fed_back(self, theta, thetad, slope):
+        J, drift, v = kinematics(self, theta, thetad, slope)
+        y = ca.vertcat(*[contact.height(self.js, p, theta, slope) if a == "n" else 0 for p, a in self.rows])
+        return J, drift + 2 * rate * v + rate ** 2 * y, v
+    contact.RigidContact.kinematics = fed_back  # type: ignore[method-assign]
+
+
 def without_release_rows() -> None:
     """ocp.Release without its force rows (the dropped points' f_n = 0 at their phase's last
     column, which the trapezoid keeps), for this process: what the row's layer costs."""
     rows = ocp.Release.rows
     ocp.Release.rows = lambda self, *args: rows(dataclasses.replace(self, dropped=()), *args)  # type: ignore[method-assign]
+
+
+def relax_heights(nlp, release: bool, stance: bool) -> None:
+    """The NLP's node height rows made free (lower bound -inf) for this run: `release`, at each
+    phase's first column those of the points the phase before held (their held drift); `stance`,
+    at every column those of the free points of a leg that holds a point (the forefoot in the heel
+    phase, the heel in the forefoot phase)."""
+    k = 0
+    for i, (model, c) in enumerate(zip(nlp.ocp.models, nlp.columns)):
+        rows = len(nlp.node_bounds[i][0])
+        assert len(node_row_names(model)) == rows, "relax_heights: the node rows are not the torque rung's"
+        legs = {p[-1] for p in model.contact.points}
+        for r, point in enumerate(model.contact.free):  # the height rows come first (node_row_names)
+            held_before = i > 0 and point in nlp.phases[i - 1].points
+            if release and held_before:
+                nlp.lbg[k + r] = -np.inf
+            if stance and point[-1] in legs:
+                nlp.lbg[k + r:k + rows * c:rows] = -np.inf
+        k += rows * c
+
+
+def free_energy_rows(nlp) -> None:
+    """The NLP's last two rows, the held contacts' work and the energy budget (collocation.StrideNLP,
+    with springs), made free for this run: both hold in the continuous problem by themselves."""
+    assert any(nlp.settings.tendons.values()), "free_energy_rows: no energy rows without springs"
+    nlp.lbg[-2:], nlp.ubg[-2:] = -np.inf, np.inf
 
 
 def convergence(name: str, values: list[float], nodes: list[int]) -> str:
@@ -228,8 +316,27 @@ def parse(argv) -> argparse.Namespace:
                         help="the accelerations' bound (rad/s^2, collocation.ACCELERATION) for this run")
     parser.add_argument("--ankle-max", type=float, default=0.0,
                         help="deg: the ankle's dorsiflexion range's end for this run (0: joint_space.RANGES')")
+    parser.add_argument("--range-margin", type=float, default=0.0,
+                        help="deg: every joint's range (joint_space.RANGES) widened both ways, for this run")
+    parser.add_argument("--state-rate", type=float, default=collocation.STATE_RATE,
+                        help="the rates' bound (m/s and rad/s, collocation.STATE_RATE) for this run")
+    parser.add_argument("--no-release-height", action="store_true",
+                        help="no height row at a phase's first column for the points the phase before held")
+    parser.add_argument("--no-stance-heights", action="store_true",
+                        help="no height row for the free points of the leg that holds the ground")
+    parser.add_argument("--no-energy-rows", action="store_true",
+                        help="no rows on the held contacts' work and the energy budget (collocation, with springs)")
+    parser.add_argument("--mu", type=float, default=0.8, help="the friction coefficient")
     parser.add_argument("--fix-durations", action="store_true",
                         help="the finer meshes' phase durations (and cadence) held at the first mesh's optimum's")
+    parser.add_argument("--durations", nargs="*", default=[], type=phase_duration,
+                        help="phase=seconds: each named phase's duration held on every mesh (within PIN)")
+    parser.add_argument("--hold-rate", type=float, default=0.0,
+                        help="1/s: the held rows with the contact's drift fed back (Baumgarte), for this run")
+    parser.add_argument("--smooth-ends", action="store_true",
+                        help="each phase's first and last columns' controls on the line through their two neighbours")
+    parser.add_argument("--no-consistency-rows", action="store_true",
+                        help="StrideSettings.consistency_rows = False")
     parser.add_argument("--no-release-row", action="store_true",
                         help="the releases without their f_n = 0 row (as Hermite-Simpson's torque sources)")
     parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
@@ -247,9 +354,16 @@ def study_overrides(args) -> None:
     past the scenes' 120 intervals, ranges.py: what solves cold; each mesh here is warm)."""
     if args.no_release_row:
         without_release_rows()
+    if args.smooth_ends:
+        smooth_ends()
+    if args.hold_rate:
+        held_feedback(args.hold_rate)
     collocation.ACCELERATION = args.acceleration
+    collocation.STATE_RATE = args.state_rate
+    widen = math.radians(args.range_margin)
+    collocation.RANGES = {j: (lo - widen, hi + widen) for j, (lo, hi) in RANGES.items()}
     if args.ankle_max:
-        collocation.RANGES = {**RANGES, "ankle": (RANGES["ankle"][0], math.radians(args.ankle_max))}
+        collocation.RANGES["ankle"] = (collocation.RANGES["ankle"][0], math.radians(args.ankle_max))
     ranges.RANGES["nodes"] = Range(14, max([n for _, n in args.meshes] + [120]))
 
 
@@ -266,8 +380,10 @@ def report(label: str, nlp, stride, seconds: float, speed: float) -> None:
           f"{' '.join(stride.failed_checks)}; forward rad per phase "
           f"{' '.join(f'{e:.3f}' for e in stride.checks['forward_per_phase'])}", flush=True)
     for phase, e in effort.items():
+        first, last = layers(b[f"U_{phase}"])
         print(f"  {phase:9s} {b[f'T_{phase}'].item() * 1e3:6.1f} ms  effort {e.sum():.5f} (end layers "
-              f"{ends[phase]:.5f}): " + " ".join(f"{j} {v:.5f}" for j, v in zip(JOINTS, e)), flush=True)
+              f"{ends[phase]:.5f}; first / last column off the line of its neighbours {first:.2f} / {last:.2f} "
+              f"N m/kg): " + " ".join(f"{j} {v:.5f}" for j, v in zip(JOINTS, e)), flush=True)
     print(f"  released with (BW): {', '.join(release_forces(nlp, b))}; impacts: "
           + ", ".join(f"{i['point']} {i['leg']} approach {i['approach_mps']:.4f} m/s, impulse (t, n) "
                       f"{i['impulse_Ns'][0]:.4g} {i['impulse_Ns'][1]:.4g} N s" for i in stride.impacts))
@@ -279,16 +395,20 @@ def main(argv=None) -> int:
     args = parse(argv)
     study_overrides(args)
     body, guess, solved, objectives, cadences = scaled_body(62.0, 1.81), None, [], [], []
-    durations = StrideSettings().duration
+    durations = {**StrideSettings().duration, **{k: (v - PIN, v + PIN) for k, v in args.durations}}
     for transcription, nodes in args.meshes:
         # costs.terms reads it when each NLP is built
         costs.SMOOTHING = args.smoothing * (nodes / args.meshes[0][1]) ** args.smoothing_order
         settings = StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
                                   transcription=transcription, moment_time=args.moment_time,
-                                  approach_speed=args.approach_speed, duration=durations)
+                                  approach_speed=args.approach_speed, duration=durations,
+                                  consistency_rows=not args.no_consistency_rows)
         nlp = StrideNLP(JointSpace(body), settings, dict(args.ipopt)) if args.ipopt else build(body, settings)
+        relax_heights(nlp, args.no_release_height, args.no_stance_heights)
+        if args.no_energy_rows:
+            free_energy_rows(nlp)
         clock = time.process_time()
-        stride = optimum(nlp, args.speed, cadence=args.cadence or None, guess=guess)
+        stride = optimum(nlp, args.speed, mu=args.mu, cadence=args.cadence or None, guess=guess)
         report(f"{transcription} {nodes}", nlp, stride, time.process_time() - clock, args.speed)
         guess = stride.solved.blocks
         if args.fix_durations and not solved:

@@ -145,7 +145,8 @@ class StrideNLP:
             self._transition(i)
         self._touchdown()
         self.period_row = self.rows.add(self.period, 0.0, np.inf)
-        if any(settings.tendons.values()):  # the springs let the optimum draw energy from the transcription
+        if any(settings.tendons.values()) and settings.consistency_rows:
+            # the springs let the optimum draw energy from the transcription (StrideSettings.consistency_rows)
             weight = self.mass * GRAVITY
             climb = weight * step_length(self.p[0], self.period) * ca.sin(self.p[1])
             self.rows.add(ca.vertcat(self.terms["ground"], self.terms["balance"] - climb) / weight)
@@ -268,13 +269,14 @@ class StrideNLP:
         G, L = self.node_functions[i].map(c)(X, A, U, F, S, Z, ca.repmat(td, 1, c), ca.repmat(self.p, 1, c))
         lower, upper = self.node_bounds[i]
         lower = np.tile(lower[:, None], c)
-        if self.settings.moment_time and i > 0 and not self.impact_before(i):
+        if (self.settings.moment_time or not self.settings.consistency_rows) and i > 0 and not self.impact_before(i):
             # moment dynamics: no height row for a released point at the phase's first column, where
             # the phase before held it (its drift O(h^2) there is a transcription error, not a
             # motion); with it the held drift's sign was a row with multipliers of 850 (trapezoid)
             # to 1.85e4 (Hermite-Simpson) and Hermite-Simpson 40 did not converge in 1000 iterations
             # (RBDS001, 3.5 m/s, moment_time 0.04 s). Not done for the torque sources: it moves the
-            # shipped trapezoid 40's 169.5 steps/min to 173.3 (2026-11-27).
+            # shipped trapezoid 40's 169.5 steps/min to 173.3 (2026-11-27); without the consistency
+            # rows (StrideSettings.consistency_rows) for them too.
             free = self.ocp.models[i].contact.free
             lower[[k for k, point in enumerate(free) if point in self.phases[i - 1].points], 0] = -np.inf
         self.node_rows.add(G, lower.ravel(order="F"), np.tile(upper, c))

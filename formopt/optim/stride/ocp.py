@@ -164,8 +164,10 @@ class StrideProblem:
         added = tuple(p for p in after.points if p not in before.points)
         if added:
             return Impact(added, self.models[i].contact, self.settings.approach_speed)
-        if not (self.models[i].actuation.states or self.settings.transcription == "trapezoid"):
-            return Release((), before.sliding)  # torque sources on Hermite-Simpson: `Release` says why
+        if not (self.models[i].actuation.states
+                or (self.settings.transcription == "trapezoid" and self.settings.consistency_rows)):
+            # torque sources on Hermite-Simpson, or without the consistency rows: `Release` says why
+            return Release((), before.sliding)
         dropped = tuple(k for k, (p, a) in enumerate(before.rows) if a == "n" and p not in after.points)
         return Release(dropped, before.sliding)
 

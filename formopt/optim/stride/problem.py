@@ -265,6 +265,20 @@ class StrideSettings:
     # 0, the default, allows a grazing touchdown, where the impulse and its friction cone's rows
     # vanish together). APPROACH_SPEED says what it does and why it stays off.
     approach_speed: float = 0.0
+    # False: the NLP without the rows that hold the transcription's own errors at the phase ends,
+    # which the continuous stride meets by itself (the held contacts' work and the energy budget
+    # with springs, collocation; a released point's height at the next phase's first column, its
+    # held drift) or does not impose (a torque source's released f_n = 0 on the trapezoid, ocp.Release).
+    # The trapezoid meets them through one-column layers of the moments at the phase ends, about
+    # 1.1-1.6 N m/kg at every mesh, whose cost falls as O(h); the held rows' multipliers do not
+    # fall with h. Without them (RBDS001, heel, springs, 3.5 m/s, the phase durations held at the
+    # shipped 40-node optimum's; problems/stride_mesh.py, 2026-11-27) the cost moves -3.3 and -1.4 %
+    # from 40 to 80 to 160 nodes instead of -14.5 and -7.8 %, to the same limit (docs/concepts/
+    # stride.md, "Rows the continuous stride meets by itself"); but the free optimum moves to
+    # another stride (140 steps/min, the forefoot phase on its 0.25 s ceiling, a grazing forefoot
+    # landing), and at 20 nodes the paper body's optimum fails the drift and forward checks
+    # (8.5 mm, 0.106 rad). True by default: every shipped figure has the rows.
+    consistency_rows: bool = True
 
     def __post_init__(self):
         if self.strike not in STRIKE_PHASES:
@@ -301,6 +315,8 @@ class StrideSettings:
         if not 0.0 <= self.moment_time <= MOMENT_TIME_MAX or (self.moment_time and self.muscles is not None):
             raise InputError(f"moment_time = {self.moment_time}: expected 0 to {MOMENT_TIME_MAX} s, "
                              "0 with muscles (their moments are their tendons' forces)")
+        if not isinstance(self.consistency_rows, bool):
+            raise InputError(f"consistency_rows = {self.consistency_rows!r}: expected true or false")
         if not 0.0 < self.reserve_weight < math.inf:
             raise InputError(f"reserve_weight = {self.reserve_weight}: expected a finite number > 0")
         check("torque_limit_nm_per_kg", self.torque_limit)
