@@ -2,7 +2,9 @@
 
 `library(f)` generates C for f, compiles it with the system's C compiler and caches the shared
 library under a key of the generated source and the compiler flags, so a second run (or a
-second process) does not compile again. `external(f)` loads it back as a CasADi Function (for
+second process) does not compile again; `keyed_library(name, key, f)` caches it under a key
+the caller gives instead (what determines f's source, cheaper to make than the source: a library
+on disk is then found without generating C). `external(f)` loads it back as a CasADi Function (for
 use inside other CasADi graphs, or mapped over batches); `Compiled(f)` calls that external
 through CasADi's `Function.buffer()` on preallocated numpy arrays, which costs about a
 microsecond per call instead of CasADi's Python dispatch (`f.call`, tens of microseconds).
@@ -21,6 +23,7 @@ import os
 import shutil
 import subprocess
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
 
 import casadi as ca
@@ -31,6 +34,7 @@ FLAGS = ("-fPIC", "-shared", "-fno-math-errno")
 # thousands of lines, called a few dozen times per solve) compile ten times faster at -O0 and
 # solve almost as fast: IPOPT's own work dominates (benchmarks/solve_speed.py).
 FUNCTION_OPT, NLP_OPT = "-O1", "-O0"
+GENERATOR = {"with_header": False}  # CasADi's code generator's options
 
 
 def cache_dir() -> Path:
@@ -51,15 +55,28 @@ def library(function: ca.Function, jacobian: bool = False) -> Path:
     return _compile(_source(function, jacobian), function.name(), FUNCTION_OPT)
 
 
-def cached(function: ca.Function, jacobian: bool = False) -> bool:
-    """Whether `library(function, jacobian)` is in the disk cache already (nothing is compiled;
-    generating the C source costs tens of milliseconds)."""
-    return _target(_source(function, jacobian), function.name(), FUNCTION_OPT).exists()
+def keyed_library(name: str, key: str, function: Callable[[], ca.Function], jacobian: bool = False) -> Path:
+    """As `library(function(), jacobian)`, cached under `key` instead of its C source: a text
+    that determines the source (with CasADi's version and GENERATOR, which the key takes in), so
+    a library on disk is found without generating C (the source of a stride node model's
+    Hessian, hundreds of kB, costs about 0.1 s). `function()`, the Function named `name`, is
+    called only when the library is compiled."""
+    target = _target(_keyed(key, jacobian), name, FUNCTION_OPT)
+    return target if target.exists() else _compile(_source(function(), jacobian), name, FUNCTION_OPT, target)
+
+
+def keyed_cached(name: str, key: str, jacobian: bool = False) -> bool:
+    """Whether `keyed_library(name, key, ..., jacobian)` is in the disk cache already."""
+    return _target(_keyed(key, jacobian), name, FUNCTION_OPT).exists()
+
+
+def _keyed(key: str, jacobian: bool) -> str:
+    return "\0".join([key, ca.__version__, repr(GENERATOR), str(jacobian)])
 
 
 def _source(function: ca.Function, jacobian: bool) -> str:
     """The C source of `function` (and of its Jacobian, `jacobian`)."""
-    generator = ca.CodeGenerator(f"{function.name()}.c", {"with_header": False})
+    generator = ca.CodeGenerator(f"{function.name()}.c", GENERATOR)
     generator.add(function)
     if jacobian:
         generator.add(function.jacobian())
@@ -82,14 +99,16 @@ def cached_nlpsol(name: str, nlp: dict, opts: dict, compiled: bool = False) -> c
     return ca.nlpsol(name, "ipopt", str(_compile(source, f"{name}_nlp", NLP_OPT)), opts)
 
 
-def _target(source: str, name: str, level: str) -> Path:
-    """The cached library's path: keyed by the source, the compiler and its flags."""
-    key = hashlib.sha256("\0".join([source, compiler(), level, *FLAGS]).encode()).hexdigest()[:20]
-    return cache_dir() / f"{name}_{key}.so"
+def _target(key: str, name: str, level: str) -> Path:
+    """The cached library's path: keyed by its source (or `keyed_library`'s key), the compiler
+    and its flags."""
+    digest = hashlib.sha256("\0".join([key, compiler(), level, *FLAGS]).encode()).hexdigest()[:20]
+    return cache_dir() / f"{name}_{digest}.so"
 
 
-def _compile(source: str, name: str, level: str) -> Path:
-    cc, flags, target = compiler(), (level, *FLAGS), _target(source, name, level)
+def _compile(source: str, name: str, level: str, target: Path | None = None) -> Path:
+    """The library of `source` at `target` (default: keyed by the source), compiled unless there."""
+    cc, flags, target = compiler(), (level, *FLAGS), target or _target(source, name, level)
     if target.exists():
         return target
     target.parent.mkdir(parents=True, exist_ok=True)

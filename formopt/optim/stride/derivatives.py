@@ -24,25 +24,39 @@ compiled; benchmarks/stride_speed.py, docs/reference/performance.md).
 
 from __future__ import annotations
 
+import functools
+import inspect
+
 import casadi as ca
 import numpy as np
 
-from ...mechanics.compiled import cached as is_cached
-from ...mechanics.compiled import external
+from ...mechanics.compiled import keyed_cached, keyed_library
 from .ocp import INTEGRANDS
+
+PARTS = ("value", "jacobian", "hessian")  # a node model's functions (`_functions`' order and names)
 
 
 class NodeDerivatives:
     """One phase's node Function (collocation.StrideNLP.node_functions) on the stacked node
     vector z: its outputs [rows; integrands], their Jacobian and the Hessian of w . outputs;
-    `compiled`: the three as C (mechanics.compiled.external; the outputs with their Jacobian,
-    so that CasADi can differentiate a graph calling them), else SX."""
+    `compiled`: the three as C (mechanics.compiled.keyed_library under `_key`; the outputs with
+    their Jacobian, so that CasADi can differentiate a graph calling them; derived and generated
+    only when not in the disk cache), else SX."""
 
     def __init__(self, node: ca.Function, compiled: bool = False):
         self.rows = node.size1_out(0)
-        value, jacobian, hessian = _functions(node)
-        self.value, self.jacobian, self.hessian = ((external(value, jacobian=True), external(jacobian), external(hessian))
-                                                   if compiled else (value, jacobian, hessian))
+        if not compiled:
+            self.value, self.jacobian, self.hessian = _functions(node)
+            return
+        derived, key = functools.cache(functools.partial(_functions, node)), _key(node)
+        self.value, self.jacobian, self.hessian = (_library(node, k, key, derived) for k in range(len(PARTS)))
+
+
+def _library(node: ca.Function, k: int, key: str, derived) -> ca.Function:
+    """The node model's function PARTS[k] compiled, from the disk cache when there (`key`:
+    `_key(node)`; `derived()`: `_functions(node)`, called only to compile)."""
+    name = f"{node.name()}_{PARTS[k]}"
+    return ca.external(name, str(keyed_library(name, key, lambda: derived()[k], jacobian=k == 0)))
 
 
 def _functions(node: ca.Function) -> tuple[ca.Function, ca.Function, ca.Function]:
@@ -58,11 +72,22 @@ def _functions(node: ca.Function) -> tuple[ca.Function, ca.Function, ca.Function
             ca.Function(f"{node.name()}_hessian", [z, p, w], [ca.hessian(ca.dot(w, out), z)[0]]))
 
 
+# what the compiled node models' sources are made by, besides the node Function (`_key`)
+_RECIPE = inspect.getsource(_functions)
+
+
+def _key(node: ca.Function) -> str:
+    """What determines the C sources of a node model's functions (`_functions`): the node
+    Function serialised (its graph and constants: one body's, 2 ms) and how they are derived
+    from it (the keyed library adds CasADi's version)."""
+    return "\0".join([node.serialize(), _RECIPE])
+
+
 def cached(nlp) -> bool:
-    """Whether every phase's node model, compiled, is in the disk cache already
-    (mechanics.compiled.cached; compiled as NodeDerivatives compiles it)."""
-    return all(is_cached(f, jacobian=k == 0) for node in nlp.node_functions
-               for k, f in enumerate(_functions(node)))
+    """Whether every phase's node model, compiled, is in the disk cache already (no C source
+    generated: mechanics.compiled.keyed_cached; compiled as NodeDerivatives compiles it)."""
+    return all(keyed_cached(f"{node.name()}_{part}", _key(node), jacobian=k == 0)
+               for node in nlp.node_functions for k, part in enumerate(PARTS))
 
 
 def node_indices(nlp, i: int, k: int) -> np.ndarray:

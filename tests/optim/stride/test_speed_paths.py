@@ -88,12 +88,27 @@ def test_auto_uses_a_cached_build_from_the_first_solve(solves, tmp_path, monkeyp
     assert not StrideNLP(JointSpace(paper_body()), SETTINGS).compiled
 
 
-def test_auto_goes_on_interpreted_when_compiling_fails(solves, monkeypatch):
+def test_a_cached_build_is_used_without_generating_c(solves, monkeypatch):
+    """A node model in the disk cache is found by its key (the node Function serialised) and
+    loaded as it is: no C source generated, nothing derived, the same solve."""
+    _, (_, fast_first) = solves
+
+    def no_source(function, jacobian):
+        raise AssertionError(f"C source of {function.name()} generated")
+    monkeypatch.setattr(compiled_functions, "_source", no_source)
+    monkeypatch.setattr(derivatives, "_functions", no_source)
+    nlp = StrideNLP(JointSpace(paper_body()), SETTINGS, compiled=True)
+    assert derivatives.cached(nlp)
+    assert nlp.solve(ballistic(nlp, 3.5), 3.5).iterations == fast_first.iterations
+
+
+def test_auto_goes_on_interpreted_when_compiling_fails(solves, tmp_path, monkeypatch):
     """A C compiler that is found but fails: "auto" warns and solves interpreted (a long chain
     goes on), True raises."""
     (_, first), _ = solves
+    monkeypatch.setenv("FORMOPT_CACHE", str(tmp_path))  # an empty cache: each library compiles
 
-    def broken(source, name, level):
+    def broken(source, name, level, target=None):
         raise RuntimeError(f"compiling {name} failed")
     monkeypatch.setattr(compiled_functions, "_compile", broken)
     monkeypatch.setattr(collocation, "COMPILE_FROM", 2)
