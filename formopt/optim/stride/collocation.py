@@ -164,8 +164,8 @@ class StrideNLP:
                         "max_iter": settings.max_iter, "tol": settings.tolerance, **(ipopt or {})}
         self._solver: ca.Function | None = None
         self._warm_solver: ca.Function | None = None
-        self._solver_compiled = False  # whether _solver's node models and derivatives are C
-        self._in_cache: bool | None = None  # whether they are in the disk cache (`compiled`)
+        self._solver_compiled: tuple = ()  # per phase, whether _solver's node model and derivatives are C
+        self._in_cache: list[bool] | None = None  # per phase, whether they are in the disk cache
         self._nlp = self.problem  # the solvers' problem (derivatives.problem when compiled)
         self.solves = 0  # IPOPT runs of this NLP
         self.lbg = np.concatenate(self.node_rows.lower + self.rows.lower)
@@ -174,25 +174,30 @@ class StrideNLP:
 
     @property
     def compiled(self) -> bool:
-        """Whether the next solve's node models and derivatives run as C (`compile`: True, or
-        "auto" when a C compiler is found, from the first solve when they are in the disk cache
-        already, else from the COMPILE_FROM-th; "auto" becomes False, with a RuntimeWarning,
-        when compiling fails)."""
-        if self.compile != "auto":
-            return bool(self.compile)
-        if not _has_compiler():
-            return False
+        """Whether the next solve's node models and derivatives all run as C (`compiled_phases`)."""
+        return all(self.compiled_phases)
+
+    @property
+    def compiled_phases(self) -> tuple[bool, ...]:
+        """Per phase, whether the next solve's node model and derivatives run as C (`compile`:
+        True; or "auto" when a C compiler is found: every phase from the COMPILE_FROM-th solve,
+        before it those in the disk cache already, a phase model being shared by NLPs of one
+        body (a strike's, a sliding touchdown's variant: all but one phase); "auto" becomes
+        False, with a RuntimeWarning, when compiling fails)."""
+        n = len(self.phases)
+        if self.compile != "auto" or not _has_compiler():
+            return (self.compile is True,) * n
         if self._in_cache is None:  # looked up once: a library in the cache costs nothing to use
-            self._in_cache = derivatives.cached(self)
-        return self._in_cache or self.solves >= COMPILE_FROM - 1
+            self._in_cache = derivatives.cached_phases(self)
+        return (True,) * n if self.solves >= COMPILE_FROM - 1 else tuple(self._in_cache)
 
     @property
     def solver(self) -> ca.Function:
         """IPOPT on the NLP with its derivatives (derivatives.functions), built on first use and
-        again when they become compiled; build_s counts it."""
-        if self._solver is None or self._solver_compiled != self.compiled:
+        again when more phases become compiled; build_s counts it."""
+        if self._solver is None or self._solver_compiled != self.compiled_phases:
             start = time.perf_counter()
-            compiled = self.compiled
+            compiled = self.compiled_phases
             try:
                 nodes = derivatives.node_derivatives(self, compiled)
             except RuntimeError as error:  # the C compiler failed: "auto" goes on interpreted
@@ -200,10 +205,10 @@ class StrideNLP:
                     raise
                 warnings.warn(f"the stride NLP's node models did not compile, solved interpreted: {error}",
                               RuntimeWarning, stacklevel=2)
-                self.compile, compiled = False, False
+                self.compile, compiled = False, (False,) * len(self.phases)
                 nodes = derivatives.node_derivatives(self, compiled)
             self._solver_compiled = compiled
-            self._nlp = derivatives.problem(self, nodes) if compiled else self.problem
+            self._nlp = derivatives.problem(self, nodes) if any(compiled) else self.problem
             one_blas_thread()
             self._solver = ca.nlpsol("stride", "ipopt", self._nlp, {
                 "ipopt": self.options, "print_time": False, **derivatives.functions(self, nodes)})

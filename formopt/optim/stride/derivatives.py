@@ -83,11 +83,11 @@ def _key(node: ca.Function) -> str:
     return "\0".join([node.serialize(), _RECIPE])
 
 
-def cached(nlp) -> bool:
-    """Whether every phase's node model, compiled, is in the disk cache already (no C source
+def cached_phases(nlp) -> list[bool]:
+    """Per phase, whether its node model, compiled, is in the disk cache already (no C source
     generated: mechanics.compiled.keyed_cached; compiled as NodeDerivatives compiles it)."""
-    return all(keyed_cached(f"{node.name()}_{part}", _key(node), jacobian=k == 0)
-               for node in nlp.node_functions for k, part in enumerate(PARTS))
+    return [all(keyed_cached(f"{node.name()}_{part}", _key(node), jacobian=k == 0) for k, part in enumerate(PARTS))
+            for node in nlp.node_functions]
 
 
 def node_indices(nlp, i: int, k: int) -> np.ndarray:
@@ -110,9 +110,10 @@ def node_inputs(nlp, i: int, m: int, x: ca.MX) -> tuple[np.ndarray, ca.MX]:
     return idx, ca.reshape(x[ca.DM(idx.ravel(order="F").tolist())], idx.shape[0], m)
 
 
-def node_derivatives(nlp, compiled: bool = False) -> list[NodeDerivatives]:
-    """Each phase's NodeDerivatives (`compiled`: in C)."""
-    return [NodeDerivatives(node, compiled) for node in nlp.node_functions]
+def node_derivatives(nlp, compiled: bool | tuple[bool, ...] = False) -> list[NodeDerivatives]:
+    """Each phase's NodeDerivatives (`compiled`: in C; per phase, or all)."""
+    flags = compiled if isinstance(compiled, tuple) else (compiled,) * len(nlp.node_functions)
+    return [NodeDerivatives(node, c) for node, c in zip(nlp.node_functions, flags)]
 
 
 def problem(nlp, nodes: list[NodeDerivatives]) -> dict:

@@ -4,6 +4,8 @@ lives in benchmarks/stride_speed.py)."""
 
 import ctypes
 import os
+import shutil
+from dataclasses import replace
 from pathlib import Path
 
 import casadi as ca
@@ -64,7 +66,7 @@ def test_compiled_problem_is_the_same_nlp(solves):
 def test_auto_compiles_from_a_chains_nth_solve(solves, monkeypatch):
     (_, first), _ = solves
     monkeypatch.setattr(collocation, "COMPILE_FROM", 3)  # a short chain stands for a long one
-    monkeypatch.setattr(derivatives, "cached", lambda nlp: False)  # not compiled before
+    monkeypatch.setattr(derivatives, "cached_phases", lambda nlp: [False] * len(nlp.phases))  # not compiled before
     nlp = StrideNLP(JointSpace(paper_body()), SETTINGS)  # compiled="auto"
     seen = []
     for speed in (3.5, 3.6, 3.7):
@@ -98,8 +100,28 @@ def test_a_cached_build_is_used_without_generating_c(solves, monkeypatch):
     monkeypatch.setattr(compiled_functions, "_source", no_source)
     monkeypatch.setattr(derivatives, "_functions", no_source)
     nlp = StrideNLP(JointSpace(paper_body()), SETTINGS, compiled=True)
-    assert derivatives.cached(nlp)
+    assert all(derivatives.cached_phases(nlp))
     assert nlp.solve(ballistic(nlp, 3.5), 3.5).iterations == fast_first.iterations
+
+
+def test_auto_uses_the_phases_in_the_cache(solves, tmp_path, monkeypatch):
+    """A forefoot strike's NLP shares its flat, forefoot and flight phase models with the flat
+    strike's (the fixture's, compiled): "auto" runs those three as C from the first solve and
+    the landing interpreted, and solves as the interpreted NLP does."""
+    shared = [f for f in Path(os.environ["FORMOPT_CACHE"]).glob("node_*.so")
+              if f.name.split("_")[1] in ("flat", "forefoot", "flight")]
+    for library in shared:
+        shutil.copy(library, tmp_path)
+    monkeypatch.setenv("FORMOPT_CACHE", str(tmp_path))
+    settings = replace(SETTINGS, strike="forefoot", nodes=18)
+    mixed = StrideNLP(JointSpace(paper_body()), settings)
+    assert [p.name for p in mixed.phases] == ["landing", "flat", "forefoot", "flight"]
+    assert mixed.compiled_phases == (False, True, True, True) and not mixed.compiled
+    plain = StrideNLP(JointSpace(paper_body()), settings, compiled=False)
+    a, b = (nlp.solve(ballistic(nlp, 3.5), 3.5) for nlp in (plain, mixed))
+    assert mixed._nlp is not mixed.problem and not list(tmp_path.glob("node_landing_*"))  # nothing compiled
+    assert a.success and b.success and a.iterations == b.iterations
+    np.testing.assert_array_equal(b.x, a.x)  # C computes what CasADi's virtual machine does
 
 
 def test_auto_goes_on_interpreted_when_compiling_fails(solves, tmp_path, monkeypatch):
@@ -112,7 +134,7 @@ def test_auto_goes_on_interpreted_when_compiling_fails(solves, tmp_path, monkeyp
         raise RuntimeError(f"compiling {name} failed")
     monkeypatch.setattr(compiled_functions, "_compile", broken)
     monkeypatch.setattr(collocation, "COMPILE_FROM", 2)
-    monkeypatch.setattr(derivatives, "cached", lambda nlp: False)  # not compiled before
+    monkeypatch.setattr(derivatives, "cached_phases", lambda nlp: [False] * len(nlp.phases))  # not compiled before
     nlp = StrideNLP(JointSpace(paper_body()), SETTINGS, compiled="auto")
     assert nlp.solve(first.blocks, 3.5).success and nlp.compiled  # the next solve would compile
     with pytest.warns(RuntimeWarning, match="did not compile"):
