@@ -70,6 +70,22 @@ def keyed_cached(name: str, key: str, jacobian: bool = False) -> bool:
     return _target(_keyed(key, jacobian), name, FUNCTION_OPT).exists()
 
 
+def keyed_uses(name: str, key: str, add: int = 0) -> int:
+    """How many times a `keyed_library(name, key, ...)` not compiled was run interpreted
+    instead, over every process and run sharing the disk cache (a file beside the libraries,
+    one byte a use, appended: processes may count at once); `add`: this many uses counted
+    first. 0 where the cache cannot be written."""
+    path = _target(_keyed(key, False), name, FUNCTION_OPT).with_suffix(".uses")
+    try:
+        if add:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            with open(path, "ab") as uses:
+                uses.write(b"." * add)
+        return path.stat().st_size if path.exists() else 0
+    except OSError:
+        return 0
+
+
 def _keyed(key: str, jacobian: bool) -> str:
     return "\0".join([key, ca.__version__, repr(GENERATOR), str(jacobian)])
 
@@ -112,6 +128,29 @@ def _compile(source: str, name: str, level: str, target: Path | None = None) -> 
     if target.exists():
         return target
     target.parent.mkdir(parents=True, exist_ok=True)
+    with _locked(target):
+        if target.exists():  # another process compiled it while this one waited
+            return target
+        _build(cc, flags, source, name, target)
+    return target
+
+
+@contextlib.contextmanager
+def _locked(target: Path):
+    """One process at a time compiles `target` (a lock file beside it; POSIX): processes that
+    want one library at once (compare's band workers, `auto` compiling one variant's phases)
+    compile it once, the others wait for it."""
+    try:
+        import fcntl
+    except ImportError:  # not POSIX: each compiles, the atomic rename keeps one
+        yield
+        return
+    with open(target.with_suffix(".lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        yield
+
+
+def _build(cc: str, flags: tuple, source: str, name: str, target: Path) -> None:
     with tempfile.TemporaryDirectory(dir=target.parent) as tmp:
         c_file, so_file = Path(tmp) / f"{name}.c", Path(tmp) / target.name
         c_file.write_text(source)
@@ -120,7 +159,6 @@ def _compile(source: str, name: str, level: str, target: Path | None = None) -> 
         if done.returncode != 0:
             raise RuntimeError(f"compiling {name} failed:\n{done.stderr[-2000:]}")
         os.replace(so_file, target)  # atomic: a half-written library is never seen as built
-    return target
 
 
 def external(function: ca.Function, jacobian: bool = False) -> ca.Function:

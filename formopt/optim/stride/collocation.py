@@ -91,8 +91,11 @@ MUSCLE_WARM_START = {"mu_init": 3e-4}
 # benchmarks/stride_speed.py, 2026-11-26. "auto" rents before it buys: it compiles once the
 # chain's interpreted solves have cost about what the build does (28 s / 1.4 s saved a solve),
 # so a long chain (a search at a larger spend, a map) ends compiled and a short one (a stride, a
-# cadence curve, the tests) never pays a build; a build in the disk cache already (the same body
-# and phase models solved before) is used from the first solve. The iterates are the same to
+# cadence curve) does not pay a build; a build in the disk cache already (the same body and phase
+# models solved before) is used from the first solve, phase by phase. The rent is counted on disk
+# too, per phase model (derivatives.phase_uses): short chains that come back (compare's band
+# variants, 6 solves a trial, interpreted: 21 of T25's 54 s of CPU; the same runner's other
+# trials) compile once their solves over every run reach COMPILE_FROM. The iterates are the same to
 # round-off (compare's stride section on RBDS001 T25, 2688 iterations, all compiled against
 # "auto" from the 20th solve: the same numbers bit for bit, 2026-11-27).
 COMPILED: bool | str = "auto"
@@ -180,16 +183,21 @@ class StrideNLP:
     @property
     def compiled_phases(self) -> tuple[bool, ...]:
         """Per phase, whether the next solve's node model and derivatives run as C (`compile`:
-        True; or "auto" when a C compiler is found: every phase from the COMPILE_FROM-th solve,
-        before it those in the disk cache already, a phase model being shared by NLPs of one
-        body (a strike's, a sliding touchdown's variant: all but one phase); "auto" becomes
-        False, with a RuntimeWarning, when compiling fails)."""
+        True; or "auto" when a C compiler is found: every phase from the NLP's COMPILE_FROM-th
+        solve, before it those in the disk cache already, a phase model being shared by NLPs of
+        one body (a strike's, a sliding touchdown's variant: all but one phase), and those
+        whose model ran interpreted in COMPILE_FROM - 1 solves over every run sharing the disk
+        cache (derivatives.phase_uses: compare's band solves each variant 6 times a trial);
+        "auto" becomes False, with a RuntimeWarning, when compiling fails)."""
         n = len(self.phases)
         if self.compile != "auto" or not _has_compiler():
             return (self.compile is True,) * n
         if self._in_cache is None:  # looked up once: a library in the cache costs nothing to use
             self._in_cache = derivatives.cached_phases(self)
-        return (True,) * n if self.solves >= COMPILE_FROM - 1 else tuple(self._in_cache)
+        if self.solves >= COMPILE_FROM - 1:
+            return (True,) * n
+        uses = derivatives.phase_uses(self)  # this process's solves and every other run's
+        return tuple(c or u >= COMPILE_FROM - 1 for c, u in zip(self._in_cache, uses))
 
     @property
     def solver(self) -> ca.Function:
@@ -441,6 +449,8 @@ class StrideNLP:
         b = self.blocks
         clock = time.perf_counter()
         self.solves += 1
+        if self.compile == "auto" and not all(self._solver_compiled):  # "auto"'s rent, on disk
+            derivatives.phase_uses(self, tuple(not c for c in self._solver_compiled))
         out = solver(**start, p=np.array([speed, slope, mu]), lbx=np.concatenate(b.lower),
                      ubx=np.concatenate(b.upper), lbg=lbg, ubg=ubg)
         seconds = time.perf_counter() - clock

@@ -26,11 +26,12 @@ from __future__ import annotations
 
 import functools
 import inspect
+import weakref
 
 import casadi as ca
 import numpy as np
 
-from ...mechanics.compiled import keyed_cached, keyed_library
+from ...mechanics.compiled import keyed_cached, keyed_library, keyed_uses
 from .ocp import INTEGRANDS
 
 PARTS = ("value", "jacobian", "hessian")  # a node model's functions (`_functions`' order and names)
@@ -76,11 +77,24 @@ def _functions(node: ca.Function) -> tuple[ca.Function, ca.Function, ca.Function
 _RECIPE = inspect.getsource(_functions)
 
 
+_KEYS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # `_key`'s, per node Function
+
+
 def _key(node: ca.Function) -> str:
     """What determines the C sources of a node model's functions (`_functions`): the node
     Function serialised (its graph and constants: one body's, 2 ms) and how they are derived
     from it (the keyed library adds CasADi's version)."""
-    return "\0".join([node.serialize(), _RECIPE])
+    if node not in _KEYS:
+        _KEYS[node] = "\0".join([node.serialize(), _RECIPE])
+    return _KEYS[node]
+
+
+def phase_uses(nlp, add: tuple[bool, ...] | None = None) -> list[int]:
+    """Per phase, the solves that ran its node model interpreted, over every process and run
+    sharing the disk cache (mechanics.compiled.keyed_uses); `add`: per phase, whether to count
+    this solve first."""
+    add = add or (False,) * len(nlp.node_functions)
+    return [keyed_uses(node.name(), _key(node), int(a)) for node, a in zip(nlp.node_functions, add)]
 
 
 def cached_phases(nlp) -> list[bool]:
