@@ -10,7 +10,7 @@ one process; side by side, the per-step optima done the way the NLP was built be
 reference became one of its parameters: one PostureProblem (symbolic build and solver) per
 step. No peer tool computes this (OpenSim and Visual3D give the angles, not an optimum).
 
-    python benchmarks/compare_speed.py --stride T25 [--workers 1] [--json FILE]
+    python benchmarks/compare_speed.py --stride T25 [--workers 1] [--json FILE] [--compiled true]
     python benchmarks/compare_speed.py --diff BEFORE.json AFTER.json
 
 `--stride`: compare's stride section (studies.compare_stride.answer) for one runner of
@@ -20,7 +20,9 @@ caller of each IPOPT run: the free optimum, the cadence curve's attempts, the fa
 variants, the other strikes) and per NLP (strike, objective, a sliding touchdown, the body: 0
 the runner's, others the band's) the solves, iterations, CPU and ms an iteration, interpreted or
 compiled, and the CPU of the NLPs' and solvers' builds and of the forward checks;
-`--workers 1` puts every stage in this process. `--diff`: the stride sections of two
+`--workers 1` puts every stage in this process; `--compiled true` compiles every NLP's node
+models (collocation.COMPILED; once, then from the disk cache: the section with every NLP
+compiled). `--diff`: the stride sections of two
 comparison.json files (or --json files), number by number: each relative difference over 1e-9
 and the largest, and any other value that differs (the section's `seconds` left out).
 """
@@ -51,11 +53,15 @@ def main():
     parser.add_argument("--stride", help="compare's stride section of this runner (runners.toml)")
     parser.add_argument("--workers", type=int, default=None, help="--stride's processes (default: answer's)")
     parser.add_argument("--json", help="--stride: write the section's JSON here")
+    parser.add_argument("--compiled", choices=("auto", "true", "false"), default="auto",
+                        help="--stride: the stride NLPs' node models in C (collocation.COMPILED)")
     parser.add_argument("--diff", nargs=2, metavar=("BEFORE", "AFTER"))
     args = parser.parse_args()
     if args.diff:
         return diff(*args.diff)
     if args.stride:
+        from formopt.optim.stride import collocation
+        collocation.COMPILED = {"auto": "auto", "true": True, "false": False}[args.compiled]
         return stride_stages(args.stride, args.workers, args.json)
     exe = str(Path(sys.executable).with_name("formopt"))
     walls = []

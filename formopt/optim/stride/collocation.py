@@ -93,13 +93,17 @@ MUSCLE_WARM_START = {"mu_init": 3e-4}
 # so a long chain (a search at a larger spend, a map) ends compiled and a short one (a stride, a
 # cadence curve) does not pay a build; a build in the disk cache already (the same body and phase
 # models solved before) is used from the first solve, phase by phase. The rent is counted on disk
-# too, per phase model (derivatives.phase_uses): short chains that come back (compare's band
-# variants, 6 solves a trial, interpreted: 21 of T25's 54 s of CPU; the same runner's other
-# trials) compile once their solves over every run reach COMPILE_FROM. The iterates are the same to
+# too, per phase model, in IPOPT iterations (derivatives.phase_rent): short chains that come back
+# (compare's band variants, 6 solves a trial, interpreted: 21 of T25's 54 s of CPU; the same
+# runner's other trials) compile once they have run RENT_ITERATIONS interpreted over every run,
+# about a phase's build (5-7 s of cc at -O1) at the 3-4 ms an iteration it costs interpreted
+# (24 against 10-12 ms an iteration for four phases; compare_speed.py --stride T25, 2026-11-27).
+# The iterates are the same to
 # round-off (compare's stride section on RBDS001 T25, 2688 iterations, all compiled against
 # "auto" from the 20th solve: the same numbers bit for bit, 2026-11-27).
 COMPILED: bool | str = "auto"
 COMPILE_FROM = 20
+RENT_ITERATIONS = 2000
 
 
 # IPOPT's derivatives are assembled node by node (derivatives.py), each phase's node model's own
@@ -186,9 +190,9 @@ class StrideNLP:
         True; or "auto" when a C compiler is found: every phase from the NLP's COMPILE_FROM-th
         solve, before it those in the disk cache already, a phase model being shared by NLPs of
         one body (a strike's, a sliding touchdown's variant: all but one phase), and those
-        whose model ran interpreted in COMPILE_FROM - 1 solves over every run sharing the disk
-        cache (derivatives.phase_uses: compare's band solves each variant 6 times a trial);
-        "auto" becomes False, with a RuntimeWarning, when compiling fails)."""
+        whose model ran interpreted for RENT_ITERATIONS IPOPT iterations over every run sharing
+        the disk cache (derivatives.phase_rent); "auto" becomes False, with a RuntimeWarning,
+        when compiling fails)."""
         n = len(self.phases)
         if self.compile != "auto" or not _has_compiler():
             return (self.compile is True,) * n
@@ -196,8 +200,8 @@ class StrideNLP:
             self._in_cache = derivatives.cached_phases(self)
         if self.solves >= COMPILE_FROM - 1:
             return (True,) * n
-        uses = derivatives.phase_uses(self)  # this process's solves and every other run's
-        return tuple(c or u >= COMPILE_FROM - 1 for c, u in zip(self._in_cache, uses))
+        rent = derivatives.phase_rent(self)  # this process's iterations and every other run's
+        return tuple(c or r >= RENT_ITERATIONS for c, r in zip(self._in_cache, rent))
 
     @property
     def solver(self) -> ca.Function:
@@ -449,12 +453,12 @@ class StrideNLP:
         b = self.blocks
         clock = time.perf_counter()
         self.solves += 1
-        if self.compile == "auto" and not all(self._solver_compiled):  # "auto"'s rent, on disk
-            derivatives.phase_uses(self, tuple(not c for c in self._solver_compiled))
         out = solver(**start, p=np.array([speed, slope, mu]), lbx=np.concatenate(b.lower),
                      ubx=np.concatenate(b.upper), lbg=lbg, ubg=ubg)
         seconds = time.perf_counter() - clock
         stats = solver.stats()
+        if self.compile == "auto" and not all(self._solver_compiled):  # "auto"'s rent, on disk
+            derivatives.phase_rent(self, int(stats["iter_count"]), tuple(not c for c in self._solver_compiled))
         x = np.asarray(out["x"], float).ravel()
         return Solved(blocks=b.split(x), success=bool(stats["success"]),
                       status=str(stats["return_status"]), iterations=int(stats["iter_count"]),

@@ -89,12 +89,13 @@ def _key(node: ca.Function) -> str:
     return _KEYS[node]
 
 
-def phase_uses(nlp, add: tuple[bool, ...] | None = None) -> list[int]:
-    """Per phase, the solves that ran its node model interpreted, over every process and run
-    sharing the disk cache (mechanics.compiled.keyed_uses); `add`: per phase, whether to count
-    this solve first."""
-    add = add or (False,) * len(nlp.node_functions)
-    return [keyed_uses(node.name(), _key(node), int(a)) for node, a in zip(nlp.node_functions, add)]
+def phase_rent(nlp, iterations: int = 0, phases: tuple[bool, ...] | None = None) -> list[int]:
+    """Per phase, the IPOPT iterations that ran its node model interpreted, over every process
+    and run sharing the disk cache (mechanics.compiled.keyed_uses); `iterations` counted first
+    for the `phases` flagged."""
+    phases = phases or (False,) * len(nlp.node_functions)
+    return [keyed_uses(node.name(), _key(node), iterations if ran else 0)
+            for node, ran in zip(nlp.node_functions, phases)]
 
 
 def cached_phases(nlp) -> list[bool]:

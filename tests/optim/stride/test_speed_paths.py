@@ -67,7 +67,7 @@ def test_auto_compiles_from_a_chains_nth_solve(solves, monkeypatch):
     (_, first), _ = solves
     monkeypatch.setattr(collocation, "COMPILE_FROM", 3)  # a short chain stands for a long one
     monkeypatch.setattr(derivatives, "cached_phases", lambda nlp: [False] * len(nlp.phases))  # not compiled before
-    monkeypatch.setattr(derivatives, "phase_uses", lambda nlp, add=None: [0] * len(nlp.phases))  # nor solved
+    monkeypatch.setattr(derivatives, "phase_rent", lambda nlp, *args: [0] * len(nlp.phases))  # nor solved
     nlp = StrideNLP(JointSpace(paper_body()), SETTINGS)  # compiled="auto"
     seen = []
     for speed in (3.5, 3.6, 3.7):
@@ -125,16 +125,16 @@ def test_auto_uses_the_phases_in_the_cache(solves, tmp_path, monkeypatch):
     np.testing.assert_array_equal(b.x, a.x)  # C computes what CasADi's virtual machine does
 
 
-def test_auto_counts_interpreted_solves_over_runs(tmp_path, monkeypatch):
-    """"auto"'s rent is kept on disk, per phase model: after COMPILE_FROM - 1 interpreted
-    solves, by any NLP object or process sharing the cache, another NLP of the same phase
-    models compiles from its first solve; a cache of its own has counted none."""
+def test_auto_counts_interpreted_iterations_over_runs(tmp_path, monkeypatch):
+    """"auto"'s rent is kept on disk, per phase model, in IPOPT iterations: once RENT_ITERATIONS
+    ran interpreted, by any NLP object or process sharing the cache, another NLP of the same
+    phase models compiles from its first solve; a cache of its own has counted none."""
     monkeypatch.setenv("FORMOPT_CACHE", str(tmp_path))
-    monkeypatch.setattr(collocation, "COMPILE_FROM", 3)
     nlp = StrideNLP(JointSpace(paper_body()), SETTINGS)  # compiled="auto"
     first = nlp.solve(ballistic(nlp, 3.5), 3.5)
-    assert derivatives.phase_uses(nlp) == [1, 1, 1] and not any(nlp.compiled_phases)
-    nlp.resolve(first, 3.6)
+    assert derivatives.phase_rent(nlp) == [first.iterations] * 3 and not any(nlp.compiled_phases)
+    again = nlp.resolve(first, 3.6)
+    monkeypatch.setattr(collocation, "RENT_ITERATIONS", first.iterations + again.iterations)
     later = StrideNLP(JointSpace(paper_body()), SETTINGS)  # another run's NLP
     assert later.solves == 0 and later.compiled
     monkeypatch.setenv("FORMOPT_CACHE", str(tmp_path / "other"))
@@ -152,7 +152,7 @@ def test_auto_goes_on_interpreted_when_compiling_fails(solves, tmp_path, monkeyp
     monkeypatch.setattr(compiled_functions, "_compile", broken)
     monkeypatch.setattr(collocation, "COMPILE_FROM", 2)
     monkeypatch.setattr(derivatives, "cached_phases", lambda nlp: [False] * len(nlp.phases))  # not compiled before
-    monkeypatch.setattr(derivatives, "phase_uses", lambda nlp, add=None: [0] * len(nlp.phases))  # nor solved
+    monkeypatch.setattr(derivatives, "phase_rent", lambda nlp, *args: [0] * len(nlp.phases))  # nor solved
     nlp = StrideNLP(JointSpace(paper_body()), SETTINGS, compiled="auto")
     assert nlp.solve(first.blocks, 3.5).success and nlp.compiled  # the next solve would compile
     with pytest.warns(RuntimeWarning, match="did not compile"):
