@@ -71,10 +71,11 @@ def keyed_cached(name: str, key: str, jacobian: bool = False) -> bool:
 
 
 def keyed_uses(name: str, key: str, add: int = 0) -> int:
-    """How many times a `keyed_library(name, key, ...)` not compiled was run interpreted
-    instead, over every process and run sharing the disk cache (a file beside the libraries,
-    one byte a use, appended: processes may count at once); `add`: this many uses counted
-    first. 0 where the cache cannot be written."""
+    """How much a `keyed_library(name, key, ...)` not compiled was used interpreted instead,
+    in the caller's units (the stride's node models: IPOPT iterations), over every process and
+    run sharing the disk cache (a file beside the libraries, one byte a unit, appended:
+    processes may count at once); `add`: this many counted first. 0 where the cache cannot be
+    written."""
     path = _target(_keyed(key, False), name, FUNCTION_OPT).with_suffix(".uses")
     try:
         if add:

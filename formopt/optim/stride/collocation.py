@@ -94,13 +94,13 @@ MUSCLE_WARM_START = {"mu_init": 3e-4}
 # cadence curve) does not pay a build; a build in the disk cache already (the same body and phase
 # models solved before) is used from the first solve, phase by phase. The rent is counted on disk
 # too, per phase model, in IPOPT iterations (derivatives.phase_rent): short chains that come back
-# (compare's band variants, 6 solves a trial, interpreted: 21 of T25's 54 s of CPU; the same
+# (compare's band variants, 6 solves a trial, interpreted: 21.6 of T25's 58.4 s of CPU; the same
 # runner's other trials) compile once they have run RENT_ITERATIONS interpreted over every run,
 # about a phase's build (5-7 s of cc at -O1) at the 3-4 ms an iteration it costs interpreted
 # (24 against 10-12 ms an iteration for four phases; compare_speed.py --stride T25, 2026-11-27).
-# The iterates are the same to
-# round-off (compare's stride section on RBDS001 T25, 2688 iterations, all compiled against
-# "auto" from the 20th solve: the same numbers bit for bit, 2026-11-27).
+# The iterates are the same to round-off (compare's stride section on RBDS001 T25, 2688
+# iterations, all compiled against "auto" from the 20th solve, or phase by phase: the same
+# numbers bit for bit, 2026-11-27).
 COMPILED: bool | str = "auto"
 COMPILE_FROM = 20
 RENT_ITERATIONS = 2000

@@ -18,9 +18,9 @@ the whole graph, so a 40-node build takes a fraction of a second; the functions 
 node models and their derivatives optionally compiled to C, phase by phase (mechanics.compiled,
 cached on disk under the node Function serialised, `_key`: one phase model's libraries serve
 every NLP that holds it; `problem` then calls the compiled node models for IPOPT's f and g
-too): they are the evaluations' bulk (the paper's body, heel, 40 nodes, ms of CPU an IPOPT iteration: f, g,
-grad_f, jac_g and hess_lag 0.7, 0.8, 3.4, 3.5 and 8.8 interpreted, 0.08, 0.2, 0.3, 0.3 and 0.9
-compiled; benchmarks/stride_speed.py, docs/reference/performance.md).
+too): they are the evaluations' bulk (the paper's body, heel, 40 nodes, ms of CPU an IPOPT
+iteration: f, g, grad_f, jac_g and hess_lag 0.7, 0.8, 3.4, 3.5 and 8.8 interpreted, 0.08, 0.2,
+0.3, 0.3 and 0.9 compiled; benchmarks/stride_speed.py, docs/reference/performance.md).
 """
 
 from __future__ import annotations
