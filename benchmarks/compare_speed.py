@@ -10,15 +10,19 @@ one process; side by side, the per-step optima done the way the NLP was built be
 reference became one of its parameters: one PostureProblem (symbolic build and solver) per
 step. No peer tool computes this (OpenSim and Visual3D give the angles, not an optimum).
 
-    python benchmarks/compare_speed.py --stride T25 [--workers 1] [--json FILE]
+    python benchmarks/compare_speed.py --stride T25 [--workers 1] [--json FILE] [--compiled true]
     python benchmarks/compare_speed.py --diff BEFORE.json AFTER.json
 
 `--stride`: compare's stride section (studies.compare_stride.answer) for one runner of
 problems/compare/runners.toml (a part of its trial's name: T35, T25, 20160226): its wall and
 CPU time (this process and its pool's, resource.getrusage), and per stage of this process (the
 caller of each IPOPT run: the free optimum, the cadence curve's attempts, the family, the band's
-variants, the other strikes) the solves, iterations, CPU and ms an iteration, interpreted or
-compiled; `--workers 1` puts every stage in this process. `--diff`: the stride sections of two
+variants, the other strikes) and per NLP (strike, objective, a sliding touchdown, the body: 0
+the runner's, others the band's) the solves, iterations, CPU and ms an iteration, interpreted or
+compiled, and the CPU of the NLPs' and solvers' builds and of the forward checks;
+`--workers 1` puts every stage in this process; `--compiled true` compiles every NLP's node
+models (collocation.COMPILED; once, then from the disk cache: the section with every NLP
+compiled). `--diff`: the stride sections of two
 comparison.json files (or --json files), number by number: each relative difference over 1e-9
 and the largest, and any other value that differs (the section's `seconds` left out).
 """
@@ -49,11 +53,15 @@ def main():
     parser.add_argument("--stride", help="compare's stride section of this runner (runners.toml)")
     parser.add_argument("--workers", type=int, default=None, help="--stride's processes (default: answer's)")
     parser.add_argument("--json", help="--stride: write the section's JSON here")
+    parser.add_argument("--compiled", choices=("auto", "true", "false"), default="auto",
+                        help="--stride: the stride NLPs' node models in C (collocation.COMPILED)")
     parser.add_argument("--diff", nargs=2, metavar=("BEFORE", "AFTER"))
     args = parser.parse_args()
     if args.diff:
         return diff(*args.diff)
     if args.stride:
+        from formopt.optim.stride import collocation
+        collocation.COMPILED = {"auto": "auto", "true": True, "false": False}[args.compiled]
         return stride_stages(args.stride, args.workers, args.json)
     exe = str(Path(sys.executable).with_name("formopt"))
     walls = []
@@ -129,31 +137,57 @@ def cpu_s() -> float:
 def stride_stages(runner: str, workers: int | None, out: str | None) -> None:
     """The stride section's time for one runner, and per stage of this process (module doc)."""
     from formopt.optim.stride import collocation
-    from formopt.studies.compare_stride import answer
+    from formopt.studies import compare_stride
 
     c = comparison(runner)
     runs: dict = collections.defaultdict(lambda: [0, 0, 0.0])  # (stage, compiled): solves, iterations, CPU
+    nlps: dict = collections.defaultdict(lambda: [0, 0, 0.0])  # (NLP, compiled): the same
+    other: dict = collections.defaultdict(float)  # CPU s outside IPOPT: builds, forward checks
+    bodies: list = []  # the bodies met, in order (the NLP's label's body number)
     solve = collocation.StrideNLP._run
 
     def timed(nlp, solver, *args):
         stage = next((f.function for f in inspect.stack()[1:16] if f.function in STAGES), "other")
         start = time.process_time()
         got = solve(nlp, solver, *args)
-        row = runs[(stage, nlp._solver_compiled)]
-        row[0], row[1], row[2] = row[0] + 1, row[1] + got.iterations, row[2] + time.process_time() - start
+        spent = time.process_time() - start
+        for row in (runs[(stage, nlp._solver_compiled)], nlps[(label(nlp), nlp._solver_compiled)]):
+            row[0], row[1], row[2] = row[0] + 1, row[1] + got.iterations, row[2] + spent
         return got
 
+    def label(nlp) -> str:
+        s = nlp.settings
+        if nlp.js.body not in bodies:
+            bodies.append(nlp.js.body)
+        return f"{s.strike} {s.objective}{' slide' if s.touchdown == 'slide' else ''} body {bodies.index(nlp.js.body)}"
+
+    def cpu_of(name: str, fn):
+        def counted(*args, **kwargs):
+            start = time.process_time()
+            try:
+                return fn(*args, **kwargs)
+            finally:
+                other[name] += time.process_time() - start
+        return counted
+
     collocation.StrideNLP._run = timed
+    collocation.StrideNLP.__init__ = cpu_of("NLP builds (graphs)", collocation.StrideNLP.__init__)
+    collocation.StrideNLP.solver = property(cpu_of("solver builds (derivatives, compiles)",
+                                                   collocation.StrideNLP.solver.fget))
+    compare_stride.forward_checked = cpu_of("forward checks", compare_stride.forward_checked)
     wall, cpu, told = time.perf_counter(), cpu_s(), []
     stages = {"progress": lambda text: told.append((time.perf_counter() - wall, text))}
+    answer = compare_stride.answer
     section = answer(c, workers=workers, **stages) if workers else answer(c, **stages)
     wall, cpu = time.perf_counter() - wall, cpu_s() - cpu
     print("timeline (s, the stage told): " + "; ".join(f"{t:.1f} {text}" for t, text in told))
     print(f"compare's stride section, {runner}: {wall:.1f} s wall, {cpu:.1f} s CPU (this process and its "
           f"pool's), load {os.getloadavg()[0]:.1f} at the end")
-    print("stage (this process) | compiled | solves | iterations | CPU s | ms/iteration")
-    for (stage, compiled), (n, its, s) in sorted(runs.items(), key=lambda kv: -kv[1][2]):
-        print(f"{stage} | {compiled} | {n} | {its} | {s:.2f} | {s / max(its, 1) * 1e3:.1f}")
+    for what, rows in (("stage", runs), ("NLP", nlps)):
+        print(f"{what} (this process) | compiled | solves | iterations | CPU s | ms/iteration")
+        for (key, compiled), (n, its, s) in sorted(rows.items(), key=lambda kv: -kv[1][2]):
+            print(f"{key} | {compiled} | {n} | {its} | {s:.2f} | {s / max(its, 1) * 1e3:.1f}")
+    print("outside IPOPT (this process): " + "; ".join(f"{k} {v:.2f} s CPU" for k, v in other.items()))
     if out:
         Path(out).write_text(json.dumps(section.to_dict(), default=str))
 

@@ -97,10 +97,12 @@ def no_compile_by_chance():
     """The stride NLP's "auto" compilation (collocation.COMPILE_FROM) never starts by chance in
     the tests: collocation.build keeps NLPs per process, so one NLP's solves add up across the
     tests of a worker in whatever order they run (test_search's imposed-cadence test made the
-    20th solve and compiled the node models: 5 s of cc). test_speed_paths tests the path with its
-    own COMPILE_FROM; the compiled solves are checked there against the interpreted ones."""
+    20th solve and compiled the node models: 5 s of cc), nor from the rent kept in the disk cache,
+    which the tests' cache keeps between runs (RENT_ITERATIONS). test_speed_paths tests the paths
+    with its own; the compiled solves are checked there against the interpreted ones."""
     mp = pytest.MonkeyPatch()
     mp.setattr(collocation, "COMPILE_FROM", 10**9)
+    mp.setattr(collocation, "RENT_ITERATIONS", 10**9)
     yield
     mp.undo()
 

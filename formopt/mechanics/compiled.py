@@ -2,7 +2,9 @@
 
 `library(f)` generates C for f, compiles it with the system's C compiler and caches the shared
 library under a key of the generated source and the compiler flags, so a second run (or a
-second process) does not compile again. `external(f)` loads it back as a CasADi Function (for
+second process) does not compile again; `keyed_library(name, key, f)` caches it under a key
+the caller gives instead (what determines f's source, cheaper to make than the source: a library
+on disk is then found without generating C). `external(f)` loads it back as a CasADi Function (for
 use inside other CasADi graphs, or mapped over batches); `Compiled(f)` calls that external
 through CasADi's `Function.buffer()` on preallocated numpy arrays, which costs about a
 microsecond per call instead of CasADi's Python dispatch (`f.call`, tens of microseconds).
@@ -21,6 +23,7 @@ import os
 import shutil
 import subprocess
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
 
 import casadi as ca
@@ -31,6 +34,7 @@ FLAGS = ("-fPIC", "-shared", "-fno-math-errno")
 # thousands of lines, called a few dozen times per solve) compile ten times faster at -O0 and
 # solve almost as fast: IPOPT's own work dominates (benchmarks/solve_speed.py).
 FUNCTION_OPT, NLP_OPT = "-O1", "-O0"
+GENERATOR = {"with_header": False}  # CasADi's code generator's options
 
 
 def cache_dir() -> Path:
@@ -51,15 +55,45 @@ def library(function: ca.Function, jacobian: bool = False) -> Path:
     return _compile(_source(function, jacobian), function.name(), FUNCTION_OPT)
 
 
-def cached(function: ca.Function, jacobian: bool = False) -> bool:
-    """Whether `library(function, jacobian)` is in the disk cache already (nothing is compiled;
-    generating the C source costs tens of milliseconds)."""
-    return _target(_source(function, jacobian), function.name(), FUNCTION_OPT).exists()
+def keyed_library(name: str, key: str, function: Callable[[], ca.Function], jacobian: bool = False) -> Path:
+    """As `library(function(), jacobian)`, cached under `key` instead of its C source: a text
+    that determines the source (with CasADi's version and GENERATOR, which the key takes in), so
+    a library on disk is found without generating C (the source of a stride node model's
+    Hessian, hundreds of kB, costs about 0.1 s). `function()`, the Function named `name`, is
+    called only when the library is compiled."""
+    target = _target(_keyed(key, jacobian), name, FUNCTION_OPT)
+    return target if target.exists() else _compile(_source(function(), jacobian), name, FUNCTION_OPT, target)
+
+
+def keyed_cached(name: str, key: str, jacobian: bool = False) -> bool:
+    """Whether `keyed_library(name, key, ..., jacobian)` is in the disk cache already."""
+    return _target(_keyed(key, jacobian), name, FUNCTION_OPT).exists()
+
+
+def keyed_uses(name: str, key: str, add: int = 0) -> int:
+    """How much a `keyed_library(name, key, ...)` not compiled was used interpreted instead,
+    in the caller's units (the stride's node models: IPOPT iterations), over every process and
+    run sharing the disk cache (a file beside the libraries, one byte a unit, appended:
+    processes may count at once); `add`: this many counted first. 0 where the cache cannot be
+    written."""
+    path = _target(_keyed(key, False), name, FUNCTION_OPT).with_suffix(".uses")
+    try:
+        if add:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            with open(path, "ab") as uses:
+                uses.write(b"." * add)
+        return path.stat().st_size if path.exists() else 0
+    except OSError:
+        return 0
+
+
+def _keyed(key: str, jacobian: bool) -> str:
+    return "\0".join([key, ca.__version__, repr(GENERATOR), str(jacobian)])
 
 
 def _source(function: ca.Function, jacobian: bool) -> str:
     """The C source of `function` (and of its Jacobian, `jacobian`)."""
-    generator = ca.CodeGenerator(f"{function.name()}.c", {"with_header": False})
+    generator = ca.CodeGenerator(f"{function.name()}.c", GENERATOR)
     generator.add(function)
     if jacobian:
         generator.add(function.jacobian())
@@ -82,17 +116,42 @@ def cached_nlpsol(name: str, nlp: dict, opts: dict, compiled: bool = False) -> c
     return ca.nlpsol(name, "ipopt", str(_compile(source, f"{name}_nlp", NLP_OPT)), opts)
 
 
-def _target(source: str, name: str, level: str) -> Path:
-    """The cached library's path: keyed by the source, the compiler and its flags."""
-    key = hashlib.sha256("\0".join([source, compiler(), level, *FLAGS]).encode()).hexdigest()[:20]
-    return cache_dir() / f"{name}_{key}.so"
+def _target(key: str, name: str, level: str) -> Path:
+    """The cached library's path: keyed by its source (or `keyed_library`'s key), the compiler
+    and its flags."""
+    digest = hashlib.sha256("\0".join([key, compiler(), level, *FLAGS]).encode()).hexdigest()[:20]
+    return cache_dir() / f"{name}_{digest}.so"
 
 
-def _compile(source: str, name: str, level: str) -> Path:
-    cc, flags, target = compiler(), (level, *FLAGS), _target(source, name, level)
+def _compile(source: str, name: str, level: str, target: Path | None = None) -> Path:
+    """The library of `source` at `target` (default: keyed by the source), compiled unless there."""
+    cc, flags, target = compiler(), (level, *FLAGS), target or _target(source, name, level)
     if target.exists():
         return target
     target.parent.mkdir(parents=True, exist_ok=True)
+    with _locked(target):
+        if target.exists():  # another process compiled it while this one waited
+            return target
+        _build(cc, flags, source, name, target)
+    return target
+
+
+@contextlib.contextmanager
+def _locked(target: Path):
+    """One process at a time compiles `target` (a lock file beside it; POSIX): processes that
+    want one library at once (compare's band workers, `auto` compiling one variant's phases)
+    compile it once, the others wait for it."""
+    try:
+        import fcntl
+    except ImportError:  # not POSIX: each compiles, the atomic rename keeps one
+        yield
+        return
+    with open(target.with_suffix(".lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        yield
+
+
+def _build(cc: str, flags: tuple, source: str, name: str, target: Path) -> None:
     with tempfile.TemporaryDirectory(dir=target.parent) as tmp:
         c_file, so_file = Path(tmp) / f"{name}.c", Path(tmp) / target.name
         c_file.write_text(source)
@@ -101,7 +160,6 @@ def _compile(source: str, name: str, level: str) -> Path:
         if done.returncode != 0:
             raise RuntimeError(f"compiling {name} failed:\n{done.stderr[-2000:]}")
         os.replace(so_file, target)  # atomic: a half-written library is never seen as built
-    return target
 
 
 def external(function: ca.Function, jacobian: bool = False) -> ca.Function:

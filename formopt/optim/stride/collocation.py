@@ -91,12 +91,19 @@ MUSCLE_WARM_START = {"mu_init": 3e-4}
 # benchmarks/stride_speed.py, 2026-11-26. "auto" rents before it buys: it compiles once the
 # chain's interpreted solves have cost about what the build does (28 s / 1.4 s saved a solve),
 # so a long chain (a search at a larger spend, a map) ends compiled and a short one (a stride, a
-# cadence curve, the tests) never pays a build; a build in the disk cache already (the same body
-# and phase models solved before) is used from the first solve. The iterates are the same to
-# round-off (compare's stride section on RBDS001 T25, 2688 iterations, all compiled against
-# "auto" from the 20th solve: the same numbers bit for bit, 2026-11-27).
+# cadence curve) does not pay a build; a build in the disk cache already (the same body and phase
+# models solved before) is used from the first solve, phase by phase. The rent is counted on disk
+# too, per phase model, in IPOPT iterations (derivatives.phase_rent): short chains that come back
+# (compare's band variants, 6 solves a trial, interpreted: 21.6 of T25's 58.4 s of CPU; the same
+# runner's other trials) compile once they have run RENT_ITERATIONS interpreted over every run,
+# about a phase's build (5-7 s of cc at -O1) at the 3-4 ms an iteration it costs interpreted
+# (24 against 10-12 ms an iteration for four phases; compare_speed.py --stride T25, 2026-11-27).
+# The iterates are the same to round-off (compare's stride section on RBDS001 T25, 2688
+# iterations, all compiled against "auto" from the 20th solve, or phase by phase: the same
+# numbers bit for bit, 2026-11-27).
 COMPILED: bool | str = "auto"
 COMPILE_FROM = 20
+RENT_ITERATIONS = 2000
 
 
 # IPOPT's derivatives are assembled node by node (derivatives.py), each phase's node model's own
@@ -165,8 +172,8 @@ class StrideNLP:
                         "max_iter": settings.max_iter, "tol": settings.tolerance, **(ipopt or {})}
         self._solver: ca.Function | None = None
         self._warm_solver: ca.Function | None = None
-        self._solver_compiled = False  # whether _solver's node models and derivatives are C
-        self._in_cache: bool | None = None  # whether they are in the disk cache (`compiled`)
+        self._solver_compiled: tuple = ()  # per phase, whether _solver's node model and derivatives are C
+        self._in_cache: list[bool] | None = None  # per phase, whether they are in the disk cache
         self._nlp = self.problem  # the solvers' problem (derivatives.problem when compiled)
         self.solves = 0  # IPOPT runs of this NLP
         self.lbg = np.concatenate(self.node_rows.lower + self.rows.lower)
@@ -175,25 +182,35 @@ class StrideNLP:
 
     @property
     def compiled(self) -> bool:
-        """Whether the next solve's node models and derivatives run as C (`compile`: True, or
-        "auto" when a C compiler is found, from the first solve when they are in the disk cache
-        already, else from the COMPILE_FROM-th; "auto" becomes False, with a RuntimeWarning,
+        """Whether the next solve's node models and derivatives all run as C (`compiled_phases`)."""
+        return all(self.compiled_phases)
+
+    @property
+    def compiled_phases(self) -> tuple[bool, ...]:
+        """Per phase, whether the next solve's node model and derivatives run as C (`compile`:
+        True; or "auto" when a C compiler is found: every phase from the NLP's COMPILE_FROM-th
+        solve, before it those in the disk cache already, a phase model being shared by NLPs of
+        one body (a strike's, a sliding touchdown's variant: all but one phase), and those
+        whose model ran interpreted for RENT_ITERATIONS IPOPT iterations over every run sharing
+        the disk cache (derivatives.phase_rent); "auto" becomes False, with a RuntimeWarning,
         when compiling fails)."""
-        if self.compile != "auto":
-            return bool(self.compile)
-        if not _has_compiler():
-            return False
+        n = len(self.phases)
+        if self.compile != "auto" or not _has_compiler():
+            return (self.compile is True,) * n
         if self._in_cache is None:  # looked up once: a library in the cache costs nothing to use
-            self._in_cache = derivatives.cached(self)
-        return self._in_cache or self.solves >= COMPILE_FROM - 1
+            self._in_cache = derivatives.cached_phases(self)
+        if self.solves >= COMPILE_FROM - 1:
+            return (True,) * n
+        rent = derivatives.phase_rent(self)  # this process's iterations and every other run's
+        return tuple(c or r >= RENT_ITERATIONS for c, r in zip(self._in_cache, rent))
 
     @property
     def solver(self) -> ca.Function:
         """IPOPT on the NLP with its derivatives (derivatives.functions), built on first use and
-        again when they become compiled; build_s counts it."""
-        if self._solver is None or self._solver_compiled != self.compiled:
+        again when more phases become compiled; build_s counts it."""
+        if self._solver is None or self._solver_compiled != self.compiled_phases:
             start = time.perf_counter()
-            compiled = self.compiled
+            compiled = self.compiled_phases
             try:
                 nodes = derivatives.node_derivatives(self, compiled)
             except RuntimeError as error:  # the C compiler failed: "auto" goes on interpreted
@@ -201,10 +218,10 @@ class StrideNLP:
                     raise
                 warnings.warn(f"the stride NLP's node models did not compile, solved interpreted: {error}",
                               RuntimeWarning, stacklevel=2)
-                self.compile, compiled = False, False
+                self.compile, compiled = False, (False,) * len(self.phases)
                 nodes = derivatives.node_derivatives(self, compiled)
             self._solver_compiled = compiled
-            self._nlp = derivatives.problem(self, nodes) if compiled else self.problem
+            self._nlp = derivatives.problem(self, nodes) if any(compiled) else self.problem
             one_blas_thread()
             self._solver = ca.nlpsol("stride", "ipopt", self._nlp, {
                 "ipopt": self.options, "print_time": False, **derivatives.functions(self, nodes)})
@@ -442,6 +459,8 @@ class StrideNLP:
                      ubx=np.concatenate(b.upper), lbg=lbg, ubg=ubg)
         seconds = time.perf_counter() - clock
         stats = solver.stats()
+        if self.compile == "auto" and not all(self._solver_compiled):  # "auto"'s rent, on disk
+            derivatives.phase_rent(self, int(stats["iter_count"]), tuple(not c for c in self._solver_compiled))
         x = np.asarray(out["x"], float).ravel()
         return Solved(blocks=b.split(x), success=bool(stats["success"]),
                       status=str(stats["return_status"]), iterations=int(stats["iter_count"]),

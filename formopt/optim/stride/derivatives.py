@@ -15,34 +15,50 @@ integrals):
 
 with Phi = lam_f F + lam_R . R (the Lagrangian's part outside the nodes). Nothing is derived on
 the whole graph, so a 40-node build takes a fraction of a second; the functions are SX, the
-node models and their derivatives optionally compiled to C (mechanics.compiled, cached on disk
-by their source; `problem` then calls the compiled node models for IPOPT's f and g too): they
-are the evaluations' bulk (the paper's body, heel, 40 nodes, ms of CPU an IPOPT iteration: f, g,
-grad_f, jac_g and hess_lag 0.7, 0.8, 3.4, 3.5 and 8.8 interpreted, 0.08, 0.2, 0.3, 0.3 and 0.9
-compiled; benchmarks/stride_speed.py, docs/reference/performance.md).
+node models and their derivatives optionally compiled to C, phase by phase (mechanics.compiled,
+cached on disk under the node Function serialised, `_key`: one phase model's libraries serve
+every NLP that holds it; `problem` then calls the compiled node models for IPOPT's f and g
+too): they are the evaluations' bulk (the paper's body, heel, 40 nodes, ms of CPU an IPOPT
+iteration: f, g, grad_f, jac_g and hess_lag 0.7, 0.8, 3.4, 3.5 and 8.8 interpreted, 0.08, 0.2,
+0.3, 0.3 and 0.9 compiled; benchmarks/stride_speed.py, docs/reference/performance.md).
 """
 
 from __future__ import annotations
 
+import functools
+import inspect
+import weakref
+
 import casadi as ca
 import numpy as np
 
-from ...mechanics.compiled import cached as is_cached
-from ...mechanics.compiled import external
+from ...mechanics.compiled import keyed_cached, keyed_library, keyed_uses
 from .ocp import INTEGRANDS
+
+PARTS = ("value", "jacobian", "hessian")  # a node model's functions (`_functions`' order and names)
 
 
 class NodeDerivatives:
     """One phase's node Function (collocation.StrideNLP.node_functions) on the stacked node
     vector z: its outputs [rows; integrands], their Jacobian and the Hessian of w . outputs;
-    `compiled`: the three as C (mechanics.compiled.external; the outputs with their Jacobian,
-    so that CasADi can differentiate a graph calling them), else SX."""
+    `compiled`: the three as C (mechanics.compiled.keyed_library under `_key`; the outputs with
+    their Jacobian, so that CasADi can differentiate a graph calling them; derived and generated
+    only when not in the disk cache), else SX."""
 
     def __init__(self, node: ca.Function, compiled: bool = False):
         self.rows = node.size1_out(0)
-        value, jacobian, hessian = _functions(node)
-        self.value, self.jacobian, self.hessian = ((external(value, jacobian=True), external(jacobian), external(hessian))
-                                                   if compiled else (value, jacobian, hessian))
+        if not compiled:
+            self.value, self.jacobian, self.hessian = _functions(node)
+            return
+        derived, key = functools.cache(functools.partial(_functions, node)), _key(node)
+        self.value, self.jacobian, self.hessian = (_library(node, k, key, derived) for k in range(len(PARTS)))
+
+
+def _library(node: ca.Function, k: int, key: str, derived) -> ca.Function:
+    """The node model's function PARTS[k] compiled, from the disk cache when there (`key`:
+    `_key(node)`; `derived()`: `_functions(node)`, called only to compile)."""
+    name = f"{node.name()}_{PARTS[k]}"
+    return ca.external(name, str(keyed_library(name, key, lambda: derived()[k], jacobian=k == 0)))
 
 
 def _functions(node: ca.Function) -> tuple[ca.Function, ca.Function, ca.Function]:
@@ -58,11 +74,36 @@ def _functions(node: ca.Function) -> tuple[ca.Function, ca.Function, ca.Function
             ca.Function(f"{node.name()}_hessian", [z, p, w], [ca.hessian(ca.dot(w, out), z)[0]]))
 
 
-def cached(nlp) -> bool:
-    """Whether every phase's node model, compiled, is in the disk cache already
-    (mechanics.compiled.cached; compiled as NodeDerivatives compiles it)."""
-    return all(is_cached(f, jacobian=k == 0) for node in nlp.node_functions
-               for k, f in enumerate(_functions(node)))
+# what the compiled node models' sources are made by, besides the node Function (`_key`)
+_RECIPE = inspect.getsource(_functions)
+
+
+_KEYS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # `_key`'s, per node Function
+
+
+def _key(node: ca.Function) -> str:
+    """What determines the C sources of a node model's functions (`_functions`): the node
+    Function serialised (its graph and constants: one body's, 2 ms) and how they are derived
+    from it (the keyed library adds CasADi's version)."""
+    if node not in _KEYS:
+        _KEYS[node] = "\0".join([node.serialize(), _RECIPE])
+    return _KEYS[node]
+
+
+def phase_rent(nlp, iterations: int = 0, phases: tuple[bool, ...] | None = None) -> list[int]:
+    """Per phase, the IPOPT iterations that ran its node model interpreted, over every process
+    and run sharing the disk cache (mechanics.compiled.keyed_uses); `iterations` counted first
+    for the `phases` flagged."""
+    phases = phases or (False,) * len(nlp.node_functions)
+    return [keyed_uses(node.name(), _key(node), iterations if ran else 0)
+            for node, ran in zip(nlp.node_functions, phases)]
+
+
+def cached_phases(nlp) -> list[bool]:
+    """Per phase, whether its node model, compiled, is in the disk cache already (no C source
+    generated: mechanics.compiled.keyed_cached; compiled as NodeDerivatives compiles it)."""
+    return [all(keyed_cached(f"{node.name()}_{part}", _key(node), jacobian=k == 0) for k, part in enumerate(PARTS))
+            for node in nlp.node_functions]
 
 
 def node_indices(nlp, i: int, k: int) -> np.ndarray:
@@ -85,9 +126,10 @@ def node_inputs(nlp, i: int, m: int, x: ca.MX) -> tuple[np.ndarray, ca.MX]:
     return idx, ca.reshape(x[ca.DM(idx.ravel(order="F").tolist())], idx.shape[0], m)
 
 
-def node_derivatives(nlp, compiled: bool = False) -> list[NodeDerivatives]:
-    """Each phase's NodeDerivatives (`compiled`: in C)."""
-    return [NodeDerivatives(node, compiled) for node in nlp.node_functions]
+def node_derivatives(nlp, compiled: bool | tuple[bool, ...] = False) -> list[NodeDerivatives]:
+    """Each phase's NodeDerivatives (`compiled`: in C; per phase, or all)."""
+    flags = compiled if isinstance(compiled, tuple) else (compiled,) * len(nlp.node_functions)
+    return [NodeDerivatives(node, c) for node, c in zip(nlp.node_functions, flags)]
 
 
 def problem(nlp, nodes: list[NodeDerivatives]) -> dict:

@@ -4,6 +4,8 @@ lives in benchmarks/stride_speed.py)."""
 
 import ctypes
 import os
+import shutil
+from dataclasses import replace
 from pathlib import Path
 
 import casadi as ca
@@ -64,7 +66,8 @@ def test_compiled_problem_is_the_same_nlp(solves):
 def test_auto_compiles_from_a_chains_nth_solve(solves, monkeypatch):
     (_, first), _ = solves
     monkeypatch.setattr(collocation, "COMPILE_FROM", 3)  # a short chain stands for a long one
-    monkeypatch.setattr(derivatives, "cached", lambda nlp: False)  # not compiled before
+    monkeypatch.setattr(derivatives, "cached_phases", lambda nlp: [False] * len(nlp.phases))  # not compiled before
+    monkeypatch.setattr(derivatives, "phase_rent", lambda nlp, *args: [0] * len(nlp.phases))  # nor solved
     nlp = StrideNLP(JointSpace(paper_body()), SETTINGS)  # compiled="auto"
     seen = []
     for speed in (3.5, 3.6, 3.7):
@@ -88,16 +91,68 @@ def test_auto_uses_a_cached_build_from_the_first_solve(solves, tmp_path, monkeyp
     assert not StrideNLP(JointSpace(paper_body()), SETTINGS).compiled
 
 
-def test_auto_goes_on_interpreted_when_compiling_fails(solves, monkeypatch):
+def test_a_cached_build_is_used_without_generating_c(solves, monkeypatch):
+    """A node model in the disk cache is found by its key (the node Function serialised) and
+    loaded as it is: no C source generated, nothing derived, the same solve."""
+    _, (_, fast_first) = solves
+
+    def no_source(function, jacobian):
+        raise AssertionError(f"C source of {function.name()} generated")
+    monkeypatch.setattr(compiled_functions, "_source", no_source)
+    monkeypatch.setattr(derivatives, "_functions", no_source)
+    nlp = StrideNLP(JointSpace(paper_body()), SETTINGS, compiled=True)
+    assert all(derivatives.cached_phases(nlp))
+    assert nlp.solve(ballistic(nlp, 3.5), 3.5).iterations == fast_first.iterations
+
+
+def test_auto_uses_the_phases_in_the_cache(solves, tmp_path, monkeypatch):
+    """A forefoot strike's NLP shares its flat, forefoot and flight phase models with the flat
+    strike's (the fixture's, compiled): "auto" runs those three as C from the first solve and
+    the landing interpreted, and solves as the interpreted NLP does."""
+    shared = [f for f in Path(os.environ["FORMOPT_CACHE"]).glob("node_*.so")
+              if f.name.split("_")[1] in ("flat", "forefoot", "flight")]
+    for library in shared:
+        shutil.copy(library, tmp_path)
+    monkeypatch.setenv("FORMOPT_CACHE", str(tmp_path))
+    settings = replace(SETTINGS, strike="forefoot", nodes=18)
+    mixed = StrideNLP(JointSpace(paper_body()), settings)
+    assert [p.name for p in mixed.phases] == ["landing", "flat", "forefoot", "flight"]
+    assert mixed.compiled_phases == (False, True, True, True) and not mixed.compiled
+    plain = StrideNLP(JointSpace(paper_body()), settings, compiled=False)
+    a, b = (nlp.solve(ballistic(nlp, 3.5), 3.5) for nlp in (plain, mixed))
+    assert mixed._nlp is not mixed.problem and not list(tmp_path.glob("node_landing_*.so"))  # nothing compiled
+    assert a.success and b.success and a.iterations == b.iterations
+    np.testing.assert_array_equal(b.x, a.x)  # C computes what CasADi's virtual machine does
+
+
+def test_auto_counts_interpreted_iterations_over_runs(tmp_path, monkeypatch):
+    """"auto"'s rent is kept on disk, per phase model, in IPOPT iterations: once RENT_ITERATIONS
+    ran interpreted, by any NLP object or process sharing the cache, another NLP of the same
+    phase models compiles from its first solve; a cache of its own has counted none."""
+    monkeypatch.setenv("FORMOPT_CACHE", str(tmp_path))
+    nlp = StrideNLP(JointSpace(paper_body()), SETTINGS)  # compiled="auto"
+    first = nlp.solve(ballistic(nlp, 3.5), 3.5)
+    assert derivatives.phase_rent(nlp) == [first.iterations] * 3 and not any(nlp.compiled_phases)
+    again = nlp.resolve(first, 3.6)
+    monkeypatch.setattr(collocation, "RENT_ITERATIONS", first.iterations + again.iterations)
+    later = StrideNLP(JointSpace(paper_body()), SETTINGS)  # another run's NLP
+    assert later.solves == 0 and later.compiled
+    monkeypatch.setenv("FORMOPT_CACHE", str(tmp_path / "other"))
+    assert not StrideNLP(JointSpace(paper_body()), SETTINGS).compiled
+
+
+def test_auto_goes_on_interpreted_when_compiling_fails(solves, tmp_path, monkeypatch):
     """A C compiler that is found but fails: "auto" warns and solves interpreted (a long chain
     goes on), True raises."""
     (_, first), _ = solves
+    monkeypatch.setenv("FORMOPT_CACHE", str(tmp_path))  # an empty cache: each library compiles
 
-    def broken(source, name, level):
+    def broken(source, name, level, target=None):
         raise RuntimeError(f"compiling {name} failed")
     monkeypatch.setattr(compiled_functions, "_compile", broken)
     monkeypatch.setattr(collocation, "COMPILE_FROM", 2)
-    monkeypatch.setattr(derivatives, "cached", lambda nlp: False)  # not compiled before
+    monkeypatch.setattr(derivatives, "cached_phases", lambda nlp: [False] * len(nlp.phases))  # not compiled before
+    monkeypatch.setattr(derivatives, "phase_rent", lambda nlp, *args: [0] * len(nlp.phases))  # nor solved
     nlp = StrideNLP(JointSpace(paper_body()), SETTINGS, compiled="auto")
     assert nlp.solve(first.blocks, 3.5).success and nlp.compiled  # the next solve would compile
     with pytest.warns(RuntimeWarning, match="did not compile"):
