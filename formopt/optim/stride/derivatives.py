@@ -74,8 +74,17 @@ def _functions(node: ca.Function) -> tuple[ca.Function, ca.Function, ca.Function
             ca.Function(f"{node.name()}_hessian", [z, p, w], [ca.hessian(ca.dot(w, out), z)[0]]))
 
 
-# what the compiled node models' sources are made by, besides the node Function (`_key`)
-_RECIPE = inspect.getsource(_functions)
+def _recipe() -> str:
+    """What the compiled node models' sources are made by, besides the node Function (`_key`):
+    `_functions`' source, or formopt's version where the source is not installed."""
+    try:
+        return inspect.getsource(_functions)
+    except (OSError, TypeError):
+        from ... import __version__
+        return f"formopt {__version__}"
+
+
+_RECIPE = _recipe()
 
 
 _KEYS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # `_key`'s, per node Function
