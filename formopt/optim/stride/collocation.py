@@ -459,7 +459,7 @@ class StrideNLP:
                      ubx=np.concatenate(b.upper), lbg=lbg, ubg=ubg)
         seconds = time.perf_counter() - clock
         stats = solver.stats()
-        if self.compile == "auto" and not all(self._solver_compiled):  # "auto"'s rent, on disk
+        if self.compile == "auto" and not all(self._solver_compiled) and _has_compiler():  # "auto"'s rent, on disk
             derivatives.phase_rent(self, int(stats["iter_count"]), tuple(not c for c in self._solver_compiled))
         x = np.asarray(out["x"], float).ravel()
         return Solved(blocks=b.split(x), success=bool(stats["success"]),

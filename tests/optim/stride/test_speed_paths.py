@@ -141,6 +141,17 @@ def test_auto_counts_interpreted_iterations_over_runs(tmp_path, monkeypatch):
     assert not StrideNLP(JointSpace(paper_body()), SETTINGS).compiled
 
 
+def test_auto_counts_no_rent_without_a_compiler(solves, tmp_path, monkeypatch):
+    """Without a C compiler "auto" never compiles: its interpreted iterations are not counted
+    (the rent's file would grow by a byte an iteration for nothing)."""
+    (_, first), _ = solves
+    monkeypatch.setenv("FORMOPT_CACHE", str(tmp_path))
+    monkeypatch.setattr(collocation, "_has_compiler", lambda: False)
+    nlp = StrideNLP(JointSpace(paper_body()), SETTINGS)  # compiled="auto"
+    assert nlp.solve(first.blocks, 3.5).success and not nlp.compiled
+    assert not list(tmp_path.glob("*.uses"))
+
+
 def test_auto_goes_on_interpreted_when_compiling_fails(solves, tmp_path, monkeypatch):
     """A C compiler that is found but fails: "auto" warns and solves interpreted (a long chain
     goes on), True raises."""
