@@ -52,13 +52,18 @@ def kept_cache(config) -> Path | None:
 
 def pytest_configure(config):
     """The kept compile cache's libraries older than KEEP_DAYS removed, once a run, by the main
-    process before any test (an xdist worker might be loading one)."""
+    process before any test (an xdist worker might be loading one), and "auto"'s rent
+    (collocation.RENT_ITERATIONS, the .uses files): each run counts from none, so that
+    processes no_compile_by_chance does not reach (the notebooks' kernel) do not start compiling
+    after enough runs."""
     root = kept_cache(config)
     if root is None or hasattr(config, "workerinput"):
         return
     for library in (root / "libraries").glob("*.so"):
         if time.time() - library.stat().st_mtime > KEEP_DAYS * 86400:
             library.unlink(missing_ok=True)
+    for rent in (root / "libraries").glob("*.uses"):
+        rent.unlink(missing_ok=True)
 
 
 @pytest.fixture(scope="session", autouse=True)
