@@ -123,8 +123,9 @@ class Release:
     holds it at or above the ground) and the transcription only by a layer one interval wide
     that costs O(h): the optimum converged as O(h) (objective 0.1625 / 0.1461 / 0.1382 at 20 /
     40 / 80 intervals, RBDS001, 3.5 m/s, 130 steps/min; problems/stride_mesh.py). The
-    trapezoid keeps the row: without it its coarse strides leave the ground pushing 2 body
-    weights, which its forward check rejects (0.16-0.22 rad at 24-40 nodes)."""
+    trapezoid keeps the row (but with StrideSettings.consistency_rows False): without it its
+    coarse strides leave the ground pushing 2 body weights, which its forward check rejects
+    (0.16-0.22 rad at 24-40 nodes)."""
 
     dropped: tuple[int, ...]  # the rows of the phase before whose force is zero at its end
     slide_end: str = ""  # the sliding point whose slip ends the phase
