@@ -203,8 +203,12 @@ def pinned(blocks: dict) -> dict:
 
 
 def phase_duration(text: str) -> tuple[str, float]:
-    """A phase's duration "phase=seconds" as (phase, seconds)."""
+    """A phase's duration "phase=seconds" as (phase, seconds); a phase StrideSettings does not
+    know is an error (it would hold nothing)."""
     phase, _, value = text.partition("=")
+    if phase not in StrideSettings().duration:
+        raise argparse.ArgumentTypeError(f"{text}: expected phase=seconds, a phase of "
+                                         f"{', '.join(StrideSettings().duration)}")
     return phase, float(value)
 
 
