@@ -19,6 +19,7 @@ import contextlib
 import ctypes
 import functools
 import hashlib
+import inspect
 import os
 import shutil
 import subprocess
@@ -87,8 +88,19 @@ def keyed_uses(name: str, key: str, add: int = 0) -> int:
         return 0
 
 
+def recipe(function) -> str:
+    """What a keyed library's C is made by, for its key: `function`'s source (a Python function
+    or class), or formopt's version where the sources are not installed."""
+    try:
+        return inspect.getsource(function)
+    except (OSError, TypeError):
+        from .. import __version__
+        return f"formopt {__version__}"
+
+
 def _keyed(key: str, jacobian: bool) -> str:
-    return "\0".join([key, ca.__version__, repr(GENERATOR), str(jacobian)])
+    """`keyed_library`'s key with what else makes its C: CasADi, its options, `_source`."""
+    return "\0".join([key, ca.__version__, repr(GENERATOR), _SOURCE_RECIPE, str(jacobian)])
 
 
 def _source(function: ca.Function, jacobian: bool) -> str:
@@ -98,6 +110,9 @@ def _source(function: ca.Function, jacobian: bool) -> str:
     if jacobian:
         generator.add(function.jacobian())
     return generator.dump()
+
+
+_SOURCE_RECIPE = recipe(_source)
 
 
 def cached_nlpsol(name: str, nlp: dict, opts: dict, compiled: bool = False) -> ca.Function:
@@ -146,9 +161,17 @@ def _locked(target: Path):
     except ImportError:  # not POSIX: each compiles, the atomic rename keeps one
         yield
         return
-    with open(target.with_suffix(".lock"), "w") as lock:
+    lock = None
+    try:
+        lock = open(target.with_suffix(".lock"), "w")
         fcntl.flock(lock, fcntl.LOCK_EX)
+    except OSError:  # a folder without locks (NFS without lockd): compile unlocked, as above
+        pass
+    try:
         yield
+    finally:
+        if lock is not None:
+            lock.close()
 
 
 def _build(cc: str, flags: tuple, source: str, name: str, target: Path) -> None:

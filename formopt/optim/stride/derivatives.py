@@ -26,13 +26,12 @@ iteration: f, g, grad_f, jac_g and hess_lag 0.7, 0.8, 3.4, 3.5 and 8.8 interpret
 from __future__ import annotations
 
 import functools
-import inspect
 import weakref
 
 import casadi as ca
 import numpy as np
 
-from ...mechanics.compiled import keyed_cached, keyed_library, keyed_uses
+from ...mechanics.compiled import keyed_cached, keyed_library, keyed_uses, recipe
 from .ocp import INTEGRANDS
 
 PARTS = ("value", "jacobian", "hessian")  # a node model's functions (`_functions`' order and names)
@@ -74,17 +73,8 @@ def _functions(node: ca.Function) -> tuple[ca.Function, ca.Function, ca.Function
             ca.Function(f"{node.name()}_hessian", [z, p, w], [ca.hessian(ca.dot(w, out), z)[0]]))
 
 
-def _recipe() -> str:
-    """What the compiled node models' sources are made by, besides the node Function (`_key`):
-    `_functions`' source, or formopt's version where the source is not installed."""
-    try:
-        return inspect.getsource(_functions)
-    except (OSError, TypeError):
-        from ... import __version__
-        return f"formopt {__version__}"
-
-
-_RECIPE = _recipe()
+# what the compiled node models' sources are made by, besides the node Function (`_key`)
+_RECIPE = recipe(_functions)
 
 
 _KEYS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # `_key`'s, per node Function
