@@ -7,8 +7,8 @@ the default path's (local.optimum's one start: problems/stride_ladder.py's); eac
 is solved from the one before, its node histories interpolated onto the finer mesh
 (guess.fitted, through local.optimum's guess), so every mesh solves the same stride.
 
-    python problems/muscle_mesh.py [--speed 3.5] [--strike heel|forefoot] [--nodes 40 80]
-                                   [--start search|path] [--spend 1]
+    python problems/muscle_mesh.py [--speed 3.5] [--strike heel|forefoot] [--nodes 40 80 160]
+                                   [--start search|path] [--spend 1] [--mu-init 1e-2 3e-4]
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -18,7 +18,11 @@ balance (% of W+), the reserves' largest moment (N m/kg), IPOPT's iterations (th
 solve's; the search's total in brackets) and the CPU seconds (time.process_time, the search
 or solve with its checks); after each finer mesh the change of cost and cadence from the
 one before (%), and at the end, with three meshes each twice the one before, their observed
-order and Richardson's limit (problems/stride_mesh.py's `convergence`).
+order and Richardson's limit (problems/stride_mesh.py's `convergence`). `--mu-init`: each finer
+mesh solved from the interpolated stride with IPOPT's barrier starting at each value (the
+muscles' cold solves start at collocation.MUSCLE_IPOPT's 1e-2, their warm starts at
+MUSCLE_WARM_START's 3e-4: a small barrier keeps the iterate near its start), each reported;
+the first value's stride is the one the next mesh starts from.
 """
 
 from __future__ import annotations
@@ -33,7 +37,7 @@ from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.limits import Range
 from formopt.optim.stride import problem, ranges
-from formopt.optim.stride.collocation import build
+from formopt.optim.stride.collocation import MUSCLE_IPOPT, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.problem import StrideSettings
 from formopt.optim.stride.search import global_optimum
@@ -60,6 +64,20 @@ def change(before, after) -> str:
             f"cadence {(after.cadence_spm / before.cadence_spm - 1) * 100:+.2f} %")
 
 
+def finer(nlp, speed: float, before, mu_inits: list[float]):
+    """The stride on `nlp`'s (finer) mesh from `before`'s interpolated onto it, solved with IPOPT's
+    barrier starting at each of `mu_inits` in turn, each reported with its change from `before`;
+    returns the first."""
+    out = []
+    for mu in mu_inits:
+        clock = time.process_time()
+        stride = optimum(nlp.variant({"mu_init": mu}), speed, guess=before.solved.blocks)
+        print(report(nlp.settings.nodes, stride, time.process_time() - clock) + f" (mu_init {mu:g})", flush=True)
+        print(change(before, stride), flush=True)
+        out.append(stride)
+    return out[0]
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
@@ -67,6 +85,8 @@ def main(argv=None) -> int:
     parser.add_argument("--nodes", type=int, nargs="+", default=[40, 80])
     parser.add_argument("--start", default="search", choices=("search", "path"))
     parser.add_argument("--spend", type=int, default=1)
+    parser.add_argument("--mu-init", type=float, nargs="+", default=[MUSCLE_IPOPT["mu_init"]],
+                        help="IPOPT's first barrier for each finer mesh's solve, each in turn")
     args = parser.parse_args(argv)
     ranges.RANGES["nodes"] = Range(14, max(args.nodes + [120]))  # past the scenes' 120: each finer mesh is warm
     body = scaled_body(62.0, 1.81)
@@ -77,16 +97,12 @@ def main(argv=None) -> int:
     for nodes in args.nodes:
         nlp = build(body, StrideSettings(strike=args.strike, nodes=nodes, muscles=body_muscles(body),
                                          objective="metabolic"))
+        if strides:
+            strides.append(finer(nlp, args.speed, strides[-1], args.mu_init))
+            continue
         clock = time.process_time()
-        if strides:
-            stride = optimum(nlp, args.speed, guess=strides[-1].solved.blocks)
-        elif args.start == "search":
-            stride = global_optimum(nlp, args.speed, spend=args.spend)
-        else:
-            stride = optimum(nlp, args.speed)
+        stride = global_optimum(nlp, args.speed, spend=args.spend) if args.start == "search" else optimum(nlp, args.speed)
         print(report(nodes, stride, time.process_time() - clock), flush=True)
-        if strides:
-            print(change(strides[-1], stride), flush=True)
         strides.append(stride)
     if len(strides) > 2:
         print("mesh convergence:")
