@@ -1,0 +1,118 @@
+"""The muscles' stride on N against 2N nodes (issue 34 item 2 on issue 33's body): RBDS001's body
+(62 kg, 1.81 m), `actuation = "muscles"` (io.muscle_table.body_muscles, "metabolic" objective,
+the default force-rate and reserve weights), free cadence, at one speed and strike. The first
+mesh's stride is the global search's answer there (optim.stride.search.global_optimum at
+`--spend`: the stride the tables of docs/concepts/muscles.md report), or with `--start path`
+the default path's (local.optimum's one start: problems/stride_ladder.py's); each finer mesh
+is solved from the one before, its node histories interpolated onto the finer mesh
+(guess.fitted, through local.optimum's guess), so every mesh solves the same stride.
+
+    python problems/muscle_mesh.py [--speed 3.5] [--strike heel|forefoot] [--nodes 40 80 160]
+                                   [--start search|path] [--spend 1] [--mu-init 3e-4 1e-2]
+
+Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
+durations (ms; one on its duration bound marked low or high), validity and the failed checks,
+the forward check's worst deviation per phase (rad: the excitations replayed, each phase
+from the NLP's state at its start), the held points' contact drift (mm), the energy budget's
+balance (% of W+), the reserves' largest moment (N m/kg), IPOPT's iterations (the kept
+solve's; the search's total in brackets) and the CPU seconds (time.process_time, the search
+or solve with its checks); after each finer mesh the change of cost and cadence from the
+one before (%), and at the end, with three meshes each twice the one before, their observed
+order and Richardson's limit (problems/stride_mesh.py's `convergence`). `--mu-init`: each finer
+mesh solved from the interpolated stride with IPOPT's barrier starting at each value, each
+reported; the first value's stride is the one the next mesh starts from. The default is the
+muscles' warm start's (collocation.MUSCLE_WARM_START, 3e-4), which keeps the iterate near the
+stride it starts from; their cold solves' 1e-2 (MUSCLE_IPOPT) can leave it: at 2.5 m/s (heel)
+the search's 152.9 steps/min at 40 nodes went to 148.0 at 80 from 3e-4, to 170.2 (another
+optimum, 6 % costlier) from 1e-2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+
+from stride_mesh import convergence  # problems/, this script's directory
+
+from formopt.io.muscle_table import body_muscles
+from formopt.mechanics.body import scaled_body
+from formopt.mechanics.limits import Range
+from formopt.optim.stride import problem, ranges
+from formopt.optim.stride.collocation import MUSCLE_WARM_START, build
+from formopt.optim.stride.local import optimum
+from formopt.optim.stride.problem import StrideSettings
+from formopt.optim.stride.search import global_optimum
+
+
+def report(nodes: int, stride, seconds: float) -> str:
+    """One mesh's stride as the module docstring lists."""
+    bound = {b["phase"]: b["side"] for b in stride.on_bound}
+    phases = " ".join(f"{name} {d * 1e3:.1f}" + (f" ({bound[name]})" if name in bound else "")
+                      for name, d in stride.phases)
+    forward = " ".join(f"{e:.3f}" for e in stride.checks.get("forward_per_phase", []))
+    total = f" [{stride.search['iterations']}]" if stride.search else ""
+    return (f"{nodes:4d} nodes: {stride.cadence_spm:.1f} steps/min, objective {stride.objective_value:.5f}, "
+            f"stance {stride.stance_s:.3f} s; phases ms: {phases}; valid "
+            f"{'yes' if stride.valid else 'NO: ' + '; '.join(stride.failed_checks)}; forward rad per phase [{forward}]; drift "
+            f"{stride.checks['drift_m'] * 1e3:.3f} mm, balance {stride.checks['balance_relative'] * 100:.2e} %, "
+            f"reserves {stride.checks['reserve_nm_per_kg']:.3f} N m/kg; {stride.iterations}{total} iterations, "
+            f"{seconds:.1f} s CPU")
+
+
+def change(before, after) -> str:
+    """The cost's and cadence's change from one mesh's stride to the next (%)."""
+    return (f"  change: cost {(after.objective_value / before.objective_value - 1) * 100:+.2f} %, "
+            f"cadence {(after.cadence_spm / before.cadence_spm - 1) * 100:+.2f} %")
+
+
+def finer(nlp, speed: float, before, mu_inits: list[float]):
+    """The stride on `nlp`'s (finer) mesh from `before`'s interpolated onto it, solved with IPOPT's
+    barrier starting at each of `mu_inits` in turn, each reported with its change from `before`;
+    returns the first."""
+    out = []
+    for mu in mu_inits:
+        clock = time.process_time()
+        stride = optimum(nlp.variant({"mu_init": mu}), speed, guess=before.solved.blocks)
+        print(report(nlp.settings.nodes, stride, time.process_time() - clock) + f" (mu_init {mu:g})", flush=True)
+        print(change(before, stride), flush=True)
+        out.append(stride)
+    return out[0]
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--speed", type=float, default=3.5)
+    parser.add_argument("--strike", default="heel", choices=problem.STRIKES)
+    parser.add_argument("--nodes", type=int, nargs="+", default=[40, 80])
+    parser.add_argument("--start", default="search", choices=("search", "path"))
+    parser.add_argument("--spend", type=int, default=1)
+    parser.add_argument("--mu-init", type=float, nargs="+", default=[MUSCLE_WARM_START["mu_init"]],
+                        help="IPOPT's first barrier for each finer mesh's solve, each in turn")
+    args = parser.parse_args(argv)
+    ranges.RANGES["nodes"] = Range(14, max(args.nodes + [120]))  # past the scenes' 120: each finer mesh is warm
+    body = scaled_body(62.0, 1.81)
+    print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, muscles, metabolic, {args.speed} m/s, "
+          f"the first mesh's stride {'the search at spend ' + str(args.spend) if args.start == 'search' else 'the default path'}",
+          flush=True)
+    strides = []
+    for nodes in args.nodes:
+        nlp = build(body, StrideSettings(strike=args.strike, nodes=nodes, muscles=body_muscles(body),
+                                         objective="metabolic"))
+        if strides:
+            strides.append(finer(nlp, args.speed, strides[-1], args.mu_init))
+            continue
+        clock = time.process_time()
+        stride = global_optimum(nlp, args.speed, spend=args.spend) if args.start == "search" else optimum(nlp, args.speed)
+        print(report(nodes, stride, time.process_time() - clock), flush=True)
+        strides.append(stride)
+    if len(strides) > 2:
+        print("mesh convergence:")
+        for name, values in (("objective", [s.objective_value for s in strides]),
+                             ("cadence", [s.cadence_spm for s in strides])):
+            print(convergence(name, values, args.nodes))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
