@@ -328,6 +328,8 @@ class StrideSettings:
                 raise InputError(f"tendons.{joint}: expected a joint of {', '.join(TENDON_JOINTS)}")
             check("tendon_nm_per_rad_kg", k, name=f"tendons.{joint}")
         for name, (lo, hi) in self.duration.items():
+            if name not in NODE_SHARE:
+                raise InputError(f"duration {name}: expected a phase of {', '.join(NODE_SHARE)}")
             for bound in (lo, hi):
                 check("duration_s", bound, name=f"duration {name}")
             if not lo < hi:

@@ -65,6 +65,7 @@ def test_settings_use_the_same_ranges():
 
     for bad, key in (({"nodes": 401}, "nodes"), ({"impact_weight": -1.0}, "impact_weight"),
                      ({"tendons": {"ankle": 30.0}}, "tendons.ankle"),
-                     ({"duration": {"flight": (0.0, 0.3)}}, "duration flight")):
+                     ({"duration": {"flight": (0.0, 0.3)}}, "duration flight"),
+                     ({"duration": {"heell": (0.01, 0.1)}}, "duration heell: expected a phase")):
         with pytest.raises(InputError, match=key):
             StrideSettings(**bad)
