@@ -152,11 +152,7 @@ class StrideNLP:
             self._transition(i)
         self._touchdown()
         self.period_row = self.rows.add(self.period, 0.0, np.inf)
-        if any(settings.tendons.values()) and settings.consistency_rows:
-            # the springs let the optimum draw energy from the transcription (StrideSettings.consistency_rows)
-            weight = self.mass * GRAVITY
-            climb = weight * step_length(self.p[0], self.period) * ca.sin(self.p[1])
-            self.rows.add(ca.vertcat(self.terms["ground"], self.terms["balance"] - climb) / weight)
+        self._energy_rows()
         self.terms["impacts"] += self.terms["slide"]
         objective = self.ocp.objective(self.terms, self.p[0], self.period)
         x = self.blocks.vector()
@@ -179,6 +175,15 @@ class StrideNLP:
         self.lbg = np.concatenate(self.node_rows.lower + self.rows.lower)
         self.ubg = np.concatenate(self.node_rows.upper + self.rows.upper)
         self.build_s = time.perf_counter() - start
+
+    def _energy_rows(self) -> None:
+        """With springs, the held contacts' work and the energy budget (less the climb's work)
+        held at zero, per body weight (N): the springs let the optimum draw energy from the
+        transcription (StrideSettings.consistency_rows: False, without them)."""
+        if any(self.settings.tendons.values()) and self.settings.consistency_rows:
+            weight = self.mass * GRAVITY
+            climb = weight * step_length(self.p[0], self.period) * ca.sin(self.p[1])
+            self.rows.add(ca.vertcat(self.terms["ground"], self.terms["balance"] - climb) / weight)
 
     @property
     def compiled(self) -> bool:
