@@ -9,6 +9,7 @@ is solved from the one before, its node histories interpolated onto the finer me
 
     python problems/muscle_mesh.py [--speed 3.5] [--strike heel|forefoot] [--nodes 40 80 160]
                                    [--start search|path] [--spend 1] [--mu-init 3e-4 1e-2]
+                                   [--no-consistency-rows [--rows-first]]
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -24,7 +25,10 @@ reported; the first value's stride is the one the next mesh starts from. The def
 muscles' warm start's (collocation.MUSCLE_WARM_START, 3e-4), which keeps the iterate near the
 stride it starts from; their cold solves' 1e-2 (MUSCLE_IPOPT) can leave it: at 2.5 m/s (heel)
 the search's 152.9 steps/min at 40 nodes went to 148.0 at 80 from 3e-4, to 170.2 (another
-optimum, 6 % costlier) from 1e-2.
+optimum, 6 % costlier) from 1e-2. `--no-consistency-rows`: every mesh, the first one's too, with
+StrideSettings.consistency_rows False (the rows the continuous stride meets by itself dropped);
+with `--rows-first` the first mesh's stride is solved with them, then without them from it (as a
+finer mesh is from the one before), so that every mesh solves the rows-kept stride's neighbour.
 """
 
 from __future__ import annotations
@@ -80,6 +84,20 @@ def finer(nlp, speed: float, before, mu_inits: list[float]):
     return out[0]
 
 
+def mesh(body, args, nodes: int, consistency_rows: bool):
+    """The muscles' stride NLP on `nodes` nodes at the command line's strike."""
+    return build(body, StrideSettings(strike=args.strike, nodes=nodes, muscles=body_muscles(body),
+                                      objective="metabolic", consistency_rows=consistency_rows))
+
+
+def start(nlp, args):
+    """The first mesh's stride: the search's answer at `--spend`, or the default path's; reported."""
+    clock = time.process_time()
+    stride = global_optimum(nlp, args.speed, spend=args.spend) if args.start == "search" else optimum(nlp, args.speed)
+    print(report(nlp.settings.nodes, stride, time.process_time() - clock), flush=True)
+    return stride
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
@@ -89,23 +107,25 @@ def main(argv=None) -> int:
     parser.add_argument("--spend", type=int, default=1)
     parser.add_argument("--mu-init", type=float, nargs="+", default=[MUSCLE_WARM_START["mu_init"]],
                         help="IPOPT's first barrier for each finer mesh's solve, each in turn")
+    parser.add_argument("--no-consistency-rows", dest="consistency_rows", action="store_false",
+                        help="StrideSettings.consistency_rows False on every mesh")
+    parser.add_argument("--rows-first", action="store_true",
+                        help="the first mesh's stride solved with the rows, then without them from it")
     args = parser.parse_args(argv)
     ranges.RANGES["nodes"] = Range(14, max(args.nodes + [120]))  # past the scenes' 120: each finer mesh is warm
     body = scaled_body(62.0, 1.81)
     print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, muscles, metabolic, {args.speed} m/s, "
-          f"the first mesh's stride {'the search at spend ' + str(args.spend) if args.start == 'search' else 'the default path'}",
+          f"the first mesh's stride {'the search at spend ' + str(args.spend) if args.start == 'search' else 'the default path'}"
+          f"{'' if args.consistency_rows else ', without the consistency rows'}",
           flush=True)
     strides = []
     for nodes in args.nodes:
-        nlp = build(body, StrideSettings(strike=args.strike, nodes=nodes, muscles=body_muscles(body),
-                                         objective="metabolic"))
+        nlp = mesh(body, args, nodes, args.consistency_rows)
         if strides:
             strides.append(finer(nlp, args.speed, strides[-1], args.mu_init))
             continue
-        clock = time.process_time()
-        stride = global_optimum(nlp, args.speed, spend=args.spend) if args.start == "search" else optimum(nlp, args.speed)
-        print(report(nodes, stride, time.process_time() - clock), flush=True)
-        strides.append(stride)
+        first = start(mesh(body, args, nodes, True) if args.rows_first else nlp, args)
+        strides.append(finer(nlp, args.speed, first, args.mu_init) if args.rows_first else first)
     if len(strides) > 2:
         print("mesh convergence:")
         for name, values in (("objective", [s.objective_value for s in strides]),
