@@ -17,8 +17,10 @@ the forward check's worst deviation per phase (rad: the excitations replayed, ea
 from the NLP's state at its start), the held points' contact drift (mm), the energy budget's
 balance (% of W+), the reserves' largest moment (N m/kg), IPOPT's iterations (the kept
 solve's; the search's total in brackets) and the CPU seconds (time.process_time, the search
-or solve with its checks); after each finer mesh the change of cost and cadence from the
-one before (%), and at the end, with three meshes each twice the one before, their observed
+or solve with its checks), and the objective's parts per phase and cost term (costs.terms:
+the muscles' energy, the force rate, the muscle rates, the reserves, the smoothing; `phase_costs`);
+after each finer mesh the change of cost and cadence from the one before (%) and each part's
+change with its share of the objective's (where the cost's drift sits), and at the end, with three meshes each twice the one before, their observed
 order and Richardson's limit (problems/stride_mesh.py's `convergence`). `--mu-init`: each finer
 mesh solved from the interpolated stride with IPOPT's barrier starting at each value, each
 reported; the first value's stride is the one the next mesh starts from. The default is the
@@ -37,6 +39,7 @@ import argparse
 import sys
 import time
 
+import casadi as ca
 from stride_mesh import convergence  # problems/, this script's directory
 
 from formopt.io.muscle_table import body_muscles
@@ -45,6 +48,7 @@ from formopt.mechanics.limits import Range
 from formopt.optim.stride import problem, ranges
 from formopt.optim.stride.collocation import MUSCLE_WARM_START, build
 from formopt.optim.stride.local import optimum
+from formopt.optim.stride.ocp import INTEGRANDS, step_length
 from formopt.optim.stride.problem import StrideSettings
 from formopt.optim.stride.search import global_optimum
 
@@ -64,6 +68,47 @@ def report(nodes: int, stride, seconds: float) -> str:
             f"{seconds:.1f} s CPU")
 
 
+def phase_costs(nlp, solved, speed: float) -> dict[str, dict[str, float]]:
+    """{phase: {cost term: its part of the objective}}: each of the NLP's terms (costs.terms)
+    with its integral over that phase alone, w s I_phase / d (d = v T the whole step's), so that
+    the parts sum to the objective; the impacts (at transitions) left out: the muscles' weight is 0."""
+    b = solved.blocks
+    d = step_length(speed, sum(b[f"T_{p.name}"].item() for p in nlp.phases))
+    out = {}
+    for phase, n, (L, w) in zip(nlp.phases, nlp.split, nlp.integrands(b, solved.parameters)):
+        integrals = dict(zip(INTEGRANDS, L @ w))
+        integrals["smoothing"] = float(nlp.transcription.smoothing(ca.DM(b[f"A_{phase.name}"]),
+                                                                   b[f"T_{phase.name}"].item() / n))
+        out[phase.name] = {t.integral: float(t(integrals, d)) for t in nlp.ocp.cost_terms if t.integral != "impacts"}
+    return out
+
+
+def costs_table(parts: dict) -> str:
+    """The objective's parts per phase and term (`phase_costs`), each phase's sum and each term's."""
+    terms = list(next(iter(parts.values())))
+    lines = [f"  {phase:9s} " + " ".join(f"{t} {v:.5f}" for t, v in row.items()) + f" | {sum(row.values()):.5f}"
+             for phase, row in parts.items()]
+    totals = {t: sum(row[t] for row in parts.values()) for t in terms}
+    return "\n".join(lines + ["  all       " + " ".join(f"{t} {v:.5f}" for t, v in totals.items())
+                              + f" | {sum(totals.values()):.5f}"])
+
+
+def costs_change(before: dict, after: dict) -> str:
+    """The parts' change from one mesh to the next (`phase_costs`), each with its share of the
+    objective's change (%), per phase and term, each phase's and each term's."""
+    delta = {p: {t: after[p][t] - v for t, v in row.items()} for p, row in before.items()}
+    total = sum(sum(row.values()) for row in delta.values())
+
+    def share(v: float) -> str:
+        return f"{v:+.5f} ({v / total * 100:+.0f} %)"
+
+    lines = [f"  {p:9s} " + " ".join(f"{t} {share(v)}" for t, v in row.items()) + f" | {share(sum(row.values()))}"
+             for p, row in delta.items()]
+    terms = {t: sum(row[t] for row in delta.values()) for t in next(iter(delta.values()))}
+    return "\n".join(["  the parts' change (share of the objective's):", *lines,
+                      "  all       " + " ".join(f"{t} {share(v)}" for t, v in terms.items()) + f" | {total:+.5f}"])
+
+
 def change(before, after) -> str:
     """The cost's and cadence's change from one mesh's stride to the next (%)."""
     return (f"  change: cost {(after.objective_value / before.objective_value - 1) * 100:+.2f} %, "
@@ -71,16 +116,19 @@ def change(before, after) -> str:
 
 
 def finer(nlp, speed: float, before, mu_inits: list[float]):
-    """The stride on `nlp`'s (finer) mesh from `before`'s interpolated onto it, solved with IPOPT's
-    barrier starting at each of `mu_inits` in turn, each reported with its change from `before`;
-    returns the first."""
+    """The stride on `nlp`'s (finer) mesh from `before` (a stride and its `phase_costs`)
+    interpolated onto it, solved with IPOPT's barrier starting at each of `mu_inits` in turn,
+    each reported with its change from `before`; returns the first (with its parts)."""
     out = []
     for mu in mu_inits:
         clock = time.process_time()
-        stride = optimum(nlp.variant({"mu_init": mu}), speed, guess=before.solved.blocks)
+        stride = optimum(nlp.variant({"mu_init": mu}), speed, guess=before[0].solved.blocks)
         print(report(nlp.settings.nodes, stride, time.process_time() - clock) + f" (mu_init {mu:g})", flush=True)
-        print(change(before, stride), flush=True)
-        out.append(stride)
+        parts = phase_costs(nlp, stride.solved, speed)
+        print(costs_table(parts), flush=True)
+        print(change(before[0], stride), flush=True)
+        print(costs_change(before[1], parts), flush=True)
+        out.append((stride, parts))
     return out[0]
 
 
@@ -91,11 +139,14 @@ def mesh(body, args, nodes: int, consistency_rows: bool):
 
 
 def start(nlp, args):
-    """The first mesh's stride: the search's answer at `--spend`, or the default path's; reported."""
+    """The first mesh's stride: the search's answer at `--spend`, or the default path's; reported,
+    with its `phase_costs`."""
     clock = time.process_time()
     stride = global_optimum(nlp, args.speed, spend=args.spend) if args.start == "search" else optimum(nlp, args.speed)
     print(report(nlp.settings.nodes, stride, time.process_time() - clock), flush=True)
-    return stride
+    parts = phase_costs(nlp, stride.solved, args.speed)
+    print(costs_table(parts), flush=True)
+    return stride, parts
 
 
 def main(argv=None) -> int:
@@ -128,8 +179,8 @@ def main(argv=None) -> int:
         strides.append(finer(nlp, args.speed, first, args.mu_init) if args.rows_first else first)
     if len(strides) > 2:
         print("mesh convergence:")
-        for name, values in (("objective", [s.objective_value for s in strides]),
-                             ("cadence", [s.cadence_spm for s in strides])):
+        for name, values in (("objective", [s.objective_value for s, _ in strides]),
+                             ("cadence", [s.cadence_spm for s, _ in strides])):
             print(convergence(name, values, args.nodes))
     return 0
 
