@@ -18,7 +18,8 @@ from the NLP's state at its start), the held points' contact drift (mm), the ene
 balance (% of W+), the reserves' largest moment (N m/kg), IPOPT's iterations (the kept
 solve's; the search's total in brackets) and the CPU seconds (time.process_time, the search
 or solve with its checks), and the objective's parts per phase and cost term (costs.terms:
-the muscles' energy, the force rate, the muscle rates, the reserves, the smoothing; `phase_costs`);
+the muscles' energy, the force rate, the muscle rates, the reserves, the smoothing; `phase_costs`)
+with the force-rate term's part at each phase's first and last column (a layer at its ends);
 after each finer mesh the change of cost and cadence from the one before (%) and each part's
 change with its share of the objective's (where the cost's drift sits), and at the end, with three meshes each twice the one before, their observed
 order and Richardson's limit (problems/stride_mesh.py's `convergence`). `--mu-init`: each finer
@@ -40,6 +41,7 @@ import sys
 import time
 
 import casadi as ca
+import numpy as np
 from stride_mesh import convergence  # problems/, this script's directory
 
 from formopt.io.muscle_table import body_muscles
@@ -68,17 +70,21 @@ def report(nodes: int, stride, seconds: float) -> str:
             f"{seconds:.1f} s CPU")
 
 
-def phase_costs(nlp, solved, speed: float) -> dict[str, dict[str, float]]:
+def phase_costs(nlp, solved, speed: float, column: int | None = None) -> dict[str, dict[str, float]]:
     """{phase: {cost term: its part of the objective}}: each of the NLP's terms (costs.terms)
     with its integral over that phase alone, w s I_phase / d (d = v T the whole step's), so that
-    the parts sum to the objective; the impacts (at transitions) left out: the muscles' weight is 0."""
+    the parts sum to the objective; the impacts (at transitions) left out: the muscles' weight is 0.
+    With `column` (0 or -1), only that column's share of each integral (the smoothing 0): a
+    layer at the phase's ends shows there."""
     b = solved.blocks
     d = step_length(speed, sum(b[f"T_{p.name}"].item() for p in nlp.phases))
     out = {}
     for phase, n, (L, w) in zip(nlp.phases, nlp.split, nlp.integrands(b, solved.parameters)):
+        if column is not None:
+            w = w * (np.arange(w.size) == np.arange(w.size)[column])
         integrals = dict(zip(INTEGRANDS, L @ w))
-        integrals["smoothing"] = float(nlp.transcription.smoothing(ca.DM(b[f"A_{phase.name}"]),
-                                                                   b[f"T_{phase.name}"].item() / n))
+        integrals["smoothing"] = 0.0 if column is not None else float(nlp.transcription.smoothing(
+            ca.DM(b[f"A_{phase.name}"]), b[f"T_{phase.name}"].item() / n))
         out[phase.name] = {t.integral: float(t(integrals, d)) for t in nlp.ocp.cost_terms if t.integral != "impacts"}
     return out
 
@@ -91,6 +97,13 @@ def costs_table(parts: dict) -> str:
     totals = {t: sum(row[t] for row in parts.values()) for t in terms}
     return "\n".join(lines + ["  all       " + " ".join(f"{t} {v:.5f}" for t, v in totals.items())
                               + f" | {sum(totals.values()):.5f}"])
+
+
+def end_columns(nlp, solved, speed: float) -> str:
+    """The force-rate term's part at each phase's first and last column (`phase_costs`' column)."""
+    first, last = (phase_costs(nlp, solved, speed, column) for column in (0, -1))
+    return "  force rate at the first / last column: " + " ".join(
+        f"{p} {first[p]['force_rate']:.5f} / {last[p]['force_rate']:.5f}" for p in first)
 
 
 def costs_change(before: dict, after: dict) -> str:
@@ -125,7 +138,7 @@ def finer(nlp, speed: float, before, mu_inits: list[float]):
         stride = optimum(nlp.variant({"mu_init": mu}), speed, guess=before[0].solved.blocks)
         print(report(nlp.settings.nodes, stride, time.process_time() - clock) + f" (mu_init {mu:g})", flush=True)
         parts = phase_costs(nlp, stride.solved, speed)
-        print(costs_table(parts), flush=True)
+        print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, speed), flush=True)
         print(change(before[0], stride), flush=True)
         print(costs_change(before[1], parts), flush=True)
         out.append((stride, parts))
@@ -145,7 +158,7 @@ def start(nlp, args):
     stride = global_optimum(nlp, args.speed, spend=args.spend) if args.start == "search" else optimum(nlp, args.speed)
     print(report(nlp.settings.nodes, stride, time.process_time() - clock), flush=True)
     parts = phase_costs(nlp, stride.solved, args.speed)
-    print(costs_table(parts), flush=True)
+    print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, args.speed), flush=True)
     return stride, parts
 
 
