@@ -63,7 +63,7 @@ def keyed_library(name: str, key: str, function: Callable[[], ca.Function], jaco
     Hessian, hundreds of kB, costs about 0.1 s). `function()`, the Function named `name`, is
     called only when the library is compiled."""
     target = _target(_keyed(key, jacobian), name, FUNCTION_OPT)
-    return target if target.exists() else _compile(_source(function(), jacobian), name, FUNCTION_OPT, target)
+    return _compile(lambda: _source(function(), jacobian), name, FUNCTION_OPT, target)
 
 
 def keyed_cached(name: str, key: str, jacobian: bool = False) -> bool:
@@ -138,16 +138,21 @@ def _target(key: str, name: str, level: str) -> Path:
     return cache_dir() / f"{name}_{digest}.so"
 
 
-def _compile(source: str, name: str, level: str, target: Path | None = None) -> Path:
-    """The library of `source` at `target` (default: keyed by the source), compiled unless there."""
-    cc, flags, target = compiler(), (level, *FLAGS), target or _target(source, name, level)
+def _compile(source: str | Callable[[], str], name: str, level: str, target: Path | None = None) -> Path:
+    """The library of `source` at `target` (default: keyed by the source, then a str), compiled
+    unless there; a callable `source` is generated only when this process compiles it (not
+    while another compiles it, not when it is there)."""
+    cc, flags = compiler(), (level, *FLAGS)
+    if target is None:
+        assert isinstance(source, str), "_compile: a source generated on demand needs its target"
+        target = _target(source, name, level)
     if target.exists():
         return target
     target.parent.mkdir(parents=True, exist_ok=True)
     with _locked(target):
         if target.exists():  # another process compiled it while this one waited
             return target
-        _build(cc, flags, source, name, target)
+        _build(cc, flags, source() if callable(source) else source, name, target)
     return target
 
 
