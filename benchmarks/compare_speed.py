@@ -106,9 +106,9 @@ def main():
 
 
 SCENE = Path(__file__).resolve().parents[1] / "problems" / "compare" / "runners.toml"
-# a solve's stage: the first of these among its callers (studies.compare_stride, stride_map,
-# optim.stride.local)
-STAGES = ("_free_or_none", "sticking_free", "family", "_at", "_better_free", "optimum", "attempt")
+# a solve's stage: the first of these among its callers (studies.compare_stride, compare_band,
+# stride_map, optim.stride.local)
+STAGES = ("_free_or_none", "sticking_free", "family", "stride_at", "_better_free", "optimum", "attempt")
 
 
 def comparison(runner: str):
@@ -137,7 +137,7 @@ def cpu_s() -> float:
 def stride_stages(runner: str, workers: int | None, out: str | None) -> None:
     """The stride section's time for one runner, and per stage of this process (module doc)."""
     from formopt.optim.stride import collocation
-    from formopt.studies import compare_stride
+    from formopt.studies import compare_band, compare_stride
 
     c = comparison(runner)
     runs: dict = collections.defaultdict(lambda: [0, 0, 0.0])  # (stage, compiled): solves, iterations, CPU
@@ -174,7 +174,7 @@ def stride_stages(runner: str, workers: int | None, out: str | None) -> None:
     collocation.StrideNLP.__init__ = cpu_of("NLP builds (graphs)", collocation.StrideNLP.__init__)
     collocation.StrideNLP.solver = property(cpu_of("solver builds (derivatives, compiles)",
                                                    collocation.StrideNLP.solver.fget))
-    compare_stride.forward_checked = cpu_of("forward checks", compare_stride.forward_checked)
+    compare_band.forward_checked = cpu_of("forward checks", compare_band.forward_checked)
     wall, cpu, told = time.perf_counter(), cpu_s(), []
     stages = {"progress": lambda text: told.append((time.perf_counter() - wall, text))}
     answer = compare_stride.answer

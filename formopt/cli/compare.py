@@ -24,7 +24,8 @@ from ..mechanics.errors import InputError
 from ..report.figures import comparison_figure, stride_cadence_figure
 from ..report.tables import comparison_table, trials_table
 from ..studies.compare import BOUNDS_DEG, JOINTS, SIDES, SUPPORT, compare
-from ..studies.compare_stride import answer, stage_count, stage_shares
+from ..studies.compare_band import stage_count, stage_shares
+from ..studies.compare_stride import answer
 from .common import add_format, emit, out_folder
 
 # every setting: its default and what it is (the option's help)

@@ -21,51 +21,41 @@ from it (at most ROUNDS times). The family: from the free optimum, each cadence 
 from its neighbour towards it (a continuation, `family`); a curve's stride that this
 continuation reaches (FAMILY) is of the free optimum's family, and a what-if between strides of
 two families says so (`WhatIf.same_family`, `notes`). Its band [low_W, high_W] spans dP over
-the variants, each solved warm from the nominal's stride at the same cadence (variant_curve):
-the objective (effort, the nominal; metabolic: OBJECTIVE_BAND), the friction (FRICTION_BAND)
-and the legs' share of the body's mass (LEG_MASS_BAND); `WhatIf.parts` is each part's own
-width (the span of dP over the nominal and that part's variants). A variant that fails to converge at any cadence is
-left out of the band and named in `notes`. A change whose band holds zero is "no change the
-model can resolve". The other strikes' free optima are solved on WORKERS processes beside the
-nominal curve, the band's solves (independent of each other) on WORKERS processes after it, the
-longest variants' first (studies.pool.Background; benchmarks/compare_speed.py --stride times
-each stage, docs/reference/performance.md).
+the variants (studies.compare_band: the friction, the objective and the legs' share of the
+body's mass), each solved warm from the nominal's stride at the same cadence (variant_curve);
+`WhatIf.parts` is each part's own width (the span of dP over the nominal and that part's
+variants). A variant that fails to converge at any cadence is left out of the band and named
+in `notes`. A change whose band holds zero is "no change the model can resolve". The other
+strikes' free optima are solved on worker processes beside the nominal curve, the band's
+solves after it (compare_band; benchmarks/compare_speed.py --stride times each stage,
+docs/reference/performance.md).
 """
 
 from __future__ import annotations
 
-import os
 import time
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..mechanics.body import scaled_body
-from ..optim.stride import Stride, forward_checked, rank, summarise
+from ..optim.stride import Stride, rank, summarise
 from ..optim.stride.problem import STRIKES, mesh_note
+from .compare_band import (
+    BAND_PARTS,
+    WORKERS,
+    Variant,
+    band_text,
+    band_variants,
+    check_tasks,
+    solve_band,
+    strike_tasks,
+)
 from .pool import Background
-from .stride_form import NODES, joint_work, placement_m, stride_scene, with_body
-from .stride_map import better, cadence_curve, free, warm
+from .stride_form import NODES, joint_work, placement_m, stride_scene
+from .stride_map import better, cadence_curve, warm
 
 WHAT_IF_PCT = (-10.0, -5.0, 5.0, 10.0)  # cadence changes asked (% of the runner's cadence)
-# the band: friction over the range of shod running on track and treadmill belts (0.6-1.0,
-# the coefficient's usual span in the stride and compare scenes); the objective: what a runner
-# minimises is not known: effort and metabolic (the `work` objective, W+ alone, converged at no
-# imposed cadence within 500 iterations on RBDS001 at 3.58 m/s, 24 nodes, and cost 3 solves per
-# failure: metabolic, which weighs W+ and W-, stands for the work objectives); the body: the
-# stride's dynamics are nearly homogeneous in mass (segment masses and inertias, the joint
-# moments' bound and springs per kg, the friction cone; only Riener & Edrich's passive joint
-# moments are an adult's, not scaled), so a runner's total mass scales the power and barely
-# moves the stride (RBDS001's body, 3.5 m/s, heel, 18 nodes: +5 % of mass gave +5.7 % of power
-# and -0.16 % of cadence; test_compare_stride), and a runner's mass is known to 1-2 %; what
-# moves the stride is how the mass is shared: de Leva's segment masses are a population's
-# regression, an individual's differ from it by about 5 %: the legs' segments +-5 %, the trunk
-# carrying the rest (mechanics.body.scaled_body's `legs`; there -2.4 / +2.3 % of power,
-# +0.8 / -0.8 % of cadence). Until 2026-11-27 the band scaled the total mass, which measured
-# the scale and the solves' local optima more than the body.
-FRICTION_BAND = (0.6, 1.0)
-OBJECTIVE_BAND = ("metabolic",)
-LEG_MASS_BAND = (0.95, 1.05)
 # a free optimum this far from the runner's cadence (fraction) is beyond the cadences runners
 # choose around their own (de Ruiter 2020: optimal 171 +- 8 against preferred 165 +- 8)
 FAR = 0.2
@@ -78,20 +68,6 @@ ENVELOPE = 1e-3
 ROUNDS = 2  # the curve solved again from a better free optimum found on it, at most
 # one family: a continuation that reaches a curve's stride within this (relative objective)
 FAMILY = 1e-3
-BAND_PARTS = ("friction", "objective", "body")  # the band's parts, in `Curve.part`
-# the other strikes' free optima (beside the nominal) and the band's variants (after it) are
-# independent of each other: solved on this many processes (studies.pool.Background; the
-# brief's budget for compare is 2 cores)
-WORKERS = min(2, os.cpu_count() or 1)
-# the band's parts, their variants started in this order: the longest first (RBDS001 T25, one
-# process, CPU s: the metabolic objective 15.3, from the nominal's primal values alone, another
-# objective's NLP; each legs' mass 3-4; each friction 1-1.5, the nominal's NLP; 2026-11-27)
-LONGEST_FIRST = ("objective", "body", "friction")
-# the section's wall time on 2 processes, shares (`stage_shares`): the nominal curve, its
-# family, the band until its first variant ends, the rest of the band (RBDS001 T25, 2 processes,
-# load 4-5: 50.5, 3.2, 38.8 and 12.2 s of 104.7, benchmarks/compare_speed.py --stride's timeline,
-# 2026-11-27)
-STAGE_SHARES = (0.48, 0.03, 0.37, 0.12)
 
 
 @dataclass
@@ -261,13 +237,6 @@ class StrideAnswer:
                 "seconds": self.seconds}
 
 
-def band_text() -> str:
-    """What the what-if band spans, in words."""
-    return (f"friction {FRICTION_BAND[0]:g}-{FRICTION_BAND[1]:g}, the objective (effort, "
-            f"{', '.join(OBJECTIVE_BAND)}) and the legs' mass {LEG_MASS_BAND[0] * 100 - 100:+.0f}/"
-            f"{LEG_MASS_BAND[1] * 100 - 100:+.0f} %")
-
-
 def measured_form(c) -> dict:
     """The runner's cadence (steps/min), step length (m), placement of the striking point
     ahead of the hip (m: the mean over the main side's steps of the hip's forward distance from
@@ -309,7 +278,7 @@ def variant_curve(name: str, nominal: Curve, solved: list[Stride]) -> Curve:
     family of strides. (Warm-started along its own cadences instead, the mass -5 % variant
     of RBDS001 at 3.58 m/s jumped at -10 % to another local optimum, 565 W against the
     nominal's 463 W, and made the band 10 times wider, 2026-11-23.) `solved`: its
-    `variant_solves` solved (the free optimum first)."""
+    strides solved (compare_band.solve_band: the free optimum first)."""
     curve = Curve(name, nominal.cadences)
     curve.free, *curve.strides = solved
     failed = [f"{s.cadence_spm:.0f} steps/min" for s in curve.strides if not s.success]
@@ -317,12 +286,6 @@ def variant_curve(name: str, nominal: Curve, solved: list[Stride]) -> Curve:
     if failed:
         curve.why_not = f"no convergence at {', '.join(failed)}"
     return curve
-
-
-def variant_solves(scene, nominal: Curve) -> list[tuple]:
-    """A variant's solves, independent of each other: (scene, start, cadence) of its free
-    optimum from the nominal's, then of each cadence from the nominal's stride there (`_at`)."""
-    return [(scene, nominal.free, None), *[(scene, s, c) for s, c in zip(nominal.strides, nominal.cadences)]]
 
 
 def touchdown_mode(stride: Stride) -> str:
@@ -415,36 +378,6 @@ def what_ifs(curves: list[Curve], cadences: list[float],
             for k, pct in enumerate(changes, 1)]
 
 
-def stage_count(band: bool = True) -> int:
-    """The stages `answer` tells its progress of: the nominal, the family, the band's start
-    and, with the band, each other strike and each variant as it ends."""
-    return 3 + (len(FRICTION_BAND) + len(OBJECTIVE_BAND) + len(LEG_MASS_BAND) + len(STRIKES) - 1 if band else 0)
-
-
-def stage_shares(band: bool = True) -> list[float]:
-    """Each of `stage_count`'s stages' expected share of the section's time, in the order
-    `answer` tells them (io.progress.Stages' `shares`): the nominal curve, its family, each
-    other strike (solved beside the nominal: done when told), the band until its first variant
-    ends (the longest, LONGEST_FIRST) and the rest of the band (STAGE_SHARES)."""
-    nominal, family, first, rest = STAGE_SHARES
-    if not band:
-        return [nominal, family, 0.0]
-    strikes, variants = len(STRIKES) - 1, stage_count() - 3 - len(STRIKES) + 1
-    return [nominal, family, *[0.0] * strikes, first, *[rest / (variants - 1)] * (variants - 1), 0.0]
-
-
-def _strike(task: tuple) -> Stride | None:
-    """One other strike's free optimum (`_free_or_none`), forward-checked, from (scene, speed)."""
-    stride = _free_or_none(*task)
-    return None if stride is None else forward_checked(task[0].nlp(), stride)
-
-
-def _checked(task: tuple) -> Stride:
-    """A stride of the scene forward-checked (optim.stride.forward_checked), from (scene, stride)."""
-    scene, stride = task
-    return forward_checked(scene.nlp(), stride)
-
-
 def answer(c, progress=None, nodes: int = NODES, band: bool = True,
            changes: tuple[float, ...] = WHAT_IF_PCT, workers: int = WORKERS) -> StrideAnswer:
     """compare's stride section for a Comparison `c` (its speed, main side, body settings,
@@ -452,7 +385,7 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
     variant and strike only (every band then the nominal value, no other strike: a cheap check,
     not a report); `changes`: the what-ifs' cadence changes (% of the runner's); `workers`: the
     processes solving the other strikes (beside the nominal) and the band's variants (after
-    it), studies.pool.Background."""
+    it), studies.compare_band."""
     say = progress or (lambda text: None)
     start = time.perf_counter()
     measured = measured_form(c)
@@ -465,11 +398,11 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
                            measured["strike"], "effort", c.settings["friction"], law, nodes)
     others = [s for s in STRIKES if s != measured["strike"]] if band else []
     with Background(min(workers, len(others))) as beside:
-        strikes = beside.start([(_strike, (_with(nominal, strike=s), speed), f"strike {s} done") for s in others])
+        strikes = beside.start(strike_tasks(nominal, speed, others))
         say(f"stride: the nominal (effort) at {len(cadences)} cadences, {len(others)} other strikes beside it")
         curves = [run_curve("effort (nominal)", nominal, speed, cadences)]
         pair = (curves[0].free, curves[0].own_free)  # forward-checked beside the family
-        checking = beside.start([(_checked, (nominal, s), "") for s in pair if s is not None])
+        checking = beside.start(check_tasks(nominal, [s for s in pair if s is not None]))
         say("stride: the free optimum's family along the cadences")
         if curves[0].ok and curves[0].free is not None:
             family(nominal, speed, curves[0])
@@ -477,40 +410,26 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
         curves[0].free, curves[0].own_free = (None if s is None else next(checked) for s in pair)
         best = {s: curves[0].free if s == measured["strike"] else None for s in STRIKES}
         best.update(zip(others, beside.results(strikes, say)))
-    variants = _variants(nominal, body) if band else []
+    variants = band_variants(nominal, body) if band else []
     say(f"stride: {len(variants)} variants warm from the nominal on {min(workers, len(variants)) or 1} processes")
-    curves += _band(curves[0], variants, workers, say)
+    curves += band_curves(curves[0], variants, workers, say)
     notes += _notes(curves, best, runner, nominal)
     return StrideAnswer(speed, law, measured, curves, best,
                         what_ifs(curves, cadences, changes) if curves[0].ok else [], notes,
                         time.perf_counter() - start, nominal.settings.nodes)
 
 
-def _band(nominal: Curve, variants: list[tuple], workers: int, say) -> list[Curve]:
-    """The band's variants' curves (variant_curve), in `variants`' order, their solves
-    (variant_solves) on `workers` processes, the longest variants' first (LONGEST_FIRST; forked
-    after the nominal: each worker holds its NLP); without a nominal each is named and left out."""
+def band_curves(nominal: Curve, variants: list[Variant], workers: int, say) -> list[Curve]:
+    """The band's variants' curves (variant_curve), in `variants`' order, each variant solved
+    warm from the nominal's free optimum and strides (compare_band.solve_band, on `workers`
+    processes); without a nominal each is named and left out."""
     if not nominal.ok:
-        for name, _, _ in variants:  # each variant's stage, told as the band's are
-            say(f"variant {name}: no nominal")
-        return [Curve(name, nominal.cadences, why_not="no nominal", part=part) for name, part, _ in variants]
-    solves = {name: variant_solves(scene, nominal) for name, _, scene in variants}
-    order = sorted(variants, key=lambda v: LONGEST_FIRST.index(v[1]))
-    tasks = [(_at, task, f"variant {name} done" if k == len(solves[name]) - 1 else "")
-             for name, _, _ in order for k, task in enumerate(solves[name])]
-    with Background(min(workers, len(tasks))) as pool:
-        strides = iter(pool.results(pool.start(tasks), say))
-    solved = {name: [next(strides) for _ in solves[name]] for name, _, _ in order}
-    return [replace(variant_curve(name, nominal, solved[name]), part=part) for name, part, _ in variants]
-
-
-def _variants(nominal, body: dict) -> list[tuple]:
-    """The band's variants of the nominal scene: (name, part, scene), friction, objective and
-    the legs' mass."""
-    out = [(f"friction {mu:g}", "friction", _with(nominal, friction=mu)) for mu in FRICTION_BAND]
-    out += [(o, "objective", _with(nominal, objective=o)) for o in OBJECTIVE_BAND]
-    return out + [(f"legs' mass {f * 100 - 100:+.0f} %", "body", with_body(nominal, scaled_body(
-        body["mass_kg"], body["height_m"], body["sex"], legs=f))) for f in LEG_MASS_BAND]
+        for v in variants:  # each variant's stage, told as the band's are
+            say(f"variant {v.name}: no nominal")
+        return [Curve(v.name, nominal.cadences, why_not="no nominal", part=v.part) for v in variants]
+    starts = [(nominal.free, None), *zip(nominal.strides, nominal.cadences)]
+    solved = solve_band(variants, starts, workers, say)
+    return [replace(variant_curve(v.name, nominal, solved[v.name]), part=v.part) for v in variants]
 
 
 def _notes(curves: list[Curve], best: dict, runner: float, nominal) -> list[str]:
@@ -529,23 +448,3 @@ def _notes(curves: list[Curve], best: dict, runner: float, nominal) -> list[str]
         notes.append("no strike's free optimum is valid (" + "; ".join(
             f"{s.strike}: {', '.join(s.failed_checks) or s.status}" for s in solved) + "): no best strike")
     return notes
-
-
-def _with(scene, **changes):
-    """The scene with its friction, or its settings' objective or strike, changed."""
-    if "friction" in changes:
-        return replace(scene, friction=changes["friction"])
-    settings = replace(scene.settings, **changes)
-    return replace(scene, settings=settings, strike=settings.strike)
-
-
-def _at(task: tuple) -> Stride:
-    """The scene's stride at `cadence`, warm-started from `start`, from (scene, start, cadence)."""
-    scene, start, cadence = task
-    nlp = scene.nlp()
-    return summarise(nlp, warm(nlp, start, scene.speed, scene.slope, scene.friction, cadence), False)
-
-
-def _free_or_none(scene, speed: float) -> Stride | None:
-    stride = free(scene, speed, scene.slope, scene.friction)
-    return stride if stride.success else None

@@ -11,13 +11,15 @@ import pytest
 from formopt.mechanics.body import scaled_body
 from formopt.optim.stride import summarise
 from formopt.report.tables import stride_lines
-from formopt.studies import compare_stride
+from formopt.studies import compare_band
+from formopt.studies.compare_band import Variant, stage_count, stage_shares
 from formopt.studies.compare_stride import (
     ENVELOPE,
     WHAT_IF_PCT,
     Curve,
     WhatIf,
     answer,
+    band_curves,
     optima_notes,
     what_ifs,
 )
@@ -93,23 +95,24 @@ def test_a_what_if_between_two_families_and_a_free_optimum_off_the_envelope_are_
 
 
 def _solved(task):
-    """Stands for compare_stride._at: which scene, from which start, at which cadence."""
+    """Stands for compare_band.stride_at: which scene, from which start, at which cadence."""
     scene, start, cadence = task
     return SimpleNamespace(scene=scene, start=start, success=True, cadence_spm=cadence or start.cadence_spm)
 
 
 def test_the_band_is_solved_longest_first_and_kept_in_its_order(monkeypatch):
-    """_band: every variant's solves (variant_solves: the free optimum, then each cadence) as
-    tasks on two processes, the objective's first (LONGEST_FIRST); each curve assembled from its
-    own solves, in the variants' order, each told once."""
-    monkeypatch.setattr(compare_stride, "_at", _solved)
+    """band_curves: every variant's solves (compare_band.solve_band: the free optimum, then
+    each cadence) as tasks on two processes, the objective's first (LONGEST_FIRST); each curve
+    assembled from its own solves, in the variants' order, each told once."""
+    monkeypatch.setattr(compare_band, "stride_at", _solved)
     cadences = [170.0, 153.0, 187.0]
     nominal = Curve("effort (nominal)", cadences, free=SimpleNamespace(cadence_spm=165.0),
                     strides=[SimpleNamespace(cadence_spm=c) for c in cadences])
-    variants = [("friction 0.6", "friction", "mu"), ("metabolic", "objective", "met"), ("legs' mass +5 %", "body", "legs")]
+    variants = [Variant("friction 0.6", "friction", "mu"), Variant("metabolic", "objective", "met"),
+                Variant("legs' mass +5 %", "body", "legs")]
     for workers in (1, 2):
         told: list[str] = []
-        curves = compare_stride._band(nominal, variants, workers, told.append)
+        curves = band_curves(nominal, variants, workers, told.append)
         assert told == ["variant metabolic done", "variant legs' mass +5 % done", "variant friction 0.6 done"]
         assert [(c.name, c.part) for c in curves] == [(n, p) for n, p, _ in variants]
         for curve, (_, _, scene) in zip(curves, variants):
@@ -122,9 +125,9 @@ def test_each_stage_told_has_its_share_of_the_time():
     """The progress bar's shares (io.progress.Stages): one per stage told, the band's first
     variant's wait the longest of the band's."""
     for band in (True, False):
-        shares = compare_stride.stage_shares(band)
-        assert len(shares) == compare_stride.stage_count(band) and min(shares) >= 0
-    shares = compare_stride.stage_shares()
+        shares = stage_shares(band)
+        assert len(shares) == stage_count(band) and min(shares) >= 0
+    shares = stage_shares()
     assert sum(shares) == pytest.approx(1.0) and shares[4] == max(shares[4:])
 
 

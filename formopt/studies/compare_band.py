@@ -1,0 +1,170 @@
+"""compare's stride band: the variants of the nominal stride, and the solves on worker processes.
+
+The band says how much of a what-if's change (studies.compare_stride) the model cannot tell
+from what it does not know about the runner. Its parts, each a few variants of the nominal
+scene (`band_variants`), each variant solved at the nominal's cadences warm from the nominal's
+strides there (`solve_band`):
+
+- friction: the coefficient at FRICTION_BAND's ends;
+- objective: OBJECTIVE_BAND's objectives beside the nominal's effort;
+- body: the legs' share of the body's mass scaled by LEG_MASS_BAND (the trunk carrying the rest).
+
+A what-if's band [low_W, high_W] spans the change over the nominal and every variant that
+converged; a part's own width is the span over the nominal and that part's variants, and its
+share that width over the parts' summed widths (compare_stride.WhatIf.parts and .shares; the
+JSON's `band_parts_W` and `band_shares`).
+
+The solves that do not wait for each other run on WORKERS processes (studies.pool.Background):
+the other strikes' free optima and the nominal's forward checks beside the nominal curve
+(`strike_tasks`, `check_tasks`), the band's solves after it, the longest variants' first
+(LONGEST_FIRST). `stage_count` and `stage_shares` are the progress stages the section tells.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import replace
+from typing import NamedTuple
+
+from ..io.stride_scene import StrideScene
+from ..mechanics.body import scaled_body
+from ..optim.stride import Stride, forward_checked, summarise
+from ..optim.stride.problem import STRIKES
+from .pool import Background
+from .stride_form import with_body
+from .stride_map import free, warm
+
+# the band: friction over the range of shod running on track and treadmill belts (0.6-1.0,
+# the coefficient's usual span in the stride and compare scenes); the objective: what a runner
+# minimises is not known: effort and metabolic (the `work` objective, W+ alone, converged at no
+# imposed cadence within 500 iterations on RBDS001 at 3.58 m/s, 24 nodes, and cost 3 solves per
+# failure: metabolic, which weighs W+ and W-, stands for the work objectives); the body: the
+# stride's dynamics are nearly homogeneous in mass (segment masses and inertias, the joint
+# moments' bound and springs per kg, the friction cone; only Riener & Edrich's passive joint
+# moments are an adult's, not scaled), so a runner's total mass scales the power and barely
+# moves the stride (RBDS001's body, 3.5 m/s, heel, 18 nodes: +5 % of mass gave +5.7 % of power
+# and -0.16 % of cadence; test_compare_stride), and a runner's mass is known to 1-2 %; what
+# moves the stride is how the mass is shared: de Leva's segment masses are a population's
+# regression, an individual's differ from it by about 5 %: the legs' segments +-5 %, the trunk
+# carrying the rest (mechanics.body.scaled_body's `legs`; there -2.4 / +2.3 % of power,
+# +0.8 / -0.8 % of cadence). Until 2026-11-27 the band scaled the total mass, which measured
+# the scale and the solves' local optima more than the body.
+FRICTION_BAND = (0.6, 1.0)
+OBJECTIVE_BAND = ("metabolic",)
+LEG_MASS_BAND = (0.95, 1.05)
+BAND_PARTS = ("friction", "objective", "body")  # the band's parts, in `Curve.part`
+# the other strikes' free optima (beside the nominal) and the band's variants (after it) are
+# independent of each other: solved on this many processes (studies.pool.Background; the
+# brief's budget for compare is 2 cores)
+WORKERS = min(2, os.cpu_count() or 1)
+# the band's parts, their variants started in this order: the longest first (RBDS001 T25, one
+# process, CPU s: the metabolic objective 15.3, from the nominal's primal values alone, another
+# objective's NLP; each legs' mass 3-4; each friction 1-1.5, the nominal's NLP; 2026-11-27)
+LONGEST_FIRST = ("objective", "body", "friction")
+# the section's wall time on 2 processes, shares (`stage_shares`): the nominal curve, its
+# family, the band until its first variant ends, the rest of the band (RBDS001 T25, 2 processes,
+# load 4-5: 50.5, 3.2, 38.8 and 12.2 s of 104.7, benchmarks/compare_speed.py --stride's timeline,
+# 2026-11-27)
+STAGE_SHARES = (0.48, 0.03, 0.37, 0.12)
+
+
+class Variant(NamedTuple):
+    """One variant of the nominal scene: its name, its part (BAND_PARTS) and its scene."""
+
+    name: str
+    part: str
+    scene: StrideScene
+
+
+def band_text() -> str:
+    """What the what-if band spans, in words."""
+    return (f"friction {FRICTION_BAND[0]:g}-{FRICTION_BAND[1]:g}, the objective (effort, "
+            f"{', '.join(OBJECTIVE_BAND)}) and the legs' mass {LEG_MASS_BAND[0] * 100 - 100:+.0f}/"
+            f"{LEG_MASS_BAND[1] * 100 - 100:+.0f} %")
+
+
+def band_variants(nominal: StrideScene, body: dict) -> list[Variant]:
+    """The band's variants of the nominal scene: friction, objective and the legs' mass (`body`:
+    compare's body settings, mass_kg, height_m, sex)."""
+    out = [Variant(f"friction {mu:g}", "friction", _with(nominal, friction=mu)) for mu in FRICTION_BAND]
+    out += [Variant(o, "objective", _with(nominal, objective=o)) for o in OBJECTIVE_BAND]
+    return out + [Variant(f"legs' mass {f * 100 - 100:+.0f} %", "body", with_body(nominal, scaled_body(
+        body["mass_kg"], body["height_m"], body["sex"], legs=f))) for f in LEG_MASS_BAND]
+
+
+def solve_band(variants: list[Variant], starts: list[tuple], workers: int, say) -> dict[str, list[Stride]]:
+    """Each variant's strides by name, one per (start, cadence) of `starts` and in its order
+    (the nominal's free optimum with cadence None, then its stride at each cadence), each solved
+    warm from its start (`stride_at`). The solves, independent of each other, run on `workers`
+    processes, the longest variants' first (LONGEST_FIRST; forked after the nominal: each worker
+    holds its NLP); `say("variant NAME done")` as each variant's last solve is got."""
+    order = sorted(variants, key=lambda v: LONGEST_FIRST.index(v.part))
+    tasks = [(stride_at, (v.scene, start, cadence), f"variant {v.name} done" if k == len(starts) - 1 else "")
+             for v in order for k, (start, cadence) in enumerate(starts)]
+    with Background(min(workers, len(tasks))) as pool:
+        strides = iter(pool.results(pool.start(tasks), say))
+    return {v.name: [next(strides) for _ in starts] for v in order}
+
+
+def stride_at(task: tuple) -> Stride:
+    """The scene's stride at `cadence` (None: free), warm-started from `start`, from
+    (scene, start, cadence)."""
+    scene, start, cadence = task
+    nlp = scene.nlp()
+    return summarise(nlp, warm(nlp, start, scene.speed, scene.slope, scene.friction, cadence), False)
+
+
+def strike_tasks(nominal: StrideScene, speed: float, strikes: list[str]) -> list[tuple]:
+    """Background tasks: each strike's free optimum of the nominal scene (speed m/s),
+    forward-checked (None where it does not converge), told "strike S done"."""
+    return [(_strike, (_with(nominal, strike=s), speed), f"strike {s} done") for s in strikes]
+
+
+def check_tasks(scene: StrideScene, strides: list[Stride]) -> list[tuple]:
+    """Background tasks: each of the scene's `strides` forward-checked
+    (optim.stride.forward_checked), not told."""
+    return [(_checked, (scene, s), "") for s in strides]
+
+
+def stage_count(band: bool = True) -> int:
+    """The stages compare_stride.answer tells its progress of: the nominal, the family, the
+    band's start and, with the band, each other strike and each variant as it ends."""
+    return 3 + (len(FRICTION_BAND) + len(OBJECTIVE_BAND) + len(LEG_MASS_BAND) + len(STRIKES) - 1 if band else 0)
+
+
+def stage_shares(band: bool = True) -> list[float]:
+    """Each of `stage_count`'s stages' expected share of the section's time, in the order
+    compare_stride.answer tells them (io.progress.Stages' `shares`): the nominal curve, its
+    family, each other strike (solved beside the nominal: done when told), the band until its
+    first variant ends (the longest, LONGEST_FIRST) and the rest of the band (STAGE_SHARES)."""
+    nominal, family, first, rest = STAGE_SHARES
+    if not band:
+        return [nominal, family, 0.0]
+    strikes, variants = len(STRIKES) - 1, stage_count() - 3 - len(STRIKES) + 1
+    return [nominal, family, *[0.0] * strikes, first, *[rest / (variants - 1)] * (variants - 1), 0.0]
+
+
+def _strike(task: tuple) -> Stride | None:
+    """One other strike's free optimum (`_free_or_none`), forward-checked, from (scene, speed)."""
+    stride = _free_or_none(*task)
+    return None if stride is None else forward_checked(task[0].nlp(), stride)
+
+
+def _checked(task: tuple) -> Stride:
+    """A stride of the scene forward-checked (optim.stride.forward_checked), from (scene, stride)."""
+    scene, stride = task
+    return forward_checked(scene.nlp(), stride)
+
+
+def _with(scene: StrideScene, **changes) -> StrideScene:
+    """The scene with its friction, or its settings' objective or strike, changed."""
+    if "friction" in changes:
+        return replace(scene, friction=changes["friction"])
+    settings = replace(scene.settings, **changes)
+    return replace(scene, settings=settings, strike=settings.strike)
+
+
+def _free_or_none(scene: StrideScene, speed: float) -> Stride | None:
+    """The scene's free optimum at `speed` (m/s), None where it does not converge."""
+    stride = free(scene, speed, scene.slope, scene.friction)
+    return stride if stride.success else None
