@@ -178,9 +178,11 @@ class StrideNLP:
         self.build_s = time.perf_counter() - start
 
     def _energy_rows(self) -> None:
-        """With springs, the held contacts' work and the energy budget (less the climb's work)
-        held at zero, per body weight (N): the springs let the optimum draw energy from the
-        transcription (StrideSettings.consistency_rows: False, without them)."""
+        """With springs, the held contacts' work W_c = int f . v_c dt and the energy budget B (the
+        balance's integral less the impacts' and the climb's work), per body weight (m): the
+        springs let the optimum draw energy from the transcription. StrideSettings.consistency_rows
+        "exact": W_c = B = 0; "trapezoid": W_c <= 0 <= B (the transcription may absorb energy, not
+        give it); "off": no row."""
         form = self.settings.consistency_rows
         if any(self.settings.tendons.values()) and form != "off":
             weight = self.mass * GRAVITY
@@ -188,7 +190,7 @@ class StrideNLP:
             ground, budget = self.terms["ground"] / weight, (self.terms["balance"] - climb) / weight
             if form == "exact":
                 self.rows.add(ca.vertcat(ground, budget))
-            else:  # the transcription may absorb energy, not give it
+            else:
                 self.rows.add(ground, -np.inf, 0.0)
                 self.rows.add(budget, 0.0, np.inf)
 
