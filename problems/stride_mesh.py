@@ -180,7 +180,7 @@ def release_forces(nlp, b) -> list[str]:
 def consistency_values(nlp, solved) -> str:
     """What the consistency rows hold (StrideSettings.consistency_rows), at a solution: each
     released point's height (mm) at the next phase's first column (its held drift), and the held
-    contacts' work and the energy budget (mm: J per body weight)."""
+    contacts' work and the energy budget less the climb's work (mm: J per body weight)."""
     b = solved.blocks
     p = [solved.parameters[k] for k in ("speed", "slope", "mu")]
     heights = []
@@ -191,8 +191,9 @@ def consistency_values(nlp, solved) -> str:
                 heights.append(f"{point} {float(y) * 1e3:+.4f}")
     x = nlp.blocks.vector()
     weight = nlp.mass * GRAVITY
-    energy = [float(ca.Function("e", [x, nlp.p], [nlp.integral(k)])(solved.x, p)) / weight * 1e3
-              for k in ("ground", "balance")]
+    climb = weight * p[0] * sum(b[f"T_{ph.name}"].item() for ph in nlp.phases) * math.sin(p[1])
+    ground, balance = (float(ca.Function("e", [x, nlp.p], [nlp.integral(k)])(solved.x, p)) for k in ("ground", "balance"))
+    energy = [ground / weight * 1e3, (balance - climb) / weight * 1e3]
     return (f"  consistency rows' values: released heights at the next phase's first column (mm) "
             f"{', '.join(heights)}; held contacts' work {energy[0]:+.4f} mm, energy budget {energy[1]:+.4f} mm")
 
