@@ -29,7 +29,7 @@ muscles' warm start's (collocation.MUSCLE_WARM_START, 3e-4), which keeps the ite
 stride it starts from; their cold solves' 1e-2 (MUSCLE_IPOPT) can leave it: at 2.5 m/s (heel)
 the search's 152.9 steps/min at 40 nodes went to 148.0 at 80 from 3e-4, to 170.2 (another
 optimum, 6 % costlier) from 1e-2. `--no-consistency-rows`: every mesh, the first one's too, with
-StrideSettings.consistency_rows False (the rows the continuous stride meets by itself dropped);
+StrideSettings.consistency_rows "off" (the rows the continuous stride meets by itself dropped);
 with `--rows-first` the first mesh's stride is solved with them, then without them from it (as a
 finer mesh is from the one before), so that every mesh solves the rows-kept stride's neighbour.
 """
@@ -145,7 +145,7 @@ def finer(nlp, speed: float, before, mu_inits: list[float]):
     return out[0]
 
 
-def mesh(body, args, nodes: int, consistency_rows: bool):
+def mesh(body, args, nodes: int, consistency_rows: str):
     """The muscles' stride NLP on `nodes` nodes at the command line's strike."""
     return build(body, StrideSettings(strike=args.strike, nodes=nodes, muscles=body_muscles(body),
                                       objective="metabolic", consistency_rows=consistency_rows))
@@ -171,8 +171,8 @@ def main(argv=None) -> int:
     parser.add_argument("--spend", type=int, default=1)
     parser.add_argument("--mu-init", type=float, nargs="+", default=[MUSCLE_WARM_START["mu_init"]],
                         help="IPOPT's first barrier for each finer mesh's solve, each in turn")
-    parser.add_argument("--no-consistency-rows", dest="consistency_rows", action="store_false",
-                        help="StrideSettings.consistency_rows False on every mesh")
+    parser.add_argument("--no-consistency-rows", dest="consistency_rows", action="store_const", const="off",
+                        default="exact", help="StrideSettings.consistency_rows \"off\" on every mesh")
     parser.add_argument("--rows-first", action="store_true",
                         help="the first mesh's stride solved with the rows, then without them from it")
     args = parser.parse_args(argv)
@@ -180,7 +180,7 @@ def main(argv=None) -> int:
     body = scaled_body(62.0, 1.81)
     print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, muscles, metabolic, {args.speed} m/s, "
           f"the first mesh's stride {'the search at spend ' + str(args.spend) if args.start == 'search' else 'the default path'}"
-          f"{'' if args.consistency_rows else ', without the consistency rows'}",
+          f"{'' if args.consistency_rows == 'exact' else ', without the consistency rows'}",
           flush=True)
     strides = []
     for nodes in args.nodes:
@@ -188,7 +188,7 @@ def main(argv=None) -> int:
         if strides:
             strides.append(finer(nlp, args.speed, strides[-1], args.mu_init))
             continue
-        first = start(mesh(body, args, nodes, True) if args.rows_first else nlp, args)
+        first = start(mesh(body, args, nodes, "exact") if args.rows_first else nlp, args)
         strides.append(finer(nlp, args.speed, first, args.mu_init) if args.rows_first else first)
     if len(strides) > 2:
         print("mesh convergence:")

@@ -8,7 +8,9 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
                                    [--smoothing 1e-5 (problem.SMOOTHING's weight, for this run)]
                                    [--smoothing-order 2 (that weight times (N / N_first)^2 at N)]
                                    [--no-release-row (no f_n = 0 row at a release)]
-                                   [--no-consistency-rows (StrideSettings.consistency_rows False)]
+                                   [--consistency-rows exact|trapezoid|off (StrideSettings.consistency_rows;
+                                    --no-consistency-rows: off)]
+                                   [--cross-rows exact (each mesh solved again with that form from its optimum)]
                                    [--acceleration 3000 (rad/s^2: collocation.ACCELERATION, for this run)]
                                    [--ankle-max 40 (deg: the ankle's dorsiflexion range, for this run)]
                                    [--range-margin 60 (deg: every joint's range widened both ways, for this run)]
@@ -67,7 +69,7 @@ from formopt.optim.stride import collocation, contact, costs, ocp, ranges
 from formopt.optim.stride.collocation import StrideNLP, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS
-from formopt.optim.stride.problem import RUNNER_TENDONS, SMOOTHING, StrideSettings
+from formopt.optim.stride.problem import CONSISTENCY_ROWS, RUNNER_TENDONS, SMOOTHING, StrideSettings
 
 matplotlib.use("Agg")
 TIGHT = 1e-6  # a value this close to its bound (relative to max(1, |bound|)) is on it
@@ -173,6 +175,27 @@ def release_forces(nlp, b) -> list[str]:
             if axis == "n" and point not in after.points:
                 out.append(f"{point} {b[f'F_{before.name}'][k, -1]:.3f}")
     return out
+
+
+def consistency_values(nlp, solved) -> str:
+    """What the consistency rows hold (StrideSettings.consistency_rows), at a solution: each
+    released point's height (mm) at the next phase's first column (its held drift), and the held
+    contacts' work and the energy budget less the climb's work (mm: J per body weight)."""
+    b = solved.blocks
+    p = [solved.parameters[k] for k in ("speed", "slope", "mu")]
+    heights = []
+    for before, after in zip(nlp.phases, nlp.phases[1:]):
+        for point in before.points:
+            if point not in after.points:
+                y = contact.height(nlp.js, point, ca.DM(b[f"X_{after.name}"][:len(THETA), 0]), p[1])
+                heights.append(f"{point} {float(y) * 1e3:+.4f}")
+    x = nlp.blocks.vector()
+    weight = nlp.mass * GRAVITY
+    climb = weight * p[0] * sum(b[f"T_{ph.name}"].item() for ph in nlp.phases) * math.sin(p[1])
+    ground, balance = (float(ca.Function("e", [x, nlp.p], [nlp.integral(k)])(solved.x, p)) for k in ("ground", "balance"))
+    energy = [ground / weight * 1e3, (balance - climb) / weight * 1e3]
+    return (f"  consistency rows' values: released heights at the next phase's first column (mm) "
+            f"{', '.join(heights)}; held contacts' work {energy[0]:+.4f} mm, energy budget {energy[1]:+.4f} mm")
 
 
 def figure(path: str, meshes: list) -> None:
@@ -339,8 +362,12 @@ def parse(argv) -> argparse.Namespace:
                         help="1/s: the held rows with the contact's drift fed back (Baumgarte), for this run")
     parser.add_argument("--smooth-ends", action="store_true",
                         help="each phase's first and last columns' controls on the line through their two neighbours")
-    parser.add_argument("--no-consistency-rows", action="store_true",
-                        help="StrideSettings.consistency_rows = False")
+    parser.add_argument("--consistency-rows", default="exact", choices=CONSISTENCY_ROWS,
+                        help="StrideSettings.consistency_rows")
+    parser.add_argument("--no-consistency-rows", dest="consistency_rows", action="store_const", const="off",
+                        help="StrideSettings.consistency_rows = \"off\"")
+    parser.add_argument("--cross-rows", default="", choices=CONSISTENCY_ROWS,
+                        help="each mesh solved again with this consistency_rows from its optimum")
     parser.add_argument("--no-release-row", action="store_true",
                         help="the releases without their f_n = 0 row (as Hermite-Simpson's torque sources)")
     parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
@@ -391,8 +418,18 @@ def report(label: str, nlp, stride, seconds: float, speed: float) -> None:
     print(f"  released with (BW): {', '.join(release_forces(nlp, b))}; impacts: "
           + ", ".join(f"{i['point']} {i['leg']} approach {i['approach_mps']:.4f} m/s, impulse (t, n) "
                       f"{i['impulse_Ns'][0]:.4g} {i['impulse_Ns'][1]:.4g} N s" for i in stride.impacts))
+    print(consistency_values(nlp, stride.solved))
     print("  variables on a bound: " + ("; ".join(blocks) or "-"))
     print("\n".join(f"  node rows, {r}" for r in rows), flush=True)
+
+
+def cross(args, body, settings, stride, label: str) -> None:
+    """The mesh's NLP with StrideSettings.consistency_rows `args.cross_rows`, solved from this
+    mesh's optimum and reported: whether the other form's optimum lies near this one's."""
+    nlp = build(body, dataclasses.replace(settings, consistency_rows=args.cross_rows))
+    clock = time.process_time()
+    other = optimum(nlp, args.speed, mu=args.mu, cadence=args.cadence or None, guess=stride.solved.blocks)
+    report(f"{label}, consistency rows {args.cross_rows} from it", nlp, other, time.process_time() - clock, args.speed)
 
 
 def main(argv=None) -> int:
@@ -406,7 +443,7 @@ def main(argv=None) -> int:
         settings = StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
                                   transcription=transcription, moment_time=args.moment_time,
                                   approach_speed=args.approach_speed, duration=durations,
-                                  consistency_rows=not args.no_consistency_rows)
+                                  consistency_rows=args.consistency_rows)
         nlp = StrideNLP(JointSpace(body), settings, dict(args.ipopt)) if args.ipopt else build(body, settings)
         relax_heights(nlp, args.no_release_height, args.no_stance_heights)
         if args.no_energy_rows:
@@ -414,6 +451,8 @@ def main(argv=None) -> int:
         clock = time.process_time()
         stride = optimum(nlp, args.speed, mu=args.mu, cadence=args.cadence or None, guess=guess)
         report(f"{transcription} {nodes}", nlp, stride, time.process_time() - clock, args.speed)
+        if args.cross_rows:
+            cross(args, body, settings, stride, f"{transcription} {nodes}")
         guess = stride.solved.blocks
         if args.fix_durations and not solved:
             durations = pinned(guess)

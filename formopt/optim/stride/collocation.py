@@ -36,9 +36,10 @@ import numpy as np
 from ...mechanics.compiled import compiler, one_blas_thread
 from ...mechanics.joint_space import GRAVITY, JOINTS, LIMIT_MARGIN, RANGES, THETA, JointSpace
 from . import derivatives
+from .contact import height
 from .layout import Blocks, Rows, Solved
 from .ocp import INTEGRANDS, Impact, StrideProblem, periodicity, step_length
-from .problem import StrideSettings
+from .problem import RELEASE_DRIFT, StrideSettings
 from .transcription import TRANSCRIPTIONS
 
 NX = len(THETA)
@@ -177,13 +178,21 @@ class StrideNLP:
         self.build_s = time.perf_counter() - start
 
     def _energy_rows(self) -> None:
-        """With springs, the held contacts' work and the energy budget (less the climb's work)
-        held at zero, per body weight (N): the springs let the optimum draw energy from the
-        transcription (StrideSettings.consistency_rows: False, without them)."""
-        if any(self.settings.tendons.values()) and self.settings.consistency_rows:
+        """With springs, the held contacts' work W_c = int f . v_c dt and the energy budget B (the
+        balance's integral less the impacts' and the climb's work), per body weight (m): the
+        springs let the optimum draw energy from the transcription. StrideSettings.consistency_rows
+        "exact": W_c = B = 0; "trapezoid": W_c <= 0 <= B (the transcription may absorb energy, not
+        give it); "off": no row."""
+        form = self.settings.consistency_rows
+        if any(self.settings.tendons.values()) and form != "off":
             weight = self.mass * GRAVITY
             climb = weight * step_length(self.p[0], self.period) * ca.sin(self.p[1])
-            self.rows.add(ca.vertcat(self.terms["ground"], self.terms["balance"] - climb) / weight)
+            ground, budget = self.terms["ground"] / weight, (self.terms["balance"] - climb) / weight
+            if form == "exact":
+                self.rows.add(ca.vertcat(ground, budget))
+            else:
+                self.rows.add(ground, -np.inf, 0.0)
+                self.rows.add(budget, 0.0, np.inf)
 
     @property
     def compiled(self) -> bool:
@@ -291,16 +300,8 @@ class StrideNLP:
         G, L = self.node_functions[i].map(c)(X, A, U, F, S, Z, ca.repmat(td, 1, c), ca.repmat(self.p, 1, c))
         lower, upper = self.node_bounds[i]
         lower = np.tile(lower[:, None], c)
-        if (self.settings.moment_time or not self.settings.consistency_rows) and i > 0 and not self.impact_before(i):
-            # moment dynamics: no height row for a released point at the phase's first column, where
-            # the phase before held it (its drift O(h^2) there is a transcription error, not a
-            # motion); with it the held drift's sign was a row with multipliers of 850 (trapezoid)
-            # to 1.85e4 (Hermite-Simpson) and Hermite-Simpson 40 did not converge in 1000 iterations
-            # (RBDS001, 3.5 m/s, moment_time 0.04 s). Not done for the torque sources: it moves the
-            # shipped trapezoid 40's 169.5 steps/min to 173.3 (2026-11-27); without the consistency
-            # rows (StrideSettings.consistency_rows) for them too.
-            free = self.ocp.models[i].contact.free
-            lower[[k for k, point in enumerate(free) if point in self.phases[i - 1].points], 0] = -np.inf
+        if i > 0 and not self.impact_before(i):
+            self._release_heights(i, lower)
         self.node_rows.add(G, lower.ravel(order="F"), np.tile(upper, c))
         self.node_integrands.append(ca.vec(L))
         h = T / n
@@ -312,6 +313,26 @@ class StrideNLP:
         for k, key in enumerate(INTEGRANDS):
             self.terms[key] += integrals[k]
         self.terms["smoothing"] += self.transcription.smoothing(A, h)
+
+    def _release_heights(self, i: int, lower: np.ndarray) -> None:
+        """Phase i's released points' heights at its first column, the phase before's held drift
+        (O(h^2), a transcription error, not a motion): >= 0 in `lower` (its node rows' lower
+        bounds, a column per column) with StrideSettings.consistency_rows "exact" and no moment
+        dynamics; else free there, and with "trapezoid" (torque sources) >= -RELEASE_DRIFT h^2,
+        h the phase before's interval (s). With moment dynamics the drift's sign was a row with
+        multipliers of 850 (trapezoid) to 1.85e4 (Hermite-Simpson) and Hermite-Simpson 40 did not
+        converge in 1000 iterations (RBDS001, 3.5 m/s, moment_time 0.04 s)."""
+        form = self.settings.consistency_rows
+        if form == "exact" and not self.settings.moment_time:
+            return
+        free = self.ocp.models[i].contact.free
+        released = [k for k, point in enumerate(free) if point in self.phases[i - 1].points]
+        lower[released, 0] = -np.inf
+        if form == "trapezoid" and not self.settings.moment_time:
+            h = self.v[f"T_{self.phases[i - 1].name}"] / self.split[i - 1]
+            theta = self.v[f"X_{self.phases[i].name}"][:NX, 0]
+            for k in released:
+                self.rows.add(height(self.js, free[k], theta, self.p[1]) + RELEASE_DRIFT * h ** 2, 0.0, np.inf)
 
     def _transition(self, i):
         """Phase i-1 -> i: the same configuration, then an impact or a release (ocp)."""

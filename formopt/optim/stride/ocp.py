@@ -123,7 +123,7 @@ class Release:
     holds it at or above the ground) and the transcription only by a layer one interval wide
     that costs O(h): the optimum converged as O(h) (objective 0.1625 / 0.1461 / 0.1382 at 20 /
     40 / 80 intervals, RBDS001, 3.5 m/s, 130 steps/min; problems/stride_mesh.py). The
-    trapezoid keeps the row (but with StrideSettings.consistency_rows False): without it its
+    trapezoid keeps the row with StrideSettings.consistency_rows "exact": without it its
     coarse strides leave the ground pushing 2 body weights, which its forward check rejects
     (0.16-0.22 rad at 24-40 nodes)."""
 
@@ -166,8 +166,8 @@ class StrideProblem:
         if added:
             return Impact(added, self.models[i].contact, self.settings.approach_speed)
         if not (self.models[i].actuation.states
-                or (self.settings.transcription == "trapezoid" and self.settings.consistency_rows)):
-            # torque sources on Hermite-Simpson, or without the consistency rows: `Release` says why
+                or (self.settings.transcription == "trapezoid" and self.settings.consistency_rows == "exact")):
+            # torque sources on Hermite-Simpson, or consistency_rows not "exact": `Release` says why
             return Release((), before.sliding)
         dropped = tuple(k for k, (p, a) in enumerate(before.rows) if a == "n" and p not in after.points)
         return Release(dropped, before.sliding)

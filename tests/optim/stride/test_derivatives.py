@@ -19,6 +19,7 @@ from formopt.optim.stride.problem import RUNNER_TENDONS
 FORCE_RATE = {"strike": "flat", "nodes": 14, "objective": "metabolic", "muscles": "gait2d",
               "force_rate_weight": 1e4}  # the force-rate term dominant
 CASES = [{"strike": "heel", "tendons": RUNNER_TENDONS},
+         {"strike": "heel", "tendons": RUNNER_TENDONS, "consistency_rows": "trapezoid"},  # its one-sided rows
          {"strike": "forefoot", "objective": "metabolic", "impact_weight": 1.0},
          {"strike": "flat", "transcription": "hermite-simpson", "nodes": 14, "tendons": RUNNER_TENDONS,
           "objective": "work"},
