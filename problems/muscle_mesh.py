@@ -9,7 +9,7 @@ is solved from the one before, its node histories interpolated onto the finer me
 
     python problems/muscle_mesh.py [--speed 3.5] [--strike heel|forefoot] [--nodes 40 80 160]
                                    [--start search|path] [--spend 1] [--mu-init 3e-4 1e-2]
-                                   [--no-consistency-rows [--rows-first]]
+                                   [--no-consistency-rows [--rows-first]] [--grading 0.9]
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -79,12 +79,12 @@ def phase_costs(nlp, solved, speed: float, column: int | None = None) -> dict[st
     b = solved.blocks
     d = step_length(speed, sum(b[f"T_{p.name}"].item() for p in nlp.phases))
     out = {}
-    for phase, n, (L, w) in zip(nlp.phases, nlp.split, nlp.integrands(b, solved.parameters)):
+    for phase, n, s, (L, w) in zip(nlp.phases, nlp.split, nlp.steps, nlp.integrands(b, solved.parameters)):
         if column is not None:
             w = w * (np.arange(w.size) == np.arange(w.size)[column])
         integrals = dict(zip(INTEGRANDS, L @ w))
         integrals["smoothing"] = 0.0 if column is not None else float(nlp.transcription.smoothing(
-            ca.DM(b[f"A_{phase.name}"]), b[f"T_{phase.name}"].item() / n))
+            ca.DM(b[f"A_{phase.name}"]), b[f"T_{phase.name}"].item() / n, s))
         out[phase.name] = {t.integral: float(t(integrals, d)) for t in nlp.ocp.cost_terms if t.integral != "impacts"}
     return out
 
@@ -148,7 +148,8 @@ def finer(nlp, speed: float, before, mu_inits: list[float]):
 def mesh(body, args, nodes: int, consistency_rows: bool):
     """The muscles' stride NLP on `nodes` nodes at the command line's strike."""
     return build(body, StrideSettings(strike=args.strike, nodes=nodes, muscles=body_muscles(body),
-                                      objective="metabolic", consistency_rows=consistency_rows))
+                                      objective="metabolic", consistency_rows=consistency_rows,
+                                      grading=args.grading))
 
 
 def start(nlp, args):
@@ -173,6 +174,8 @@ def main(argv=None) -> int:
                         help="IPOPT's first barrier for each finer mesh's solve, each in turn")
     parser.add_argument("--no-consistency-rows", dest="consistency_rows", action="store_false",
                         help="StrideSettings.consistency_rows False on every mesh")
+    parser.add_argument("--grading", type=float, default=0.0,
+                        help="StrideSettings.grading on every mesh: each phase's mesh graded toward its ends")
     parser.add_argument("--rows-first", action="store_true",
                         help="the first mesh's stride solved with the rows, then without them from it")
     args = parser.parse_args(argv)
@@ -180,7 +183,8 @@ def main(argv=None) -> int:
     body = scaled_body(62.0, 1.81)
     print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, muscles, metabolic, {args.speed} m/s, "
           f"the first mesh's stride {'the search at spend ' + str(args.spend) if args.start == 'search' else 'the default path'}"
-          f"{'' if args.consistency_rows else ', without the consistency rows'}",
+          f"{'' if args.consistency_rows else ', without the consistency rows'}"
+          f"{f', grading {args.grading:g}' if args.grading else ''}",
           flush=True)
     strides = []
     for nodes in args.nodes:

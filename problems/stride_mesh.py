@@ -19,6 +19,7 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
                                    [--mu 0.8 (the friction coefficient)]
                                    [--no-energy-rows (no rows on the held contacts' work and the energy budget)]
                                    [--fix-durations (the finer meshes' phase durations the first's)]
+                                   [--grading 0.9 (StrideSettings.grading: each phase's mesh graded to its ends)]
                                    [--durations heel=0.0532 flat=0.0801 ... (s: every mesh's, held)]
                                    [--hold-rate 100 (1/s: the held rows J a + dJ v + 2 r v_c + r^2 y_c = 0)]
                                    [--smooth-ends (each phase's end columns' controls on the line through
@@ -80,13 +81,13 @@ def phase_terms(nlp, b, speed: float) -> tuple[dict, dict, float]:
     the joints}, smoothing term): the objective's parts (per distance)."""
     d = speed * sum(b[f"T_{p.name}"].item() for p in nlp.phases)
     effort, ends, smooth = {}, {}, 0.0
-    for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
+    for i, (phase, n, s) in enumerate(zip(nlp.phases, nlp.split, nlp.steps)):
         T, A = b[f"T_{phase.name}"].item(), b[f"A_{phase.name}"]
-        w = np.asarray(nlp.transcription.weights(n, T / n), float).ravel()
+        w = np.asarray(nlp.transcription.weights(T / n, s), float).ravel()
         squares = nlp.moments(b, i)[0] ** 2 * 100 / (nlp.mass * GRAVITY) ** 2 / d
         effort[phase.name] = squares @ w
         ends[phase.name] = float((squares[:, [0, -1]] - squares[:, [1, -2]]).sum(axis=0) @ w[[0, -1]])
-        smooth += costs.SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n)) / d
+        smooth += costs.SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n, s)) / d
     return effort, ends, smooth
 
 
@@ -343,6 +344,8 @@ def parse(argv) -> argparse.Namespace:
                         help="StrideSettings.consistency_rows = False")
     parser.add_argument("--no-release-row", action="store_true",
                         help="the releases without their f_n = 0 row (as Hermite-Simpson's torque sources)")
+    parser.add_argument("--grading", type=float, default=0.0,
+                        help="StrideSettings.grading: each phase's mesh graded toward its ends (0 uniform to 1)")
     parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
                         help="IPOPT options over the stride's (key=value), e.g. print_level=5")
     args = parser.parse_args(argv)
@@ -406,7 +409,7 @@ def main(argv=None) -> int:
         settings = StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
                                   transcription=transcription, moment_time=args.moment_time,
                                   approach_speed=args.approach_speed, duration=durations,
-                                  consistency_rows=not args.no_consistency_rows)
+                                  consistency_rows=not args.no_consistency_rows, grading=args.grading)
         nlp = StrideNLP(JointSpace(body), settings, dict(args.ipopt)) if args.ipopt else build(body, settings)
         relax_heights(nlp, args.no_release_height, args.no_stance_heights)
         if args.no_energy_rows:
