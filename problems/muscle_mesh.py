@@ -9,7 +9,8 @@ is solved from the one before, its node histories interpolated onto the finer me
 
     python problems/muscle_mesh.py [--speed 3.5] [--strike heel|forefoot] [--nodes 40 80 160]
                                    [--start search|path] [--spend 1] [--mu-init 3e-4 1e-2]
-                                   [--no-consistency-rows [--rows-first]] [--grading 0.9]
+                                   [--no-consistency-rows [--rows-first]]
+                                   [--grading 0.9 [--first-grading 0]]
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -32,6 +33,9 @@ optimum, 6 % costlier) from 1e-2. `--no-consistency-rows`: every mesh, the first
 StrideSettings.consistency_rows False (the rows the continuous stride meets by itself dropped);
 with `--rows-first` the first mesh's stride is solved with them, then without them from it (as a
 finer mesh is from the one before), so that every mesh solves the rows-kept stride's neighbour.
+`--grading g`: every mesh graded toward each phase's ends (StrideSettings.grading); with
+`--first-grading`, the first mesh's grading (e.g. 0: the uniform stride continued on graded
+meshes). Each finer mesh starts from the one before at both meshes' node times (guess.fitted).
 """
 
 from __future__ import annotations
@@ -49,6 +53,7 @@ from formopt.mechanics.body import scaled_body
 from formopt.mechanics.limits import Range
 from formopt.optim.stride import problem, ranges
 from formopt.optim.stride.collocation import MUSCLE_WARM_START, build
+from formopt.optim.stride.guess import fitted
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS, step_length
 from formopt.optim.stride.problem import StrideSettings
@@ -129,38 +134,40 @@ def change(before, after) -> str:
 
 
 def finer(nlp, speed: float, before, mu_inits: list[float]):
-    """The stride on `nlp`'s (finer) mesh from `before` (a stride and its `phase_costs`)
-    interpolated onto it, solved with IPOPT's barrier starting at each of `mu_inits` in turn,
-    each reported with its change from `before`; returns the first (with its parts)."""
+    """The stride on `nlp`'s (finer) mesh from `before` (a stride, its `phase_costs` and its NLP)
+    interpolated onto it (guess.fitted, at both meshes' times), solved with IPOPT's barrier
+    starting at each of `mu_inits` in turn, each reported with its change from `before`; returns
+    the first (with its parts and NLP)."""
     out = []
+    guess = fitted(nlp, before[0].solved.blocks, before[2])
     for mu in mu_inits:
         clock = time.process_time()
-        stride = optimum(nlp.variant({"mu_init": mu}), speed, guess=before[0].solved.blocks)
+        stride = optimum(nlp.variant({"mu_init": mu}), speed, guess=guess)
         print(report(nlp.settings.nodes, stride, time.process_time() - clock) + f" (mu_init {mu:g})", flush=True)
         parts = phase_costs(nlp, stride.solved, speed)
         print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, speed), flush=True)
         print(change(before[0], stride), flush=True)
         print(costs_change(before[1], parts), flush=True)
-        out.append((stride, parts))
+        out.append((stride, parts, nlp))
     return out[0]
 
 
-def mesh(body, args, nodes: int, consistency_rows: bool):
-    """The muscles' stride NLP on `nodes` nodes at the command line's strike."""
+def mesh(body, args, nodes: int, consistency_rows: bool, grading: float):
+    """The muscles' stride NLP on `nodes` nodes at the command line's strike and `grading`."""
     return build(body, StrideSettings(strike=args.strike, nodes=nodes, muscles=body_muscles(body),
                                       objective="metabolic", consistency_rows=consistency_rows,
-                                      grading=args.grading))
+                                      grading=grading))
 
 
 def start(nlp, args):
     """The first mesh's stride: the search's answer at `--spend`, or the default path's; reported,
-    with its `phase_costs`."""
+    with its `phase_costs` and NLP."""
     clock = time.process_time()
     stride = global_optimum(nlp, args.speed, spend=args.spend) if args.start == "search" else optimum(nlp, args.speed)
     print(report(nlp.settings.nodes, stride, time.process_time() - clock), flush=True)
     parts = phase_costs(nlp, stride.solved, args.speed)
     print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, args.speed), flush=True)
-    return stride, parts
+    return stride, parts, nlp
 
 
 def main(argv=None) -> int:
@@ -176,6 +183,8 @@ def main(argv=None) -> int:
                         help="StrideSettings.consistency_rows False on every mesh")
     parser.add_argument("--grading", type=float, default=0.0,
                         help="StrideSettings.grading on every mesh: each phase's mesh graded toward its ends")
+    parser.add_argument("--first-grading", type=float, default=None,
+                        help="the first mesh's grading (default --grading's), the finer meshes' --grading")
     parser.add_argument("--rows-first", action="store_true",
                         help="the first mesh's stride solved with the rows, then without them from it")
     args = parser.parse_args(argv)
@@ -184,20 +193,22 @@ def main(argv=None) -> int:
     print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, muscles, metabolic, {args.speed} m/s, "
           f"the first mesh's stride {'the search at spend ' + str(args.spend) if args.start == 'search' else 'the default path'}"
           f"{'' if args.consistency_rows else ', without the consistency rows'}"
-          f"{f', grading {args.grading:g}' if args.grading else ''}",
+          f"{f', grading {args.grading:g}' if args.grading else ''}"
+          f"{f' (the first mesh {args.first_grading:g})' if args.first_grading is not None else ''}",
           flush=True)
     strides = []
+    first_grading = args.grading if args.first_grading is None else args.first_grading
     for nodes in args.nodes:
-        nlp = mesh(body, args, nodes, args.consistency_rows)
+        nlp = mesh(body, args, nodes, args.consistency_rows, first_grading if not strides else args.grading)
         if strides:
             strides.append(finer(nlp, args.speed, strides[-1], args.mu_init))
             continue
-        first = start(mesh(body, args, nodes, True) if args.rows_first else nlp, args)
+        first = start(mesh(body, args, nodes, True, first_grading) if args.rows_first else nlp, args)
         strides.append(finer(nlp, args.speed, first, args.mu_init) if args.rows_first else first)
     if len(strides) > 2:
         print("mesh convergence:")
-        for name, values in (("objective", [s.objective_value for s, _ in strides]),
-                             ("cadence", [s.cadence_spm for s, _ in strides])):
+        for name, values in (("objective", [s.objective_value for s, *_ in strides]),
+                             ("cadence", [s.cadence_spm for s, *_ in strides])):
             print(convergence(name, values, args.nodes))
     return 0
 
