@@ -23,10 +23,10 @@ def fractions(n: int, grading: float) -> np.ndarray:
     uniform s = k / n, a blend of the uniform mesh and the cosine (Chebyshev-Lobatto) one. The
     first and last intervals are (1 - g) + g n (1 - cos(pi / n)) / 2, about (1 - g) + g pi^2 / (4 n),
     times a uniform one (0.62 at g = 0.5 and 0.32 at g = 0.9 for n = 10; pi^2 / (4 n), O(1/n^2) in
-    all, at g = 1), the middle ones about (1 - g) + g pi / 2 times. The map is smooth: the
-    interval lengths change by O(1/n) from one to the next, so the schemes keep their order
-    inside the phase, while a layer a phase's end column carries (an impact's transient) costs
-    in proportion to that end interval's length."""
+    all, at g = 1), the middle ones about (1 - g) + g pi / 2 times. The map is smooth (a uniform
+    mesh in s of a smooth change of variable t = T tau(s)), so the schemes keep their order inside
+    the phase, while a layer a phase's end column carries (an impact's transient) costs in
+    proportion to that end interval's length."""
     s = np.linspace(0.0, 1.0, n + 1)
     return (1 - grading) * s + grading * (1 - np.cos(np.pi * s)) / 2
 
