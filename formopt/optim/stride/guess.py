@@ -50,8 +50,7 @@ def ballistic(nlp: StrideNLP, speed: float) -> dict:
     durations = [float(np.clip(DURATIONS[p.name], *lo_hi[p.name])) for p in phases]
     stance = sum(d for p, d in zip(phases, durations) if p.rows)
     period = sum(durations)
-    times = [nlp.times(i, d) + sum(durations[:i]) for i, d in enumerate(durations)]
-    t = np.concatenate(times)
+    t = np.concatenate([nlp.times(i, d) + sum(durations[:i]) for i, d in enumerate(durations)])
     body = js.model.body
     ankle_height = -body["foot"].landmarks["heel"][1]
     reach = 0.97 * (body["thigh"].length + body["shank"].length)

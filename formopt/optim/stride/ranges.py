@@ -56,7 +56,7 @@ RANGES = {
     # each phase's mesh graded toward its ends (StrideSettings.grading, transcription.fractions):
     # 0 uniform to 1, the cosine map (the end intervals O(1/n^2) of the phase's duration)
     "grading": Range(0.0, 1.0),
-        "max_iterations": limits.MAX_ITERATIONS,
+    "max_iterations": limits.MAX_ITERATIONS,
     "starts": Range(1, 100),
     # the global search's spend (optim.stride.search): 1-8; spend 8 is 33 grid cadences and
     # about 120 solves, several minutes at 40 nodes on a loaded 2-core machine (2026-11-25)
