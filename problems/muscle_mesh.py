@@ -10,7 +10,7 @@ is solved from the one before, its node histories interpolated onto the finer me
     python problems/muscle_mesh.py [--speed 3.5] [--strike heel|forefoot] [--nodes 40 80 160]
                                    [--start search|path] [--spend 1] [--mu-init 3e-4 1e-2]
                                    [--no-consistency-rows [--rows-first]]
-                                   [--grading 0.9 [--first-grading 0]]
+                                   [--grading 0.9 [--first-grading 0]] (a mesh's own: --nodes 160:1)
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -60,14 +60,14 @@ from formopt.optim.stride.problem import StrideSettings
 from formopt.optim.stride.search import global_optimum
 
 
-def report(nodes: int, stride, seconds: float) -> str:
-    """One mesh's stride as the module docstring lists."""
+def report(nodes: int, stride, seconds: float, grading: float = 0.0) -> str:
+    """One mesh's stride as the module docstring lists (its mesh's grading where not 0)."""
     bound = {b["phase"]: b["side"] for b in stride.on_bound}
     phases = " ".join(f"{name} {d * 1e3:.1f}" + (f" ({bound[name]})" if name in bound else "")
                       for name, d in stride.phases)
     forward = " ".join(f"{e:.3f}" for e in stride.checks.get("forward_per_phase", []))
     total = f" [{stride.search['iterations']}]" if stride.search else ""
-    return (f"{nodes:4d} nodes: {stride.cadence_spm:.1f} steps/min, objective {stride.objective_value:.5f}, "
+    return (f"{nodes:4d} nodes{f' graded {grading:g}' if grading else ''}: {stride.cadence_spm:.1f} steps/min, objective {stride.objective_value:.5f}, "
             f"stance {stride.stance_s:.3f} s; phases ms: {phases}; valid "
             f"{'yes' if stride.valid else 'NO: ' + '; '.join(stride.failed_checks)}; forward rad per phase [{forward}]; drift "
             f"{stride.checks['drift_m'] * 1e3:.3f} mm, balance {stride.checks['balance_relative'] * 100:.2e} %, "
@@ -143,7 +143,8 @@ def finer(nlp, speed: float, before, mu_inits: list[float]):
     for mu in mu_inits:
         clock = time.process_time()
         stride = optimum(nlp.variant({"mu_init": mu}), speed, guess=guess)
-        print(report(nlp.settings.nodes, stride, time.process_time() - clock) + f" (mu_init {mu:g})", flush=True)
+        print(report(nlp.settings.nodes, stride, time.process_time() - clock, nlp.settings.grading)
+              + f" (mu_init {mu:g})", flush=True)
         parts = phase_costs(nlp, stride.solved, speed)
         print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, speed), flush=True)
         print(change(before[0], stride), flush=True)
@@ -164,17 +165,24 @@ def start(nlp, args):
     with its `phase_costs` and NLP."""
     clock = time.process_time()
     stride = global_optimum(nlp, args.speed, spend=args.spend) if args.start == "search" else optimum(nlp, args.speed)
-    print(report(nlp.settings.nodes, stride, time.process_time() - clock), flush=True)
+    print(report(nlp.settings.nodes, stride, time.process_time() - clock, nlp.settings.grading), flush=True)
     parts = phase_costs(nlp, stride.solved, args.speed)
     print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, args.speed), flush=True)
     return stride, parts, nlp
+
+
+def node_token(text: str) -> tuple[int, float | None]:
+    """A mesh "nodes[:grading]" as (nodes, grading or None: --first-grading's or --grading's)."""
+    nodes, _, grading = text.partition(":")
+    return int(nodes), float(grading) if grading else None
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--strike", default="heel", choices=problem.STRIKES)
-    parser.add_argument("--nodes", type=int, nargs="+", default=[40, 80])
+    parser.add_argument("--nodes", type=node_token, nargs="+", default=[(40, None), (80, None)],
+                        help="nodes[:grading] per mesh, e.g. 160:1 (default grading --grading's)")
     parser.add_argument("--start", default="search", choices=("search", "path"))
     parser.add_argument("--spend", type=int, default=1)
     parser.add_argument("--mu-init", type=float, nargs="+", default=[MUSCLE_WARM_START["mu_init"]],
@@ -188,7 +196,7 @@ def main(argv=None) -> int:
     parser.add_argument("--rows-first", action="store_true",
                         help="the first mesh's stride solved with the rows, then without them from it")
     args = parser.parse_args(argv)
-    ranges.RANGES["nodes"] = Range(14, max(args.nodes + [120]))  # past the scenes' 120: each finer mesh is warm
+    ranges.RANGES["nodes"] = Range(14, max([n for n, _ in args.nodes] + [120]))  # past the scenes' 120: each finer mesh is warm
     body = scaled_body(62.0, 1.81)
     print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, muscles, metabolic, {args.speed} m/s, "
           f"the first mesh's stride {'the search at spend ' + str(args.spend) if args.start == 'search' else 'the default path'}"
@@ -198,18 +206,19 @@ def main(argv=None) -> int:
           flush=True)
     strides = []
     first_grading = args.grading if args.first_grading is None else args.first_grading
-    for nodes in args.nodes:
-        nlp = mesh(body, args, nodes, args.consistency_rows, first_grading if not strides else args.grading)
+    for nodes, own in args.nodes:
+        grading = own if own is not None else first_grading if not strides else args.grading
+        nlp = mesh(body, args, nodes, args.consistency_rows, grading)
         if strides:
             strides.append(finer(nlp, args.speed, strides[-1], args.mu_init))
             continue
-        first = start(mesh(body, args, nodes, True, first_grading) if args.rows_first else nlp, args)
+        first = start(mesh(body, args, nodes, True, grading) if args.rows_first else nlp, args)
         strides.append(finer(nlp, args.speed, first, args.mu_init) if args.rows_first else first)
     if len(strides) > 2:
         print("mesh convergence:")
         for name, values in (("objective", [s.objective_value for s, *_ in strides]),
                              ("cadence", [s.cadence_spm for s, *_ in strides])):
-            print(convergence(name, values, args.nodes))
+            print(convergence(name, values, [n for n, _ in args.nodes]))
     return 0
 
 
