@@ -10,6 +10,7 @@ is solved from the one before, its node histories interpolated onto the finer me
     python problems/muscle_mesh.py [--speed 3.5] [--strike heel|forefoot] [--nodes 40 80 160]
                                    [--start search|path] [--spend 1] [--mu-init 3e-4 1e-2]
                                    [--no-consistency-rows [--rows-first]]
+                                   [--grading 0.9 [--first-grading 0]] (a mesh's own: --nodes 160:1)
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -32,6 +33,9 @@ optimum, 6 % costlier) from 1e-2. `--no-consistency-rows`: every mesh, the first
 StrideSettings.consistency_rows "off" (the rows the continuous stride meets by itself dropped);
 with `--rows-first` the first mesh's stride is solved with them, then without them from it (as a
 finer mesh is from the one before), so that every mesh solves the rows-kept stride's neighbour.
+`--grading g`: every mesh graded toward each phase's ends (StrideSettings.grading); with
+`--first-grading`, the first mesh's grading (e.g. 0: the uniform stride continued on graded
+meshes). Each finer mesh starts from the one before at both meshes' node times (guess.fitted).
 """
 
 from __future__ import annotations
@@ -49,20 +53,21 @@ from formopt.mechanics.body import scaled_body
 from formopt.mechanics.limits import Range
 from formopt.optim.stride import problem, ranges
 from formopt.optim.stride.collocation import MUSCLE_WARM_START, build
+from formopt.optim.stride.guess import fitted
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS, step_length
 from formopt.optim.stride.problem import StrideSettings
 from formopt.optim.stride.search import global_optimum
 
 
-def report(nodes: int, stride, seconds: float) -> str:
-    """One mesh's stride as the module docstring lists."""
+def report(nodes: int, stride, seconds: float, grading: float = 0.0) -> str:
+    """One mesh's stride as the module docstring lists (its mesh's grading where not 0)."""
     bound = {b["phase"]: b["side"] for b in stride.on_bound}
     phases = " ".join(f"{name} {d * 1e3:.1f}" + (f" ({bound[name]})" if name in bound else "")
                       for name, d in stride.phases)
     forward = " ".join(f"{e:.3f}" for e in stride.checks.get("forward_per_phase", []))
     total = f" [{stride.search['iterations']}]" if stride.search else ""
-    return (f"{nodes:4d} nodes: {stride.cadence_spm:.1f} steps/min, objective {stride.objective_value:.5f}, "
+    return (f"{nodes:4d} nodes{f' graded {grading:g}' if grading else ''}: {stride.cadence_spm:.1f} steps/min, objective {stride.objective_value:.5f}, "
             f"stance {stride.stance_s:.3f} s; phases ms: {phases}; valid "
             f"{'yes' if stride.valid else 'NO: ' + '; '.join(stride.failed_checks)}; forward rad per phase [{forward}]; drift "
             f"{stride.checks['drift_m'] * 1e3:.3f} mm, balance {stride.checks['balance_relative'] * 100:.2e} %, "
@@ -79,12 +84,12 @@ def phase_costs(nlp, solved, speed: float, column: int | None = None) -> dict[st
     b = solved.blocks
     d = step_length(speed, sum(b[f"T_{p.name}"].item() for p in nlp.phases))
     out = {}
-    for phase, n, (L, w) in zip(nlp.phases, nlp.split, nlp.integrands(b, solved.parameters)):
+    for phase, n, s, (L, w) in zip(nlp.phases, nlp.split, nlp.steps, nlp.integrands(b, solved.parameters)):
         if column is not None:
             w = w * (np.arange(w.size) == np.arange(w.size)[column])
         integrals = dict(zip(INTEGRANDS, L @ w))
         integrals["smoothing"] = 0.0 if column is not None else float(nlp.transcription.smoothing(
-            ca.DM(b[f"A_{phase.name}"]), b[f"T_{phase.name}"].item() / n))
+            ca.DM(b[f"A_{phase.name}"]), b[f"T_{phase.name}"].item() / n, s))
         out[phase.name] = {t.integral: float(t(integrals, d)) for t in nlp.ocp.cost_terms if t.integral != "impacts"}
     return out
 
@@ -129,72 +134,91 @@ def change(before, after) -> str:
 
 
 def finer(nlp, speed: float, before, mu_inits: list[float]):
-    """The stride on `nlp`'s (finer) mesh from `before` (a stride and its `phase_costs`)
-    interpolated onto it, solved with IPOPT's barrier starting at each of `mu_inits` in turn,
-    each reported with its change from `before`; returns the first (with its parts)."""
+    """The stride on `nlp`'s (finer) mesh from `before` (a stride, its `phase_costs` and its NLP)
+    interpolated onto it (guess.fitted, at both meshes' times), solved with IPOPT's barrier
+    starting at each of `mu_inits` in turn, each reported with its change from `before`; returns
+    the first (with its parts and NLP)."""
     out = []
+    guess = fitted(nlp, before[0].solved.blocks, before[2])
     for mu in mu_inits:
         clock = time.process_time()
-        stride = optimum(nlp.variant({"mu_init": mu}), speed, guess=before[0].solved.blocks)
-        print(report(nlp.settings.nodes, stride, time.process_time() - clock) + f" (mu_init {mu:g})", flush=True)
+        stride = optimum(nlp.variant({"mu_init": mu}), speed, guess=guess)
+        print(report(nlp.settings.nodes, stride, time.process_time() - clock, nlp.settings.grading)
+              + f" (mu_init {mu:g})", flush=True)
         parts = phase_costs(nlp, stride.solved, speed)
         print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, speed), flush=True)
         print(change(before[0], stride), flush=True)
         print(costs_change(before[1], parts), flush=True)
-        out.append((stride, parts))
+        out.append((stride, parts, nlp))
     return out[0]
 
 
-def mesh(body, args, nodes: int, consistency_rows: str):
-    """The muscles' stride NLP on `nodes` nodes at the command line's strike."""
+def mesh(body, args, nodes: int, consistency_rows: str, grading: float):
+    """The muscles' stride NLP on `nodes` nodes at the command line's strike and `grading`."""
     return build(body, StrideSettings(strike=args.strike, nodes=nodes, muscles=body_muscles(body),
-                                      objective="metabolic", consistency_rows=consistency_rows))
+                                      objective="metabolic", consistency_rows=consistency_rows,
+                                      grading=grading))
 
 
 def start(nlp, args):
     """The first mesh's stride: the search's answer at `--spend`, or the default path's; reported,
-    with its `phase_costs`."""
+    with its `phase_costs` and NLP."""
     clock = time.process_time()
     stride = global_optimum(nlp, args.speed, spend=args.spend) if args.start == "search" else optimum(nlp, args.speed)
-    print(report(nlp.settings.nodes, stride, time.process_time() - clock), flush=True)
+    print(report(nlp.settings.nodes, stride, time.process_time() - clock, nlp.settings.grading), flush=True)
     parts = phase_costs(nlp, stride.solved, args.speed)
     print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, args.speed), flush=True)
-    return stride, parts
+    return stride, parts, nlp
+
+
+def node_token(text: str) -> tuple[int, float | None]:
+    """A mesh "nodes[:grading]" as (nodes, grading or None: --first-grading's or --grading's)."""
+    nodes, _, grading = text.partition(":")
+    return int(nodes), float(grading) if grading else None
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--strike", default="heel", choices=problem.STRIKES)
-    parser.add_argument("--nodes", type=int, nargs="+", default=[40, 80])
+    parser.add_argument("--nodes", type=node_token, nargs="+", default=[(40, None), (80, None)],
+                        help="nodes[:grading] per mesh, e.g. 160:1 (default grading --grading's)")
     parser.add_argument("--start", default="search", choices=("search", "path"))
     parser.add_argument("--spend", type=int, default=1)
     parser.add_argument("--mu-init", type=float, nargs="+", default=[MUSCLE_WARM_START["mu_init"]],
                         help="IPOPT's first barrier for each finer mesh's solve, each in turn")
     parser.add_argument("--no-consistency-rows", dest="consistency_rows", action="store_const", const="off",
                         default="exact", help="StrideSettings.consistency_rows \"off\" on every mesh")
+    parser.add_argument("--grading", type=float, default=0.0,
+                        help="StrideSettings.grading on every mesh: each phase's mesh graded toward its ends")
+    parser.add_argument("--first-grading", type=float, default=None,
+                        help="the first mesh's grading (default --grading's), the finer meshes' --grading")
     parser.add_argument("--rows-first", action="store_true",
                         help="the first mesh's stride solved with the rows, then without them from it")
     args = parser.parse_args(argv)
-    ranges.RANGES["nodes"] = Range(14, max(args.nodes + [120]))  # past the scenes' 120: each finer mesh is warm
+    ranges.RANGES["nodes"] = Range(14, max([n for n, _ in args.nodes] + [120]))  # past the scenes' 120: each finer mesh is warm
     body = scaled_body(62.0, 1.81)
     print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, muscles, metabolic, {args.speed} m/s, "
           f"the first mesh's stride {'the search at spend ' + str(args.spend) if args.start == 'search' else 'the default path'}"
-          f"{'' if args.consistency_rows == 'exact' else ', without the consistency rows'}",
+          f"{'' if args.consistency_rows == 'exact' else ', without the consistency rows'}"
+          f"{f', grading {args.grading:g}' if args.grading else ''}"
+          f"{f' (the first mesh {args.first_grading:g})' if args.first_grading is not None else ''}",
           flush=True)
     strides = []
-    for nodes in args.nodes:
-        nlp = mesh(body, args, nodes, args.consistency_rows)
+    first_grading = args.grading if args.first_grading is None else args.first_grading
+    for nodes, own in args.nodes:
+        grading = own if own is not None else first_grading if not strides else args.grading
+        nlp = mesh(body, args, nodes, args.consistency_rows, grading)
         if strides:
             strides.append(finer(nlp, args.speed, strides[-1], args.mu_init))
             continue
-        first = start(mesh(body, args, nodes, "exact") if args.rows_first else nlp, args)
+        first = start(mesh(body, args, nodes, "exact", grading) if args.rows_first else nlp, args)
         strides.append(finer(nlp, args.speed, first, args.mu_init) if args.rows_first else first)
     if len(strides) > 2:
         print("mesh convergence:")
-        for name, values in (("objective", [s.objective_value for s, _ in strides]),
-                             ("cadence", [s.cadence_spm for s, _ in strides])):
-            print(convergence(name, values, args.nodes))
+        for name, values in (("objective", [s.objective_value for s, *_ in strides]),
+                             ("cadence", [s.cadence_spm for s, *_ in strides])):
+            print(convergence(name, values, [n for n, _ in args.nodes]))
     return 0
 
 

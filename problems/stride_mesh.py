@@ -21,6 +21,8 @@ mesh warm from the one before (guess.fitted), so every mesh solves the same stri
                                    [--mu 0.8 (the friction coefficient)]
                                    [--no-energy-rows (no rows on the held contacts' work and the energy budget)]
                                    [--fix-durations (the finer meshes' phase durations the first's)]
+                                   [--grading 0.9 (StrideSettings.grading: each phase's mesh graded to its ends;
+                                    a mesh's own as trapezoid:80:0.9)]
                                    [--durations heel=0.0532 flat=0.0801 ... (s: every mesh's, held)]
                                    [--hold-rate 100 (1/s: the held rows J a + dJ v + 2 r v_c + r^2 y_c = 0)]
                                    [--smooth-ends (each phase's end columns' controls on the line through
@@ -67,6 +69,7 @@ from formopt.mechanics.joint_space import GRAVITY, JOINTS, RANGES, THETA, JointS
 from formopt.mechanics.limits import Range
 from formopt.optim.stride import collocation, contact, costs, ocp, ranges
 from formopt.optim.stride.collocation import StrideNLP, build
+from formopt.optim.stride.guess import fitted
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS
 from formopt.optim.stride.problem import CONSISTENCY_ROWS, RUNNER_TENDONS, SMOOTHING, StrideSettings
@@ -82,13 +85,13 @@ def phase_terms(nlp, b, speed: float) -> tuple[dict, dict, float]:
     the joints}, smoothing term): the objective's parts (per distance)."""
     d = speed * sum(b[f"T_{p.name}"].item() for p in nlp.phases)
     effort, ends, smooth = {}, {}, 0.0
-    for i, (phase, n) in enumerate(zip(nlp.phases, nlp.split)):
+    for i, (phase, n, s) in enumerate(zip(nlp.phases, nlp.split, nlp.steps)):
         T, A = b[f"T_{phase.name}"].item(), b[f"A_{phase.name}"]
-        w = np.asarray(nlp.transcription.weights(n, T / n), float).ravel()
+        w = np.asarray(nlp.transcription.weights(T / n, s), float).ravel()
         squares = nlp.moments(b, i)[0] ** 2 * 100 / (nlp.mass * GRAVITY) ** 2 / d
         effort[phase.name] = squares @ w
         ends[phase.name] = float((squares[:, [0, -1]] - squares[:, [1, -2]]).sum(axis=0) @ w[[0, -1]])
-        smooth += costs.SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n)) / d
+        smooth += costs.SMOOTHING * float(nlp.transcription.smoothing(ca.DM(A), T / n, s)) / d
     return effort, ends, smooth
 
 
@@ -206,12 +209,12 @@ def figure(path: str, meshes: list) -> None:
     what = [("U", j, JOINTS[j]) for j in range(len(JOINTS))] + [("A", j, THETA[j]) for j in range(3, len(THETA))] \
         + [("F", j, f"row {j}") for j in range(3)]
     fig, axes = plt.subplots(len(what), len(phases), figsize=(4 * len(phases), 1.8 * len(what)), squeeze=False)
-    for label, _, b in meshes:
+    for label, nlp, b in meshes:
         for c, phase in enumerate(phases):
             for r, (key, j, name) in enumerate(what):
                 values = b[f"{key}_{phase}"]
                 if j < values.shape[0]:
-                    axes[r, c].plot(np.linspace(0, 1, values.shape[1]), values[j], ".-", ms=3, lw=0.8, label=label)
+                    axes[r, c].plot(nlp.times(c, 1.0), values[j], ".-", ms=3, lw=0.8, label=label)
                 axes[r, c].set_title(f"{phase} {key} {name}", fontsize=8)
     axes[0, 0].legend(fontsize=7)
     fig.tight_layout()
@@ -323,13 +326,20 @@ def convergence(name: str, values: list[float], nodes: list[int]) -> str:
             f"from {nodes[-1]}), predicted {nodes[-1]} -> {2 * nodes[-1]} {step / values[-1] * 100:+.2f} %")
 
 
+def mesh_token(text: str, grading: float) -> tuple[str, int, float]:
+    """A mesh "transcription:intervals[:grading]" as (transcription, intervals, grading), the
+    grading `grading` (--grading's) where the token gives none."""
+    parts = text.split(":")
+    return parts[0], int(parts[1]), float(parts[2]) if len(parts) > 2 else grading
+
+
 def parse(argv) -> argparse.Namespace:
     """The command line (module docstring)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--cadence", type=float, default=130.0, help="steps/min; 0: free")
     parser.add_argument("--meshes", nargs="+", default=[f"hermite-simpson:{n}" for n in (20, 40, 80)],
-                        help="transcription:intervals, e.g. trapezoid:40")
+                        help="transcription:intervals[:grading], e.g. trapezoid:40 or trapezoid:80:0.9")
     parser.add_argument("--figure", default="")
     parser.add_argument("--moment-time", type=float, default=0.0,
                         help="StrideSettings.moment_time (s): > 0, the moments as states (moment dynamics)")
@@ -370,12 +380,14 @@ def parse(argv) -> argparse.Namespace:
                         help="each mesh solved again with this consistency_rows from its optimum")
     parser.add_argument("--no-release-row", action="store_true",
                         help="the releases without their f_n = 0 row (as Hermite-Simpson's torque sources)")
+    parser.add_argument("--grading", type=float, default=0.0,
+                        help="StrideSettings.grading: each phase's mesh graded toward its ends (0 uniform to 1)")
     parser.add_argument("--ipopt", nargs="*", default=[], type=ipopt_option,
                         help="IPOPT options over the stride's (key=value), e.g. print_level=5")
     args = parser.parse_args(argv)
     if args.smoothing < 0:
         parser.error(f"--smoothing {args.smoothing}: a weight >= 0")
-    args.meshes = [(m.split(":")[0], int(m.split(":")[1])) for m in args.meshes]
+    args.meshes = [mesh_token(m, args.grading) for m in args.meshes]
     return args
 
 
@@ -395,7 +407,7 @@ def study_overrides(args) -> None:
     collocation.RANGES = {j: (lo - widen, hi + widen) for j, (lo, hi) in RANGES.items()}
     if args.ankle_max:
         collocation.RANGES["ankle"] = (collocation.RANGES["ankle"][0], math.radians(args.ankle_max))
-    ranges.RANGES["nodes"] = Range(14, max([n for _, n in args.meshes] + [120]))
+    ranges.RANGES["nodes"] = Range(14, max([n for _, n, _ in args.meshes] + [120]))
 
 
 def report(label: str, nlp, stride, seconds: float, speed: float) -> None:
@@ -437,32 +449,34 @@ def main(argv=None) -> int:
     study_overrides(args)
     body, guess, solved, objectives, cadences = scaled_body(62.0, 1.81), None, [], [], []
     durations = {**StrideSettings().duration, **{k: (v - PIN, v + PIN) for k, v in args.durations}}
-    for transcription, nodes in args.meshes:
+    for transcription, nodes, grading in args.meshes:
         # costs.terms reads it when each NLP is built
         costs.SMOOTHING = args.smoothing * (nodes / args.meshes[0][1]) ** args.smoothing_order
         settings = StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
                                   transcription=transcription, moment_time=args.moment_time,
                                   approach_speed=args.approach_speed, duration=durations,
-                                  consistency_rows=args.consistency_rows)
+                                  consistency_rows=args.consistency_rows, grading=grading)
         nlp = StrideNLP(JointSpace(body), settings, dict(args.ipopt)) if args.ipopt else build(body, settings)
         relax_heights(nlp, args.no_release_height, args.no_stance_heights)
         if args.no_energy_rows:
             free_energy_rows(nlp)
         clock = time.process_time()
-        stride = optimum(nlp, args.speed, mu=args.mu, cadence=args.cadence or None, guess=guess)
-        report(f"{transcription} {nodes}", nlp, stride, time.process_time() - clock, args.speed)
+        start = fitted(nlp, guess, solved[-1][1]) if solved else None  # at both meshes' times
+        stride = optimum(nlp, args.speed, mu=args.mu, cadence=args.cadence or None, guess=start)
+        label = f"{transcription} {nodes}" + (f" graded {grading:g}" if grading else "")
+        report(label, nlp, stride, time.process_time() - clock, args.speed)
         if args.cross_rows:
-            cross(args, body, settings, stride, f"{transcription} {nodes}")
+            cross(args, body, settings, stride, label)
         guess = stride.solved.blocks
         if args.fix_durations and not solved:
             durations = pinned(guess)
         objectives.append(stride.objective_value)
         cadences.append(stride.cadence_spm)
-        solved.append((f"{transcription} {nodes}", nlp, guess))
+        solved.append((label, nlp, guess))
     if len(args.meshes) > 1:
         print("mesh convergence (each mesh twice the one before; converged or not, as printed above):")
         for name, values in (("objective", objectives), ("cadence", cadences)):
-            print(convergence(name, values, [n for _, n in args.meshes]))
+            print(convergence(name, values, [n for _, n, _ in args.meshes]))
     if args.figure:
         figure(args.figure, solved)
     return 0

@@ -140,7 +140,7 @@ def replay(nlp: StrideNLP, i: int, blocks: dict, parameters: dict, excitations: 
     optimal active moments replayed, or (`excitations`) y = [theta, theta', z] with the muscles'
     excitations and reserves replayed (`muscle_dynamics`), each piecewise linear between the nodes."""
     name, first = nlp.phases[i].name, blocks[f"X_{nlp.phases[0].name}"]
-    times = np.linspace(0.0, blocks[f"T_{name}"].item(), blocks[f"X_{name}"].shape[1])
+    times = nlp.times(i, blocks[f"T_{name}"].item())
     args = (first[:NX, 0], parameters["slope"], parameters["mu"])
     if excitations:
         U, dynamics = blocks[f"U_{name}"], muscle_dynamics(nlp, i)

@@ -40,7 +40,7 @@ from .contact import height
 from .layout import Blocks, Rows, Solved
 from .ocp import INTEGRANDS, Impact, StrideProblem, periodicity, step_length
 from .problem import RELEASE_DRIFT, StrideSettings
-from .transcription import TRANSCRIPTIONS
+from .transcription import TRANSCRIPTIONS, steps, times
 
 NX = len(THETA)
 NU = len(JOINTS)
@@ -131,6 +131,7 @@ class StrideNLP:
         self.split = settings.node_split()
         self.transcription = TRANSCRIPTIONS[settings.transcription]
         self.columns = [self.transcription.columns(n) for n in self.split]  # per phase
+        self.steps = [steps(n, settings.grading) for n in self.split]  # per phase, transcription.steps
         self.split_power = self.ocp.models[0].split
         self.touchdown_rows = self.ocp.touchdown.contact.rows
         self.blocks, self.rows = Blocks(), Rows()
@@ -304,22 +305,22 @@ class StrideNLP:
             self._release_heights(i, lower)
         self.node_rows.add(G, lower.ravel(order="F"), np.tile(upper, c))
         self.node_integrands.append(ca.vec(L))
-        h = T / n
+        h, s = T / n, self.steps[i]  # the uniform interval and each one's over it (transcription.steps)
         rates = ca.vertcat(X[NX:, :], A, self.ocp.models[i].actuation.rates(U))
-        self.rows.add(self.transcription.defects(ca.vertcat(X, Z), rates, h))
+        self.rows.add(self.transcription.defects(ca.vertcat(X, Z), rates, h, s))
         start = sum(self.ell_sizes[:i])
         ell = ca.reshape(self.ell[start:start + self.ell_sizes[i]], len(INTEGRANDS), c)
-        integrals = ell @ self.transcription.weights(n, h).T
+        integrals = ell @ self.transcription.weights(h, s).T
         for k, key in enumerate(INTEGRANDS):
             self.terms[key] += integrals[k]
-        self.terms["smoothing"] += self.transcription.smoothing(A, h)
+        self.terms["smoothing"] += self.transcription.smoothing(A, h, s)
 
     def _release_heights(self, i: int, lower: np.ndarray) -> None:
         """Phase i's released points' heights at its first column, the phase before's held drift
         (O(h^2), a transcription error, not a motion): >= 0 in `lower` (its node rows' lower
         bounds, a column per column) with StrideSettings.consistency_rows "exact" and no moment
         dynamics; else free there, and with "trapezoid" (torque sources) >= -RELEASE_DRIFT h^2,
-        h the phase before's interval (s). With moment dynamics the drift's sign was a row with
+        h the phase before's last interval (s). With moment dynamics the drift's sign was a row with
         multipliers of 850 (trapezoid) to 1.85e4 (Hermite-Simpson) and Hermite-Simpson 40 did not
         converge in 1000 iterations (RBDS001, 3.5 m/s, moment_time 0.04 s)."""
         form = self.settings.consistency_rows
@@ -329,7 +330,7 @@ class StrideNLP:
         released = [k for k, point in enumerate(free) if point in self.phases[i - 1].points]
         lower[released, 0] = -np.inf
         if form == "trapezoid" and not self.settings.moment_time:
-            h = self.v[f"T_{self.phases[i - 1].name}"] / self.split[i - 1]
+            h = self.v[f"T_{self.phases[i - 1].name}"] / self.split[i - 1] * self.steps[i - 1][-1]
             theta = self.v[f"X_{self.phases[i].name}"][:NX, 0]
             for k in released:
                 self.rows.add(height(self.js, free[k], theta, self.p[1]) + RELEASE_DRIFT * h ** 2, 0.0, np.inf)
@@ -371,9 +372,15 @@ class StrideNLP:
         term = ca.Function("term", [x, self.ell, self.p], [self.terms[key]])
         return term(x, ca.vertcat(*self.node_integrands), self.p)
 
+    def times(self, i: int, T: float) -> np.ndarray:
+        """Phase i's columns' times (s from its start) for a duration T (s): transcription.times
+        on its mesh (the settings' grading)."""
+        return times(self.transcription, T, self.split[i], self.settings.grading)
+
     def integrands(self, blocks: dict, parameters) -> list[tuple[np.ndarray, np.ndarray]]:
-        """Per phase, the node integrands of a numeric solution (len(INTEGRANDS) x N+1) and the
-        trapezoidal weights (N + 1): what the NLP integrates, evaluated at its nodes."""
+        """Per phase, the node integrands of a numeric solution (len(INTEGRANDS) x columns) and
+        the transcription's quadrature weights (columns): what the NLP integrates, evaluated at its
+        nodes."""
         out = []
         td = blocks[f"X_{self.phases[0].name}"][:NX, 0]
         p = np.array([parameters["speed"], parameters["slope"], parameters["mu"]])
@@ -384,7 +391,7 @@ class StrideNLP:
             _, L = self.node_functions[i].map(c)(blocks[f"X_{name}"], blocks[f"A_{name}"], blocks[f"U_{name}"],
                                                 blocks[f"F_{name}"], S, Z, np.repeat(td[:, None], c, 1),
                                                 np.repeat(p[:, None], c, 1))
-            w = np.asarray(self.transcription.weights(n, blocks[f"T_{name}"].item() / n), float).ravel()
+            w = np.asarray(self.transcription.weights(blocks[f"T_{name}"].item() / n, self.steps[i]), float).ravel()
             out.append((np.asarray(L, float), w))
         return out
 

@@ -21,6 +21,7 @@ import numpy as np
 
 from ...mechanics.joint_space import JointSpace, swap_legs
 from .collocation import NU, NX, StrideNLP
+from .transcription import times
 
 # guessed phase durations (s): RBDS001 at 3.5 m/s (contact 0.24 s, half period 0.35 s)
 DURATIONS = {"slide": 0.01, "heel": 0.03, "landing": 0.03, "flat": 0.11, "forefoot": 0.09, "flight": 0.12}
@@ -44,14 +45,12 @@ def _leg_ik(js: JointSpace, hip, ankle, trunk):
 
 def ballistic(nlp: StrideNLP, speed: float) -> dict:
     """The generic guess (module docstring) for the NLP's phases and nodes, by block name."""
-    js, phases, columns = nlp.js, nlp.phases, nlp.columns
+    js, phases = nlp.js, nlp.phases
     lo_hi = nlp.settings.duration
     durations = [float(np.clip(DURATIONS[p.name], *lo_hi[p.name])) for p in phases]
     stance = sum(d for p, d in zip(phases, durations) if p.rows)
     period = sum(durations)
-    times = [np.linspace(0, d, c) + sum(durations[:i])
-             for i, (d, c) in enumerate(zip(durations, columns))]
-    t = np.concatenate(times)
+    t = np.concatenate([nlp.times(i, d) + sum(durations[:i]) for i, d in enumerate(durations)])
     body = js.model.body
     ankle_height = -body["foot"].landmarks["heel"][1]
     reach = 0.97 * (body["thigh"].length + body["shank"].length)
@@ -149,26 +148,31 @@ def slide_guess(nlp: StrideNLP, stick: dict, mu: float) -> dict:
     return guess
 
 
-def fitted(nlp: StrideNLP, guess: dict) -> dict:
+def fitted(nlp: StrideNLP, guess: dict, source: StrideNLP | None = None) -> dict:
     """A guess (blocks by name, e.g. another NLP's solution: a sliding one warm-starting a
-    sticking one, or the reverse) with each phase's node histories resampled linearly onto
-    this NLP's nodes where their counts differ; blocks it does not name are left out."""
+    sticking one, or the reverse, or another mesh's) with each phase's node histories
+    interpolated linearly in the phase's time onto this NLP's columns where they lie elsewhere;
+    `source`: an NLP of the guess's transcription and grading (its columns' times; default
+    this NLP's), its node counts the guess's own. Blocks it does not name are left out."""
     out: dict = {}
     for name in nlp.blocks.names:
         if name not in guess:
             continue
         value = np.array(guess[name], float)
         cols = nlp.blocks.shapes[name][1]
-        if value.ndim == 2 and cols > 1 and value.shape[1] != cols:
-            value = _resampled(value, cols)
+        if value.ndim == 2 and cols > 1:
+            old, new = _fractions(source or nlp, value.shape[1]), _fractions(nlp, cols)
+            if old.shape != new.shape or (old != new).any():
+                value = np.array([np.interp(new, old, row) for row in value]).reshape(value.shape[0], cols)
         out[name] = value
     return out
 
 
-def _resampled(values: np.ndarray, count: int) -> np.ndarray:
-    """Node histories (rows x k) linearly interpolated onto `count` evenly spaced nodes."""
-    old, new = np.linspace(0, 1, values.shape[1]), np.linspace(0, 1, count)
-    return np.array([np.interp(new, old, row) for row in values]).reshape(values.shape[0], count)
+def _fractions(nlp: StrideNLP, columns: int) -> np.ndarray:
+    """The times of a phase's `columns` columns over its duration on `nlp`'s mesh (its
+    transcription and grading: transcription.times)."""
+    scheme = nlp.transcription
+    return times(scheme, 1.0, scheme.intervals(columns), nlp.settings.grading)
 
 
 def from_torques(nlp: StrideNLP, torques: StrideNLP, solved) -> dict:
@@ -184,4 +188,4 @@ def from_torques(nlp: StrideNLP, torques: StrideNLP, solved) -> dict:
         z, out[f"U_{phase.name}"] = act.initial(X[:NX], X[NX:], np.add(*torques.moments(blocks, i)))
         if act.states:
             out[f"Z_{phase.name}"] = z
-    return fitted(nlp, out)
+    return fitted(nlp, out, torques)

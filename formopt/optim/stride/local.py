@@ -43,7 +43,8 @@ def generic_start(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 
         # Hermite-Simpson from the generic guess: converged at 20 intervals, not in 300
         # iterations at 40; from the trapezoid's optimum at 40, in 166 (heel, 3.5 m/s, 2026-11-25)
         base = nlp.variant(transcription="trapezoid")
-        return fitted(nlp, base.solve(generic_start(base, speed, slope, mu, cadence), speed, slope, mu, cadence).blocks)
+        solved = base.solve(generic_start(base, speed, slope, mu, cadence), speed, slope, mu, cadence)
+        return fitted(nlp, solved.blocks, base)
     if nlp.settings.muscles is not None:
         return muscle_start(nlp, speed, slope, mu, cadence)
     return ballistic(nlp, speed)

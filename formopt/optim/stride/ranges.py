@@ -53,6 +53,9 @@ RANGES = {
     # an impact's least approach speed (StrideSettings.approach_speed): 0 (grazing allowed) to
     # 1 m/s (a heel reaches the ground at about 0.5-1 m/s in running)
     "approach_speed_mps": Range(0.0, 1.0, "m/s"),
+    # each phase's mesh graded toward its ends (StrideSettings.grading, transcription.fractions):
+    # 0 uniform to 1, the cosine map (the end intervals O(1/n^2) of the phase's duration)
+    "grading": Range(0.0, 1.0),
     "max_iterations": limits.MAX_ITERATIONS,
     "starts": Range(1, 100),
     # the global search's spend (optim.stride.search): 1-8; spend 8 is 33 grid cadences and

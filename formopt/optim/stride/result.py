@@ -187,7 +187,7 @@ def histories(nlp: StrideNLP, blocks: dict, slope: float):
     tangent, normal = np.array([np.cos(slope), np.sin(slope)]), np.array([-np.sin(slope), np.cos(slope)])
     for i, (phase, c) in enumerate(zip(nlp.phases, nlp.columns)):
         T = blocks[f"T_{phase.name}"].item()
-        t.append(start + np.linspace(0.0, T, c))
+        t.append(start + nlp.times(i, T))
         names += [phase.name] * (c)
         X.append(blocks[f"X_{phase.name}"])
         active, passive = nlp.moments(blocks, i)
@@ -291,7 +291,7 @@ def slide(nlp: StrideNLP, blocks: dict, slope: float, mu: float) -> dict:
     r0, r1 = (np.asarray(point(X[:NX, k], np.zeros(NX), slope)[0], float).ravel() for k in (0, -1))
     v_t = np.array([float(point(X[:NX, k], X[NX:, k], slope)[1][0]) for k in range(c)])
     f = blocks[f"F_{phase.name}"][phase.rows.index((phase.sliding, "t"))] * nlp.mass * GRAVITY
-    w = np.asarray(nlp.transcription.weights(n, T / n), float).ravel()
+    w = np.asarray(nlp.transcription.weights(T / n, nlp.steps[0]), float).ravel()
     return {"slide_s": T, "slide_m": float((r1 - r0) @ tangent), "slip": int(slip),
             "slip_min_mps": float((slip * v_t).min()),
             "slide_friction_J": float(-np.sum(w * f * v_t)),

@@ -216,8 +216,9 @@ def test_the_smoothing_sees_each_transcriptions_null_mode():
         X, D = ca.DM(rng.random((4, 2 * n + 1))), ca.DM(rng.random((4, 2 * n + 1)))
         mode = ca.DM([[pattern[k % 2] for k in range(2 * n + 1)]] * 2)
         D_moved = ca.vertcat(D[:2, :], D[2:, :] + mode)  # the rates' lower half: the accelerations
-        moved = np.array(transcription.defects(X, D_moved, h), float)
-        assert np.allclose(moved, np.array(transcription.defects(X, D, h), float)), transcription
-        assert float(transcription.smoothing(mode, h)) == pytest.approx(2 * cost * h * c ** 2)
+        s = np.ones(transcription.intervals(2 * n + 1))  # a uniform mesh
+        moved = np.array(transcription.defects(X, D_moved, h, s), float)
+        assert np.allclose(moved, np.array(transcription.defects(X, D, h, s), float)), transcription
+        assert float(transcription.smoothing(mode, h, s)) == pytest.approx(2 * cost * h * c ** 2)
     linear = ca.DM(np.outer([1.0, -3.0], np.linspace(0.0, 1.0, 2 * n + 1)))
-    assert float(HermiteSimpson.smoothing(linear, h)) == pytest.approx(0.0, abs=1e-20)
+    assert float(HermiteSimpson.smoothing(linear, h, np.ones(n))) == pytest.approx(0.0, abs=1e-20)
