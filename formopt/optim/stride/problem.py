@@ -212,11 +212,21 @@ RUNNER_TENDONS = {"knee": 2.5, "ankle": 4.0}
 # its torque sources end the stance pushing 1.3 body weights, and its global optimum at 3.5 m/s
 # (problems/stride_search.py --transcription hermite-simpson) is 139.2 steps/min with the forefoot
 # phase on its 0.25 s ceiling: a converged answer held by a bound, so the scenes stay trapezoid.
-MESH_SHIFT = {"trapezoid": "1-2 % in cadence but 4-16 % in cost from 40 to 80 nodes",
+MESH_SHIFT = {"trapezoid": "1-2 % in cadence but 4-16 % in cost from 40 to 80 nodes, and at 3.5 m/s "
+                            "finer meshes find cheaper strides near 140-144 steps/min, which the rows at the "
+                            "phase ends hold off only at 40",
               "hermite-simpson": "under 2 % in cadence and 1-6 % in cost from 20 to 40 intervals"}
 MESH_FINE = {"hermite-simpson": (40, "under 0.3 % in cadence and 0.2 % in cost from 40 to 80 intervals on "
                                      "RBDS001's body at 3.5 and 4.5 m/s, but its torque sources end the stance "
                                      "pushing 1.3 body weights and hold the forefoot phase on its duration bound")}
+
+
+# The muscles' trapezoid from 40 to 80 nodes (RBDS001, heel and forefoot, 2.5 / 3.5 / 4.5 m/s,
+# problems/muscle_mesh.py; docs/concepts/muscles.md, "The mesh: N against 2N", 2026-11-27): the
+# uniform mesh's cadence 0.7-3.8 % and cost 8.6-11.4 %; graded (StrideSettings.grading 1) from the
+# same 40-node stride, heel 3.5 m/s, 0.4 % and 4.0 % (then 0.1 and 1.9 % from 80 to 160).
+MUSCLE_MESH_SHIFT = ("0.7-3.8 % in cadence and 9-11 % in cost from 40 to 80 nodes on RBDS001's body "
+                     "(a mesh graded toward the phases' ends, grading 1: 0.4 % and 4 %)")
 
 
 def other_leg(point: str) -> str:
@@ -376,12 +386,21 @@ def metabolic(positive, negative):
 
 def mesh_note(settings: StrideSettings) -> str:
     """How sure a stride's optimum is of its mesh, in words (MESH_SHIFT, MESH_FINE: measured on
-    the torque+springs rung, so not claimed for the muscles')."""
+    the torque+springs rung; MUSCLE_MESH_SHIFT on the muscles' trapezoid)."""
+    if settings.muscles is not None:
+        if settings.transcription != "trapezoid":
+            return (f"{settings.transcription} at {settings.nodes} intervals: the muscles' optimum is not "
+                    "measured on this transcription (docs/concepts/muscles.md, 'The mesh: N against 2N')")
+        return (f"trapezoid at {settings.nodes} intervals is not mesh-converged: the muscles' optimum moved "
+                f"{MUSCLE_MESH_SHIFT} (docs/concepts/muscles.md, 'The mesh: N against 2N')")
     least, shift = MESH_FINE.get(settings.transcription, (None, ""))
-    if least is not None and settings.nodes >= least and settings.muscles is not None:
-        return (f"{settings.transcription} at {settings.nodes} intervals: the torque+springs effort optimum "
-                f"moved {shift}; the muscles', whose release keeps its f_n = 0 row, is not measured "
+    if least is not None and settings.nodes >= least:
+        return (f"{settings.transcription} at {settings.nodes} intervals: the effort optimum moved {shift} "
                 "(docs/concepts/stride.md, 'One answer')")
+    finer = "; ".join(f"{t} moves less from {n} intervals, with limits of its own" for t, (n, _) in MESH_FINE.items())
+    return (f"{settings.transcription} at {settings.nodes} intervals is not mesh-converged: on RBDS001's body "
+            f"the effort optimum moved {MESH_SHIFT[settings.transcription]} ({finer}: "
+            "docs/concepts/stride.md, 'One answer')")
     if least is not None and settings.nodes >= least:
         return (f"{settings.transcription} at {settings.nodes} intervals: the effort optimum moved {shift} "
                 "(docs/concepts/stride.md, 'One answer')")

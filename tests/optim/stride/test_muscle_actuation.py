@@ -12,7 +12,7 @@ from formopt.mechanics.body import paper_body, scaled_body
 from formopt.mechanics.errors import InputError
 from formopt.optim.stride.actuation import MuscleDriven
 from formopt.optim.stride.layout import Rows
-from formopt.optim.stride.problem import StrideSettings, mesh_note
+from formopt.optim.stride.problem import MUSCLE_MESH_SHIFT, StrideSettings, mesh_note
 
 BODY = scaled_body(62.0, 1.81)
 
@@ -108,11 +108,14 @@ def test_reserve_weight_must_be_finite_and_positive(weight):
         StrideSettings(muscles=body_muscles(paper_body()), objective="metabolic", reserve_weight=weight)
 
 
-def test_the_mesh_note_claims_no_convergence_for_the_muscles():
-    """problem.MESH_FINE was measured on the torque+springs rung, whose Hermite-Simpson release
-    has no f_n = 0 row; the muscles keep that row, so their note does not claim its figure."""
+def test_the_mesh_note_gives_the_muscles_their_own_figures():
+    """problem.MESH_FINE was measured on the torque+springs rung: the muscles' note never claims
+    its figure; on the trapezoid it gives the muscles' own (MUSCLE_MESH_SHIFT), elsewhere says
+    the muscles were not measured."""
     torque = StrideSettings(nodes=40, transcription="hermite-simpson")
-    muscles = StrideSettings(nodes=40, transcription="hermite-simpson", objective="metabolic",
-                             muscles=body_muscles(paper_body()))
+    muscles = body_muscles(paper_body())
+    hermite = StrideSettings(nodes=40, transcription="hermite-simpson", objective="metabolic", muscles=muscles)
+    trapezoid = StrideSettings(nodes=40, objective="metabolic", muscles=muscles)
     assert "0.2 % in cost" in mesh_note(torque) and "not measured" not in mesh_note(torque)
-    assert "not measured" in mesh_note(muscles)
+    assert "not measured" in mesh_note(hermite) and "0.2 % in cost" not in mesh_note(hermite)
+    assert MUSCLE_MESH_SHIFT in mesh_note(trapezoid) and "effort" not in mesh_note(trapezoid)
