@@ -214,7 +214,7 @@ RUNNER_TENDONS = {"knee": 2.5, "ankle": 4.0}
 # phase on its 0.25 s ceiling: a converged answer held by a bound, so the scenes stay trapezoid.
 MESH_SHIFT = {"trapezoid": "1-2 % in cadence but 4-16 % in cost from 40 to 80 nodes, and at 3.5 m/s "
                             "finer meshes find cheaper strides near 140-144 steps/min, which the rows at the "
-                            "phase ends hold off only at 40",
+                            "phase ends hold off only on coarse meshes",
               "hermite-simpson": "under 2 % in cadence and 1-6 % in cost from 20 to 40 intervals"}
 MESH_FINE = {"hermite-simpson": (40, "under 0.3 % in cadence and 0.2 % in cost from 40 to 80 intervals on "
                                      "RBDS001's body at 3.5 and 4.5 m/s, but its torque sources end the stance "
