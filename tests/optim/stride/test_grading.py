@@ -147,6 +147,23 @@ def test_a_guess_fitted_between_meshes_keeps_its_times(graded):
         assert (value == own[name]).all(), name
 
 
+def test_a_trapezoid_guess_fits_a_hermite_simpson_nlp_without_its_source():
+    """A trapezoid's node histories (phases of 5 and 6 intervals: an even column count no
+    Hermite-Simpson phase has) fitted onto Hermite-Simpson's columns without naming their NLP
+    (local.optimum's guess): the same lines, as main's resampling did (it raised here)."""
+    js = JointSpace(paper_body())
+    nlps = [StrideNLP(js, StrideSettings(strike="heel", nodes=20, transcription=t)) for t in ("trapezoid", "hermite-simpson")]
+
+    def lines(nlp):
+        return {f"X_{p.name}": np.vstack([1.0 + 2.0 * nlp.times(i, 0.1), -3.0 * nlp.times(i, 0.1)])
+                for i, p in enumerate(nlp.phases)}
+
+    assert any(c % 2 == 0 for c in nlps[0].columns)
+    got = fitted(nlps[1], lines(nlps[0]))
+    for name, value in lines(nlps[1]).items():
+        assert np.allclose(got[name], value, atol=1e-14), name
+
+
 def test_the_trapezoid_forms_height_bound_is_on_the_held_phases_last_interval():
     """consistency_rows "trapezoid" on a graded mesh: each released point's row at the next
     phase's first column is its height + RELEASE_DRIFT h^2 with h the held phase's last interval,
