@@ -303,8 +303,10 @@ def relax_heights(nlp, release: bool, stance: bool) -> None:
 
 def free_energy_rows(nlp) -> None:
     """The NLP's last two rows, the held contacts' work and the energy budget (collocation.StrideNLP,
-    with springs), made free for this run: both hold in the continuous problem by themselves."""
+    with springs), made free for this run: both hold in the continuous problem by themselves.
+    Consistency rows "off" has none (its last two rows are a touchdown row and the half-period's)."""
     assert any(nlp.settings.tendons.values()), "free_energy_rows: no energy rows without springs"
+    assert nlp.settings.consistency_rows != "off", "--no-energy-rows: consistency rows off has no energy rows"
     nlp.lbg[-2:], nlp.ubg[-2:] = -np.inf, np.inf
 
 

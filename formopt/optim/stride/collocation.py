@@ -319,10 +319,11 @@ class StrideNLP:
         """Phase i's released points' heights at its first column, the phase before's held drift
         (O(h^2), a transcription error, not a motion): >= 0 in `lower` (its node rows' lower
         bounds, a column per column) with StrideSettings.consistency_rows "exact" and no moment
-        dynamics; else free there, and with "trapezoid" (torque sources) >= -RELEASE_DRIFT h^2,
-        h the phase before's last interval (s). With moment dynamics the drift's sign was a row with
-        multipliers of 850 (trapezoid) to 1.85e4 (Hermite-Simpson) and Hermite-Simpson 40 did not
-        converge in 1000 iterations (RBDS001, 3.5 m/s, moment_time 0.04 s)."""
+        dynamics; else free there, and with "trapezoid" and no moment dynamics a row >=
+        -RELEASE_DRIFT h^2 instead, h the phase before's last interval (s), whatever the actuation
+        (RELEASE_DRIFT was measured on torque+springs). With moment dynamics the drift's sign was a
+        row with multipliers of 850 (trapezoid) to 1.85e4 (Hermite-Simpson) and Hermite-Simpson 40
+        did not converge in 1000 iterations (RBDS001, 3.5 m/s, moment_time 0.04 s)."""
         form = self.settings.consistency_rows
         if form == "exact" and not self.settings.moment_time:
             return

@@ -21,7 +21,7 @@ import numpy as np
 
 from ...mechanics.joint_space import JointSpace, swap_legs
 from .collocation import NU, NX, StrideNLP
-from .transcription import times
+from .transcription import Trapezoid, times
 
 # guessed phase durations (s): RBDS001 at 3.5 m/s (contact 0.24 s, half period 0.35 s)
 DURATIONS = {"slide": 0.01, "heel": 0.03, "landing": 0.03, "flat": 0.11, "forefoot": 0.09, "flight": 0.12}
@@ -170,8 +170,11 @@ def fitted(nlp: StrideNLP, guess: dict, source: StrideNLP | None = None) -> dict
 
 def _fractions(nlp: StrideNLP, columns: int) -> np.ndarray:
     """The times of a phase's `columns` columns over its duration on `nlp`'s mesh (its
-    transcription and grading: transcription.times)."""
+    transcription and grading: transcription.times); a count its transcription cannot have (an
+    even one on Hermite-Simpson) the trapezoid's."""
     scheme = nlp.transcription
+    if scheme.columns(scheme.intervals(columns)) != columns:
+        scheme = Trapezoid
     return times(scheme, 1.0, scheme.intervals(columns), nlp.settings.grading)
 
 

@@ -81,7 +81,7 @@ TRANSCRIPTIONS = ("trapezoid", "hermite-simpson")  # transcription.py's
 # StrideSettings.consistency_rows' forms (the comment at the field says what each imposes)
 CONSISTENCY_ROWS = ("exact", "trapezoid", "off")
 # m/s^2: with consistency_rows "trapezoid", a released point's height at the next phase's first
-# column (its held drift) at least -RELEASE_DRIFT h^2 (h the held phase's interval): the trapezoid's
+# column (its held drift) at least -RELEASE_DRIFT h^2 (h the held phase's last interval): the trapezoid's
 # own drift there, -5 to -21 h^2 at RBDS001's heel 3.5 m/s optimum without the rows (40 / 80 / 160
 # nodes; problems/stride_mesh.py prints it), within the bound, so no column is forced to meet it.
 RELEASE_DRIFT = 40.0

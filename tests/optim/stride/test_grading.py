@@ -2,7 +2,8 @@
 The setting's error; grading 0 the uniform mesh exactly; the graded schemes exact on the
 polynomials they integrate and at their order on a smooth function; the NLP's objective the
 quadrature on its own node times; a graded stride that solves with its checks closed; a guess
-fitted between a uniform and a graded mesh at the right times. The paper's body. No new
+fitted between a uniform and a graded mesh at the right times; the trapezoid form's height bound
+(StrideSettings.consistency_rows) on the held phase's last interval. The paper's body. No new
 expression IPOPT sees beyond the schemes' constant weights: nothing for test_derivatives.py."""
 
 import itertools
@@ -16,8 +17,9 @@ from formopt.mechanics.body import paper_body
 from formopt.mechanics.errors import InputError
 from formopt.mechanics.joint_space import GRAVITY, JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings, optimum
+from formopt.optim.stride.contact import height
 from formopt.optim.stride.guess import ballistic, fitted
-from formopt.optim.stride.problem import RUNNER_TENDONS, SMOOTHING
+from formopt.optim.stride.problem import RELEASE_DRIFT, RUNNER_TENDONS, SMOOTHING
 from formopt.optim.stride.transcription import HermiteSimpson, Trapezoid, fractions, steps, times
 
 SPEED = 3.5
@@ -37,8 +39,9 @@ def test_grading_0_is_the_uniform_mesh_exactly(scheme):
         assert (steps(n, 0.0) == 1.0).all()
         assert (times(scheme, 0.37, n, 0.0) == np.linspace(0.0, 0.37, scheme.columns(n))).all()
         w = np.asarray(scheme.weights(0.37 / n, steps(n, 0.0)), float).ravel()
-        classic = np.r_[0.5, np.ones(n - 1), 0.5] if scheme is Trapezoid else np.r_[1, np.tile([4, 2], n)[:-1], 1] / 6
-        assert (w == 0.37 / n * classic).all() if scheme is Trapezoid else np.allclose(w, 0.37 / n * classic, rtol=1e-15)
+        classic = np.r_[0.5, np.ones(n - 1), 0.5] if scheme is Trapezoid else np.r_[1.0, np.tile([4.0, 2.0], n)[:-1], 1.0]
+        before = 0.37 / n * ca.DM(classic).T if scheme is Trapezoid else 0.37 / n / 6 * ca.DM(classic).T  # main's
+        assert (w == np.asarray(before, float).ravel()).all()
 
 
 def test_the_map_grades_both_ends():
@@ -139,4 +142,49 @@ def test_a_guess_fitted_between_meshes_keeps_its_times(graded):
         got = fitted(target, lines(source), source)
         for name, value in lines(target).items():
             assert np.allclose(got[name], value, atol=1e-14), (target.settings.grading, name)
-    assert fitted(graded[0], lines(graded[0]))["X_heel"] is not None  # its own mesh by default
+    own = lines(graded[0])
+    for name, value in fitted(graded[0], own).items():  # its own mesh by default: unchanged
+        assert (value == own[name]).all(), name
+
+
+def test_a_trapezoid_guess_fits_a_hermite_simpson_nlp_without_its_source():
+    """A trapezoid's node histories (phases of 5 and 6 intervals: an even column count no
+    Hermite-Simpson phase has) fitted onto Hermite-Simpson's columns without naming their NLP
+    (local.optimum's guess): the same lines, as main's resampling did (it raised here)."""
+    js = JointSpace(paper_body())
+    nlps = [StrideNLP(js, StrideSettings(strike="heel", nodes=20, transcription=t)) for t in ("trapezoid", "hermite-simpson")]
+
+    def lines(nlp):
+        return {f"X_{p.name}": np.vstack([1.0 + 2.0 * nlp.times(i, 0.1), -3.0 * nlp.times(i, 0.1)])
+                for i, p in enumerate(nlp.phases)}
+
+    assert any(c % 2 == 0 for c in nlps[0].columns)
+    got = fitted(nlps[1], lines(nlps[0]))
+    for name, value in lines(nlps[1]).items():
+        assert np.allclose(got[name], value, atol=1e-14), name
+
+
+def test_the_trapezoid_forms_height_bound_is_on_the_held_phases_last_interval():
+    """consistency_rows "trapezoid" on a graded mesh: each released point's row at the next
+    phase's first column is its height + RELEASE_DRIFT h^2 with h the held phase's last interval,
+    T (1 - tau_n-1) (0.53 of the uniform T / n at g 0.9 and n 5), not T / n."""
+    nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(strike="heel", nodes=20, tendons=RUNNER_TENDONS,
+                                                             consistency_rows="trapezoid", grading=GRADING))
+    guess = ballistic(nlp, SPEED)
+    g = ca.Function("g", [nlp.problem["x"], nlp.problem["p"]], [nlp.problem["g"]])
+    values = np.asarray(g(nlp.blocks.join(nlp._with_power_split(guess)), [SPEED, 0.0, 0.8]), float).ravel()
+    bounded = values[(nlp.lbg == 0.0) & np.isinf(nlp.ubg)]
+    released = 0
+    for i, (before, after) in enumerate(itertools.pairwise(nlp.phases), 1):
+        if nlp.impact_before(i):
+            continue
+        T, n = guess[f"T_{before.name}"], nlp.split[i - 1]
+        last = T * (1 - fractions(n, GRADING)[-2])
+        assert last < 0.6 * T / n
+        theta = ca.DM(guess[f"X_{after.name}"][:len(guess["V_touchdown"]), 0])
+        for point in set(before.points) - set(after.points):
+            y = float(height(nlp.js, point, theta, 0.0))
+            assert np.isclose(bounded, y + RELEASE_DRIFT * last ** 2, rtol=0, atol=1e-12).sum() == 1, point
+            assert not np.isclose(bounded, y + RELEASE_DRIFT * (T / n) ** 2, rtol=0, atol=1e-12).any(), point
+            released += 1
+    assert released == 2
