@@ -53,7 +53,7 @@ STRIDE_STRIKES = (*STRIKES, "best")
 STRIDE_LAWS = ("no-slip", "coulomb")
 STRIDE_KEYS = {"speed_mps", "strike", "objective", "nodes", "impact_weight",
                "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts", "tendons",
-               "transcription", "actuation", "clearance_m", "search", "spend"}
+               "transcription", "actuation", "clearance_m", "search", "spend", "grading"}
 
 
 @dataclass(frozen=True)
@@ -131,6 +131,7 @@ def parse(data: dict, path: str = "") -> StrideScene:
                            "stride.objective", OBJECTIVES)
     transcription = val.choice(stride.get("transcription", "trapezoid"), "stride.transcription", TRANSCRIPTIONS)
     nodes = val.integer(stride, "nodes", "stride", 40, *_whole("nodes"))
+    grading = val.number(stride, "grading", "stride", default=0.0, limit=RANGES["grading"])
     weight = val.number(stride, "impact_weight", "stride", default=0.0, limit=RANGES["impact_weight"])
     torque = val.number(stride, "torque_limit_nm_per_kg", "stride", default=4.0,
                          limit=RANGES["torque_limit_nm_per_kg"])
@@ -158,7 +159,8 @@ def parse(data: dict, path: str = "") -> StrideScene:
         settings = StrideSettings(strike="heel" if strike == "best" else strike, objective=objective,
                                   nodes=nodes, law=law, impact_weight=weight, torque_limit=torque,
                                   duration=duration, max_iter=max_iter, tendons=tendons,
-                                  transcription=transcription, muscles=muscles, clearance=clearance)
+                                  transcription=transcription, muscles=muscles, clearance=clearance,
+                                  grading=grading)
     except InputError as err:  # what only the settings check (e.g. a strike's least nodes)
         raise SceneError("stride", str(err)) from None
     return StrideScene(name, body, speed, math.radians(slope), friction, strike, settings,

@@ -37,6 +37,7 @@ def test_shipped_stride_scenes_load():
                                        ({"cadense_spm": 170}, "stride.cadense_spm"),
                                        ({"clearance_m": 0.5}, "stride.clearance_m"),
                                        ({"clearance_m": "1 cm"}, "stride.clearance_m"),
+                                       ({"grading": 1.5}, "stride.grading"),
                                        ({"search": "wide"}, "stride.search"),
                                        ({"spend": 2}, "stride.spend"),
                                        ({"search": "global", "starts": 2}, "stride.starts"),
@@ -125,3 +126,10 @@ def test_the_global_search_is_one_key():
     data["stride"].update(search="local", starts=2)
     data["stride"].pop("spend")
     assert stages(parse(data)) == 1
+
+
+def test_the_grading_key_reaches_the_settings():
+    """[stride] grading: each phase's mesh graded toward its ends (StrideSettings.grading)."""
+    data = tomllib.loads(STRIDE_SCENES[0].read_text())
+    data["stride"]["grading"] = 1.0
+    assert parse(data).settings.grading == 1.0 and load(STRIDE_SCENES[0]).settings.grading == 0.0

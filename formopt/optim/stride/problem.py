@@ -342,6 +342,10 @@ class StrideSettings:
         check("grading", self.grading)
         if self.consistency_rows not in CONSISTENCY_ROWS:
             raise InputError(f"consistency_rows = {self.consistency_rows!r}: expected {', '.join(CONSISTENCY_ROWS)}")
+        if self.consistency_rows == "trapezoid" and (self.transcription != "trapezoid" or self.moment_time
+                                                      or self.muscles is not None):
+            raise InputError("consistency_rows = 'trapezoid': measured on the trapezoid's torque rungs "
+                             "without moment dynamics only (RELEASE_DRIFT's h is a trapezoid interval)")
         if not 0.0 < self.reserve_weight < math.inf:
             raise InputError(f"reserve_weight = {self.reserve_weight}: expected a finite number > 0")
         check("torque_limit_nm_per_kg", self.torque_limit)

@@ -24,6 +24,14 @@ def test_consistency_rows_is_one_of_the_forms(value):
         StrideSettings(consistency_rows=value)
 
 
+@pytest.mark.parametrize("other", [{"transcription": "hermite-simpson"}, {"moment_time": 0.04}])
+def test_the_trapezoid_form_only_where_it_was_measured(other):
+    """Its released-height bound is -RELEASE_DRIFT h^2 with h a trapezoid interval, measured on the
+    torque rungs without moment dynamics: elsewhere the setting is refused, not guessed."""
+    with pytest.raises(InputError, match="consistency_rows = 'trapezoid'"):
+        StrideSettings(consistency_rows="trapezoid", **other)
+
+
 @pytest.fixture(scope="module")
 def nlps():
     """{form: its NLP}: a heel strike with springs on the trapezoid."""
