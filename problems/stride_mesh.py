@@ -72,7 +72,13 @@ from formopt.optim.stride.collocation import StrideNLP, build
 from formopt.optim.stride.guess import fitted
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS
-from formopt.optim.stride.problem import CONSISTENCY_ROWS, RUNNER_TENDONS, SMOOTHING, StrideSettings
+from formopt.optim.stride.problem import (
+    CONSISTENCY_ROWS,
+    RUNNER_TENDONS,
+    SMOOTHING,
+    TRANSCRIPTIONS,
+    StrideSettings,
+)
 
 matplotlib.use("Agg")
 TIGHT = 1e-6  # a value this close to its bound (relative to max(1, |bound|)) is on it
@@ -332,6 +338,9 @@ def mesh_token(text: str, grading: float) -> tuple[str, int, float]:
     """A mesh "transcription:intervals[:grading]" as (transcription, intervals, grading), the
     grading `grading` (--grading's) where the token gives none."""
     parts = text.split(":")
+    if len(parts) not in (2, 3) or parts[0] not in TRANSCRIPTIONS:
+        raise SystemExit(f"stride_mesh.py: error: --meshes {text!r}: expected transcription:intervals[:grading], the "
+                         f"transcription one of {', '.join(TRANSCRIPTIONS)}")
     return parts[0], int(parts[1]), float(parts[2]) if len(parts) > 2 else grading
 
 

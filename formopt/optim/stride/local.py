@@ -20,8 +20,9 @@ def optimum(nlp: StrideNLP, speed: float, slope: float = 0.0, mu: float = 0.8,
             cadence: float | None = None, guess: dict | None = None, simulate: bool = True,
             starts: int = 1, seed: int = 0) -> Stride:
     """Solve the NLP from `guess` (default: the generic guess, or for Hermite-Simpson the
-    trapezoid's optimum from it; a solution of another phase list or mesh is `fitted` to this
-    one's columns) and, with `starts` > 1, from
+    trapezoid's optimum from it; a solution of another phase list or node count on this NLP's
+    grading is `fitted` to its columns; one of another grading or transcription is fitted first,
+    guess.fitted(nlp, blocks, source)) and, with `starts` > 1, from
     starts - 1 perturbations of it (guess.perturbed, seeded); summarise the best of the solves
     (`rank`: valid first, then converged, then the least objective), under Coulomb after its
     touchdown's mode is decided (`touchdown_mode`); where the forward check (`simulate`) makes
