@@ -75,6 +75,19 @@ def report(nodes: int, stride, seconds: float, grading: float = 0.0) -> str:
             f"{seconds:.1f} s CPU")
 
 
+def search_record(search: dict) -> str:
+    """The search's record (optim.stride.search): its spend, solves, the grid's least objective
+    per cadence, the distinct optima met (cadence: objective, validity) and their spread (%)."""
+    grid = " ".join(f"{c:.0f}: " + ("-" if o is None else f"{o:.4f}")
+                    for c, o in zip(search["grid_spm"], search["grid_objective"]))
+    optima = ", ".join(f"{o['cadence_spm']:.1f}: {o['objective']:.4f}"
+                       + ("" if o["valid"] else " invalid (" + "; ".join(o["failed"]) + ")")
+                       + (" (answer)" if o["answer"] else "") for o in search["optima"])
+    spread = "none converged" if search["spread_pct"] is None else f"{search['spread_pct']:.2f} %"
+    return (f"  search: spend {search['spend']}, {search['solves']} solves, grid steps/min: objective "
+            f"[{grid}]; optima met [{optima}], spread {spread}")
+
+
 def phase_costs(nlp, solved, speed: float, column: int | None = None) -> dict[str, dict[str, float]]:
     """{phase: {cost term: its part of the objective}}: each of the NLP's terms (costs.terms)
     with its integral over that phase alone, w s I_phase / d (d = v T the whole step's), so that
@@ -166,6 +179,8 @@ def start(nlp, args):
     clock = time.process_time()
     stride = global_optimum(nlp, args.speed, spend=args.spend) if args.start == "search" else optimum(nlp, args.speed)
     print(report(nlp.settings.nodes, stride, time.process_time() - clock, nlp.settings.grading), flush=True)
+    if stride.search:
+        print(search_record(stride.search), flush=True)
     parts = phase_costs(nlp, stride.solved, args.speed)
     print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, args.speed), flush=True)
     return stride, parts, nlp
