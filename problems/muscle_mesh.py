@@ -18,7 +18,8 @@ the forward check's worst deviation per phase (rad: the excitations replayed, ea
 from the NLP's state at its start), the held points' contact drift (mm), the energy budget's
 balance (% of W+), the reserves' largest moment (N m/kg), IPOPT's iterations (the kept
 solve's; the search's total in brackets) and the CPU seconds (time.process_time, the search
-or solve with its checks), and the objective's parts per phase and cost term (costs.terms:
+or solve with its checks; under the search's answer its record: spend, solves, the grid's
+objective per cadence, the optima met and their spread), and the objective's parts per phase and cost term (costs.terms:
 the muscles' energy, the force rate, the muscle rates, the reserves, the smoothing; `phase_costs`)
 with the force-rate term's part at each phase's first and last column (a layer at its ends);
 after each finer mesh the change of cost and cadence from the one before (%) and each part's
