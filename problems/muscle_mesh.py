@@ -18,7 +18,8 @@ the forward check's worst deviation per phase (rad: the excitations replayed, ea
 from the NLP's state at its start), the held points' contact drift (mm), the energy budget's
 balance (% of W+), the reserves' largest moment (N m/kg), IPOPT's iterations (the kept
 solve's; the search's total in brackets) and the CPU seconds (time.process_time, the search
-or solve with its checks), and the objective's parts per phase and cost term (costs.terms:
+or solve with its checks; under the search's answer its record: spend, solves, the grid's
+objective per cadence, the optima met and their spread), and the objective's parts per phase and cost term (costs.terms:
 the muscles' energy, the force rate, the muscle rates, the reserves, the smoothing; `phase_costs`)
 with the force-rate term's part at each phase's first and last column (a layer at its ends);
 after each finer mesh the change of cost and cadence from the one before (%) and each part's
@@ -73,6 +74,19 @@ def report(nodes: int, stride, seconds: float, grading: float = 0.0) -> str:
             f"{stride.checks['drift_m'] * 1e3:.3f} mm, balance {stride.checks['balance_relative'] * 100:.2e} %, "
             f"reserves {stride.checks['reserve_nm_per_kg']:.3f} N m/kg; {stride.iterations}{total} iterations, "
             f"{seconds:.1f} s CPU")
+
+
+def search_record(search: dict) -> str:
+    """The search's record (optim.stride.search): its spend, solves, the grid's least objective
+    per cadence, the distinct optima met (cadence: objective, validity) and their spread (%)."""
+    grid = " ".join(f"{c:.0f}: " + ("-" if o is None else f"{o:.4f}")
+                    for c, o in zip(search["grid_spm"], search["grid_objective"]))
+    optima = ", ".join(f"{o['cadence_spm']:.1f}: {o['objective']:.4f}"
+                       + ("" if o["valid"] else " invalid (" + "; ".join(o["failed"]) + ")")
+                       + (" (answer)" if o["answer"] else "") for o in search["optima"])
+    spread = "none converged" if search["spread_pct"] is None else f"{search['spread_pct']:.2f} %"
+    return (f"  search: spend {search['spend']}, {search['solves']} solves, grid steps/min: objective "
+            f"[{grid}]; optima met [{optima}], spread {spread}")
 
 
 def phase_costs(nlp, solved, speed: float, column: int | None = None) -> dict[str, dict[str, float]]:
@@ -166,6 +180,8 @@ def start(nlp, args):
     clock = time.process_time()
     stride = global_optimum(nlp, args.speed, spend=args.spend) if args.start == "search" else optimum(nlp, args.speed)
     print(report(nlp.settings.nodes, stride, time.process_time() - clock, nlp.settings.grading), flush=True)
+    if stride.search:
+        print(search_record(stride.search), flush=True)
     parts = phase_costs(nlp, stride.solved, args.speed)
     print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, args.speed), flush=True)
     return stride, parts, nlp
