@@ -398,6 +398,8 @@ def parse(argv) -> argparse.Namespace:
     args = parser.parse_args(argv)
     if args.smoothing < 0:
         parser.error(f"--smoothing {args.smoothing}: a weight >= 0")
+    if args.no_energy_rows and args.consistency_rows == "off":
+        parser.error("--no-energy-rows: consistency rows off has no energy rows")
     args.meshes = [mesh_token(m, args.grading) for m in args.meshes]
     return args
 
@@ -446,10 +448,21 @@ def report(label: str, nlp, stride, seconds: float, speed: float) -> None:
     print("\n".join(f"  node rows, {r}" for r in rows), flush=True)
 
 
+def study_nlp(args, body, settings: StrideSettings) -> StrideNLP:
+    """The NLP of `settings` with the command line's IPOPT options and study options (the
+    heights relaxed, the energy rows freed)."""
+    nlp = StrideNLP(JointSpace(body), settings, dict(args.ipopt)) if args.ipopt else build(body, settings)
+    relax_heights(nlp, args.no_release_height, args.no_stance_heights)
+    if args.no_energy_rows and settings.consistency_rows != "off":  # "off" has none
+        free_energy_rows(nlp)
+    return nlp
+
+
 def cross(args, body, settings, stride, label: str) -> None:
-    """The mesh's NLP with StrideSettings.consistency_rows `args.cross_rows`, solved from this
-    mesh's optimum and reported: whether the other form's optimum lies near this one's."""
-    nlp = build(body, dataclasses.replace(settings, consistency_rows=args.cross_rows))
+    """The mesh's NLP with StrideSettings.consistency_rows `args.cross_rows` (and the run's other
+    options), solved from this mesh's optimum and reported: whether the other form's optimum lies
+    near this one's."""
+    nlp = study_nlp(args, body, dataclasses.replace(settings, consistency_rows=args.cross_rows))
     clock = time.process_time()
     other = optimum(nlp, args.speed, mu=args.mu, cadence=args.cadence or None, guess=stride.solved.blocks)
     report(f"{label}, consistency rows {args.cross_rows} from it", nlp, other, time.process_time() - clock, args.speed)
@@ -467,10 +480,7 @@ def main(argv=None) -> int:
                                   transcription=transcription, moment_time=args.moment_time,
                                   approach_speed=args.approach_speed, duration=durations,
                                   consistency_rows=args.consistency_rows, grading=grading)
-        nlp = StrideNLP(JointSpace(body), settings, dict(args.ipopt)) if args.ipopt else build(body, settings)
-        relax_heights(nlp, args.no_release_height, args.no_stance_heights)
-        if args.no_energy_rows:
-            free_energy_rows(nlp)
+        nlp = study_nlp(args, body, settings)
         clock = time.process_time()
         start = fitted(nlp, guess, solved[-1][1]) if solved else None  # at both meshes' times
         stride = optimum(nlp, args.speed, mu=args.mu, cadence=args.cadence or None, guess=start)
