@@ -223,10 +223,11 @@ MESH_FINE = {"hermite-simpson": (40, "under 0.3 % in cadence and 0.2 % in cost f
 
 # The muscles' trapezoid from 40 to 80 nodes (RBDS001, heel and forefoot, 2.5 / 3.5 / 4.5 m/s,
 # problems/muscle_mesh.py; docs/concepts/muscles.md, "The mesh: N against 2N", 2026-11-27): the
-# uniform mesh's cadence 0.7-3.8 % and cost 8.6-11.4 %; graded (StrideSettings.grading 1) from the
-# same 40-node stride, heel 3.5 m/s, 0.4 % and 4.0 % (then 0.1 and 1.9 % from 80 to 160).
+# uniform mesh's cadence 0.7-3.8 % and cost 8.6-11.4 %; graded (StrideSettings.grading 1, the
+# search's strides, heel 2.5-4.5 and forefoot 3.5-4.5 m/s) 0.4-1.9 % and 2.3-6.6 % (from 80 to 160
+# nodes 0.1-0.7 % and 1.2-2.2 %).
 MUSCLE_MESH_SHIFT = ("0.7-3.8 % in cadence and 9-11 % in cost from 40 to 80 nodes on RBDS001's body "
-                     "(a mesh graded toward the phases' ends, grading 1: 0.4 % and 4 %)")
+                     "(a mesh graded toward the phases' ends, grading 1: 0.4-1.9 % and 2-7 %)")
 
 
 def other_leg(point: str) -> str:
