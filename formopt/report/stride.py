@@ -22,11 +22,15 @@ BONES = (("shoulder", "hip"), ("hip", "knee"), ("knee", "ankle"), ("ankle", "hee
 
 
 def stick_figures(stride, js: JointSpace, every: int = 3) -> Figure:
-    """The body at every `every`-th node over the half stride (right leg dark, left light)."""
+    """The body about every `every`-th node's time over the half stride (right leg dark, left
+    light): the nodes nearest to len(t) / every equally spaced times, so that a mesh graded
+    toward the phases' ends (StrideSettings.grading) does not bunch the sticks there."""
     fig = new_figure((10, 3.6))
     ax = fig.add_subplot()
     names = js.landmark_names
-    for k in range(0, len(stride.t), every):
+    t = np.asarray(stride.t, float)
+    times = np.linspace(t[0], t[-1], len(t))[::every]
+    for k in np.unique([int(np.argmin(np.abs(t - time))) for time in times]):
         p = np.asarray(js.landmarks(stride.theta[k]), float)
         for a, b in BONES:
             i, j = names.index(a), names.index(b)

@@ -391,13 +391,18 @@ def metabolic(positive, negative):
 
 def mesh_note(settings: StrideSettings) -> str:
     """How sure a stride's optimum is of its mesh, in words (MESH_SHIFT, MESH_FINE: measured on
-    the torque+springs rung; MUSCLE_MESH_SHIFT on the muscles' trapezoid)."""
+    the torque+springs rung on uniform meshes; MUSCLE_MESH_SHIFT on the muscles' trapezoid, uniform
+    and graded)."""
     if settings.muscles is not None:
         if settings.transcription != "trapezoid":
             return (f"{settings.transcription} at {settings.nodes} intervals: the muscles' optimum is not "
                     "measured on this transcription (docs/concepts/muscles.md, 'The mesh: N against 2N')")
         return (f"trapezoid at {settings.nodes} intervals is not mesh-converged: the muscles' optimum moved "
                 f"{MUSCLE_MESH_SHIFT} (docs/concepts/muscles.md, 'The mesh: N against 2N')")
+    if settings.grading:
+        return (f"{settings.transcription} at {settings.nodes} intervals graded {settings.grading:g}: on the "
+                "torque rungs a graded mesh was measured costlier, converging elsewhere (docs/concepts/"
+                "stride.md, 'A mesh graded toward the phases' ends')")
     least, shift = MESH_FINE.get(settings.transcription, (None, ""))
     if least is not None and settings.nodes >= least:
         return (f"{settings.transcription} at {settings.nodes} intervals: the effort optimum moved {shift} "

@@ -119,3 +119,4 @@ def test_the_mesh_note_gives_the_muscles_their_own_figures():
     assert "0.2 % in cost" in mesh_note(torque) and "not measured" not in mesh_note(torque)
     assert "not measured" in mesh_note(hermite) and "0.2 % in cost" not in mesh_note(hermite)
     assert MUSCLE_MESH_SHIFT in mesh_note(trapezoid) and "effort" not in mesh_note(trapezoid)
+    assert "graded mesh was measured costlier" in mesh_note(StrideSettings(grading=1.0))
