@@ -400,6 +400,9 @@ def parse(argv) -> argparse.Namespace:
         parser.error(f"--smoothing {args.smoothing}: a weight >= 0")
     if args.no_energy_rows and args.consistency_rows == "off":
         parser.error("--no-energy-rows: consistency rows off has no energy rows")
+    if args.no_release_height and "trapezoid" in (args.consistency_rows, args.cross_rows):
+        parser.error("--no-release-height: consistency rows 'trapezoid' bound the released heights "
+                     "by their own row (collocation._release_heights); use 'off'")
     args.meshes = [mesh_token(m, args.grading) for m in args.meshes]
     return args
 
