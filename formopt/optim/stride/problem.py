@@ -411,10 +411,3 @@ def mesh_note(settings: StrideSettings) -> str:
     return (f"{settings.transcription} at {settings.nodes} intervals is not mesh-converged: on RBDS001's body "
             f"the effort optimum moved {MESH_SHIFT[settings.transcription]} ({finer}: "
             "docs/concepts/stride.md, 'One answer')")
-    if least is not None and settings.nodes >= least:
-        return (f"{settings.transcription} at {settings.nodes} intervals: the effort optimum moved {shift} "
-                "(docs/concepts/stride.md, 'One answer')")
-    finer = "; ".join(f"{t} moves less from {n} intervals, with limits of its own" for t, (n, _) in MESH_FINE.items())
-    return (f"{settings.transcription} at {settings.nodes} intervals is not mesh-converged: on RBDS001's body "
-            f"the effort optimum moved {MESH_SHIFT[settings.transcription]} ({finer}: "
-            "docs/concepts/stride.md, 'One answer')")
