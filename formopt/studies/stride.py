@@ -87,9 +87,8 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
 
 
 def mesh_text(strides: list[Stride]) -> str:
-    """What the mesh checks measured (optim.stride.refine.MeshCheck.text), each strike's."""
-    texts = [(s.strike, s.mesh_check.text()) for s in strides if s.mesh_check is not None]
-    return "; ".join(text if len(strides) == 1 else f"{strike}: {text}" for strike, text in texts)
+    """What the mesh checks measured, each strike's ("heel: " and optim.stride.refine.MeshCheck.text)."""
+    return "; ".join(f"{s.strike}: {s.mesh_check.text()}" for s in strides if s.mesh_check is not None)
 
 
 def stages(scene: StrideScene, speed: float | None = None, strike: str | None = None) -> int:

@@ -70,14 +70,14 @@ class MeshCheck:
         """What was measured, in one sentence (the stride table's mesh note)."""
         n, fine = self.nodes
         if not self.success:
-            return (f"mesh checked: the {fine}-node solve from the {n}-node stride did not converge "
-                    f"(IPOPT: {self.status}): nothing measured")
-        moved = (f"mesh checked: {fine} nodes move the cadence {self.cadence_change_pct:+.2f} % and the cost "
-                 f"{self.objective_change_pct:+.2f} %")
+            return (f"{fine} nodes, solved from this {n}-node stride, did not converge (IPOPT: {self.status}): "
+                    "nothing measured")
+        moved = (f"{fine} nodes, solved from this {n}-node stride, move the cadence {self.cadence_change_pct:+.2f} % "
+                 f"and the cost {self.objective_change_pct:+.2f} %")
         verdict = (f"converged within {MESH_TOLERANCE_PCT:g} %" if self.converged else
                    f"the {fine}-node stride is invalid ({'; '.join(self.failed_checks)})" if not self.valid else
                    f"not converged at {MESH_TOLERANCE_PCT:g} %")
-        return f"{moved}: {verdict} (reported: the {n}-node stride; nodes = {fine} solves the finer one)"
+        return f"{moved}: {verdict}"
 
 
 def _change(pair: tuple[float, float]) -> float:

@@ -7,6 +7,7 @@ test_derivatives.py."""
 
 import json
 import tomllib
+from dataclasses import replace
 
 import pytest
 from helpers import SHIPPED
@@ -15,7 +16,8 @@ from formopt.cli import main
 from formopt.io.scene import SceneError, parse
 from formopt.optim.stride import optimum
 from formopt.optim.stride.refine import MESH_TOLERANCE_PCT, MeshCheck, fine_nodes, mesh_check, refined
-from formopt.studies.stride import stages
+from formopt.report.stride import stride_table
+from formopt.studies.stride import StrideStudy, mesh_text, stages
 
 SCENE = SHIPPED / "stride.toml"
 NODES = 24
@@ -72,8 +74,8 @@ def test_converged_needs_both_changes_under_the_tolerance_and_a_valid_fine_strid
     assert not record((170.0, 170.0), (2.0, 2.0 * (2 - over))).converged
     assert not record((170.0, 170.0), (2.0, 2.0), valid=False).converged
     assert not record((170.0, 170.0), (2.0, 2.0), success=False).converged
-    assert record((170.0, 170.0), (2.0, 1.9)).text().startswith(
-        "mesh checked: 80 nodes move the cadence +0.00 % and the cost -5.00 %: not converged at 1 %")
+    assert record((170.0, 170.0), (2.0, 1.9)).text() == \
+        "80 nodes, solved from this 40-node stride, move the cadence +0.00 % and the cost -5.00 %: not converged at 1 %"
     assert "invalid (drift_m" in record((170.0, 170.0), (2.0, 2.0), valid=False).text()
     assert "did not converge" in record((170.0, 170.0), (2.0, 2.0), success=False).text()
 
@@ -85,6 +87,15 @@ def test_the_fine_solve_starts_from_the_stride(coarse):
     first = refined(nlp.variant({"max_iter": 0}, nodes=2 * NODES), stride, nlp, simulate=False)
     assert first.iterations == 0
     assert first.cadence_spm == pytest.approx(stride.cadence_spm, rel=1e-9)
+
+
+def test_the_table_says_what_was_measured(coarse, checked):
+    """The mesh note of a checked stride is its record's, not the canned figures (problem.mesh_note)."""
+    _, _, stride = coarse
+    strides = [replace(stride, mesh_check=checked)]
+    table = stride_table(StrideStudy("small", strides, mesh_text(strides))).splitlines()
+    assert [line for line in table if line.startswith("NOTE mesh")] == [f"NOTE mesh heel: {checked.text()}"]
+    assert mesh_text(strides) == f"heel: {checked.text()}"
 
 
 @pytest.mark.parametrize("edit, message", [({"mesh_check": "yes"}, "true or false"),
@@ -113,4 +124,5 @@ def test_the_command_reports_the_check(coarse, tmp_path, capsys):
     check = report["mesh_check"]
     assert check["nodes"] == [NODES, 2 * NODES] and report["strides"][0]["mesh_check"] == check
     assert check["cadence_spm"][0] == pytest.approx(stride.cadence_spm)  # the reported stride: the N-node one
-    assert report["cadence_spm"] == check["cadence_spm"][0] and report["mesh"].startswith("mesh checked: 48 nodes")
+    assert report["cadence_spm"] == check["cadence_spm"][0]
+    assert report["mesh"].startswith(f"heel: 48 nodes, solved from this {NODES}-node stride, move the cadence")
