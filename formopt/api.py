@@ -178,6 +178,8 @@ def stride(scene, speed: float | None = None, strike: str | None = None,
     StrideStudy
         The strides, the best first (`best`: valid before invalid, then the least costly;
         optim.stride.rank), each a `Stride` with `valid`, `failed_checks`, cadence, step,
-        phases, ground force, energy budget (J) and checks; `to_dict()` is JSON-ready.
+        phases, ground force, energy budget (J) and checks (with the scene's `mesh_check`, its
+        `mesh_check`: what solving it again on twice its nodes moved, optim.stride.refine);
+        `to_dict()` is JSON-ready.
     """
     return run_stride(scene, speed, strike, progress=progress)

@@ -4,8 +4,8 @@ the default force-rate and reserve weights), free cadence, at one speed and stri
 mesh's stride is the global search's answer there (optim.stride.search.global_optimum at
 `--spend`: the stride the tables of docs/concepts/muscles.md report), or with `--start path`
 the default path's (local.optimum's one start: problems/stride_ladder.py's); each finer mesh
-is solved from the one before, its node histories interpolated onto the finer mesh
-(guess.fitted, through local.optimum's guess), so every mesh solves the same stride.
+is solved from the one before (optim.stride.refine.refined: its node histories interpolated onto the
+finer mesh, guess.fitted), so every mesh solves the same stride.
 
     python problems/muscle_mesh.py [--speed 3.5] [--strike heel|forefoot] [--nodes 40 80 160]
                                    [--start search|path] [--spend 1] [--mu-init 3e-4 1e-2]
@@ -54,10 +54,10 @@ from formopt.mechanics.body import scaled_body
 from formopt.mechanics.limits import Range
 from formopt.optim.stride import problem, ranges
 from formopt.optim.stride.collocation import MUSCLE_WARM_START, build
-from formopt.optim.stride.guess import fitted
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS, step_length
 from formopt.optim.stride.problem import StrideSettings
+from formopt.optim.stride.refine import refined
 from formopt.optim.stride.search import global_optimum
 
 
@@ -153,10 +153,9 @@ def finer(nlp, speed: float, before, mu_inits: list[float]):
     starting at each of `mu_inits` in turn, each reported with its change from `before`; returns
     the first (with its parts and NLP)."""
     out = []
-    guess = fitted(nlp, before[0].solved.blocks, before[2])
     for mu in mu_inits:
         clock = time.process_time()
-        stride = optimum(nlp.variant({"mu_init": mu}), speed, guess=guess)
+        stride = refined(nlp.variant({"mu_init": mu}), before[0], before[2])
         print(report(nlp.settings.nodes, stride, time.process_time() - clock, nlp.settings.grading)
               + f" (mu_init {mu:g})", flush=True)
         parts = phase_costs(nlp, stride.solved, speed)

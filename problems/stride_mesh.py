@@ -1,6 +1,7 @@
 """Where the stride's objective moves with the mesh (issue 34's N against 2N): RBDS001's body (62 kg,
 1.81 m), heel strike, torque+springs (problem.RUNNER_TENDONS), effort, at an imposed cadence (or free), each
-mesh warm from the one before (guess.fitted), so every mesh solves the same stride.
+mesh solved from the one before (optim.stride.refine.refined: its node histories at both meshes' times,
+guess.fitted), so every mesh solves the same stride.
 
     python problems/stride_mesh.py [--speed 3.5] [--cadence 130 (0: free)]
                                    [--meshes hermite-simpson:20 hermite-simpson:40 hermite-simpson:80]
@@ -69,7 +70,6 @@ from formopt.mechanics.joint_space import GRAVITY, JOINTS, RANGES, THETA, JointS
 from formopt.mechanics.limits import Range
 from formopt.optim.stride import collocation, contact, costs, ocp, ranges
 from formopt.optim.stride.collocation import StrideNLP, build
-from formopt.optim.stride.guess import fitted
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS
 from formopt.optim.stride.problem import (
@@ -79,6 +79,7 @@ from formopt.optim.stride.problem import (
     TRANSCRIPTIONS,
     StrideSettings,
 )
+from formopt.optim.stride.refine import refined
 
 matplotlib.use("Agg")
 TIGHT = 1e-6  # a value this close to its bound (relative to max(1, |bound|)) is on it
@@ -467,14 +468,14 @@ def cross(args, body, settings, stride, label: str) -> None:
     near this one's."""
     nlp = study_nlp(args, body, dataclasses.replace(settings, consistency_rows=args.cross_rows))
     clock = time.process_time()
-    other = optimum(nlp, args.speed, mu=args.mu, cadence=args.cadence or None, guess=stride.solved.blocks)
+    other = refined(nlp, stride)
     report(f"{label}, consistency rows {args.cross_rows} from it", nlp, other, time.process_time() - clock, args.speed)
 
 
 def main(argv=None) -> int:
     args = parse(argv)
     study_overrides(args)
-    body, guess, solved, objectives, cadences = scaled_body(62.0, 1.81), None, [], [], []
+    body, stride, solved, objectives, cadences = scaled_body(62.0, 1.81), None, [], [], []
     durations = {**StrideSettings().duration, **{k: (v - PIN, v + PIN) for k, v in args.durations}}
     for transcription, nodes, grading in args.meshes:
         # costs.terms reads it when each NLP is built
@@ -485,8 +486,8 @@ def main(argv=None) -> int:
                                   consistency_rows=args.consistency_rows, grading=grading)
         nlp = study_nlp(args, body, settings)
         clock = time.process_time()
-        start = fitted(nlp, guess, solved[-1][1]) if solved else None  # at both meshes' times
-        stride = optimum(nlp, args.speed, mu=args.mu, cadence=args.cadence or None, guess=start)
+        stride = refined(nlp, stride, solved[-1][1]) if solved else \
+            optimum(nlp, args.speed, mu=args.mu, cadence=args.cadence or None)
         label = f"{transcription} {nodes}" + (f" graded {grading:g}" if grading else "")
         report(label, nlp, stride, time.process_time() - clock, args.speed)
         if args.cross_rows:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -33,6 +34,9 @@ def add_parser(commands):
     cmd.add_argument("--strike", choices=STRIDE_STRIKES, help="strike instead of the scene's")
     cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
     cmd.add_argument("--out", help="folder for figures, CSV, JSON and OpenSim files")
+    cmd.add_argument("--mesh-check", action="store_true",
+                     help="solve each strike's stride again on twice its nodes from itself and report what "
+                          "that moved (the scene's [stride] mesh_check = true); the outputs stay the N-node stride's")
 
 
 def stride_rows(stride):
@@ -65,6 +69,8 @@ def run(args) -> int:
     scene = load(args.scene)
     if not isinstance(scene, StrideScene):
         raise InputError(f"{args.scene}: not a stride scene (it has no [stride] table)")
+    if args.mesh_check:
+        scene = replace(scene, mesh_check=True)
     out = out_folder(args, scene.path or scene.name)
     with Stages(None if args.json else stages(scene, args.speed, args.strike), "stride") as say:
         study = api.stride(scene, args.speed, args.strike, progress=say)

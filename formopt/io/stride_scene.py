@@ -18,7 +18,9 @@
               RUNNER_TENDONS), transcription ("trapezoid", the
               default, or "hermite-simpson": optim.stride.collocation), clearance_m (the
               swing foot's least height while the other foot holds the ground, m; default
-              optim.stride.contact.CLEARANCE)
+              optim.stride.contact.CLEARANCE), mesh_check (true: each strike's stride solved
+              again on twice its nodes from itself and what that moved reported,
+              optim.stride.refine; default false)
 
 Every error names its key (SceneError, one line); degrees at this edge, SI inside.
 """
@@ -44,6 +46,7 @@ from ..optim.stride.problem import (
     StrideSettings,
 )
 from ..optim.stride.ranges import RANGES, point
+from ..optim.stride.refine import fine_nodes
 from ..optim.stride.search import SEARCHES
 from . import validate as val
 from .muscle_table import body_muscles
@@ -53,7 +56,7 @@ STRIDE_STRIKES = (*STRIKES, "best")
 STRIDE_LAWS = ("no-slip", "coulomb")
 STRIDE_KEYS = {"speed_mps", "strike", "objective", "nodes", "impact_weight",
                "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts", "tendons",
-               "transcription", "actuation", "clearance_m", "search", "spend", "grading"}
+               "transcription", "actuation", "clearance_m", "search", "spend", "grading", "mesh_check"}
 
 
 @dataclass(frozen=True)
@@ -73,6 +76,7 @@ class StrideScene:
     notes: tuple[str, ...] = ()
     search: str = "local"  # optim.stride.search.SEARCHES: "local" (`starts`) or "global" (`spend`)
     spend: int = 1  # the global search's spend (optim.stride.search)
+    mesh_check: bool = False  # each strike's stride solved again on 2N nodes (optim.stride.refine)
 
     def for_strike(self, strike: str) -> StrideSettings:
         """The settings of one strike."""
@@ -145,6 +149,7 @@ def parse(data: dict, path: str = "") -> StrideScene:
     clearance = val.number(stride, "clearance_m", "stride", default=CLEARANCE, limit=RANGES["clearance_m"])
     max_iter = val.integer(stride, "max_iterations", "stride", 1000, *_whole("max_iterations"))
     search, spend, starts = _search(stride)
+    mesh_check = _mesh_check(stride, nodes)
     duration = dict(StrideSettings().duration)
     if "duration_s" in stride:
         given = val.table(stride, "duration_s", set(NODE_SHARE), set(), "stride")
@@ -164,7 +169,7 @@ def parse(data: dict, path: str = "") -> StrideScene:
     except InputError as err:  # what only the settings check (e.g. a strike's least nodes)
         raise SceneError("stride", str(err)) from None
     return StrideScene(name, body, speed, math.radians(slope), friction, strike, settings,
-                       cadence, starts, path, notes, search, spend)
+                       cadence, starts, path, notes, search, spend, mesh_check)
 
 
 def _search(stride: dict) -> tuple[str, int, int]:
@@ -177,3 +182,15 @@ def _search(stride: dict) -> tuple[str, int, int]:
                                          "search takes starts)")
     return (search, val.integer(stride, "spend", "stride", 1, *_whole("spend")),
             val.integer(stride, "starts", "stride", 4, *_whole("starts")))
+
+
+def _mesh_check(stride: dict, nodes: int) -> bool:
+    """The [stride] table's mesh_check (true or false); true only where twice the nodes is
+    within their range (optim.stride.refine.fine_nodes)."""
+    mesh_check = val.flag(stride, "mesh_check", "stride", False)
+    if mesh_check:
+        try:
+            fine_nodes(nodes)
+        except InputError as err:
+            raise SceneError("stride.mesh_check", str(err)) from None
+    return mesh_check

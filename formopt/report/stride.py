@@ -152,7 +152,8 @@ def stride_figures(stride, js: JointSpace, measured: dict | None) -> dict[str, F
 
 def stride_table(study: StrideStudy) -> str:
     """One line per strike solved, the best first (optim.stride.rank); under it, what makes a
-    stride invalid (IPOPT's status, an impact that breaks the contact law, a failed check)."""
+    stride invalid (IPOPT's status, an impact that breaks the contact law, a failed check), and
+    how sure it is of its mesh (each stride's mesh check, or the study's note)."""
     lines = [f"{study.scene}",
              f"{'strike':9s} {'valid':>5s} {'cadence':>8s} {'step m':>7s} {'stance s':>9s} "
              f"{'flight s':>9s} {'duty':>5s} {'GRF BW':>7s} {'T_c J':>7s} {'CoT':>6s} {'W':>6s} "
@@ -180,7 +181,8 @@ def stride_table(study: StrideStudy) -> str:
             why = s.failed_checks if s.success else [f"IPOPT: {s.status}", *s.failed_checks]
             lines.append(f"INVALID {s.strike}: {'; '.join(why)}")
     lines += [f"NOTE {s.strike}: {remark}" for s in study.strides for remark in s.remarks]
-    lines += [f"NOTE mesh: {study.mesh}"] if study.mesh else []
+    checked = [f"NOTE mesh {s.strike}: {s.mesh_check.text()}" for s in study.strides if s.mesh_check is not None]
+    lines += checked or ([f"NOTE mesh: {study.mesh}"] if study.mesh else [])
     return "\n".join(lines)
 
 

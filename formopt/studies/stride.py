@@ -1,6 +1,8 @@
 """The stride of a scene: one optimum per strike ("best": each solved, the best first by
 optim.stride.rank: valid, converged, then the least costly), by the scene's search (`[stride]
-search`: "local", optim.stride.optimum's starts, or "global", optim.stride.search).
+search`: "local", optim.stride.optimum's starts, or "global", optim.stride.search); with
+`[stride] mesh_check`, each strike's stride solved again on twice its nodes from itself
+(optim.stride.refine.mesh_check: its record on the stride, the stride itself the N-node one).
 
 The NLP of a body and settings is built once (`Strider`) and solved for any speed, slope,
 friction and imposed cadence; a neighbouring solve is warm-started from the last optimum.
@@ -8,7 +10,7 @@ friction and imposed cadence; a neighbouring solve is warm-started from the last
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -16,6 +18,7 @@ from ..io.stride_scene import StrideScene
 from ..mechanics.errors import InputError
 from ..optim.stride import Stride, global_optimum, optimum, ranges, rank
 from ..optim.stride.problem import STRIKES, mesh_note
+from ..optim.stride.refine import fine_nodes, mesh_check
 from ..optim.stride.search import solves_planned
 
 ROW_KEYS = ("strike", "success", "objective_value", "cadence_spm", "step_length_m", "stance_s",
@@ -29,7 +32,9 @@ class StrideStudy:
 
     scene: str
     strides: list = field(default_factory=list)
-    mesh: str = ""  # how sure the optima are of their mesh (optim.stride.problem.mesh_note)
+    # how sure the optima are of their mesh: each stride's mesh check (optim.stride.refine), or
+    # what was measured on RBDS001 (optim.stride.problem.mesh_note)
+    mesh: str = ""
 
     @property
     def best(self) -> Stride:
@@ -37,48 +42,62 @@ class StrideStudy:
 
     def to_dict(self) -> dict:
         """The best stride's JSON, with one row per strike solved (`strides`: what the table
-        prints of each, its global search's record included)."""
+        prints of each, its global search's and mesh check's records included)."""
         rows = [{**{k: getattr(s, k) for k in ROW_KEYS},
                  "impacts_J": s.budget["impacts_J"],
-                 "impacts_valid": all(i["valid"] for i in s.impacts), "valid": s.valid}
+                 "impacts_valid": all(i["valid"] for i in s.impacts), "valid": s.valid,
+                 "mesh_check": None if s.mesh_check is None else s.mesh_check.to_dict()}
                 for s in self.strides]
         return {"scene": self.scene, **self.best.to_dict(), "strides": rows, "mesh": self.mesh}
 
 
 def run(scene: StrideScene, speed: float | None = None, strike: str | None = None,
         simulate: bool = True, progress=None) -> StrideStudy:
-    """Solve the scene's strides (`speed`, `strike`: overrides; "best" solves each);
-    `progress(text)`, when given, is told of each strike before it is solved."""
+    """Solve the scene's strides (`speed`, `strike`: overrides; "best" solves each), each
+    mesh-checked with `scene.mesh_check`; `progress(text)`, when given, is told of each strike
+    before it is solved, and of its mesh check."""
     speed = scene.speed if speed is None else speed
     ranges.point(speed, scene.cadence)
     choice = scene.strike if strike is None else strike
     if choice not in (*STRIKES, "best"):
         raise InputError(f"strike {choice!r}: expected one of {', '.join(STRIKES)} or best")
+    if scene.mesh_check:
+        fine_nodes(scene.settings.nodes)  # refused before any solve
     strikes = STRIKES if choice == "best" else (choice,)
     strides = []
     for k, name in enumerate(strikes, 1):
         head = f"[{k}/{len(strikes)}] {name} strike"
+        say = None if progress is None else (lambda text, head=head: progress(f"{head}: {text}"))
         nlp = scene.nlp(name)
         if scene.search == "global":
-            say = None if progress is None else (lambda text, head=head: progress(f"{head}: {text}"))
-            strides.append(global_optimum(nlp, speed, scene.slope, scene.friction, scene.cadence, scene.spend,
-                                          simulate, say))
-            continue
-        if progress:
-            progress(f"{head}: {scene.starts} start(s)")
-        strides.append(optimum(nlp, speed, scene.slope, scene.friction,
-                               scene.cadence, simulate=simulate, starts=scene.starts))
+            stride = global_optimum(nlp, speed, scene.slope, scene.friction, scene.cadence, scene.spend,
+                                    simulate, say)
+        else:
+            if say:
+                say(f"{scene.starts} start(s)")
+            stride = optimum(nlp, speed, scene.slope, scene.friction, scene.cadence, simulate=simulate,
+                             starts=scene.starts)
+        if scene.mesh_check:
+            if say:
+                say(f"mesh check on {fine_nodes(nlp.settings.nodes)} nodes")
+            stride = replace(stride, mesh_check=mesh_check(nlp, stride))
+        strides.append(stride)
     strides.sort(key=rank)
-    return StrideStudy(scene.name, strides, mesh_note(scene.settings))
+    return StrideStudy(scene.name, strides, mesh_text(strides) if scene.mesh_check else mesh_note(scene.settings))
+
+
+def mesh_text(strides: list[Stride]) -> str:
+    """What the mesh checks measured, each strike's ("heel: " and optim.stride.refine.MeshCheck.text)."""
+    return "; ".join(f"{s.strike}: {s.mesh_check.text()}" for s in strides if s.mesh_check is not None)
 
 
 def stages(scene: StrideScene, speed: float | None = None, strike: str | None = None) -> int:
-    """How many times `run` tells its progress: once per strike, or per solve of the global
-    search (optim.stride.search.solves_planned)."""
+    """How many times `run` tells its progress: per strike once, or once per solve of the global
+    search (optim.stride.search.solves_planned), and once more for its mesh check."""
     strikes = len(STRIKES) if (strike or scene.strike) == "best" else 1
-    if scene.search != "global":
-        return strikes
-    return strikes * solves_planned(scene.speed if speed is None else speed, scene.spend, scene.cadence)
+    solves = 1 if scene.search != "global" else \
+        solves_planned(scene.speed if speed is None else speed, scene.spend, scene.cadence)
+    return strikes * (solves + scene.mesh_check)
 
 
 # RBDS001's mean gait cycle (Fukuchi et al. 2017; the data set's Visual3D processing): 101

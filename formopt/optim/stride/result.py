@@ -21,6 +21,7 @@ and returned energy are in `Stride.muscles` (`muscle_outputs`), outside the bala
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -33,6 +34,9 @@ from .collocation import NX, StrideNLP
 from .layout import Solved
 from .ocp import INTEGRANDS, Impact, periodicity, step_length
 from .problem import metabolic, other_leg
+
+if TYPE_CHECKING:
+    from .refine import MeshCheck
 
 FOOT_POINTS = ("heel_R", "forefoot_R")
 # What a stride's own checks may show and still be the stride it claims (`Stride.failed_checks`),
@@ -123,6 +127,9 @@ class Stride:
     # the global search that found it (search.global_optimum: its spend, what it spent, the
     # optima it met and their spread); None: solved from the given starts (`optimum`)
     search: dict | None = None
+    # the stride solved again on twice its nodes from itself (refine.mesh_check: what that moved
+    # its cadence and cost); None: not checked
+    mesh_check: MeshCheck | None = None
 
     def bound_text(self) -> str:
         """The phases on a duration bound, in words ("" when none)."""
@@ -168,6 +175,8 @@ class Stride:
         """JSON-ready summary (no histories), with `valid` and `failed_checks`."""
         skip = {"t", "phase", "theta", "thetad", "tau", "force", "solved", "tau_spring", "muscles"}
         out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k not in skip}
+        if self.mesh_check is not None:
+            out["mesh_check"] = self.mesh_check.to_dict()
         if self.muscles is not None:  # the per-muscle figures, not the histories
             out["muscles"] = {k: v for k, v in self.muscles.items() if k not in ("activation", "tendon_force_N")}
         return {**out, "valid": self.valid, "failed_checks": self.failed_checks, "remarks": self.remarks}

@@ -1,0 +1,133 @@
+"""A stride solved again on a finer mesh from itself (issue 34 item 2: N against 2N nodes), and
+the record of what that moved (`MeshCheck`).
+
+`refined`: the stride's node histories interpolated onto the other mesh at both meshes' node
+times (guess.fitted), solved there from them (local.optimum, its touchdown mode decided again
+under Coulomb) at the stride's own speed, slope, friction and imposed cadence. The muscles from
+IPOPT's barrier at collocation.MUSCLE_WARM_START (3e-4), which keeps the iterate near the stride
+it starts from: from their cold solves' 1e-2 the heel stride at 2.5 m/s went from 152.9
+steps/min at 40 nodes to another optimum at 80 (170.2, 6 % costlier; from 3e-4: 148.0,
+problems/muscle_mesh.py). The torque rungs with the NLP's own options, as problems/stride_mesh.py
+always solved its finer meshes. `mesh_check`: the stride on 2N nodes, everything else the same
+(grading and transcription kept), and its `MeshCheck`; its own figures stay the N-node stride's.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import asdict, dataclass
+
+from ...mechanics.errors import InputError
+from .collocation import MUSCLE_WARM_START, StrideNLP
+from .guess import fitted
+from .local import optimum
+from .ranges import RANGES
+from .result import Stride
+
+# Issue 34 item 2: a reported stride's cost and cadence change by less than 1 % from N to 2N nodes
+MESH_TOLERANCE_PCT = 1.0
+
+
+@dataclass(frozen=True)
+class MeshCheck:
+    """What solving a stride again on twice its nodes from itself moved (`mesh_check`): each pair
+    (N-node stride, 2N-node stride); the rest the 2N-node solve's."""
+
+    nodes: tuple[int, int]  # collocation intervals over the half stride
+    cadence_spm: tuple[float, float]
+    objective_value: tuple[float, float]  # the scene's objective (per distance)
+    valid: bool  # the 2N-node stride's (Stride.valid)
+    failed_checks: tuple[str, ...]  # the 2N-node stride's (Stride.failed_checks)
+    success: bool  # IPOPT converged on 2N nodes
+    status: str  # IPOPT's return status
+    iterations: int
+    cpu_s: float  # s of CPU (time.process_time): the 2N-node NLP's build, solve and checks
+
+    @property
+    def cadence_change_pct(self) -> float:
+        """100 (c_2N - c_N) / c_N."""
+        return _change(self.cadence_spm)
+
+    @property
+    def objective_change_pct(self) -> float:
+        """100 (J_2N - J_N) / |J_N|."""
+        return _change(self.objective_value)
+
+    @property
+    def converged(self) -> bool:
+        """The 2N-node stride converged by IPOPT and valid, and both changes under
+        MESH_TOLERANCE_PCT."""
+        return (self.success and self.valid and abs(self.cadence_change_pct) < MESH_TOLERANCE_PCT
+                and abs(self.objective_change_pct) < MESH_TOLERANCE_PCT)
+
+    def to_dict(self) -> dict:
+        """JSON-ready: the fields, the changes (%), `converged` and the tolerance (%)."""
+        return {**asdict(self), "cadence_change_pct": self.cadence_change_pct,
+                "objective_change_pct": self.objective_change_pct, "converged": self.converged,
+                "tolerance_pct": MESH_TOLERANCE_PCT}
+
+    def text(self) -> str:
+        """What was measured, in one sentence (the stride table's mesh note)."""
+        n, fine = self.nodes
+        if not self.success:
+            return (f"{fine} nodes, solved from this {n}-node stride, did not converge (IPOPT: {self.status}): "
+                    "nothing measured")
+        moved = (f"{fine} nodes, solved from this {n}-node stride, move the cadence {self.cadence_change_pct:+.2f} % "
+                 f"and the cost {self.objective_change_pct:+.2f} %")
+        verdict = (f"converged within {MESH_TOLERANCE_PCT:g} %" if self.converged else
+                   f"the {fine}-node stride is invalid ({'; '.join(self.failed_checks)})" if not self.valid else
+                   f"not converged at {MESH_TOLERANCE_PCT:g} %")
+        return f"{moved}: {verdict}"
+
+
+def _change(pair: tuple[float, float]) -> float:
+    """100 (b - a) / |a| of a pair (a, b)."""
+    a, b = pair
+    return 100.0 * (b - a) / abs(a)
+
+
+def warm_options(nlp: StrideNLP) -> dict:
+    """IPOPT options over `nlp`'s for a solve from a neighbouring stride: the muscles' barrier
+    from MUSCLE_WARM_START unless the NLP's own options set one (module docstring); none for
+    the torque rungs."""
+    if nlp.settings.muscles is None or "mu_init" in (nlp.ipopt or {}):
+        return {}
+    return dict(MUSCLE_WARM_START)
+
+
+def refined(nlp: StrideNLP, stride: Stride, source: StrideNLP | None = None, simulate: bool = True) -> Stride:
+    """`stride` solved again on `nlp` (e.g. its settings on twice the nodes) from itself, at its
+    own parameters (module docstring); `source`: an NLP of the stride's transcription and grading
+    (default `nlp`'s), whose node times its histories are read at (guess.fitted); `simulate`:
+    the forward check."""
+    if stride.solved is None:
+        raise ValueError("refined: the stride has no solution to start from")
+    options = warm_options(nlp)
+    nlp = nlp.variant(options) if options else nlp
+    par = stride.solved.parameters
+    return optimum(nlp, par["speed"], par["slope"], par["mu"], par["cadence"],
+                   guess=fitted(nlp, stride.solved.blocks, source), simulate=simulate)
+
+
+def fine_nodes(nodes: int) -> int:
+    """2N, the nodes a stride of N is checked on (`mesh_check`); InputError, before any solve,
+    where 2N is past the stride's node range (ranges.RANGES)."""
+    high = int(RANGES["nodes"].high)
+    if 2 * nodes > high:
+        raise InputError(f"mesh check: nodes = {nodes} would be checked on {2 * nodes}, past the stride's "
+                         f"{high}: check a mesh of at most {high // 2} nodes")
+    return 2 * nodes
+
+
+def mesh_check(nlp: StrideNLP, stride: Stride) -> MeshCheck:
+    """`stride` (solved on `nlp`) solved again on twice its nodes from itself (`refined`, the
+    forward check included) and what that moved."""
+    clock = time.process_time()
+    nodes = (nlp.settings.nodes, fine_nodes(nlp.settings.nodes))
+    fine = refined(nlp.variant(warm_options(nlp), nodes=nodes[1]), stride, nlp)
+    return MeshCheck(nodes=nodes,
+                     cadence_spm=(stride.cadence_spm, fine.cadence_spm),
+                     objective_value=(stride.objective_value, fine.objective_value),
+                     valid=fine.valid, failed_checks=tuple(fine.failed_checks), success=fine.success,
+                     status=fine.status, iterations=fine.iterations, cpu_s=time.process_time() - clock)
+
