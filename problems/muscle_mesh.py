@@ -10,7 +10,8 @@ finer mesh, guess.fitted), so every mesh solves the same stride.
     python problems/muscle_mesh.py [--speed 3.5] [--strike heel|forefoot] [--nodes 40 80 160]
                                    [--start search|path] [--spend 1] [--mu-init 3e-4 1e-2]
                                    [--no-consistency-rows [--rows-first]]
-                                   [--grading 0.9 [--first-grading 0]] (a mesh's own: --nodes 160:1)
+                                   [--grading 0.9 [--first-grading 0]] (a mesh's own: --nodes 160:1;
+                                   a phase's duration held, ms: --nodes 160:0@flat=59.5-60.1)
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -166,11 +167,13 @@ def finer(nlp, speed: float, before, mu_inits: list[float]):
     return out[0]
 
 
-def mesh(body, args, nodes: int, consistency_rows: str, grading: float):
-    """The muscles' stride NLP on `nodes` nodes at the command line's strike and `grading`."""
+def mesh(body, args, nodes: int, consistency_rows: str, grading: float, held: dict | None = None):
+    """The muscles' stride NLP on `nodes` nodes at the command line's strike and `grading`;
+    `held`: phase -> (low, high) duration bounds (s) over StrideSettings' defaults."""
+    duration = {**StrideSettings().duration, **(held or {})}
     return build(body, StrideSettings(strike=args.strike, nodes=nodes, muscles=body_muscles(body),
                                       objective="metabolic", consistency_rows=consistency_rows,
-                                      grading=grading))
+                                      grading=grading, duration=duration))
 
 
 def start(nlp, args):
@@ -186,18 +189,29 @@ def start(nlp, args):
     return stride, parts, nlp
 
 
-def node_token(text: str) -> tuple[int, float | None]:
-    """A mesh "nodes[:grading]" as (nodes, grading or None: --first-grading's or --grading's)."""
-    nodes, _, grading = text.partition(":")
-    return int(nodes), float(grading) if grading else None
+def node_token(text: str) -> tuple[int, float | None, dict]:
+    """A mesh "nodes[:grading][@phase=low-high]" as (nodes, grading or None: --first-grading's or
+    --grading's, {phase: (low, high) s}: a phase's duration held between low and high ms)."""
+    mesh, _, held = text.partition("@")
+    nodes, _, grading = mesh.partition(":")
+    bounds = {}
+    if held:
+        phase, _, span = held.partition("=")
+        low, _, high = span.partition("-")
+        try:
+            bounds[phase] = (float(low) * 1e-3, float(high) * 1e-3)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r}: expected nodes[:grading][@phase=low-high] in ms") from None
+    return int(nodes), float(grading) if grading else None, bounds
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--strike", default="heel", choices=problem.STRIKES)
-    parser.add_argument("--nodes", type=node_token, nargs="+", default=[(40, None), (80, None)],
-                        help="nodes[:grading] per mesh, e.g. 160:1 (default grading --grading's)")
+    parser.add_argument("--nodes", type=node_token, nargs="+", default=[(40, None, {}), (80, None, {})],
+                        help="nodes[:grading][@phase=low-high] per mesh, e.g. 160:1 or 160:0@flat=59.5-60.1 "
+                             "(default grading --grading's; a phase's duration held in ms)")
     parser.add_argument("--start", default="search", choices=("search", "path"))
     parser.add_argument("--spend", type=int, default=1)
     parser.add_argument("--mu-init", type=float, nargs="+", default=[MUSCLE_WARM_START["mu_init"]],
@@ -211,7 +225,7 @@ def main(argv=None) -> int:
     parser.add_argument("--rows-first", action="store_true",
                         help="the first mesh's stride solved with the rows, then without them from it")
     args = parser.parse_args(argv)
-    ranges.RANGES["nodes"] = Range(14, max([n for n, _ in args.nodes] + [120]))  # past the scenes' 120: each finer mesh is warm
+    ranges.RANGES["nodes"] = Range(14, max([n for n, *_ in args.nodes] + [120]))  # past the scenes' 120: each finer mesh is warm
     body = scaled_body(62.0, 1.81)
     print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, muscles, metabolic, {args.speed} m/s, "
           f"the first mesh's stride {'the search at spend ' + str(args.spend) if args.start == 'search' else 'the default path'}"
@@ -221,19 +235,19 @@ def main(argv=None) -> int:
           flush=True)
     strides = []
     first_grading = args.grading if args.first_grading is None else args.first_grading
-    for nodes, own in args.nodes:
+    for nodes, own, held in args.nodes:
         grading = own if own is not None else first_grading if not strides else args.grading
-        nlp = mesh(body, args, nodes, args.consistency_rows, grading)
+        nlp = mesh(body, args, nodes, args.consistency_rows, grading, held)
         if strides:
             strides.append(finer(nlp, args.speed, strides[-1], args.mu_init))
             continue
-        first = start(mesh(body, args, nodes, "exact", grading) if args.rows_first else nlp, args)
+        first = start(mesh(body, args, nodes, "exact", grading, held) if args.rows_first else nlp, args)
         strides.append(finer(nlp, args.speed, first, args.mu_init) if args.rows_first else first)
     if len(strides) > 2:
         print("mesh convergence:")
         for name, values in (("objective", [s.objective_value for s, *_ in strides]),
                              ("cadence", [s.cadence_spm for s, *_ in strides])):
-            print(convergence(name, values, [n for n, _ in args.nodes]))
+            print(convergence(name, values, [n for n, *_ in args.nodes]))
     return 0
 
 

@@ -217,8 +217,10 @@ MESH_SHIFT = {"trapezoid": "1-2 % in cadence but 4-16 % in cost from 40 to 80 no
                             "phase ends hold off only on coarse meshes",
               "hermite-simpson": "under 2 % in cadence and 1-6 % in cost from 20 to 40 intervals"}
 MESH_FINE = {"hermite-simpson": (40, "under 0.3 % in cadence and 0.2 % in cost from 40 to 80 intervals on "
-                                     "RBDS001's body at 3.5 and 4.5 m/s, but its torque sources end the stance "
-                                     "pushing 1.3 body weights and hold the forefoot phase on its duration bound")}
+                                     "RBDS001's body at 3.5 and 4.5 m/s from the generic start, but 2.5 % in cost "
+                                     "for the cheaper 139 steps/min stride held on the forefoot phase's duration "
+                                     "bound, and its torque sources end the stance pushing 1.3 body weights: "
+                                     "`--mesh-check` measures your stride")}
 
 
 # The muscles' trapezoid from 40 to 80 nodes (RBDS001, heel and forefoot, 2.5 / 3.5 / 4.5 m/s,
