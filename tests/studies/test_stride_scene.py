@@ -22,11 +22,13 @@ JSON_KEYS = ("success", "status", "iterations", "solve_s", "speed_mps", "strike"
 
 
 def test_shipped_stride_scenes_load():
-    assert {p.name for p in STRIDE_SCENES} == {"stride.toml", "stride_rbds001.toml"}
-    paper, rbds = (load(p) for p in STRIDE_SCENES)
+    assert {p.name for p in STRIDE_SCENES} == {"stride.toml", "stride_muscles.toml", "stride_rbds001.toml"}
+    paper, muscles, rbds = (load(p) for p in STRIDE_SCENES)
     assert isinstance(paper, StrideScene) and paper.speed == 3.5 and paper.strike == "heel"
     assert JointSpace(rbds.body).mass_total == pytest.approx(62.0)  # both legs and the trunk
     assert rbds.strike == "best"
+    assert muscles.settings.actuation == "muscles" and muscles.settings.objective == "metabolic"
+    assert muscles.body == rbds.body
 
 
 @pytest.mark.parametrize("edit, key", [({"speed_mps": 40.0}, "stride.speed_mps"),
