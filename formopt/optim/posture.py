@@ -146,6 +146,17 @@ def neighbours(mode: tuple[int, int], row: int) -> list[tuple[int, int]]:
     return [(m, mode[1]) for m in NEIGHBOURS.get((mode[0], row), ())]
 
 
+def ipopt_options(problem: Problem, hessian: str) -> dict:
+    """IPOPT's options of a touchdown NLP: quiet, the problem's tolerance and iterations, the
+    Hessian ("exact" or "limited-memory"), a gait's looser constraint tolerance."""
+    options = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
+               "ipopt.tol": problem.tolerance, "ipopt.max_iter": problem.max_iterations,
+               "ipopt.hessian_approximation": hessian}
+    if problem.gait is not None:
+        options["ipopt.constr_viol_tol"] = GAIT_TOLERANCE
+    return options
+
+
 class PostureProblem:
     """The NLP of one model, strike, ground and problem; solve() runs the multi-start.
 
@@ -170,11 +181,10 @@ class PostureProblem:
         t0 = time.perf_counter()
         admissible(law, strike, problem)
         self.model, self.strike, self.problem = model, strike, problem
-        self.slope, self.friction = slope, friction
+        self.slope, self.friction, self.law = slope, friction, law
         self.reference = np.asarray(reference, float)
         self.posture = Posture(model, strike, reference, problem.variables, problem.lower,
                                problem.upper, friction, slope)
-        self.law = law
         self.impact = Impact(model, strike, slope, friction, law=law)  # checks every optimum
         self.mode: tuple[int, int] | None = (mode or self._coulomb_mode()) if law == "coulomb" else None
         self._arguments = dict(model=model, strike=strike, reference=reference, problem=problem,
@@ -211,11 +221,7 @@ class PostureProblem:
                                            self.hip_from_strike(self.reference), landing)
         g, self.lbg, self.ubg = stack(self.records)
         self.nlp = {"x": w, "p": p, "f": self.scale * f, "g": g}
-        self.options = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
-                        "ipopt.tol": problem.tolerance, "ipopt.max_iter": problem.max_iterations,
-                        "ipopt.hessian_approximation": hessian}
-        if problem.gait is not None:
-            self.options["ipopt.constr_viol_tol"] = GAIT_TOLERANCE
+        self.options = ipopt_options(problem, hessian)
         self.solver = cached_nlpsol("touchdown", self.nlp, self.options, compiled)
         self._sensitivity: ca.Function | None = None  # built on first use (sensitivity())
         self._solvers: dict[str, ca.Function] = {}  # other IPOPT options (solve_from(options=...))
