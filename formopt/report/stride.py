@@ -154,7 +154,7 @@ def stride_table(study: StrideStudy) -> str:
     """One line per strike solved, the best first (optim.stride.rank); under it, what makes a
     stride invalid (IPOPT's status, an impact that breaks the contact law, a failed check), and
     how sure it is of its mesh (each stride's mesh check, or the study's note)."""
-    lines = [f"{study.scene}",
+    lines = [f"{study.scene}: solved at {study.best.speed_mps:g} m/s",
              f"{'strike':9s} {'valid':>5s} {'cadence':>8s} {'step m':>7s} {'stance s':>9s} "
              f"{'flight s':>9s} {'duty':>5s} {'GRF BW':>7s} {'T_c J':>7s} {'CoT':>6s} {'W':>6s} "
              f"{'swing cm':>8s} {'balance J':>10s} {'iter':>5s} {'s':>6s}"]
