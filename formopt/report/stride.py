@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..mechanics.joint_space import JointSpace
+from ..optim.stride.result import RESERVE_WINDOW_S
 from ..studies.stride import CYCLE_JOINTS, StrideStudy, predicted_cycle
 from .figures import new_figure
 
@@ -133,7 +134,7 @@ def muscle_figure(stride) -> Figure:
         if k >= n - (n + 1) // 2:
             ax.set_xlabel("gait cycle (%)")
     fig.suptitle(f"activation (0-1) and tendon energy stored per stride; metabolic {m['metabolic_J']:.0f} J per step, "
-                 f"reserves up to {m['reserve_nm_per_kg']:.2f} N m/kg", fontsize=10)
+                 f"reserves up to {m['reserve_nm_per_kg']:.2f} N m/kg over {RESERVE_WINDOW_S * 1e3:g} ms", fontsize=10)
     fig.tight_layout()
     return fig
 
@@ -175,7 +176,8 @@ def stride_table(study: StrideStudy) -> str:
             lines.append(f"muscles {s.strike}: metabolic {m['metabolic_J']:.0f} J per step "
                          f"({m['metabolic_J'] / (s.mass_kg * s.step_length_m):.2f} J/kg/m), tendons store "
                          f"{m['tendon_stored_J']:.1f} J (soleus and gastrocnemius {m['achilles_stored_J']:.1f} J) "
-                         f"and return {m['tendon_returned_J']:.1f} J, reserves up to {m['reserve_nm_per_kg']:.3f} N m/kg")
+                         f"and return {m['tendon_returned_J']:.1f} J, reserves up to {m['reserve_nm_per_kg']:.3f} N m/kg "
+                         f"over {RESERVE_WINDOW_S * 1e3:g} ms ({m['reserve_peak_nm_per_kg']:.3f} at a node)")
     for s in study.strides:
         if not s.valid:
             why = s.failed_checks if s.success else [f"IPOPT: {s.status}", *s.failed_checks]

@@ -3,8 +3,11 @@ its checks' stated tolerances."""
 
 from types import SimpleNamespace
 
+import numpy as np
+import pytest
+
 from formopt.optim.stride.problem import StrideSettings
-from formopt.optim.stride.result import TOLERANCES, Stride, rank
+from formopt.optim.stride.result import RESERVE_WINDOW_S, TOLERANCES, Stride, rank, reserve_mean
 
 
 def _stride(valid, success, objective):
@@ -67,3 +70,17 @@ def test_a_sliding_touchdown_says_how_far_it_slid():
     s = _checked({}, [slide])
     s.on_bound, s.friction = [], 0.8
     assert s.remarks == ["forefoot impact of leg L solved sliding under coulomb: it slides 45 ms and 18.0 cm"]
+
+
+def test_the_reserves_mean_over_their_window():
+    """reserve_mean: |r| averaged over RESERVE_WINDOW_S, the worst window of the periodic stride
+    (the next half stride the legs swapped), so a one-node spike counts by its impulse."""
+    t = np.linspace(0.0, 0.3, 301)  # 1 ms intervals, a half period of 0.3 s
+    r = np.zeros((6, t.size))
+    r[1] = 0.04  # the right knee's constant reserve: its mean is itself
+    assert reserve_mean(t, r) == pytest.approx(0.04)
+    r[1], r[2, 150] = 0.0, 1.0  # one node's spike: a triangle of area 1 ms * 1 N m/kg
+    assert reserve_mean(t, r) == pytest.approx(1e-3 / RESERVE_WINDOW_S)
+    r[2, 150], r[1, -1], r[4, 0] = 0.0, 1.0, 1.0  # the right knee at the end, the left at the start:
+    assert reserve_mean(t, r) == pytest.approx(1e-3 / RESERVE_WINDOW_S)  # one burst across the touchdown
+    assert reserve_mean(t, -r) == reserve_mean(t, r)  # |r|
