@@ -10,7 +10,7 @@ import pytest
 from formopt.mechanics.body import paper_body
 from formopt.mechanics.compiled import compiler
 from formopt.mechanics.model import build_model
-from formopt.optim.stride import collocation
+from formopt.optim.stride import collocation, derivatives
 
 pytest_plugins = ("cpu_times",)  # pytest --cpu-times: each file's CPU seconds (cpu_times.py)
 
@@ -108,6 +108,30 @@ def no_compile_by_chance():
     mp = pytest.MonkeyPatch()
     mp.setattr(collocation, "COMPILE_FROM", 10**9)
     mp.setattr(collocation, "RENT_ITERATIONS", 10**9)
+    yield
+    mp.undo()
+
+
+@pytest.fixture(scope="session", autouse=True)
+def node_derivatives_once():
+    """Each phase's node derivatives (derivatives._functions: the node model's Jacobian and the
+    Hessian, SX, derived symbolically) derived once per process, not once per NLP: the tests
+    build about 140 stride NLPs on far fewer node models (the node count does not change them),
+    and each derivation costs 0.05-0.2 s of CPU. Keyed as the compile cache keys the same
+    functions (derivatives._key: the node Function serialised and how they are derived), so an
+    NLP gets what it would derive itself; the CasADi Functions are immutable, so sharing them
+    changes no number."""
+    derived: dict[str, tuple] = {}
+    derive = derivatives._functions
+
+    def once(node):
+        key = derivatives._key(node)
+        if key not in derived:
+            derived[key] = derive(node)
+        return derived[key]
+
+    mp = pytest.MonkeyPatch()
+    mp.setattr(derivatives, "_functions", once)
     yield
     mp.undo()
 
