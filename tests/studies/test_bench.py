@@ -12,8 +12,8 @@ from formopt.studies.bench import LEVELS
 
 def timed_once(f, args, repeats=1):
     """bench._median_time with one call, on the first argument (s): the tests check that each
-    row is timed, not its median (which repeats each posture solve 3 times: 0.8 of the file's
-    3.5 s of CPU, 2026-11-27)."""
+    row is timed, not its median (every state's impact and landing, each posture solve 3 times,
+    the batch 7 times: 0.8 of `bench.run(quick=True)`'s 3.5 s of CPU, 2026-11-27)."""
     start = time.perf_counter()
     f(next(iter(args)))
     return time.perf_counter() - start
