@@ -10,7 +10,7 @@ import pytest
 from formopt.mechanics.body import paper_body
 from formopt.mechanics.compiled import compiler
 from formopt.mechanics.model import build_model
-from formopt.optim.stride import collocation
+from formopt.optim.stride import collocation, derivatives
 
 pytest_plugins = ("cpu_times",)  # pytest --cpu-times: each file's CPU seconds (cpu_times.py)
 
@@ -112,6 +112,30 @@ def no_compile_by_chance():
     mp.undo()
 
 
+@pytest.fixture(scope="session", autouse=True)
+def node_derivatives_once():
+    """Each phase's node derivatives (derivatives._functions: the node model's Jacobian and the
+    Hessian, SX, derived symbolically) derived once per process, not once per NLP: the stride
+    files, the examples and the docs in one process derived 126 on 44 node models (the node
+    count does not change them), 5.4 s of CPU of which 3.6 are spared (2026-11-27). Keyed as
+    the compile cache keys the same functions (derivatives._key: the node Function serialised
+    and how they are derived), so an NLP gets what it would derive itself; CasADi Functions are
+    immutable, so sharing them changes no number."""
+    derived: dict[str, tuple] = {}
+    derive = derivatives._functions
+
+    def once(node):
+        key = derivatives._key(node)
+        if key not in derived:
+            derived[key] = derive(node)
+        return derived[key]
+
+    mp = pytest.MonkeyPatch()
+    mp.setattr(derivatives, "_functions", once)
+    yield
+    mp.undo()
+
+
 @pytest.fixture(scope="session")
 def dask_scheduler():
     """The address of a local Dask cluster, started once per session; the tests that take it
@@ -165,40 +189,47 @@ if LoadFileScheduling is not None:
         return ByFile(config, log) if config.getvalue("dist") == "loadfile" else None
 
 
-# The files (and the Dask tests' unit, "dask") by CPU seconds of their tests, slowest first: pytest
-# -n 2 --cpu-times -p no:cacheprovider (a fresh compile cache), 2026-11-27, on a machine loaded by
-# other solves (load 4-6 on 2 cores: about 1.2 times a quiet machine's CPU). They are handed out
-# in this order, then the others (under 2 s each) in xdist's: the longest first, so the two
-# workers end close together. A stale list costs only balance, never a test.
-SLOW = ("studies/test_stride_sweep.py",  # 22.8
-        "optim/stride/test_derivatives.py",  # 21.1
-        "optim/test_stride.py",  # 17.3
-        "test_examples.py",  # 15.3
-        "optim/stride/test_speed_paths.py",  # 14.5 (5 with the compile cache of an earlier run, 2026-11-26)
-        "test_bad_input.py",  # 14.3
-        "cli/test_compare_command.py",  # 14.2
-        "test_notebooks.py",  # 12.9
-        "optim/stride/test_collocation.py",  # 11.5
-        "optim/test_posture.py",  # 10.4
-        "optim/stride/test_search.py",  # 10.2
-        "optim/stride/test_muscle_stride.py",  # 9.8
-        "mechanics/test_contact.py",  # 9.3
-        "measure/test_corruption.py",  # 7.9
-        "studies/test_compare_stride.py",  # 7.5
-        "studies/test_bench.py",  # 7.2
-        "optim/test_gait.py",  # 5.9
-        "test_docs.py",  # 5.8
-        "mechanics/test_impact.py",  # 4.7
-        "optim/test_stride_slide.py",  # 4.6
-        "mechanics/test_joint_moments.py",  # 4.2
-        "studies/test_stride_scene.py",  # 4.0
-        "io/test_numerics.py",  # 4.0
-        "studies/test_compare.py",  # 3.7
-        "mechanics/test_extremes.py",  # 3.6
+# The files (and the Dask tests' unit, "dask") by CPU seconds of their tests, slowest first: each
+# file alone in one process (pytest --cpu-times FILES, no -n), 2026-11-27, the compile cache warm
+# but for test_speed_paths and test_bench (a fresh clone's: pytest -p no:cacheprovider), on a
+# machine with 2 other solves beside it. They are handed out in this order, then the others (under
+# 1 s each) in xdist's: the longest first, so the two workers end close together (a file of 5.8 s
+# left out of the list came late). A stale list costs only balance, never a test.
+SLOW = ("optim/stride/test_derivatives.py",  # 17.3
+        "studies/test_stride_sweep.py",  # 13.0
+        "optim/stride/test_speed_paths.py",  # 12.8 (6.9 with the compile cache of an earlier run)
+        "test_examples.py",  # 11.6
+        "test_notebooks.py",  # 9.9
+        "test_bad_input.py",  # 9.2
+        "optim/test_stride.py",  # 9.1
+        "cli/test_compare_command.py",  # 8.7
+        "optim/stride/test_search.py",  # 7.8
+        "optim/stride/test_muscle_stride.py",  # 7.3
+        "optim/stride/test_collocation.py",  # 7.0
+        "optim/test_posture.py",  # 7.0
+        "optim/stride/test_consistency_rows.py",  # 5.8
+        "mechanics/test_contact.py",  # 5.4
+        "studies/test_compare_stride.py",  # 5.4
+        "studies/test_bench.py",  # 5.1 (3.9 with the compile cache)
+        "measure/test_corruption.py",  # 4.9
+        "test_docs.py",  # 4.6
+        "optim/test_gait.py",  # 4.2
+        "test_signals.py",  # 3.7 (its subprocesses)
         "dask",  # about 3.5: the cluster, its worker, the pools beside it and their files' fixtures
-        "measure/test_stance.py",  # 3.5
-        "mechanics/test_landing.py",  # about 3 without its Dask test
-        "studies/test_optimum_map.py",  # about 3 without its Dask test
-        "measure/test_pipeline.py",  # 2.8
-        "optim/test_stride_tendons.py",  # 2.5
-        "cli/test_reports.py")  # 2.4
+        "mechanics/test_joint_moments.py",  # 3.2
+        "optim/test_stride_slide.py",  # 3.1
+        "studies/test_compare.py",  # 3.0
+        "mechanics/test_impact.py",  # 2.7
+        "studies/test_stride_scene.py",  # 2.6
+        "mechanics/test_landing.py",  # about 2 without its Dask test
+        "optim/stride/test_grading.py",  # 2.4
+        "optim/test_stride_tendons.py",  # 2.2
+        "mechanics/test_extremes.py",  # 2.0
+        "studies/test_optimum_map.py",  # about 1.7 without its Dask test
+        "io/test_numerics.py",  # 1.7
+        "measure/test_stance.py",  # 1.7
+        "cli/test_reports.py",  # 1.5
+        "optim/stride/test_moment_dynamics.py",  # 1.4
+        "measure/test_pipeline.py",  # 1.3
+        "io/test_mocap.py",  # 1.1
+        "measure/test_joints.py")  # 1.1
