@@ -10,7 +10,7 @@ import pytest
 from formopt.mechanics.body import paper_body
 from formopt.mechanics.compiled import compiler
 from formopt.mechanics.model import build_model
-from formopt.optim.stride import collocation, derivatives
+from formopt.optim.stride import collocation
 
 pytest_plugins = ("cpu_times",)  # pytest --cpu-times: each file's CPU seconds (cpu_times.py)
 
@@ -108,30 +108,6 @@ def no_compile_by_chance():
     mp = pytest.MonkeyPatch()
     mp.setattr(collocation, "COMPILE_FROM", 10**9)
     mp.setattr(collocation, "RENT_ITERATIONS", 10**9)
-    yield
-    mp.undo()
-
-
-@pytest.fixture(scope="session", autouse=True)
-def node_derivatives_once():
-    """Each phase's node derivatives (derivatives._functions: the node model's Jacobian and the
-    Hessian, SX, derived symbolically) derived once per process, not once per NLP: the stride
-    files, the examples and the docs in one process derived 126 on 44 node models (the node
-    count does not change them), 5.4 s of CPU of which 3.6 are spared (2026-11-27). Keyed as
-    the compile cache keys the same functions (derivatives._key: the node Function serialised
-    and how they are derived), so an NLP gets what it would derive itself; CasADi Functions are
-    immutable, so sharing them changes no number."""
-    derived: dict[str, tuple] = {}
-    derive = derivatives._functions
-
-    def once(node):
-        key = derivatives._key(node)
-        if key not in derived:
-            derived[key] = derive(node)
-        return derived[key]
-
-    mp = pytest.MonkeyPatch()
-    mp.setattr(derivatives, "_functions", once)
     yield
     mp.undo()
 

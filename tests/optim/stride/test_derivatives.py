@@ -12,7 +12,7 @@ from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import paper_body
 from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings
-from formopt.optim.stride.derivatives import functions
+from formopt.optim.stride.derivatives import derived, functions
 from formopt.optim.stride.guess import ballistic, perturbed
 from formopt.optim.stride.problem import RUNNER_TENDONS
 
@@ -134,3 +134,12 @@ def test_force_rate_gradient_against_finite_differences(case):
                 assert grad[k] == pytest.approx(numeric, rel=1e-5, abs=1e-6), (name, column, row)
                 checked += abs(numeric) > 1e-3
     assert checked > len(rows)  # the term is felt there, not a gradient of zeros
+
+
+def test_node_models_are_derived_once_per_process():
+    """derivatives.derived: two NLPs of one body and settings on other node counts hold the same
+    node models (the node count does not change them), derived once and shared."""
+    coarse, fine = (StrideNLP(JointSpace(paper_body()), StrideSettings(strike="flat", nodes=n)) for n in (14, 28))
+    for a, b in zip(coarse.node_functions, fine.node_functions):
+        assert a is not b and derived(a) is derived(b)
+        assert all(f.n_out() for f in derived(a))
