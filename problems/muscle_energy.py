@@ -308,9 +308,9 @@ def main(argv=None) -> int:
     rows = []
     for stride in strides:
         report(nlp, stride, args.detail)
-        rows.append(summary(nlp, stride))
+        rows += [summary(nlp, stride)] if args.detail else []
         sys.stdout.flush()
-    if args.detail:
+    if rows:
         table(rows)
     hand_check(body)
     return 0
