@@ -27,7 +27,8 @@ phase=low-high` (ms): that phase's duration bounds (StrideSettings.duration), a 
 solve's bound D + 5 deg and the range wall there), a what-if. `--detail`:
 per cadence also the force-rate term's part of the objective by muscle, stance and swing, and each
 muscle's time at activation > 0.9; at the end one line per cadence (the table of
-docs/concepts/muscles.md, "Why the cadence is low at 2.5 m/s").
+docs/concepts/muscles.md, "Why the cadence is low at 2.5 m/s") and the relaxed ankle's passive
+moment at 20-35 deg of dorsiflexion (`relaxed_ankle`).
 """
 
 from __future__ import annotations
@@ -212,6 +213,23 @@ def hand_check(body) -> None:
           f"4 J/kg/m at 3.5 m/s and 171 steps/min: {4 * JointSpace(body).mass_total * 3.5 * 60 / 171.4:.0f} J per step")
 
 
+def relaxed_ankle(body) -> None:
+    """The ankle's passive plantarflexion moment (N m) at 20-35 deg of dorsiflexion, the hip at
+    20 deg and the knee at 20 and 50 deg: the muscles at activation 0.01 in isometric equilibrium
+    (mechanics.muscles.isometric_force, their parallel elements and tendons) and the range wall
+    (joint_space.range_wall), what resists a stance ankle's dorsiflexion up to its bound."""
+    leg = body_muscles(body)
+    angles = (20.0, 25.0, 30.0, 35.0)
+    print("\nrelaxed ankle, plantarflexion moment N m at " + ", ".join(f"{a:g}" for a in angles) + " deg:")
+    for knee in (20.0, 50.0):
+        muscle = [float(hill.joint_moments(leg, hill.isometric_force(leg, np.full(len(leg.names), 0.01),
+                                                                     np.radians([20.0, knee, a])))[2])
+                  for a in angles]
+        wall = [-float(joint_space.range_wall(np.radians(a), *joint_space.RANGES["ankle"])) for a in angles]
+        print(f"   knee {knee:g} deg: muscles " + ", ".join(f"{m:.1f}" for m in muscle)
+              + "; range wall " + ", ".join(f"{w:.1f}" for w in wall))
+
+
 def strengthened(muscles: hill.Muscles, factors: list[str]) -> hill.Muscles:
     """`muscles` with each named muscle's F_max times its factor ("iliopsoas=1.5"): a what-if."""
     force = muscles.max_force.copy()
@@ -312,6 +330,7 @@ def main(argv=None) -> int:
         sys.stdout.flush()
     if rows:
         table(rows)
+        relaxed_ankle(body)
     hand_check(body)
     return 0
 
