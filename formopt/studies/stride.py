@@ -35,6 +35,8 @@ class StrideStudy:
     # how sure the optima are of their mesh: each stride's mesh check (optim.stride.refine), or
     # what was measured on RBDS001 (optim.stride.problem.mesh_note)
     mesh: str = ""
+    # how the optima were found where no global search says it (its record does): the local starts
+    search: str = ""
 
     @property
     def best(self) -> Stride:
@@ -48,7 +50,8 @@ class StrideStudy:
                  "impacts_valid": all(i["valid"] for i in s.impacts), "valid": s.valid,
                  "mesh_check": None if s.mesh_check is None else s.mesh_check.to_dict()}
                 for s in self.strides]
-        return {"scene": self.scene, **self.best.to_dict(), "strides": rows, "mesh": self.mesh}
+        return {"scene": self.scene, **self.best.to_dict(), "strides": rows, "mesh": self.mesh,
+                "search_note": self.search}
 
 
 def run(scene: StrideScene, speed: float | None = None, strike: str | None = None,
@@ -83,7 +86,11 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
             stride = replace(stride, mesh_check=mesh_check(nlp, stride))
         strides.append(stride)
     strides.sort(key=rank)
-    return StrideStudy(scene.name, strides, mesh_text(strides) if scene.mesh_check else mesh_note(scene.settings))
+    local = "" if scene.search == "global" else (
+        f"the best of {scene.starts} start{'s' if scene.starts > 1 else ''} per strike: a local optimum, the cadences "
+        "not searched ([stride] search = \"global\" searches them: docs/concepts/stride.md, 'One answer')")
+    return StrideStudy(scene.name, strides, mesh_text(strides) if scene.mesh_check else mesh_note(scene.settings),
+                       local)
 
 
 def mesh_text(strides: list[Stride]) -> str:
