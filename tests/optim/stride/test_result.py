@@ -101,8 +101,8 @@ def test_the_reserves_mean_reads_each_interval_at_its_trapezoid_mean():
     held = means[:, np.searchsorted(times, fine, side="right") - 1]  # |r| on a 1 us grid
     window = 0.013
     area = np.concatenate([np.zeros((6, 1)), np.cumsum(held, axis=1) * (fine[1] - fine[0])], axis=1)
-    k = int(round(window / (fine[1] - fine[0])))
+    k = round(window / (fine[1] - fine[0]))
     brute = ((area[:, k:] - area[:, :-k]) / window)[:, :fine.size // 2].max()
     assert reserve_mean(t, r, window) == pytest.approx(brute, rel=1e-3)
-    with pytest.raises(ValueError, match="window 0.2 s outside"):
+    with pytest.raises(ValueError, match=r"window 0\.2 s outside"):
         reserve_mean(t, r, 0.2)
