@@ -80,7 +80,7 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
         if scene.mesh_check:
             if say:
                 say(f"mesh check on {fine_nodes(nlp.settings.nodes)} nodes")
-            stride = replace(stride, mesh_check=mesh_check(nlp, stride))
+            stride = replace(stride, mesh_check=mesh_check(nlp, stride, simulate))
         strides.append(stride)
     strides.sort(key=rank)
     return StrideStudy(scene.name, strides, mesh_text(strides) if scene.mesh_check else mesh_note(scene.settings))

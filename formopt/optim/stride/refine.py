@@ -119,12 +119,12 @@ def fine_nodes(nodes: int) -> int:
     return 2 * nodes
 
 
-def mesh_check(nlp: StrideNLP, stride: Stride) -> MeshCheck:
-    """`stride` (solved on `nlp`) solved again on twice its nodes from itself (`refined`, the
-    forward check included) and what that moved."""
+def mesh_check(nlp: StrideNLP, stride: Stride, simulate: bool = True) -> MeshCheck:
+    """`stride` (solved on `nlp`) solved again on twice its nodes from itself (`refined`; its
+    forward check with `simulate`, as the stride's own) and what that moved."""
     clock = time.process_time()
     nodes = (nlp.settings.nodes, fine_nodes(nlp.settings.nodes))
-    fine = refined(nlp.variant(warm_options(nlp), nodes=nodes[1]), stride, nlp)
+    fine = refined(nlp.variant(warm_options(nlp), nodes=nodes[1]), stride, nlp, simulate)
     return MeshCheck(nodes=nodes,
                      cadence_spm=(stride.cadence_spm, fine.cadence_spm),
                      objective_value=(stride.objective_value, fine.objective_value),

@@ -14,7 +14,7 @@ from helpers import SHIPPED
 
 from formopt.cli import main
 from formopt.io.scene import SceneError, parse
-from formopt.optim.stride import optimum
+from formopt.optim.stride import optimum, refine
 from formopt.optim.stride.refine import MESH_TOLERANCE_PCT, MeshCheck, fine_nodes, mesh_check, refined
 from formopt.report.stride import stride_table
 from formopt.studies.stride import StrideStudy, mesh_text, stages
@@ -126,3 +126,13 @@ def test_the_command_reports_the_check(coarse, tmp_path, capsys):
     assert check["cadence_spm"][0] == pytest.approx(stride.cadence_spm)  # the reported stride: the N-node one
     assert report["cadence_spm"] == check["cadence_spm"][0]
     assert report["mesh"].startswith(f"heel: 48 nodes, solved from this {NODES}-node stride, move the cadence")
+
+
+def test_the_fine_stride_is_judged_as_the_stride(coarse, monkeypatch):
+    """mesh_check's forward check as the stride's own (`simulate`: studies.stride.run's)."""
+    _, nlp, stride = coarse
+    seen = []
+    monkeypatch.setattr(refine, "refined", lambda fine, s, source, simulate: seen.append(simulate) or s)
+    for simulate in (False, True):
+        assert mesh_check(nlp, stride, simulate).cadence_spm == (stride.cadence_spm,) * 2
+    assert seen == [False, True]
