@@ -40,7 +40,10 @@ def linear_mean(t: np.ndarray, reserves: np.ndarray, window: float = RESERVE_WIN
     times = np.concatenate([t, t + T])
     rows = np.abs(np.hstack([reserves, reserves[[3, 4, 5, 0, 1, 2]]]))
     ends = np.unique(np.clip(np.concatenate([times, times - window]), 0.0, T))
-    mean = lambda x: (integral(times, rows, x + window) - integral(times, rows, x)) / window  # noqa: E731
+
+    def mean(x):
+        return (integral(times, rows, x + window) - integral(times, rows, x)) / window
+
     a, m, b = mean(ends[:-1]), mean(0.5 * (ends[1:] + ends[:-1])), mean(ends[1:])
     p, c = 0.5 * (b - a), 0.5 * (a + b) - m  # the piece m + p u + c u^2, u in [-1, 1]
     u = np.where(c < 0, -p / np.where(c < 0, 2 * c, 1.0), 2.0)
