@@ -9,8 +9,8 @@ The --weights are solved first (the first from the generic start, local.optimum'
 from the solution of the nearest weight solved, its blocks as the guess); then, while a lower
 and a higher weight bracket the target, the geometric mean of the bracket, warm started from
 the nearer of the two (at most --steps solves). Prints per solve: weight, cadence (steps/min),
-stance (s), peak vertical force (N/kg), the muscles' energy (J/kg/m), reserves (N m/kg), the
-objective, validity, iterations and CPU seconds (time.process_time).
+stance (s), peak vertical force (N/kg), the muscles' energy (J/kg/m), reserves (N m/kg, their
+largest 10 ms mean), the objective, validity, iterations and CPU seconds (time.process_time).
 """
 
 from __future__ import annotations

@@ -185,7 +185,8 @@ def report(nlp, stride, details: bool = False) -> None:
     r = parts["reserve"]
     print(f"   reserves: W+ {r['positive_J']:.2f} J, W- {r['negative_J']:.2f} J, |moment| impulse "
           f"{r['impulse']:.2f} N m s = {100 * r['impulse'] / (r['impulse'] + r['muscle_impulse']):.1f} % of the joints'; "
-          f"largest {stride.muscles['reserve_nm_per_kg']:.2f} N m/kg")
+          f"largest over 10 ms {stride.muscles['reserve_nm_per_kg']:.2f} N m/kg "
+          f"({stride.muscles['reserve_peak_nm_per_kg']:.2f} at a node)")
     print("   reserves by joint (R = the stance leg): W+ J " + ", ".join(
         f"{j} {x:.1f}" for j, x in zip(JOINTS, r["positive_by_joint"])) + "; largest N m/kg " + ", ".join(
         f"{j} {x:.2f}" for j, x in zip(JOINTS, r["largest_by_joint"])))

@@ -11,8 +11,8 @@ runners choose about 175-183 at 4.5), stance (s), peak vertical force (N/kg), th
 RMS against the mean cycle (deg) and their RMS with the mean offset removed (`Sh`: the data
 set's hip is against the pelvis, formopt's against the trunk; studies.stride.compare_cycle),
 the peak ankle power (W/kg, positive), the tendons' energy stored per step (J: soleus and
-gastrocnemius, all), reserves (N m/kg), the muscles' metabolic energy (J/kg/m), the swing
-foot's least height (m, while
+gastrocnemius, all), reserves (N m/kg, their largest 10 ms mean), the muscles' metabolic energy
+(J/kg/m), the swing foot's least height (m, while
 the other foot is down: Stride.swing_clearance_m), the objective J (per distance), validity,
 iterations and seconds (build, solve), and the phases a duration bound holds; for the muscles
 last their forward check (rad, the excitations replayed through the muscles: the validity's) and

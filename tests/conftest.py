@@ -175,6 +175,7 @@ SLOW = ("optim/stride/test_derivatives.py",  # 17.3
         "studies/test_stride_sweep.py",  # 13.0
         "optim/stride/test_speed_paths.py",  # 12.8 (6.9 with the compile cache of an earlier run)
         "test_examples.py",  # 11.6
+        "optim/stride/test_mesh_check.py",  # 11.6 (measured alone after the list, 2026-11-27)
         "test_notebooks.py",  # 9.9
         "test_bad_input.py",  # 9.2
         "optim/test_stride.py",  # 9.1

@@ -83,7 +83,7 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
         if scene.mesh_check:
             if say:
                 say(f"mesh check on {fine_nodes(nlp.settings.nodes)} nodes")
-            stride = replace(stride, mesh_check=mesh_check(nlp, stride))
+            stride = replace(stride, mesh_check=mesh_check(nlp, stride, simulate))
         strides.append(stride)
     strides.sort(key=rank)
     local = "" if scene.search == "global" else (

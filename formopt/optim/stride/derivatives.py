@@ -26,6 +26,7 @@ iteration: f, g, grad_f, jac_g and hess_lag 0.7, 0.8, 3.4, 3.5 and 8.8 interpret
 from __future__ import annotations
 
 import functools
+import threading
 import weakref
 
 import casadi as ca
@@ -80,6 +81,7 @@ _RECIPE = recipe(_functions)
 # its band's variants hold about ten
 DERIVED_KEPT = 16
 _DERIVED: dict[str, tuple[ca.Function, ca.Function, ca.Function]] = {}
+_DERIVED_LOCK = threading.Lock()
 
 
 def derived(node: ca.Function) -> tuple[ca.Function, ca.Function, ca.Function]:
@@ -87,15 +89,17 @@ def derived(node: ca.Function) -> tuple[ca.Function, ca.Function, ca.Function]:
     does not change a phase's node model, so a mesh check's or a finer mesh's NLP, and every NLP
     of one body, strike and settings, share them; CasADi Functions are immutable, so sharing
     them changes no number). The test suite's stride files derived 126 on 44 node models, 5.4 s
-    of CPU of which 3.6 are spared (2026-11-27)."""
+    of CPU of which 3.6 are spared (2026-11-27). Under a lock: a Dask worker runs its tasks
+    in threads."""
     key = _key(node)
-    if key in _DERIVED:
-        _DERIVED[key] = _DERIVED.pop(key)  # the most recently used last
-    else:
-        if len(_DERIVED) >= DERIVED_KEPT:
-            _DERIVED.pop(next(iter(_DERIVED)))
-        _DERIVED[key] = _functions(node)
-    return _DERIVED[key]
+    with _DERIVED_LOCK:
+        if key in _DERIVED:
+            _DERIVED[key] = _DERIVED.pop(key)  # the most recently used last
+        else:
+            if len(_DERIVED) >= DERIVED_KEPT:
+                _DERIVED.pop(next(iter(_DERIVED)))
+            _DERIVED[key] = _functions(node)
+        return _DERIVED[key]
 
 
 _KEYS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # `_key`'s, per node Function

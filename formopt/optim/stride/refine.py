@@ -36,6 +36,9 @@ class MeshCheck:
     nodes: tuple[int, int]  # collocation intervals over the half stride
     cadence_spm: tuple[float, float]
     objective_value: tuple[float, float]  # the scene's objective (per distance)
+    # the touchdown's mode ("stick" or "slide", Stride.impacts): under Coulomb each mesh decides
+    # its own (local.touchdown_mode), and a sliding stride's 2N solve starts from its sticking phases
+    touchdown: tuple[str, str]
     valid: bool  # the 2N-node stride's (Stride.valid)
     failed_checks: tuple[str, ...]  # the 2N-node stride's (Stride.failed_checks)
     success: bool  # IPOPT converged on 2N nodes
@@ -77,7 +80,9 @@ class MeshCheck:
         verdict = (f"converged within {MESH_TOLERANCE_PCT:g} %" if self.converged else
                    f"the {fine}-node stride is invalid ({'; '.join(self.failed_checks)})" if not self.valid else
                    f"not converged at {MESH_TOLERANCE_PCT:g} %")
-        return f"{moved}: {verdict}"
+        a, b = ({"stick": "sticking", "slide": "sliding"}[mode] for mode in self.touchdown)
+        modes = "" if a == b else f"; the touchdown {a} on {n} nodes, {b} on {fine}"
+        return f"{moved}: {verdict}{modes}"
 
 
 def _change(pair: tuple[float, float]) -> float:
@@ -119,15 +124,16 @@ def fine_nodes(nodes: int) -> int:
     return 2 * nodes
 
 
-def mesh_check(nlp: StrideNLP, stride: Stride) -> MeshCheck:
-    """`stride` (solved on `nlp`) solved again on twice its nodes from itself (`refined`, the
-    forward check included) and what that moved."""
+def mesh_check(nlp: StrideNLP, stride: Stride, simulate: bool = True) -> MeshCheck:
+    """`stride` (solved on `nlp`) solved again on twice its nodes from itself (`refined`; its
+    forward check with `simulate`, as the stride's own) and what that moved."""
     clock = time.process_time()
     nodes = (nlp.settings.nodes, fine_nodes(nlp.settings.nodes))
-    fine = refined(nlp.variant(warm_options(nlp), nodes=nodes[1]), stride, nlp)
+    fine = refined(nlp.variant(warm_options(nlp), nodes=nodes[1]), stride, nlp, simulate)
     return MeshCheck(nodes=nodes,
                      cadence_spm=(stride.cadence_spm, fine.cadence_spm),
                      objective_value=(stride.objective_value, fine.objective_value),
+                     touchdown=(stride.impacts[-1]["mode"], fine.impacts[-1]["mode"]),
                      valid=fine.valid, failed_checks=tuple(fine.failed_checks), success=fine.success,
                      status=fine.status, iterations=fine.iterations, cpu_s=time.process_time() - clock)
 

@@ -401,12 +401,17 @@ def forward_checked(nlp: StrideNLP, stride: Stride) -> Stride:
 
 
 def reserve_mean(t: np.ndarray, reserves: np.ndarray, window: float = RESERVE_WINDOW_S) -> float:
-    """The largest mean of |r| over `window` s of the periodic stride: t (c,) the half stride's
-    node times (s, from 0 to its period T, a phase boundary's time twice), reserves (6, c) the
-    right then left leg's hip, knee and ankle (N m/kg), piecewise linear between the nodes; the
-    next half stride is this one with the legs swapped. max over t0 of
-    (1/W) int_{t0}^{t0+W} |r| dt, t0 at the nodes and at W before them (the mean's kinks)."""
+    """The largest mean of |r| over `window` s (W, at most the half period T) of the periodic
+    stride: t (c,) the half stride's node times (s, from 0 to T, a phase boundary's time twice),
+    reserves (6, c) the right then left leg's hip, knee and ankle (N m/kg); the next half stride
+    is this one with the legs swapped. |r| on each interval is its trapezoid mean
+    (|r_k| + |r_k+1|) / 2, so a window of whole intervals holds the trapezoid rule's integral and
+    (1/W) int_{t0}^{t0+W} |r| dt is piecewise linear in t0: its largest value at a kink, t0 at a
+    node or W before one. (|r| linear between the nodes reads more where W is about an interval:
+    a lone node's spike 1.5 times more at W = h.)"""
     T = t[-1]
+    if not 0.0 < window <= T:
+        raise ValueError(f"reserve_mean: window {window:g} s outside (0, {T:g}], the half period")
     times = np.concatenate([t, t + T])
     full = np.abs(np.hstack([reserves, reserves[[3, 4, 5, 0, 1, 2]]]))
     area = np.concatenate([np.zeros((6, 1)), np.cumsum(0.5 * (full[:, 1:] + full[:, :-1]) * np.diff(times), axis=1)],

@@ -11,7 +11,7 @@ from scipy import sparse
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import paper_body
 from formopt.mechanics.joint_space import JointSpace
-from formopt.optim.stride import StrideNLP, StrideSettings
+from formopt.optim.stride import StrideNLP, StrideSettings, derivatives
 from formopt.optim.stride.derivatives import derived, functions
 from formopt.optim.stride.guess import ballistic, perturbed
 from formopt.optim.stride.problem import RUNNER_TENDONS
@@ -136,10 +136,16 @@ def test_force_rate_gradient_against_finite_differences(case):
     assert checked > len(rows)  # the term is felt there, not a gradient of zeros
 
 
-def test_node_models_are_derived_once_per_process():
+def test_node_models_are_derived_once_per_process(monkeypatch):
     """derivatives.derived: two NLPs of one body and settings on other node counts hold the same
-    node models (the node count does not change them), derived once and shared."""
+    node models (the node count does not change them), derived once and shared: the second
+    NLP's node derivatives derive nothing."""
     coarse, fine = (StrideNLP(JointSpace(paper_body()), StrideSettings(strike="flat", nodes=n)) for n in (14, 28))
-    for a, b in zip(coarse.node_functions, fine.node_functions):
+    first = derivatives.node_derivatives(coarse)
+    derive, calls = derivatives._functions, []
+    monkeypatch.setattr(derivatives, "_functions", lambda node: calls.append(node) or derive(node))
+    again = derivatives.node_derivatives(fine)
+    assert not calls
+    for a, b, da, db in zip(coarse.node_functions, fine.node_functions, first, again):
         assert a is not b and derived(a) is derived(b)
-        assert all(f.n_out() for f in derived(a))
+        assert (da.value, da.jacobian, da.hessian) == derived(a) and db.hessian is da.hessian

@@ -14,7 +14,7 @@ from helpers import SHIPPED
 
 from formopt.cli import main
 from formopt.io.scene import SceneError, parse
-from formopt.optim.stride import optimum
+from formopt.optim.stride import optimum, refine
 from formopt.optim.stride.refine import MESH_TOLERANCE_PCT, MeshCheck, fine_nodes, mesh_check, refined
 from formopt.report.stride import stride_table
 from formopt.studies.stride import StrideStudy, mesh_text, stages
@@ -44,8 +44,8 @@ def checked(coarse):
     return mesh_check(nlp, stride)
 
 
-def record(cadence, objective, valid=True, success=True) -> MeshCheck:
-    return MeshCheck(nodes=(40, 80), cadence_spm=cadence, objective_value=objective, valid=valid,
+def record(cadence, objective, valid=True, success=True, touchdown=("stick", "stick")) -> MeshCheck:
+    return MeshCheck(nodes=(40, 80), cadence_spm=cadence, objective_value=objective, touchdown=touchdown, valid=valid,
                      failed_checks=() if valid else ("drift_m 0.006 > 0.005",), success=success,
                      status="Solve_Succeeded" if success else "Maximum_Iterations_Exceeded",
                      iterations=50, cpu_s=1.0)
@@ -57,6 +57,7 @@ def test_the_record_holds_both_meshes(coarse, checked):
     assert checked.cadence_spm[0] == stride.cadence_spm and checked.objective_value[0] == stride.objective_value
     assert checked.success and checked.status == "Solve_Succeeded" and checked.iterations > 0 and checked.cpu_s > 0
     assert checked.valid == (not checked.failed_checks)
+    assert checked.touchdown == ("stick", "stick")  # no-slip
     (c1, c2), (j1, j2) = checked.cadence_spm, checked.objective_value
     assert checked.cadence_change_pct == pytest.approx(100 * (c2 / c1 - 1), rel=1e-12)
     assert checked.objective_change_pct == pytest.approx(100 * (j2 / j1 - 1), rel=1e-12)
@@ -78,6 +79,9 @@ def test_converged_needs_both_changes_under_the_tolerance_and_a_valid_fine_strid
         "80 nodes, solved from this 40-node stride, move the cadence +0.00 % and the cost -5.00 %: not converged at 1 %"
     assert "invalid (drift_m" in record((170.0, 170.0), (2.0, 2.0), valid=False).text()
     assert "did not converge" in record((170.0, 170.0), (2.0, 2.0), success=False).text()
+    assert record((170.0, 170.0), (2.0, 2.0), touchdown=("slide", "stick")).text() == \
+        "80 nodes, solved from this 40-node stride, move the cadence +0.00 % and the cost +0.00 %: converged " \
+        "within 1 %; the touchdown sliding on 40 nodes, sticking on 80"
 
 
 def test_the_fine_solve_starts_from_the_stride(coarse):
@@ -126,3 +130,13 @@ def test_the_command_reports_the_check(coarse, tmp_path, capsys):
     assert check["cadence_spm"][0] == pytest.approx(stride.cadence_spm)  # the reported stride: the N-node one
     assert report["cadence_spm"] == check["cadence_spm"][0]
     assert report["mesh"].startswith(f"heel: 48 nodes, solved from this {NODES}-node stride, move the cadence")
+
+
+def test_the_fine_stride_is_judged_as_the_stride(coarse, monkeypatch):
+    """mesh_check's forward check as the stride's own (`simulate`: studies.stride.run's)."""
+    _, nlp, stride = coarse
+    seen = []
+    monkeypatch.setattr(refine, "refined", lambda fine, s, source, simulate: seen.append(simulate) or s)
+    for simulate in (False, True):
+        assert mesh_check(nlp, stride, simulate).cadence_spm == (stride.cadence_spm,) * 2
+    assert seen == [False, True]

@@ -100,6 +100,7 @@ def test_a_cached_build_is_used_without_generating_c(solves, monkeypatch):
         raise AssertionError(f"C source of {function.name()} generated")
     monkeypatch.setattr(compiled_functions, "_source", no_source)
     monkeypatch.setattr(derivatives, "_functions", no_source)
+    monkeypatch.setattr(derivatives, "_DERIVED", {})  # derivatives.derived's models of this process
     nlp = StrideNLP(JointSpace(paper_body()), SETTINGS, compiled=True)
     assert all(derivatives.cached_phases(nlp))
     assert nlp.solve(ballistic(nlp, 3.5), 3.5).iterations == fast_first.iterations
