@@ -52,6 +52,7 @@ from stride_mesh import convergence  # problems/, this script's directory
 
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
+from formopt.mechanics.joint_space import JOINTS
 from formopt.mechanics.limits import Range
 from formopt.optim.stride import problem, ranges
 from formopt.optim.stride.collocation import MUSCLE_WARM_START, build
@@ -126,6 +127,22 @@ def end_columns(nlp, solved, speed: float) -> str:
         f"{p} {first[p]['force_rate']:.5f} / {last[p]['force_rate']:.5f}" for p in first)
 
 
+def reserve_peaks(nlp, solved, top: int = 2) -> str:
+    """Where the reserves' largest node values sit: the `top` joints' (each joint's largest), with
+    its phase and column (N m/kg, signed)."""
+    n = nlp.ocp.models[0].actuation.n
+    peaks = []
+    for p in nlp.phases:
+        R = solved.blocks[f"U_{p.name}"][6 * n:]
+        for j, joint in enumerate(JOINTS):
+            k = int(np.abs(R[j]).argmax())
+            peaks.append((abs(R[j, k]), f"{joint} {R[j, k]:+.3f} ({p.name}, column {k} of {R.shape[1] - 1})"))
+    best = {}
+    for _value, text in sorted(peaks, reverse=True):
+        best.setdefault(text.split()[0], text)
+    return "largest reserves at a node: " + ", ".join(list(best.values())[:top])
+
+
 def costs_change(before: dict, after: dict) -> str:
     """The parts' change from one mesh to the next (`phase_costs`), each with its share of the
     objective's change (%), per phase and term, each phase's and each term's."""
@@ -160,7 +177,8 @@ def finer(nlp, speed: float, before, mu_inits: list[float]):
         print(report(nlp.settings.nodes, stride, time.process_time() - clock, nlp.settings.grading)
               + f" (mu_init {mu:g})", flush=True)
         parts = phase_costs(nlp, stride.solved, speed)
-        print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, speed), flush=True)
+        print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, speed) + "\n  "
+              + reserve_peaks(nlp, stride.solved), flush=True)
         print(change(before[0], stride), flush=True)
         print(costs_change(before[1], parts), flush=True)
         out.append((stride, parts, nlp))
@@ -185,7 +203,8 @@ def start(nlp, args):
     if stride.search:
         print(search_record(stride.search), flush=True)
     parts = phase_costs(nlp, stride.solved, args.speed)
-    print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, args.speed), flush=True)
+    print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, args.speed) + "\n  "
+          + reserve_peaks(nlp, stride.solved), flush=True)
     return stride, parts, nlp
 
 

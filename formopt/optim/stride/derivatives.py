@@ -88,9 +88,8 @@ def derived(node: ca.Function) -> tuple[ca.Function, ca.Function, ca.Function]:
     """`_functions(node)`, derived once per process for each node model (`_key`: the node count
     does not change a phase's node model, so a mesh check's or a finer mesh's NLP, and every NLP
     of one body, strike and settings, share them; CasADi Functions are immutable, so sharing
-    them changes no number). The test suite's stride files derived 126 on 44 node models, 5.4 s
-    of CPU of which 3.6 are spared (2026-11-27). Under a lock: a Dask worker runs its tasks
-    in threads."""
+    them changes no number; tests/optim/stride/test_derivatives.py counts none derived for a
+    second NLP). Under a lock: a Dask worker runs its tasks in threads."""
     key = _key(node)
     with _DERIVED_LOCK:
         if key in _DERIVED:

@@ -403,22 +403,37 @@ def forward_checked(nlp: StrideNLP, stride: Stride) -> Stride:
 def reserve_mean(t: np.ndarray, reserves: np.ndarray, window: float = RESERVE_WINDOW_S) -> float:
     """The largest mean of |r| over `window` s (W, at most the half period T) of the periodic
     stride: t (c,) the half stride's node times (s, from 0 to T, a phase boundary's time twice),
-    reserves (6, c) the right then left leg's hip, knee and ankle (N m/kg); the next half stride
-    is this one with the legs swapped. |r| on each interval is its trapezoid mean
-    (|r_k| + |r_k+1|) / 2, so a window of whole intervals holds the trapezoid rule's integral and
-    (1/W) int_{t0}^{t0+W} |r| dt is piecewise linear in t0: its largest value at a kink, t0 at a
-    node or W before one. (|r| linear between the nodes reads more where W is about an interval:
-    a lone node's spike 1.5 times more at W = h.)"""
+    reserves (6, c) the right then left leg's hip, knee and ankle (N m/kg), |r| linear between
+    the nodes (as checks.forward replays the reserves); the next half stride is this one with the
+    legs swapped. m(t0) = (1/W) int_{t0}^{t0+W} |r| dt is quadratic in t0 between its kinks (t0 or
+    t0 + W at a node), so its largest value is at a kink or at a piece's vertex."""
     T = t[-1]
     if not 0.0 < window <= T:
         raise ValueError(f"reserve_mean: window {window:g} s outside (0, {T:g}], the half period")
     times = np.concatenate([t, t + T])
-    full = np.abs(np.hstack([reserves, reserves[[3, 4, 5, 0, 1, 2]]]))
-    area = np.concatenate([np.zeros((6, 1)), np.cumsum(0.5 * (full[:, 1:] + full[:, :-1]) * np.diff(times), axis=1)],
+    rows = np.abs(np.hstack([reserves, reserves[[3, 4, 5, 0, 1, 2]]]))
+    kinks = np.unique(np.clip(np.concatenate([times, times - window]), 0.0, T))
+
+    def mean(t0):
+        return (_integral(times, rows, t0 + window) - _integral(times, rows, t0)) / window
+
+    a, m, b = mean(kinks[:-1]), mean(0.5 * (kinks[1:] + kinks[:-1])), mean(kinks[1:])
+    p, c = 0.5 * (b - a), 0.5 * (a + b) - m  # each piece m + p u + c u^2 for u in [-1, 1]
+    u = np.where(c < 0, -p / np.where(c < 0, 2 * c, 1.0), 2.0)  # a concave piece's vertex
+    vertex = np.where(np.abs(u) <= 1, m + p * u + c * u ** 2, -np.inf)
+    return float(max(a.max(), b.max(), vertex.max()))
+
+
+def _integral(times: np.ndarray, rows: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """int_0^x y dt (rows, n x points) for each row y given at `times` (non-decreasing, a time
+    twice where y jumps) and linear between them; x (points,) within [times[0], times[-1]]."""
+    h = np.diff(times)
+    k = np.clip(np.searchsorted(times, x, side="right") - 1, 0, times.size - 2)
+    area = np.concatenate([np.zeros((rows.shape[0], 1)), np.cumsum(0.5 * (rows[:, 1:] + rows[:, :-1]) * h, axis=1)],
                           axis=1)
-    starts = np.concatenate([t, np.clip(times - window, 0.0, T)])
-    return max(float(((np.interp(starts + window, times, a) - np.interp(starts, times, a)) / window).max())
-               for a in area)
+    s = x - times[k]
+    slope = (rows[:, k + 1] - rows[:, k]) / np.where(h[k] > 0, h[k], 1.0)
+    return area[:, k] + rows[:, k] * s + 0.5 * slope * s ** 2
 
 
 def muscle_outputs(nlp: StrideNLP, solved: Solved, checks: dict, t: np.ndarray) -> dict | None:

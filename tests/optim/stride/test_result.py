@@ -86,24 +86,27 @@ def test_the_reserves_mean_over_their_window():
     assert reserve_mean(t, -r) == reserve_mean(t, r)  # |r|
 
 
-def test_the_reserves_mean_reads_each_interval_at_its_trapezoid_mean():
-    """reserve_mean against a brute-force moving mean of |r| held at each interval's trapezoid
-    mean (a lone spike at W = h reads half its height: 0.75 were |r| linear between the nodes),
-    with a phase boundary's time twice, and a window longer than the half period refused."""
+def test_the_reserves_mean_reads_them_linear_between_the_nodes():
+    """reserve_mean against a brute-force moving mean of |r| linear between the nodes (a lone
+    spike at W = h reads 0.75 of its height), with a phase boundary's time twice, and a window
+    longer than the half period refused."""
     t = np.linspace(0.0, 0.1, 11)  # 10 ms intervals
     r = np.zeros((6, t.size))
     r[2, 5] = 1.0
-    assert reserve_mean(t, r, 0.01) == pytest.approx(0.5)
+    assert reserve_mean(t, r, 0.01) == pytest.approx(0.75)
     t = np.r_[np.linspace(0.0, 0.04, 5), np.linspace(0.04, 0.1, 7)]  # a phase boundary at 40 ms: twice
     r = np.random.default_rng(0).normal(size=(6, t.size))  # two values there
     times, rows = np.concatenate([t, t + t[-1]]), np.abs(np.hstack([r, r[[3, 4, 5, 0, 1, 2]]]))
-    means = 0.5 * (rows[:, 1:] + rows[:, :-1])  # (6, intervals)
-    fine = np.linspace(0.0, times[-1], 200001)[:-1]
-    held = means[:, np.searchsorted(times, fine, side="right") - 1]  # |r| on a 1 us grid
+    fine = np.linspace(0.0, times[-1], 200001)
+    k = np.clip(np.searchsorted(times, fine, side="right") - 1, 0, times.size - 2)
+    h = np.diff(times)[k]
+    s = np.divide(fine - times[k], h, out=np.zeros_like(fine), where=h > 0)
+    linear = rows[:, k] * (1 - s) + rows[:, k + 1] * s  # |r| on a 1 us grid
     window = 0.013
-    area = np.concatenate([np.zeros((6, 1)), np.cumsum(held, axis=1) * (fine[1] - fine[0])], axis=1)
-    k = round(window / (fine[1] - fine[0]))
-    brute = ((area[:, k:] - area[:, :-k]) / window)[:, :fine.size // 2].max()
-    assert reserve_mean(t, r, window) == pytest.approx(brute, rel=1e-3)
+    step = fine[1] - fine[0]
+    area = np.concatenate([np.zeros((6, 1)), np.cumsum(0.5 * (linear[:, 1:] + linear[:, :-1]) * step, axis=1)], axis=1)
+    n = round(window / step)
+    brute = ((area[:, n:] - area[:, :-n]) / window)[:, :fine.size // 2].max()
+    assert reserve_mean(t, r, window) == pytest.approx(brute, rel=1e-4)
     with pytest.raises(ValueError, match=r"window 0\.2 s outside"):
         reserve_mean(t, r, 0.2)
