@@ -58,10 +58,11 @@ TOLERANCES = {
 }
 # The reserves are judged by their largest mean over 10 ms (`reserve_mean`), less than the
 # muscles' activation time (15 ms, mechanics.muscles), not by their largest node value: at the
-# phases' last and first columns, where a contact lets go, the node value grows as the mesh's end
-# intervals shrink while its impulse vanishes (heel, 3.5 m/s, graded 1: 0.014 / 0.038 / 0.073 N
-# m/kg at the forefoot phase's last column on 40 / 80 / 160 nodes), so the peak measures the mesh,
-# not a shortfall of the muscles (docs/concepts/muscles.md, "The reserves' measure").
+# phases' first and last columns, where a contact is made or let go, the node value grows as the
+# mesh's end intervals shrink while its impulse vanishes (heel, 3.5 m/s, graded 1: 0.038 / 0.073 /
+# 0.099 N m/kg at the forefoot phase's last column on 80 / 160 / 320 nodes; the mean 0.012 /
+# 0.013), so the peak measures the mesh, not a shortfall of the muscles (docs/concepts/muscles.md,
+# "The reserves' measure").
 RESERVE_WINDOW_S = 0.01
 # A sticking impulse this close to the friction cone's edge (|1 - mu_c / mu|) is on it (the
 # impacts' `friction_margin` and `on_cone_edge`): it uses all the friction. Valid up to mu_c =
