@@ -211,9 +211,8 @@ class PostureProblem:
         weights, self.weight = normalised(problem.objective)
         f = sum(wt * terms[k] for k, wt in weights.items())  # normalised: scaling-free
         self.objective_function = ca.Function("objective", [w, p], [self.weight * f])
-        names = sorted(set(problem.objective) | {"T_c"})
-        self.terms_function = ca.Function("terms", [w, p], [ca.vertcat(*[terms[k] for k in names])])
-        self.term_names = tuple(names)
+        self.term_names = tuple(sorted(set(problem.objective) | {"T_c"}))
+        self.terms_function = ca.Function("terms", [w, p], [ca.vertcat(*[terms[k] for k in self.term_names])])
         self._first = self.start(self.reference)  # the first start, and the objective's scale
         normalised_value = float(ca.Function("f", [w, p], [f])(self._first, self.p0))
         self.scale = 1.0 / max(abs(normalised_value), 1e-2)
