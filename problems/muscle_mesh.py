@@ -12,6 +12,7 @@ finer mesh, guess.fitted), so every mesh solves the same stride.
                                    [--no-consistency-rows [--rows-first]]
                                    [--grading 0.9 [--first-grading 0]] (a mesh's own: --nodes 160:1;
                                    a phase's duration held, ms: --nodes 160:0@flat=59.5-60.1)
+                                   [--replay-cost]
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -38,11 +39,15 @@ finer mesh is from the one before), so that every mesh solves the rows-kept stri
 `--grading g`: every mesh graded toward each phase's ends (StrideSettings.grading); with
 `--first-grading`, the first mesh's grading (e.g. 0: the uniform stride continued on graded
 meshes). Each finer mesh starts from the one before at both meshes' node times (guess.fitted).
+`--replay-cost`: at the end, each mesh's force-rate integral per phase by the NLP's quadrature
+and along its excitations replayed forward (`replayed_force_rate`): the cost of each stride's
+controls by a method no mesh's quadrature shares.
 """
 
 from __future__ import annotations
 
 import argparse
+import itertools
 import sys
 import time
 
@@ -54,8 +59,8 @@ from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import JOINTS
 from formopt.mechanics.limits import Range
-from formopt.optim.stride import problem, ranges
-from formopt.optim.stride.collocation import MUSCLE_WARM_START, build
+from formopt.optim.stride import checks, problem, ranges
+from formopt.optim.stride.collocation import MUSCLE_WARM_START, NX, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS, step_length
 from formopt.optim.stride.problem import StrideSettings
@@ -208,6 +213,33 @@ def start(nlp, args):
     return stride, parts, nlp
 
 
+def replayed_force_rate(nlp, stride) -> str:
+    """The force-rate integral int sum_legs sum_i V_i F'_i^2 / sum_i V_i dt (1/s, costs'
+    "force_rate" before its weight and distance) per phase, by the NLP's quadrature and along
+    the stride's excitations replayed (checks.replay: each phase from the NLP's state at its
+    start, LSODA at 1e-8, F' from the Hill equilibrium; trapezoid on 40 points an interval): an
+    evaluation of the stride's cost that no mesh's quadrature makes."""
+    from scipy.integrate import solve_ivp
+
+    blocks, par = stride.solved.blocks, stride.solved.parameters
+    act = nlp.ocp.models[0].actuation
+    n, volume = act.n, act.muscles.volume / act.muscles.volume.sum()
+    k = INTEGRANDS.index("force_rate")
+    quadrature = [float(L[k] @ w) for L, w in nlp.integrands(blocks, par)]
+    replayed = []
+    for i, phase in enumerate(nlp.phases):
+        rhs, times = checks.replay(nlp, i, blocks, par, excitations=True)
+        start = np.r_[blocks[f"X_{phase.name}"][:, 0], blocks[f"Z_{phase.name}"][:, 0]]
+        sim = solve_ivp(rhs, (0.0, times[-1]), start, method="LSODA", rtol=1e-8, atol=1e-8, dense_output=True)
+        fine = np.unique(np.concatenate([np.linspace(a, b, 41) for a, b in itertools.pairwise(times)]))
+        rates = np.array([rhs(t, sim.sol(t))[2 * NX:] for t in fine])  # z' = [a'_R, F'_R, a'_L, F'_L]
+        values = (rates[:, n:2 * n] ** 2) @ volume + (rates[:, 3 * n:] ** 2) @ volume
+        replayed.append(float(np.trapezoid(values, fine)))
+    parts = "; ".join(f"{p.name} {q:.4f} / {r:.4f}" for p, q, r in zip(nlp.phases, quadrature, replayed))
+    return (f"{nlp.settings.nodes:4d} nodes: force-rate integral, quadrature / replayed: {parts}; "
+            f"all {sum(quadrature):.4f} / {sum(replayed):.4f}")
+
+
 def node_token(text: str) -> tuple[int, float | None, dict]:
     """A mesh "nodes[:grading][@phase=low-high]" as (nodes, grading or None: --first-grading's or
     --grading's, {phase: (low, high) s}: a phase's duration held between low and high ms)."""
@@ -243,6 +275,8 @@ def main(argv=None) -> int:
                         help="the first mesh's grading (default --grading's), the finer meshes' --grading")
     parser.add_argument("--rows-first", action="store_true",
                         help="the first mesh's stride solved with the rows, then without them from it")
+    parser.add_argument("--replay-cost", action="store_true",
+                        help="at the end, each mesh's force-rate integral by its quadrature and replayed")
     args = parser.parse_args(argv)
     ranges.RANGES["nodes"] = Range(14, max([n for n, *_ in args.nodes] + [120]))  # past the scenes' 120: each finer mesh is warm
     body = scaled_body(62.0, 1.81)
@@ -267,6 +301,8 @@ def main(argv=None) -> int:
         for name, values in (("objective", [s.objective_value for s, *_ in strides]),
                              ("cadence", [s.cadence_spm for s, *_ in strides])):
             print(convergence(name, values, [n for n, *_ in args.nodes]))
+    for stride, _, nlp in strides if args.replay_cost else []:
+        print(replayed_force_rate(nlp, stride), flush=True)
     return 0
 
 
