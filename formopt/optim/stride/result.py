@@ -414,9 +414,11 @@ def reserve_mean(t: np.ndarray, reserves: np.ndarray, window: float = RESERVE_WI
     times = np.concatenate([t, t + T])
     rows = np.abs(np.hstack([reserves, reserves[[3, 4, 5, 0, 1, 2]]]))
     kinks = np.unique(np.clip(np.concatenate([times, times - window]), 0.0, T))
+    area = np.concatenate([np.zeros((6, 1)), np.cumsum(0.5 * (rows[:, 1:] + rows[:, :-1]) * np.diff(times), axis=1)],
+                          axis=1)  # int_0^{t_k} |r| dt at each node
 
     def mean(t0):
-        return (_integral(times, rows, t0 + window) - _integral(times, rows, t0)) / window
+        return (_integral(times, rows, area, t0 + window) - _integral(times, rows, area, t0)) / window
 
     a, m, b = mean(kinks[:-1]), mean(0.5 * (kinks[1:] + kinks[:-1])), mean(kinks[1:])
     p, c = 0.5 * (b - a), 0.5 * (a + b) - m  # each piece m + p u + c u^2 for u in [-1, 1]
@@ -425,13 +427,12 @@ def reserve_mean(t: np.ndarray, reserves: np.ndarray, window: float = RESERVE_WI
     return float(max(a.max(), b.max(), vertex.max()))
 
 
-def _integral(times: np.ndarray, rows: np.ndarray, x: np.ndarray) -> np.ndarray:
+def _integral(times: np.ndarray, rows: np.ndarray, area: np.ndarray, x: np.ndarray) -> np.ndarray:
     """int_0^x y dt (rows, n x points) for each row y given at `times` (non-decreasing, a time
-    twice where y jumps) and linear between them; x (points,) within [times[0], times[-1]]."""
+    twice where y jumps) and linear between them, `area` its integral at each time; x (points,)
+    within [times[0], times[-1]]."""
     h = np.diff(times)
     k = np.clip(np.searchsorted(times, x, side="right") - 1, 0, times.size - 2)
-    area = np.concatenate([np.zeros((rows.shape[0], 1)), np.cumsum(0.5 * (rows[:, 1:] + rows[:, :-1]) * h, axis=1)],
-                          axis=1)
     s = x - times[k]
     slope = (rows[:, k + 1] - rows[:, k]) / np.where(h[k] > 0, h[k], 1.0)
     return area[:, k] + rows[:, k] * s + 0.5 * slope * s ** 2
