@@ -45,6 +45,7 @@ class MeshCheck:
     status: str  # IPOPT's return status
     iterations: int
     cpu_s: float  # s of CPU (time.process_time): the 2N-node NLP's build, solve and checks
+    coarse_valid: bool = True  # the N-node stride's own (Stride.valid): invalid, it is no answer to converge
 
     @property
     def cadence_change_pct(self) -> float:
@@ -58,9 +59,9 @@ class MeshCheck:
 
     @property
     def converged(self) -> bool:
-        """The 2N-node stride converged by IPOPT and valid, and both changes under
+        """Both strides valid (the 2N-node one converged by IPOPT), and both changes under
         MESH_TOLERANCE_PCT."""
-        return (self.success and self.valid and abs(self.cadence_change_pct) < MESH_TOLERANCE_PCT
+        return (self.success and self.valid and self.coarse_valid and abs(self.cadence_change_pct) < MESH_TOLERANCE_PCT
                 and abs(self.objective_change_pct) < MESH_TOLERANCE_PCT)
 
     def to_dict(self) -> dict:
@@ -78,6 +79,7 @@ class MeshCheck:
         moved = (f"{fine} nodes, solved from this {n}-node stride, move the cadence {self.cadence_change_pct:+.2f} % "
                  f"and the cost {self.objective_change_pct:+.2f} %")
         verdict = (f"converged within {MESH_TOLERANCE_PCT:g} %" if self.converged else
+                   f"the {n}-node stride itself is invalid" if not self.coarse_valid else
                    f"the {fine}-node stride is invalid ({'; '.join(self.failed_checks)})" if not self.valid else
                    f"not converged at {MESH_TOLERANCE_PCT:g} %")
         a, b = ({"stick": "sticking", "slide": "sliding"}[mode] for mode in self.touchdown)
@@ -135,5 +137,6 @@ def mesh_check(nlp: StrideNLP, stride: Stride, simulate: bool = True) -> MeshChe
                      objective_value=(stride.objective_value, fine.objective_value),
                      touchdown=(stride.impacts[-1]["mode"], fine.impacts[-1]["mode"]),
                      valid=fine.valid, failed_checks=tuple(fine.failed_checks), success=fine.success,
-                     status=fine.status, iterations=fine.iterations, cpu_s=time.process_time() - clock)
+                     status=fine.status, iterations=fine.iterations, cpu_s=time.process_time() - clock,
+                     coarse_valid=stride.valid)
 

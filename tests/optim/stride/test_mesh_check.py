@@ -56,7 +56,7 @@ def test_the_record_holds_both_meshes(coarse, checked):
     assert checked.nodes == (NODES, 2 * NODES)
     assert checked.cadence_spm[0] == stride.cadence_spm and checked.objective_value[0] == stride.objective_value
     assert checked.success and checked.status == "Solve_Succeeded" and checked.iterations > 0 and checked.cpu_s > 0
-    assert checked.valid == (not checked.failed_checks)
+    assert checked.valid == (not checked.failed_checks) and checked.coarse_valid == stride.valid
     assert checked.touchdown == ("stick", "stick")  # no-slip
     (c1, c2), (j1, j2) = checked.cadence_spm, checked.objective_value
     assert checked.cadence_change_pct == pytest.approx(100 * (c2 / c1 - 1), rel=1e-12)
@@ -75,6 +75,8 @@ def test_converged_needs_both_changes_under_the_tolerance_and_a_valid_fine_strid
     assert not record((170.0, 170.0), (2.0, 2.0 * (2 - over))).converged
     assert not record((170.0, 170.0), (2.0, 2.0), valid=False).converged
     assert not record((170.0, 170.0), (2.0, 2.0), success=False).converged
+    unanswered = replace(record((170.0, 170.0), (2.0, 2.0)), coarse_valid=False)  # the N-node stride invalid
+    assert not unanswered.converged and unanswered.text().endswith("the 40-node stride itself is invalid")
     assert record((170.0, 170.0), (2.0, 1.9)).text() == \
         "80 nodes, solved from this 40-node stride, move the cadence +0.00 % and the cost -5.00 %: not converged at 1 %"
     assert "invalid (drift_m" in record((170.0, 170.0), (2.0, 2.0), valid=False).text()
