@@ -13,6 +13,7 @@ reaches it. Results are dataclasses.
 
 from __future__ import annotations
 
+import re
 from os import PathLike
 from pathlib import Path
 
@@ -41,7 +42,7 @@ def scenes() -> dict[str, str]:
         header = " ".join(line.lstrip("# ").strip() for line in
                           lines[:next((k for k, line in enumerate(lines) if not line.startswith("#")),
                                       len(lines))])
-        first = header.split(". ")[0].rstrip(".")
+        first = re.split(r"(?<!et al)\. ", header)[0].rstrip(".")  # "Fukuchi et al. 2017" is one sentence
         return first if len(first) <= 100 else first[:99].rstrip() + "…"
     return {p.stem: title(p) for p in sorted(SCENES.glob("*.toml"))}
 

@@ -14,6 +14,7 @@ def test_every_shipped_scene_is_listed_with_a_title():
     names = formopt.scenes()
     assert set(names) == {p.stem for p in SHIPPED.glob("*.toml")}
     assert all(0 < len(title) <= 100 for title in names.values())
+    assert names["stride_rbds001"].startswith("RBDS001 (Fukuchi et al. 2017: 62 kg")  # "et al." ends no sentence
 
 
 def test_a_name_and_its_path_load_the_same_scene():
