@@ -131,6 +131,7 @@ def mesh_check(nlp: StrideNLP, stride: Stride, simulate: bool = True) -> MeshChe
     forward check with `simulate`, as the stride's own) and what that moved."""
     clock = time.process_time()
     nodes = (nlp.settings.nodes, fine_nodes(nlp.settings.nodes))
+    # the warm barrier in the 2N NLP's own options, so that `refined` builds no second variant of it
     fine = refined(nlp.variant(warm_options(nlp), nodes=nodes[1]), stride, nlp, simulate)
     return MeshCheck(nodes=nodes,
                      cadence_spm=(stride.cadence_spm, fine.cadence_spm),
