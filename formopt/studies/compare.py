@@ -394,15 +394,8 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
     problem = Problem(VARIABLES, lower, upper,
                       {"T_c": 1.0, "support": support} if support else {"T_c": 1.0},
                       starts=starts, seed=seed, gait=Gait(cadence_spm=steps.cadence_spm))
-    settings = {"markers": m.calibration.markerset.name, "cutoff_hz": options.cutoff_hz,
-                "effective_cutoff_hz": round(effective_cutoff(m.trial.rate, options.cutoff_hz), 2),
-                "uncertainty": {"cutoff_hz": list(FILTER_BAND_HZ), "touchdown_frames": list(TIME_SHIFTS)},
-                "flat_tolerance_s": FLAT_S,
-                "force_threshold_n": options.force_threshold_n,
-                "foot_speed_fraction": options.foot_speed_fraction, "contact": law,
-                "friction": friction, "bounds_deg": {k: list(v) for k, v in bounds.items()},
-                "support": support, "starts": starts, "seed": seed,
-                "body": {"mass_kg": mass, "height_m": height, "sex": sex}}
+    settings = {**run_settings(m, options, law, friction, bounds), "support": support, "starts": starts,
+                "seed": seed, "body": {"mass_kg": mass, "height_m": height, "sex": sex}}
     sides = {}
     for side in SIDES:
         own = [k for k, td in enumerate(steps.touchdowns) if td.side == side and td.valid_data]
@@ -417,6 +410,17 @@ def compare(trial: mocap.Trial, static: mocap.Trial, mass: float, height: float,
                       [(lower, follows, r.T_c if p == lower else impacts[lower](td.state()).T_c)
                        for (p, lower, follows), r, td in zip(firsts, results, steps.touchdowns)], plate,
                       sequence, masses=impact_masses(m, points, results, impacts, plate))
+
+
+def run_settings(m: Measurement, options: Options, law: str, friction: float, bounds: dict) -> dict:
+    """The measurement's and the impact's settings a comparison ran with (Comparison.settings)."""
+    return {"markers": m.calibration.markerset.name, "cutoff_hz": options.cutoff_hz,
+            "effective_cutoff_hz": round(effective_cutoff(m.trial.rate, options.cutoff_hz), 2),
+            "uncertainty": {"cutoff_hz": list(FILTER_BAND_HZ), "touchdown_frames": list(TIME_SHIFTS)},
+            "flat_tolerance_s": FLAT_S,
+            "force_threshold_n": options.force_threshold_n,
+            "foot_speed_fraction": options.foot_speed_fraction, "contact": law,
+            "friction": friction, "bounds_deg": {k: list(v) for k, v in bounds.items()}}
 
 
 def plate_impacts(m: Measurement, mass: float) -> list[PlateImpact | None]:
