@@ -13,7 +13,9 @@ periodicity); `cli` runs the command in a subprocess N times and prints the medi
 (its children's rusage). Run it with PYTHONPATH at the formopt tree to be measured (the cache
 of solutions is shared). `pin` writes tests/optim/stride/forward_pins.npz: each case's blocks,
 parameters and settings, and the check's figures as this tree computes them (the pinned
-figures of tests/optim/stride/test_forward.py).
+figures of tests/optim/stride/test_forward.py: written at 1675f05, scipy's DOP853 and LSODA,
+before CVODES replaced them; pinning again pins this tree's own figures). Measured 2026-11-27:
+docs/reference/performance.md, "The forward check in C".
 
 The paper's body at 3.5 m/s, one start each: a 24-node heel, flat and forefoot strike, a 40-node
 heel strike, a 24-node sliding forefoot strike (Coulomb, mu 0.3: tests/optim/test_stride_slide.py's),

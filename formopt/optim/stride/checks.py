@@ -33,7 +33,9 @@ from .layout import held_rows
 from .ocp import periodicity, step_length
 from .problem import other_leg
 
-TOLERANCE = 1e-10  # the replays' rtol and atol (`integrator`): 1e-9 rad or less on the figures
+# the replays' rtol and atol (`integrator`): their figures within 1e-8 rad of scipy's DOP853 at
+# 1e-10 and LSODA at 1e-8 (tests/optim/stride/test_forward.py), far inside the check's 0.1 rad
+TOLERANCE = 1e-10
 SLIP_STEPS = 400  # a sliding phase's uniform steps on which its slip is read (`grid`, `_slip`)
 
 
@@ -159,13 +161,14 @@ def integrator(nlp: StrideNLP, i: int, excitations: bool, fractions: np.ndarray)
     CVODES's Adams-Moulton (variable step and order, functional iteration; rtol = atol =
     TOLERANCE): a method independent of the collocation, in C but for the right-hand side
     (CasADi's virtual machine). Not BDF: its Newton iterations need the right-hand side's
-    Jacobian, ten times its cost, and took 4 times the CPU (a 24-node heel strike's check 0.35 s
-    against 0.085 s, the muscles' about as fast: benchmarks/forward_speed.py). Its call:
+    Jacobian, ten times its cost (a 24-node heel strike's check took 0.35 s of CPU against 0.085
+    s, the muscle stride's 1.13 s against 0.84: benchmarks/forward_speed.py's cases). Its call:
     x0 = y(0), p = [T, theta at touchdown (9), slope, mu], u = `controls`."""
-    act, sym = nlp.ocp.models[i].actuation, ca.MX.sym if excitations else ca.SX.sym
-    z = act.states if excitations else 0
-    y, ab, s, p = sym("y", 2 * NX + z), sym("ab", 2 * (act.controls if excitations else NU)), sym("s"), sym("p", NX + 3)
-    u = ab[:ab.numel() // 2] + s * ab[ab.numel() // 2:]
+    act = nlp.ocp.models[i].actuation
+    sym = ca.MX.sym if excitations else ca.SX.sym  # the muscles' right-hand side holds a rootfinder
+    states, inputs = (2 * NX + act.states, act.controls) if excitations else (2 * NX, NU)
+    y, ab, s, p = sym("y", states), sym("ab", 2 * inputs), sym("s"), sym("p", NX + 3)
+    u = ab[:inputs] + s * ab[inputs:]
     args = (p[1:NX + 1], p[NX + 1], p[NX + 2])
     if excitations:
         rates = muscle_dynamics(nlp, i)(y[:2 * NX], y[2 * NX:], u, *args)
