@@ -11,7 +11,7 @@ Per speed, after the solve:
   length and velocity (l_opt, v_max), f_L, f_V and the moment it makes against the moment it
   would make fully active at the same fibre state (a = 1: its capacity there).
 - **Forward check, two ways**, each phase from the NLP's state at its start (as
-  optim/stride/checks.forward's `reset` runs, with its right-hand sides, checks.replay): (1) the
+  optim/stride/checks.forward's `reset` runs, by its replays, checks.replayed): (1) the
   net joint moments replayed (piecewise linear; the torque rungs' check, a figure for the
   muscles), (2) the excitations replayed (piecewise linear) through the activation dynamics, the
   Hill equilibrium solved for F' at every step (mechanics.muscles.tendon_force_rate) and the
@@ -30,12 +30,11 @@ from dataclasses import replace
 
 import casadi as ca
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics import muscles as hill
 from formopt.mechanics.body import scaled_body
-from formopt.optim.stride.checks import replay
+from formopt.optim.stride.checks import grid, replayed
 from formopt.optim.stride.collocation import NX, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.problem import StrideSettings
@@ -91,15 +90,15 @@ def reserves(nlp, blocks: dict) -> None:
 def forward_errors(nlp, solved) -> list[tuple[float, str, float, str]]:
     """Per phase: (moments replayed: the largest angle error, rad, and its coordinate; excitations
     replayed: the same), each phase from the NLP's state at its start (`solved`: layout.Solved;
-    the right-hand sides optim.stride.checks.replay's, the integrators checks.forward's)."""
+    the replays optim.stride.checks.forward's, checks.replayed)."""
     out = []
     for i, phase in enumerate(nlp.phases):
         X, Z = solved.blocks[f"X_{phase.name}"], solved.blocks[f"Z_{phase.name}"]
+        columns = grid(nlp, i)[1]
         row: list = []
-        for excitations, y0, method, tol in ((False, X[:, 0], "DOP853", 1e-10), (True, np.r_[X[:, 0], Z[:, 0]], "LSODA", 1e-8)):
-            rhs, times = replay(nlp, i, solved.blocks, solved.parameters, excitations)
-            sim = solve_ivp(rhs, (0.0, times[-1]), y0, method=method, t_eval=times, rtol=tol, atol=tol)
-            error = np.abs(sim.y[:NX] - X[:NX]).max(axis=1) if sim.success else np.full(NX, np.inf)
+        for excitations, y0 in ((False, X[:, 0]), (True, np.r_[X[:, 0], Z[:, 0]])):
+            path = replayed(nlp, i, solved.blocks, solved.parameters, excitations, y0)
+            error = np.full(NX, np.inf) if path is None else np.abs(path[:NX, columns] - X[:NX]).max(axis=1)
             error[:2] = 0.0  # the angles only (the hip's position is in m)
             row += [float(error.max()), COORDINATES[int(np.argmax(error))]]
         out.append(tuple(row))

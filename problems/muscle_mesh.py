@@ -216,25 +216,29 @@ def start(nlp, args):
 def replayed_force_rate(nlp, stride) -> str:
     """The force-rate integral int sum_legs sum_i V_i F'_i^2 / sum_i V_i dt (1/s, costs'
     "force_rate" before its weight and distance) per phase, by the NLP's quadrature and along
-    the stride's excitations replayed (checks.replay: each phase from the NLP's state at its
-    start, LSODA at 1e-8, F' from the Hill equilibrium; trapezoid on 40 points an interval): an
+    the stride's excitations replayed (checks.replayed: each phase from the NLP's state at its
+    start, CVODES at 1e-10, F' from the Hill equilibrium; trapezoid on 40 points an interval): an
     evaluation of the stride's cost that no mesh's quadrature makes."""
-    from scipy.integrate import solve_ivp
-
     blocks, par = stride.solved.blocks, stride.solved.parameters
     act = nlp.ocp.models[0].actuation
     n, volume = act.n, act.muscles.volume / act.muscles.volume.sum()
     k = INTEGRANDS.index("force_rate")
     quadrature = [float(L[k] @ w) for L, w in nlp.integrands(blocks, par)]
     replayed = []
+    td = blocks[f"X_{nlp.phases[0].name}"][:NX, 0]
     for i, phase in enumerate(nlp.phases):
-        rhs, times = checks.replay(nlp, i, blocks, par, excitations=True)
+        columns, U, T = nlp.times(i, 1.0), blocks[f"U_{phase.name}"], blocks[f"T_{phase.name}"].item()
         start = np.r_[blocks[f"X_{phase.name}"][:, 0], blocks[f"Z_{phase.name}"][:, 0]]
-        sim = solve_ivp(rhs, (0.0, times[-1]), start, method="LSODA", rtol=1e-8, atol=1e-8, dense_output=True)
-        fine = np.unique(np.concatenate([np.linspace(a, b, 41) for a, b in itertools.pairwise(times)]))
-        rates = np.array([rhs(t, sim.sol(t))[2 * NX:] for t in fine])  # z' = [a'_R, F'_R, a'_L, F'_L]
-        values = (rates[:, n:2 * n] ** 2) @ volume + (rates[:, 3 * n:] ** 2) @ volume
-        replayed.append(float(np.trapezoid(values, fine)))
+        fine = np.unique(np.concatenate([np.linspace(a, b, 41) for a, b in itertools.pairwise(columns)]))
+        path = checks.replayed(nlp, i, blocks, par, True, start, fine)
+        if path is None:  # the replay failed
+            replayed.append(np.inf)
+            continue
+        u = np.array([np.interp(fine, columns, row) for row in U])  # the controls linear between the columns
+        rates = np.asarray(checks.muscle_dynamics(nlp, i).map(fine.size)(
+            path[:2 * NX], path[2 * NX:], u, np.repeat(td[:, None], fine.size, 1), par["slope"], par["mu"]))[2 * NX:]
+        values = volume @ rates[n:2 * n] ** 2 + volume @ rates[3 * n:] ** 2  # z' = [a'_R, F'_R, a'_L, F'_L]
+        replayed.append(float(np.trapezoid(values, T * fine)))
     parts = "; ".join(f"{p.name} {q:.4f} / {r:.4f}" for p, q, r in zip(nlp.phases, quadrature, replayed))
     return (f"{nlp.settings.nodes:4d} nodes: force-rate integral, quadrature / replayed: {parts}; "
             f"all {sum(quadrature):.4f} / {sum(replayed):.4f}")

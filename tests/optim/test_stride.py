@@ -72,7 +72,7 @@ def test_energy_budget_closes(solved):
 
 
 def test_forward_simulation_reproduces_each_phase(solved):
-    """The optimal moments (piecewise linear) integrated forward by DOP853 from the NLP's state
+    """The optimal moments (piecewise linear) integrated forward by CVODES from the NLP's state
     at each phase's start, through the same contacts and impacts, reproduce every phase to
     0.25 rad at 24 nodes (the trapezoidal rule's O(h^2) error at steps up to 15 ms: measured
     0.08 rad heel, 0.17 rad forefoot strike; it falls with the nodes, problems/stride_checks.py;

@@ -120,7 +120,7 @@ def test_sliding_impact_equals_formopt_coulomb_map(slid):
 
 
 def test_forward_simulation_through_the_slide(slid):
-    """The optimal moments integrated forward (DOP853) with the sliding contact set (force on
+    """The optimal moments integrated forward (CVODES) with the sliding contact set (force on
     the cone's edge, only the normal row held) from the slide's NLP start reproduce the slide
     to 0.05 rad (measured 0.006 rad at 24 nodes), and every phase to 0.25 rad as the sticking
     strides do (tests/optim/test_stride.py)."""

@@ -5,11 +5,12 @@
   with q = q(theta), q' = J theta'), and the Coulomb law's mode (mechanics.contact) there; a
   sliding touchdown's against contact.coulomb's T_c (its sliding mode).
 - `forward`: the optimal joint moments (piecewise linear) integrated forward phase by phase
-  (scipy's DOP853, rtol 1e-10) through the same contact sequence and phase durations, with the
-  exact impact maps (a slide with its force on the cone's edge); the largest state difference
-  at the nodes is the transcription's error (each phase from the NLP's state at its start),
-  and what it grows to open loop; over a slide, whether the slip keeps its sign and when it
-  stops. The muscle rung replays its excitations through the muscles instead (`forward`).
+  (CVODES's Adams method through CasADi, rtol 1e-10: `integrator`) through the same contact
+  sequence and phase durations, with the exact impact maps (a slide with its force on the
+  cone's edge); the largest state difference at the nodes is the transcription's error (each
+  phase from the NLP's state at its start), and what it grows to open loop; over a slide,
+  whether the slip keeps its sign and when it stops. The muscle rung replays its excitations
+  through the muscles instead (`forward`).
 - `drift`: how far the held contact points moved (m) over each phase.
 - `swing_clearance`: the swing foot's least height (m) over the stance phases' nodes, which
   the NLP holds at or above StrideSettings.clearance (contact.RigidContact.swing).
@@ -17,13 +18,12 @@
 
 from __future__ import annotations
 
-from types import SimpleNamespace
+import weakref
 
 import casadi as ca
 import numpy as np
 
 from ...mechanics import contact
-from ...mechanics.compiled import Compiled
 from ...mechanics.impact import projection
 from ...mechanics.joint_space import POINTS, JointSpace
 from .actuation import MuscleDriven
@@ -32,6 +32,11 @@ from .contact import height, rows_kinematics
 from .layout import held_rows
 from .ocp import periodicity, step_length
 from .problem import other_leg
+
+# the replays' rtol and atol (`integrator`): their figures within 1e-8 rad of scipy's DOP853 at
+# 1e-10 and LSODA at 1e-8 (tests/optim/stride/test_forward.py), far inside the check's 0.1 rad
+TOLERANCE = 1e-10
+SLIP_STEPS = 400  # a sliding phase's uniform steps on which its slip is read (`grid`, `_slip`)
 
 
 def force_directions(js: JointSpace, rows, theta, slope, sliding: tuple | None = None):
@@ -92,8 +97,8 @@ def impact_check(js: JointSpace, rows, theta, thetad, slope, mu, sliding: tuple 
             "coulomb_slip_mps": float(slip_after), "theta_d_plus": plus}
 
 
-def accelerations(nlp: StrideNLP, i: int) -> Compiled:
-    """theta'' (9) of the constrained equations of motion in `phase`, as a numpy call of
+def accelerations(nlp: StrideNLP, i: int) -> ca.Function:
+    """theta'' (9) of the constrained equations of motion in `phase`, a Function of
     (theta (9), theta' (9), active moments (N m, 6), theta at touchdown (9, the tendons'
     rest), slope (rad), mu): [M -D^T; G 0] [theta''; f] = [g + passive - c - tau; -dJ/dt theta']
     (`force_directions`: a sliding point's force on the cone's edge, against the slip
@@ -114,14 +119,13 @@ def accelerations(nlp: StrideNLP, i: int) -> Compiled:
         thdd = ca.solve(K, ca.vertcat(rhs, -drift))[:NX]
     else:
         thdd = ca.solve(M, rhs)
-    return Compiled(ca.Function("accelerations", [th, thd, tau, td, slope, mu], [thdd],
-                                ["theta", "thetad", "tau", "theta_td", "slope", "mu"], ["thetadd"]),
-                    compiled=False)
+    return ca.Function("accelerations", [th, thd, tau, td, slope, mu], [thdd],
+                       ["theta", "thetad", "tau", "theta_td", "slope", "mu"], ["thetadd"])
 
 
-def muscle_dynamics(nlp: StrideNLP, i: int) -> Compiled:
-    """[theta', theta'', z'] of the muscle-driven body (actuation.MuscleDriven) in phase i, as a
-    numpy call of (x = [theta, theta'] (18), z (the muscles' states), u (the controls), theta at
+def muscle_dynamics(nlp: StrideNLP, i: int) -> ca.Function:
+    """[theta', theta'', z'] of the muscle-driven body (actuation.MuscleDriven) in phase i, a
+    Function of (x = [theta, theta'] (18), z (the muscles' states), u (the controls), theta at
     touchdown (9), slope (rad), mu): the tendon forces' moments and the reserves
     (MuscleDriven.active) through `accelerations`, and the states' rates of the excitations
     (MuscleDriven.forward_rates)."""
@@ -129,31 +133,97 @@ def muscle_dynamics(nlp: StrideNLP, i: int) -> Compiled:
     assert isinstance(act, MuscleDriven), "muscle_dynamics: the phase is not muscle-driven"
     x, z, u = ca.MX.sym("x", 2 * NX), ca.MX.sym("z", act.states), ca.MX.sym("u", act.controls)
     td, slope, mu = ca.MX.sym("theta_td", NX), ca.MX.sym("slope"), ca.MX.sym("mu")
-    thdd = accelerations(nlp, i).function(x[:NX], x[NX:], act.active(z, u), td, slope, mu)
+    thdd = accelerations(nlp, i)(x[:NX], x[NX:], act.active(z, u), td, slope, mu)
     rates = ca.vertcat(x[NX:], thdd, act.forward_rates(x[:NX], x[NX:], z, u))
-    return Compiled(ca.Function("muscle_dynamics", [x, z, u, td, slope, mu], [rates],
-                                ["x", "z", "u", "theta_td", "slope", "mu"], ["rates"]), compiled=False)
+    return ca.Function("muscle_dynamics", [x, z, u, td, slope, mu], [rates],
+                       ["x", "z", "u", "theta_td", "slope", "mu"], ["rates"])
 
 
-def replay(nlp: StrideNLP, i: int, blocks: dict, parameters: dict, excitations: bool):
-    """(f(t, y), the node times) of phase i's forward simulation: y = [theta, theta'] with the
-    optimal active moments replayed, or (`excitations`) y = [theta, theta', z] with the muscles'
-    excitations and reserves replayed (`muscle_dynamics`), each piecewise linear between the nodes."""
-    name, first = nlp.phases[i].name, blocks[f"X_{nlp.phases[0].name}"]
-    times = nlp.times(i, blocks[f"T_{name}"].item())
-    args = (first[:NX, 0], parameters["slope"], parameters["mu"])
+def replay(nlp: StrideNLP, i: int, excitations: bool) -> ca.Function:
+    """Phase i's forward simulation, a CasADi integrator built once per NLP and kept with it:
+    `integrator` on the phase's `grid`."""
+    replays = _REPLAYS.setdefault(nlp, {})
+    if (i, excitations) not in replays:
+        replays[i, excitations] = integrator(nlp, i, excitations, grid(nlp, i)[0])
+    return replays[i, excitations]
+
+
+_REPLAYS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # `replay`'s, per NLP
+
+
+def integrator(nlp: StrideNLP, i: int, excitations: bool, fractions: np.ndarray) -> ca.Function:
+    """Phase i's forward simulation as a CasADi integrator: y = [theta, theta'] with the active
+    moments replayed (`accelerations`), or (`excitations`) y = [theta, theta', z] with the
+    muscles' excitations and reserves replayed (`muscle_dynamics`), over the phase's normalised
+    time s = t / T, dy/ds = T f(y, u(s)), its states at the `fractions` of T (0 first, 1 last).
+    The controls are linear between the columns, u = a_k + b_k s on interval k: the input
+    [a_k; b_k] (`controls`), CVODES restarting where it changes (at the columns, where u' jumps).
+    CVODES's Adams-Moulton (variable step and order, functional iteration; rtol = atol =
+    TOLERANCE): a method independent of the collocation, in C but for the right-hand side
+    (CasADi's virtual machine). Not BDF: its Newton iterations need the right-hand side's
+    Jacobian, ten times its cost (a 24-node heel strike's check took 0.35 s of CPU against 0.085
+    s, the muscle stride's 1.13 s against 0.84: benchmarks/forward_speed.py's cases). Its call:
+    x0 = y(0), p = [T, theta at touchdown (9), slope, mu], u = `controls`."""
+    act = nlp.ocp.models[i].actuation
+    sym = ca.MX.sym if excitations else ca.SX.sym  # the muscles' right-hand side holds a rootfinder
+    states, inputs = (2 * NX + act.states, act.controls) if excitations else (2 * NX, NU)
+    y, ab, s, p = sym("y", states), sym("ab", 2 * inputs), sym("s"), sym("p", NX + 3)
+    u = ab[:inputs] + s * ab[inputs:]
+    args = (p[1:NX + 1], p[NX + 1], p[NX + 2])
     if excitations:
-        U, dynamics = blocks[f"U_{name}"], muscle_dynamics(nlp, i)
-        return (lambda t, y: dynamics(y[:2 * NX], y[2 * NX:], _interpolated(times, U, t), *args)["rates"]), times
-    U, acc = nlp.moments(blocks, i)[0], accelerations(nlp, i)
-    return (lambda t, y: np.r_[y[NX:], acc(y[:NX], y[NX:], _interpolated(times, U, t), *args)["thetadd"]]), times
+        rates = muscle_dynamics(nlp, i)(y[:2 * NX], y[2 * NX:], u, *args)
+    else:
+        rates = ca.vertcat(y[NX:], accelerations(nlp, i)(y[:NX], y[NX:], u, *args))
+    dae = {"x": y, "u": ab, "p": p, "t": s, "ode": p[0] * rates}
+    return ca.integrator(f"replay_{nlp.phases[i].name}", "cvodes", dae, 0.0, fractions[1:],
+                         {"abstol": TOLERANCE, "reltol": TOLERANCE, "linear_multistep_method": "adams",
+                          "nonlinear_solver_iteration": "functional", "disable_internal_warnings": True,
+                          "show_eval_warnings": False})
 
 
-def _interpolated(times: np.ndarray, U: np.ndarray, t: float) -> np.ndarray:
-    """The node values U (columns at `times`) piecewise linear at t."""
-    k = min(max(int(np.searchsorted(times, t)) - 1, 0), len(times) - 2)
-    w = min(max((t - times[k]) / (times[k + 1] - times[k]), 0.0), 1.0)
-    return (1 - w) * U[:, k] + w * U[:, k + 1]
+def grid(nlp: StrideNLP, i: int) -> tuple[np.ndarray, np.ndarray]:
+    """(fractions, where the columns are in them): the fractions of phase i's duration its
+    `replay` reports states at, its columns' (nlp.times), and for a sliding phase SLIP_STEPS + 1
+    uniform ones too (`_slip`)."""
+    columns = nlp.times(i, 1.0)
+    if not nlp.phases[i].sliding:
+        return columns, np.arange(len(columns))
+    fine = np.linspace(0.0, 1.0, SLIP_STEPS + 1)
+    fractions = np.union1d(columns, fine[np.abs(fine[:, None] - columns).min(axis=1) > 1e-9])  # none beside a column
+    return fractions, np.searchsorted(fractions, columns)
+
+
+def controls(nlp: StrideNLP, i: int, U: np.ndarray, fractions: np.ndarray) -> np.ndarray:
+    """The `integrator`'s input of node values U (columns at nlp.times): for each step of
+    `fractions`, [a_k; b_k] of the interval k holding it, U linear there, a_k + b_k s."""
+    columns = nlp.times(i, 1.0)
+    b = np.diff(U, axis=1) / np.diff(columns)
+    a = U[:, :-1] - b * columns[:-1]
+    k = np.clip(np.searchsorted(columns, fractions[1:], side="left") - 1, 0, len(columns) - 2)
+    return np.vstack([a[:, k], b[:, k]])
+
+
+def replayed(nlp: StrideNLP, i: int, blocks: dict, parameters: dict, excitations: bool,
+             start: np.ndarray, fractions: np.ndarray | None = None) -> np.ndarray | None:
+    """Phase i's states along its replay from `start` (y at its start), a column per point of
+    its `grid` (the NLP's kept `replay`), or of `fractions` of its duration (0 first, 1 last: an
+    `integrator` built for them); None where the start is not finite or the integration fails
+    (CVODES, or the tendon rates' Newton in the right-hand side, not converging)."""
+    if not np.isfinite(start).all():
+        return None
+    name = nlp.phases[i].name
+    U = blocks[f"U_{name}"] if excitations else nlp.moments(blocks, i)[0]
+    p = np.r_[blocks[f"T_{name}"].item(), blocks[f"X_{nlp.phases[0].name}"][:NX, 0],
+              parameters["slope"], parameters["mu"]]
+    if fractions is None:
+        run, fractions = replay(nlp, i, excitations), grid(nlp, i)[0]
+    else:
+        run = integrator(nlp, i, excitations, fractions)
+    try:
+        path = run(x0=start, p=p, u=controls(nlp, i, U, fractions))["xf"]
+    except RuntimeError:
+        return None
+    return np.column_stack([start, np.asarray(path, float)])
 
 
 def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
@@ -181,30 +251,26 @@ def forward(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
 
 
 def _simulate(nlp: StrideNLP, blocks: dict, parameters: dict, excitations: bool, open_loop: bool = True) -> dict:
-    """`forward`'s figures of one replay (`replay`): the moments' (DOP853, rtol 1e-10) or the
-    excitations' (LSODA, rtol 1e-8), phase by phase and (`open_loop`) over the half stride; an
-    integration that fails counts as an infinite error (open loop, so does what follows it)."""
-    from scipy.integrate import solve_ivp  # here: scipy.integrate costs 0.2 s at every CLI start
-
+    """`forward`'s figures of one replay (`replayed`: the moments' or the excitations'), phase
+    by phase and (`open_loop`) over the half stride; an integration that fails counts as an
+    infinite error (open loop, so does what follows it)."""
     js, slope, mu, slip = nlp.js, parameters["slope"], parameters["mu"], nlp.settings.slip
-    method, tol = ("LSODA", 1e-8) if excitations else ("DOP853", 1e-10)
     nodes = [np.vstack([blocks[f"X_{p.name}"]] + ([blocks[f"Z_{p.name}"]] if excitations else [])) for p in nlp.phases]
     state = nodes[0][:, 0].copy()
     errors: list[np.ndarray] = []
     reset: list[np.ndarray] = []
     slips: dict = {}
     for i, phase in enumerate(nlp.phases):
-        Y = nodes[i]
+        Y, (fractions, columns) = nodes[i], grid(nlp, i)
         if nlp.impact_before(i) and np.isfinite(state).all():  # an impact starts the phase
             state[NX:2 * NX] = joint_impact(js, phase.rows, state[:NX], state[NX:2 * NX], slope)[0]
-        rhs, times = replay(nlp, i, blocks, parameters, excitations)
         for start, record in ([(state, errors)] if open_loop else []) + [(Y[:, 0], reset)]:
-            sim = _integrate(solve_ivp, rhs, times, start, method, tol)
-            record.append(np.abs(sim.y[:2 * NX] - Y[:2 * NX]).max(axis=1) if sim.success else np.full(2 * NX, np.inf))
+            path = replayed(nlp, i, blocks, parameters, excitations, start)
+            record.append(np.full(2 * NX, np.inf) if path is None else np.abs(path[:2 * NX, columns] - Y[:2 * NX]).max(axis=1))
             if record is errors:
-                state = sim.y[:, -1] if sim.success else np.full_like(state, np.nan)
-            elif phase.sliding and sim.success:
-                slips = _slip(js, phase.sliding, sim.sol, times[-1], slope, slip)
+                state = np.full_like(state, np.nan) if path is None else path[:, -1]
+            elif phase.sliding and path is not None:
+                slips = _slip(js, phase.sliding, path, fractions * blocks[f"T_{phase.name}"].item(), slope, slip)
     res = np.array(reset)
     out = {"reset_theta": float(res[:, :NX].max()), "reset_per_phase": [float(e) for e in res[:, :NX].max(axis=1)], **slips}
     if open_loop:
@@ -220,25 +286,13 @@ def _simulate(nlp: StrideNLP, blocks: dict, parameters: dict, excitations: bool,
     return out
 
 
-def _integrate(solve_ivp, rhs, times: np.ndarray, start: np.ndarray, method: str, tol: float):
-    """solve_ivp over the node times from `start`, dense; a start that is not finite, or a
-    right-hand side that raises (the tendon rates' Newton not converging), is a failure."""
-    if not np.isfinite(start).all():
-        return SimpleNamespace(success=False)
-    try:
-        return solve_ivp(rhs, (0.0, times[-1]), start, method=method, t_eval=times, rtol=tol, atol=tol,
-                         dense_output=True)
-    except RuntimeError:
-        return SimpleNamespace(success=False)
-
-
-def _slip(js: JointSpace, point: str, path, T: float, slope: float, slip: int) -> dict:
-    """s v_t (m/s) of a sliding point along a simulated phase (`path`: the dense solution, its
-    first 2 NX rows theta and theta') on
-    400 steps: its least and largest before it first stops, v_t at the phase's end, and when
-    it first stops (`slip_stop_s`, s; T if it slides through; the NLP's slide stops at T)."""
-    times = np.linspace(0.0, T, 401)
-    v = slip * np.array([float(js.points[point](x[:NX], x[NX:2 * NX], slope)[1][0]) for x in path(times).T])
+def _slip(js: JointSpace, point: str, path: np.ndarray, times: np.ndarray, slope: float, slip: int) -> dict:
+    """s v_t (m/s) of a sliding point along a simulated phase (`path`: its states at `times`, s,
+    the first 2 NX rows theta and theta'; `grid`'s: SLIP_STEPS + 1 uniform steps and the columns):
+    its least and largest before it first stops, v_t at the phase's end, and when it first stops
+    (`slip_stop_s`, s; the phase's duration if it slides through; the NLP's slide stops at its end)."""
+    T = float(times[-1])
+    v = slip * np.array([float(js.points[point](x[:NX], x[NX:2 * NX], slope)[1][0]) for x in path.T])
     stopped = np.flatnonzero(v <= 0.0)
     k = stopped[0] if stopped.size else len(v)
     stop = T if k == len(v) else float(np.interp(0.0, [v[k], v[k - 1]], [times[k], times[k - 1]])) if k else 0.0
