@@ -63,6 +63,9 @@ ACTIVATION_SCALE = 10.0
 # without the term, 3.9 at the calibrated one: RBDS001, 3.5 m/s, 171.4 steps/min,
 # docs/concepts/muscles.md) made of order 0.1.
 FORCE_RATE_SCALE = 0.01
+# The force-rate term's scale with power 1 (m; force_rate_abs, int sum_legs sum_i V_i |F'_i| /
+# sum V dt per distance, 1/m): TO BE MEASURED.
+FORCE_RATE_ABS_SCALE = 0.1
 # A small weight on the tendon forces' squared rates (per distance) keeps F' from chattering
 # where the muscles are slack (problems/muscle_redundancy.py uses the same).
 MUSCLE_RATE_REGULARISATION = 1e-4
@@ -136,15 +139,16 @@ class CostTerm:
 
 
 def own_terms(objective: str, mass: float, muscles: bool = False,
-              force_rate_weight: float = FORCE_RATE_WEIGHT) -> list[CostTerm]:
+              force_rate_weight: float = FORCE_RATE_WEIGHT, force_rate_power: int = 2) -> list[CostTerm]:
     """An objective's own terms (problem.OBJECTIVES; module docstring), without its
     regularisation, the impacts and the smoothing."""
     weight = mass * GRAVITY
     if muscles:
         if objective == "activation":
             return [CostTerm("activation", ACTIVATION_SCALE)]
-        return [CostTerm("muscle_metabolic", 1.0 / weight),
-                CostTerm("force_rate", FORCE_RATE_SCALE, force_rate_weight)]
+        rate = (CostTerm("force_rate", FORCE_RATE_SCALE, force_rate_weight) if force_rate_power == 2
+                else CostTerm("force_rate_abs", FORCE_RATE_ABS_SCALE, force_rate_weight))
+        return [CostTerm("muscle_metabolic", 1.0 / weight), rate]
     if objective == "effort":
         return [CostTerm("effort", 100.0 / weight ** 2)]
     if objective == "work":
@@ -158,7 +162,7 @@ def own_terms(objective: str, mass: float, muscles: bool = False,
 def terms(settings: StrideSettings, mass: float) -> tuple[CostTerm, ...]:
     """The cost terms of a stride's settings (module docstring)."""
     muscles = settings.muscles is not None
-    out = own_terms(settings.objective, mass, muscles, settings.force_rate_weight)
+    out = own_terms(settings.objective, mass, muscles, settings.rate_weight, settings.force_rate_power)
     if muscles:
         out += [CostTerm("muscle_rates", 1.0, MUSCLE_RATE_REGULARISATION), CostTerm("reserves", 1.0, settings.reserve_weight)]
     if settings.moment_time:  # T^2 times the effort's scale: sum_j tau_j^2 + T^2 tau_j'^2
