@@ -20,7 +20,8 @@
               swing foot's least height while the other foot holds the ground, m; default
               optim.stride.contact.CLEARANCE), mesh_check (true: each strike's stride solved
               again on twice its nodes from itself and what that moved reported,
-              optim.stride.refine; default false)
+              optim.stride.refine; default false), force_rate_power (with muscles and
+              "metabolic": 2, the default, or 1: optim.stride.problem.FORCE_RATE_POWERS)
 
 Every error names its key (SceneError, one line); degrees at this edge, SI inside.
 """

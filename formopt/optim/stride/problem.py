@@ -135,9 +135,15 @@ FORCE_RATE_WEIGHT = 80.0
 # The force-rate term's power (StrideSettings.force_rate_power): 2, the squared rates above, or 1,
 # their absolute values (mechanics.muscles.force_rate_cost: Kram & Taylor 1990's cost of force
 # per contact time, docs/concepts/muscles.md "The force rate's power"), each with its own weight
-# calibrated on RBDS001 at 3.5 m/s.
+# calibrated on RBDS001 at 3.5 m/s. Power 1's, 12, on the free optimum of the mesh near converged
+# for cadence (graded 1, 80 nodes, the global search's on 40 solved again on 80: `cd problems &&
+# python muscle_energy.py --speed 3.5 --grading 1 --nodes 80 --start search --power 1 --weight 12`):
+# 170.8 steps/min against the runner's 171.4; bracketed warm from weight 120's stride (`--load
+# --free`): 8 / 15 / 30 / 60 / 120 gave 179.9 / 168.2 / 164.1 / 161.6 / 159.4 (at 24 nodes the
+# cadence stays above 175 at any weight: `python problems/muscle_calibration.py --power 1 --weights
+# 30 60 120 240`, 187.5 / 180.0 / 175.7 from 60 up, so that mesh cannot calibrate it).
 FORCE_RATE_POWERS = (1, 2)
-FORCE_RATE_WEIGHTS = {2: FORCE_RATE_WEIGHT, 1: 1.0}
+FORCE_RATE_WEIGHTS = {2: FORCE_RATE_WEIGHT, 1: 12.0}
 # The muscles' reserve moments' weight (m/s per (N m/kg)^2; costs' `reserves` term): at 100,
 # 1 N m/kg held over a step costs about 30, four to twelve times a stride's whole objective
 # (2.4-7.1 with the force-rate term, RBDS001 at 2.5-4.5 m/s), at 10000 a hundred times that. The
