@@ -4,7 +4,8 @@ the muscles' "metabolic" objective, the cadence imposed in turn.
     python problems/muscle_energy.py [--speed 3.5] [--cadences 171.4 222] [--nodes 24] [--weight W] [--power 1]
                                      [--grading 1] [--start search [--search-nodes 40] | --load FILE]
                                      [--save FILE] [--free] [--strength iliopsoas=1.5]
-                                     [--duration flight=80-250] [--dorsiflexion 20] [--detail]
+                                     [--duration flight=80-250] [--dorsiflexion 20] [--rate-smoothing 0.25]
+                                     [--detail]
 
 Per cadence: the objective's terms (per distance, as IPOPT sees them); the muscles' energy per
 step (J) split by muscle, into stance (the right leg while it holds the ground) and swing (the
@@ -24,7 +25,8 @@ the loaded stride on this NLP (a what-if's own optimum). `--strength muscle=fact
 variant with that muscle's F_max (and so its volume and mass) scaled, not a default; `--duration
 phase=low-high` (ms): that phase's duration bounds (StrideSettings.duration), a what-if;
 `--dorsiflexion D` (deg): the ankle's range of motion ends at D (joint_space.RANGES, 30 deg: the
-solve's bound D + 5 deg and the range wall there), a what-if. `--detail`:
+solve's bound D + 5 deg and the range wall there), a what-if; `--rate-smoothing EPS` (1/s): --power 1's
+|F'| smoothing (mechanics.muscles.FORCE_RATE_SMOOTHING, 0.5), a what-if. `--detail`:
 per cadence also the force-rate term's part of the objective by muscle, stance and swing, and each
 muscle's time at activation > 0.9; at the end one line per cadence (the table of
 docs/concepts/muscles.md, "Why the cadence is low at 2.5 m/s") and the relaxed ankle's passive
@@ -318,10 +320,13 @@ def main(argv=None) -> int:
     parser.add_argument("--strength", nargs="*", default=[], help="muscle=factor: F_max scaled (a what-if)")
     parser.add_argument("--duration", nargs="*", default=[], help="phase=low-high (ms): its bounds (a what-if)")
     parser.add_argument("--dorsiflexion", type=float, help="deg: the ankle's range's end (a what-if; 30)")
+    parser.add_argument("--rate-smoothing", type=float, help="1/s: --power 1's eps (a what-if; 0.5)")
     parser.add_argument("--detail", action="store_true", help="force rate by muscle, time at a > 0.9, a table")
     args = parser.parse_args(argv)
     if args.dorsiflexion is not None:  # a what-if: this process's ranges, read when the NLP is built
         joint_space.RANGES["ankle"] = (joint_space.RANGES["ankle"][0], np.radians(args.dorsiflexion))
+    if args.rate_smoothing is not None:  # a what-if: this process's |F'| smoothing, read when the NLP is built
+        hill.FORCE_RATE_SMOOTHING = args.rate_smoothing
     body = scaled_body(args.mass, 1.81)
     settings = StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic", grading=args.grading,
                               muscles=strengthened(body_muscles(body), args.strength), force_rate_weight=args.weight,
@@ -332,7 +337,8 @@ def main(argv=None) -> int:
           f"{f' graded {args.grading:g}' if args.grading else ''}, {args.speed} m/s, force-rate weight {settings.rate_weight:g}, power {args.power}"
           + (f", F_max x {' '.join(args.strength)}" if args.strength else "")
           + (f", durations (ms) {' '.join(args.duration)}" if args.duration else "")
-          + (f", ankle range to {args.dorsiflexion:g} deg" if args.dorsiflexion is not None else ""), flush=True)
+          + (f", ankle range to {args.dorsiflexion:g} deg" if args.dorsiflexion is not None else "")
+          + (f", |F'| smoothing {args.rate_smoothing:g} /s" if args.rate_smoothing is not None else ""), flush=True)
     if args.start == "search" or args.load:
         strides = walk(nlp, args, free_start(nlp, args))
     else:
