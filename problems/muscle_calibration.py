@@ -4,6 +4,7 @@ cadence lands within --tolerance of the runner's.
 
     python problems/muscle_calibration.py [--speed 3.5] [--target 171.4] [--weights 16 32 64 80]
                                           [--steps 4] [--tolerance 2] [--nodes 24] [--mass 62]
+                                          [--power 1]
 
 The --weights are solved first (the first from the generic start, local.optimum's; each next
 from the solution of the nearest weight solved, its blocks as the guess); then, while a lower
@@ -56,12 +57,13 @@ def main(argv=None) -> int:
     parser.add_argument("--nodes", type=int, default=24)
     parser.add_argument("--mass", type=float, default=62.0)
     parser.add_argument("--reserve-weight", type=float, default=RESERVE_WEIGHT)
+    parser.add_argument("--power", type=int, default=2, help="the force-rate term's power, 1 or 2")
     args = parser.parse_args(argv)
     body = scaled_body(args.mass, 1.81)
     base = StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic", muscles=body_muscles(body),
-                          reserve_weight=args.reserve_weight)
+                          reserve_weight=args.reserve_weight, force_rate_power=args.power)
     print(f"{args.mass:g} kg, 1.81 m, heel, {args.nodes} nodes, {args.speed} m/s, target {args.target} steps/min, "
-          f"reserve weight {args.reserve_weight:g}")
+          f"reserve weight {args.reserve_weight:g}, force-rate power {args.power}")
     print(f"{'weight':>8s} {'spm':>7s} {'stance':>6s} {'GRF':>6s} {'J/kg/m':>6s} {'res':>5s} {'J':>7s} {'valid':>5s}"
           f" {'iter':>5s} {'cpu s':>6s}", flush=True)
     solved: dict[float, object] = {}

@@ -1,10 +1,11 @@
 """Where the muscle-driven stride's metabolic energy goes (issue 33): RBDS001's body, heel strike,
 the muscles' "metabolic" objective, the cadence imposed in turn.
 
-    python problems/muscle_energy.py [--speed 3.5] [--cadences 171.4 222] [--nodes 24] [--weight W]
+    python problems/muscle_energy.py [--speed 3.5] [--cadences 171.4 222] [--nodes 24] [--weight W] [--power 1]
                                      [--grading 1] [--start search [--search-nodes 40] | --load FILE]
                                      [--save FILE] [--free] [--strength iliopsoas=1.5]
-                                     [--duration flight=80-250] [--dorsiflexion 20] [--detail]
+                                     [--duration flight=80-250] [--dorsiflexion 20] [--rate-smoothing 0.25]
+                                     [--detail]
 
 Per cadence: the objective's terms (per distance, as IPOPT sees them); the muscles' energy per
 step (J) split by muscle, into stance (the right leg while it holds the ground) and swing (the
@@ -24,7 +25,8 @@ the loaded stride on this NLP (a what-if's own optimum). `--strength muscle=fact
 variant with that muscle's F_max (and so its volume and mass) scaled, not a default; `--duration
 phase=low-high` (ms): that phase's duration bounds (StrideSettings.duration), a what-if;
 `--dorsiflexion D` (deg): the ankle's range of motion ends at D (joint_space.RANGES, 30 deg: the
-solve's bound D + 5 deg and the range wall there), a what-if. `--detail`:
+solve's bound D + 5 deg and the range wall there), a what-if; `--rate-smoothing EPS` (1/s): --power 1's
+|F'| smoothing (mechanics.muscles.FORCE_RATE_SMOOTHING, 0.5), a what-if. `--detail`:
 per cadence also the force-rate term's part of the objective by muscle, stance and swing, and each
 muscle's time at activation > 0.9; at the end one line per cadence (the table of
 docs/concepts/muscles.md, "Why the cadence is low at 2.5 m/s") and the relaxed ankle's passive
@@ -46,7 +48,6 @@ from formopt.mechanics import joint_space
 from formopt.mechanics import muscles as hill
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY, JOINTS, JointSpace
-from formopt.optim.stride import problem
 from formopt.optim.stride.collocation import NX, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS, step_length
@@ -93,8 +94,9 @@ def breakdown(nlp, stride) -> dict:
             role = "stance" if k == 0 and phase.rows else "swing"
             out[role] += np.vstack([np.asarray(v, float) @ w for v in values]).reshape(6, n)
             Fd, ad = act.RATE_SCALE * U[3 * n * k + 2 * n:3 * n * (k + 1)], act.ACTIVATION_SCALE * U[3 * n * k + n:3 * n * k + 2 * n]
-            rates[f"force_rate_{role}"] += float(volume @ Fd ** 2 @ w)
-            by_muscle["force_rate"][role] += volume * (Fd ** 2 @ w)
+            charged = rate_power(Fd, nlp.settings.force_rate_power)
+            rates[f"force_rate_{role}"] += float(volume @ charged @ w)
+            by_muscle["force_rate"][role] += volume * (charged @ w)
             by_muscle["saturated_s"][role] += (Z[2 * n * k:2 * n * k + n] > 0.9) @ w
             rates[f"activation_rate_{role}"] += float(volume @ ad ** 2 @ w)
         r = m * U[6 * n:]
@@ -108,6 +110,17 @@ def breakdown(nlp, stride) -> dict:
         reserve["muscle_impulse"] += float(np.abs(muscle).sum(axis=0) @ w)
         reserve["squared"] += float((U[6 * n:] ** 2).sum(axis=0) @ w)
     return {"roles": out, "reserve": reserve, "names": act.muscles.names, "rates": rates, "by_muscle": by_muscle}
+
+
+def rate_power(rates, power: int):
+    """|F'|^p as the force-rate term charges it (mechanics.muscles.force_rate_cost; p = 1 smoothed)."""
+    eps = hill.FORCE_RATE_SMOOTHING
+    return rates ** 2 if power == 2 else np.sqrt(rates ** 2 + eps ** 2) - eps
+
+
+def rate_term(nlp):
+    """The objective's force-rate term (costs.CostTerm), of either power."""
+    return next(t for t in nlp.ocp.cost_terms if t.integral in ("force_rate", "force_rate_abs"))
 
 
 def cost_terms(nlp, stride) -> dict:
@@ -124,7 +137,7 @@ def detail(nlp, stride, parts: dict) -> None:
     """Per muscle (both legs' share of one step) the force-rate term's part of the objective,
     w s int V_i F'_i^2 / sum V dt / d (costs.CostTerm), stance and swing, and the time at
     activation > 0.9 (s, the right leg's stance and the rest)."""
-    term = next(t for t in nlp.ocp.cost_terms if t.integral == "force_rate")
+    term = rate_term(nlp)
     rates, saturated = parts["by_muscle"]["force_rate"], parts["by_muscle"]["saturated_s"]
     print(f"   {'force rate, a > 0.9':22s}{'FR stance':>10s}{'FR swing':>10s}{'a>0.9 st s':>11s}{'a>0.9 sw s':>11s}")
     for i, name in enumerate(parts["names"]):
@@ -137,7 +150,7 @@ def summary(nlp, stride) -> dict:
     """One cadence's row of the closing table (main): the objective's parts, the muscles'
     energy (J per step) and the force-rate term's part, stance and swing."""
     parts, terms = breakdown(nlp, stride), cost_terms(nlp, stride)
-    term = next(t for t in nlp.ocp.cost_terms if t.integral == "force_rate")
+    term = rate_term(nlp)
     rates = parts["by_muscle"]["force_rate"]
     return {"cadence": stride.cadence_spm, "objective": stride.objective_value, **terms,
             "E stance J": parts["roles"]["stance"][4].sum(), "E swing J": parts["roles"]["swing"][4].sum(),
@@ -178,7 +191,7 @@ def report(nlp, stride, details: bool = False) -> None:
         floor = total[4, i] - total[:4, i].sum()
         print(f"   {name:22s}" + "".join(f"{x:8.1f}" for x in (*total[:4, i], floor, total[4, i], total[5, i]))
               + f"   stance {roles['stance'][4, i]:5.1f} swing {roles['swing'][4, i]:5.1f}")
-    print("   volume-weighted squared rates per step, int sum V_i x_i^2 / sum V dt (1/s): "
+    print("   volume-weighted rates per step, int sum V_i x_i^p / sum V dt (F' to the force-rate power, a' squared): "
           + ", ".join(f"{k} {v:.2f}" for k, v in parts["rates"].items())
           + f"; per distance, both roles: F' {sum(v for k, v in parts['rates'].items() if k.startswith('force')) / d:.3f},"
           f" a' {sum(v for k, v in parts['rates'].items() if k.startswith('activation')) / d:.3f} /m")
@@ -295,7 +308,8 @@ def main(argv=None) -> int:
     parser.add_argument("--cadences", type=float, nargs="+", default=[171.4, 222.0])
     parser.add_argument("--nodes", type=int, default=24)
     parser.add_argument("--mass", type=float, default=62.0)
-    parser.add_argument("--weight", type=float, default=problem.FORCE_RATE_WEIGHT)
+    parser.add_argument("--weight", type=float, help="the force-rate weight (default: the power's calibrated one)")
+    parser.add_argument("--power", type=int, default=2, help="the force-rate term's power, 1 or 2")
     parser.add_argument("--grading", type=float, default=0.0, help="StrideSettings.grading")
     parser.add_argument("--start", default="generic", choices=("generic", "search"),
                         help="each cadence from the generic start, or warm from its neighbour from the free optimum")
@@ -306,20 +320,25 @@ def main(argv=None) -> int:
     parser.add_argument("--strength", nargs="*", default=[], help="muscle=factor: F_max scaled (a what-if)")
     parser.add_argument("--duration", nargs="*", default=[], help="phase=low-high (ms): its bounds (a what-if)")
     parser.add_argument("--dorsiflexion", type=float, help="deg: the ankle's range's end (a what-if; 30)")
+    parser.add_argument("--rate-smoothing", type=float, help="1/s: --power 1's eps (a what-if; 0.5)")
     parser.add_argument("--detail", action="store_true", help="force rate by muscle, time at a > 0.9, a table")
     args = parser.parse_args(argv)
     if args.dorsiflexion is not None:  # a what-if: this process's ranges, read when the NLP is built
         joint_space.RANGES["ankle"] = (joint_space.RANGES["ankle"][0], np.radians(args.dorsiflexion))
+    if args.rate_smoothing is not None:  # a what-if: this process's |F'| smoothing, read when the NLP is built
+        hill.FORCE_RATE_SMOOTHING = args.rate_smoothing
     body = scaled_body(args.mass, 1.81)
     settings = StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic", grading=args.grading,
                               muscles=strengthened(body_muscles(body), args.strength), force_rate_weight=args.weight,
+                              force_rate_power=args.power,
                               duration=durations(args.duration))
     nlp = build(body, settings)
     print(f"RBDS001's height, {args.mass:g} kg, heel, {args.nodes} nodes"
-          f"{f' graded {args.grading:g}' if args.grading else ''}, {args.speed} m/s, force-rate weight {args.weight:g}"
+          f"{f' graded {args.grading:g}' if args.grading else ''}, {args.speed} m/s, force-rate weight {settings.rate_weight:g}, power {args.power}"
           + (f", F_max x {' '.join(args.strength)}" if args.strength else "")
           + (f", durations (ms) {' '.join(args.duration)}" if args.duration else "")
-          + (f", ankle range to {args.dorsiflexion:g} deg" if args.dorsiflexion is not None else ""), flush=True)
+          + (f", ankle range to {args.dorsiflexion:g} deg" if args.dorsiflexion is not None else "")
+          + (f", |F'| smoothing {args.rate_smoothing:g} /s" if args.rate_smoothing is not None else ""), flush=True)
     if args.start == "search" or args.load:
         strides = walk(nlp, args, free_start(nlp, args))
     else:

@@ -12,7 +12,7 @@ finer mesh, guess.fitted), so every mesh solves the same stride.
                                    [--no-consistency-rows [--rows-first]]
                                    [--grading 0.9 [--first-grading 0]] (a mesh's own: --nodes 160:1;
                                    a phase's duration held, ms: --nodes 160:0@flat=59.5-60.1)
-                                   [--replay-cost]
+                                   [--replay-cost] [--power 1]
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -128,8 +128,9 @@ def costs_table(parts: dict) -> str:
 def end_columns(nlp, solved, speed: float) -> str:
     """The force-rate term's part at each phase's first and last column (`phase_costs`' column)."""
     first, last = (phase_costs(nlp, solved, speed, column) for column in (0, -1))
+    key = "force_rate_abs" if nlp.settings.force_rate_power == 1 else "force_rate"
     return "  force rate at the first / last column: " + " ".join(
-        f"{p} {first[p]['force_rate']:.5f} / {last[p]['force_rate']:.5f}" for p in first)
+        f"{p} {first[p][key]:.5f} / {last[p][key]:.5f}" for p in first)
 
 
 def reserve_peaks(nlp, solved, top: int = 2) -> str:
@@ -196,7 +197,7 @@ def mesh(body, args, nodes: int, consistency_rows: str, grading: float, held: di
     duration = {**StrideSettings().duration, **(held or {})}
     return build(body, StrideSettings(strike=args.strike, nodes=nodes, muscles=body_muscles(body),
                                       objective="metabolic", consistency_rows=consistency_rows,
-                                      grading=grading, duration=duration))
+                                      grading=grading, duration=duration, force_rate_power=args.power))
 
 
 def start(nlp, args):
@@ -269,6 +270,7 @@ def main(argv=None) -> int:
                              "(default grading --grading's; a phase's duration held in ms)")
     parser.add_argument("--start", default="search", choices=("search", "path"))
     parser.add_argument("--spend", type=int, default=1)
+    parser.add_argument("--power", type=int, default=2, help="the force-rate term's power, 1 or 2 (its calibrated weight)")
     parser.add_argument("--mu-init", type=float, nargs="+", default=[MUSCLE_WARM_START["mu_init"]],
                         help="IPOPT's first barrier for each finer mesh's solve, each in turn")
     parser.add_argument("--no-consistency-rows", dest="consistency_rows", action="store_const", const="off",
@@ -282,6 +284,8 @@ def main(argv=None) -> int:
     parser.add_argument("--replay-cost", action="store_true",
                         help="at the end, each mesh's force-rate integral by its quadrature and replayed")
     args = parser.parse_args(argv)
+    if args.replay_cost and args.power != 2:
+        parser.error("--replay-cost replays the squared force rates: it needs --power 2")
     ranges.RANGES["nodes"] = Range(14, max([n for n, *_ in args.nodes] + [120]))  # past the scenes' 120: each finer mesh is warm
     body = scaled_body(62.0, 1.81)
     print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, muscles, metabolic, {args.speed} m/s, "

@@ -20,7 +20,8 @@
               swing foot's least height while the other foot holds the ground, m; default
               optim.stride.contact.CLEARANCE), mesh_check (true: each strike's stride solved
               again on twice its nodes from itself and what that moved reported,
-              optim.stride.refine; default false)
+              optim.stride.refine; default false), force_rate_power (with muscles and
+              "metabolic": 2, the default, or 1: optim.stride.problem.FORCE_RATE_POWERS)
 
 Every error names its key (SceneError, one line); degrees at this edge, SI inside.
 """
@@ -56,7 +57,8 @@ STRIDE_STRIKES = (*STRIKES, "best")
 STRIDE_LAWS = ("no-slip", "coulomb")
 STRIDE_KEYS = {"speed_mps", "strike", "objective", "nodes", "impact_weight",
                "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts", "tendons",
-               "transcription", "actuation", "clearance_m", "search", "spend", "grading", "mesh_check"}
+               "transcription", "actuation", "clearance_m", "search", "spend", "grading", "mesh_check",
+               "force_rate_power"}
 
 
 @dataclass(frozen=True)
@@ -165,7 +167,7 @@ def parse(data: dict, path: str = "") -> StrideScene:
                                   nodes=nodes, law=law, impact_weight=weight, torque_limit=torque,
                                   duration=duration, max_iter=max_iter, tendons=tendons,
                                   transcription=transcription, muscles=muscles, clearance=clearance,
-                                  grading=grading)
+                                  grading=grading, force_rate_power=_force_rate_power(stride, objective, muscles))
     except InputError as err:  # what only the settings check (e.g. a strike's least nodes)
         raise SceneError("stride", str(err)) from None
     return StrideScene(name, body, speed, math.radians(slope), friction, strike, settings,
@@ -182,6 +184,15 @@ def _search(stride: dict) -> tuple[str, int, int]:
                                          "search takes starts)")
     return (search, val.integer(stride, "spend", "stride", 1, *_whole("spend")),
             val.integer(stride, "starts", "stride", 4, *_whole("starts")))
+
+
+def _force_rate_power(stride: dict, objective: str, muscles: Muscles | None) -> int:
+    """The [stride] table's force_rate_power (optim.stride.problem.FORCE_RATE_POWERS: 2, the
+    squared tendon-force rates, or 1, their absolute values), for the muscles' metabolic objective."""
+    if "force_rate_power" in stride and (muscles is None or objective != "metabolic"):
+        raise SceneError("stride.force_rate_power", "the force-rate term is the muscles' metabolic "
+                                                    "objective's: needs actuation 'muscles', objective 'metabolic'")
+    return val.integer(stride, "force_rate_power", "stride", 2, 1, 2)
 
 
 def _mesh_check(stride: dict, nodes: int) -> bool:

@@ -332,12 +332,25 @@ def activation_cost(muscles: Muscles, activation, power: float = 3.0):
     return ca.dot(volume, activation**power)
 
 
-def force_rate_cost(muscles: Muscles, force_rate):
-    """sum_i V_i F'_i^2 / sum_i V_i (1/s^2): the volume-weighted mean squared rate of the
-    normalised tendon forces F' (1/s), a cost of generating force quickly in the active muscle
-    volume (Kipp, Grabowski & Kram 2018, J Exp Biol 221:jeb184218); squared, it charges a
-    falling force as a rising one, and it is a smooth stand-in for Kipp's rate, not its equation."""
+# |F'| as sqrt(F'^2 + eps^2) - eps (1/s) in the force-rate cost's power 1: zero at zero, within
+# eps of |F'| and smooth for IPOPT. A stance muscle's tendon force rises and falls at 3-20 /s
+# (0 to 0.5-1 of F_max in 50-150 ms), so eps = 0.5 /s charges those rates within 3-15 % of
+# |F'|; below eps the cost turns quadratic (F'^2 / (2 eps)), where the slack muscles' small
+# rates sit.
+FORCE_RATE_SMOOTHING = 0.5
+
+
+def force_rate_cost(muscles: Muscles, force_rate, power: int = 2):
+    """sum_i V_i |F'_i|^p / sum_i V_i (1/s^p): the volume-weighted mean of the normalised tendon
+    forces' rates F' (1/s) to the power p, a cost of generating force quickly in the active
+    muscle volume (Kipp, Grabowski & Kram 2018, J Exp Biol 221:jeb184218). p = 2: F'^2, smooth;
+    p = 1: |F'| ~ sqrt(F'^2 + eps^2) - eps (FORCE_RATE_SMOOTHING), a loading to F and back costing
+    2 F whatever its time, so per step F_peak ~ W T / t_c, Kram & Taylor 1990's 1 / t_c. Either
+    charges a falling force as a rising one; a stand-in for Kipp's rate, not its equation."""
     volume = ca.DM(muscles.volume / muscles.volume.sum())
+    if power == 1:
+        eps = FORCE_RATE_SMOOTHING
+        return ca.dot(volume, ca.sqrt(force_rate**2 + eps**2) - eps)
     return ca.dot(volume, force_rate**2)
 
 
@@ -352,6 +365,7 @@ class LegFunctions:
     metabolic_rate(theta, theta', a, F, F') -> (1)   W, summed over the leg's muscles
     activation_cost(a) -> (1)                the volume-weighted mean of a^3
     force_rate_cost(F') -> (1)               the volume-weighted mean of F'^2 (1/s^2)
+    force_rate_abs(F') -> (1)                the volume-weighted mean of |F'| (1/s), smoothed
     """
 
     residual: ca.Function
@@ -360,6 +374,7 @@ class LegFunctions:
     metabolic_rate: ca.Function
     activation_cost: ca.Function
     force_rate_cost: ca.Function
+    force_rate_abs: ca.Function
 
 
 def leg_functions(muscles: Muscles) -> LegFunctions:
@@ -377,7 +392,8 @@ def leg_functions(muscles: Muscles) -> LegFunctions:
         metabolic_rate=ca.Function("metabolic_rate", state,
                                    [ca.sum1(metabolic_rate(muscles, act, length, velocity))]),
         activation_cost=ca.Function("activation_cost", [act], [activation_cost(muscles, act)]),
-        force_rate_cost=ca.Function("force_rate_cost", [rate], [force_rate_cost(muscles, rate)]))
+        force_rate_cost=ca.Function("force_rate_cost", [rate], [force_rate_cost(muscles, rate)]),
+        force_rate_abs=ca.Function("force_rate_abs", [rate], [force_rate_cost(muscles, rate, power=1)]))
 
 
 def tendon_energy(muscles: Muscles, force) -> np.ndarray:

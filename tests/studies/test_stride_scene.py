@@ -99,6 +99,9 @@ def test_the_actuation_ladder_is_one_key():
     muscles = rungs["muscles"]
     assert muscles.actuation == "muscles" and muscles.objective == "metabolic"  # the calibrated cost
     assert muscles.muscles.max_force[0] == pytest.approx(1500.0 * (73.0 / 75.0) ** (2 / 3))  # iliopsoas
+    assert muscles.force_rate_power == 2  # the squared rates unless the key says 1
+    data["stride"]["force_rate_power"] = 1
+    assert parse(data).settings.force_rate_power == 1
 
 
 @pytest.mark.parametrize("edit, key", [({"actuation": "springs"}, "stride.actuation"),
@@ -107,6 +110,8 @@ def test_the_actuation_ladder_is_one_key():
                                        ({"actuation": "muscles", "torque_limit_nm_per_kg": 3.0},
                                         "stride.torque_limit_nm_per_kg"),
                                        ({"actuation": "muscles", "objective": "effort"}, "stride"),
+                                       ({"actuation": "muscles", "force_rate_power": 3}, "stride.force_rate_power"),
+                                       ({"actuation": "torque", "force_rate_power": 1}, "stride.force_rate_power"),
                                        ({"objective": "activation"}, "stride")])
 def test_bad_actuation_is_named(edit, key):
     data = tomllib.loads(STRIDE_SCENES[0].read_text())

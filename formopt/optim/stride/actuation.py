@@ -34,7 +34,7 @@ NU = len(JOINTS)
 ACTIVATION_RATE = 200.0
 RESERVE_LIMIT = 1.0  # N m/kg: the muscles' reserve moments at each joint (MuscleDriven)
 MIN_FORCE_PENALTY = 5.0  # N m per unit F: the guess's least-squares split of a moment (MuscleDriven.initial)
-OWN_INTEGRANDS = ("activation", "muscle_metabolic", "force_rate", "muscle_rates", "reserves",
+OWN_INTEGRANDS = ("activation", "muscle_metabolic", "force_rate", "force_rate_abs", "muscle_rates", "reserves",
                   "moment_rates")  # zero for the torque sources without moment dynamics
 # Moment dynamics (StrideSettings.moment_time > 0): the torque rungs' moments are states and
 # their rates the controls, so a moment cannot jump (a muscle's force rises and falls over tens
@@ -205,6 +205,7 @@ class MuscleDriven(Torques):
                 "muscle_metabolic": sum(self.leg.metabolic_rate(self._joint(theta, k), self._joint(thetad, k), a, F, Fd)
                                         for k, (a, F, _, _, Fd) in enumerate(legs)),
                 "force_rate": sum(self.leg.force_rate_cost(Fd) for *_, Fd in legs),
+                "force_rate_abs": sum(self.leg.force_rate_abs(Fd) for *_, Fd in legs),
                 "muscle_rates": sum(ca.sumsqr(Fd / self.RATE_SCALE) for *_, Fd in legs),
                 "reserves": ca.sumsqr(u[6 * self.n:]), "moment_rates": 0.0}
 

@@ -17,6 +17,8 @@ with the integrals I_k (the transcription's quadrature of the node integrands, o
     activation        int sum_legs sum_i V_i a_i^3 / sum_i V_i dt  (s), scale ACTIVATION_SCALE
     force_rate        int sum_legs sum_i V_i F'_i^2 / sum_i V_i dt  (s^-1; F' the normalised tendon
                       forces' rates, mechanics.muscles.force_rate_cost), scale FORCE_RATE_SCALE
+    force_rate_abs    int sum_legs sum_i V_i |F'_i| / sum_i V_i dt  (1; |F'| smoothed,
+                      mechanics.muscles.FORCE_RATE_SMOOTHING), scale FORCE_RATE_ABS_SCALE
     muscle_rates      int sum_i (F'_i / 10)^2 dt  (s^-1)
     reserves          int sum_j r_j^2 dt  ((N m/kg)^2 s; the muscles' reserve moments)
     moment_rates      int sum_j tau_j'^2 dt  (N^2 m^2 / s; the torque rungs' moment dynamics),
@@ -27,9 +29,10 @@ W+/0.25 + W-/1.2 (Margaria 1968); joint-metabolic = joint_metabolic (scale 1 / (
 transport); work and metabolic add WORK_REGULARISATION times effort.
 With muscles (problem.MUSCLE_OBJECTIVES): metabolic = the muscles' energy (Bhargava et al. 2004,
 scale 1 / (m g)) plus StrideSettings.force_rate_weight (problem.FORCE_RATE_WEIGHT, calibrated on
-RBDS001 at 3.5 m/s and frozen) times the force-rate term: Bhargava's heat is paid per activation
-and time, the same per distance for short contacts as for long, while runners pay for
-generating force quickly (Kram & Taylor 1990; Kipp, Grabowski & Kram 2018); activation = the
+RBDS001 at 3.5 m/s and frozen) times the force-rate term (StrideSettings.force_rate_power 2,
+the default, or with power 1 force_rate_abs and its own weight, problem.FORCE_RATE_WEIGHTS):
+Bhargava's heat is paid per activation and time, the same per distance for short contacts as
+for long, while runners pay for generating force quickly (Kram & Taylor 1990; Kipp, Grabowski & Kram 2018); activation = the
 activation term; both add MUSCLE_RATE_REGULARISATION times muscle_rates and
 StrideSettings.reserve_weight (problem.RESERVE_WEIGHT) times reserves. With moment dynamics
 (StrideSettings.moment_time = T > 0) the torque rungs add T^2 times the moments' squared rates
@@ -63,6 +66,10 @@ ACTIVATION_SCALE = 10.0
 # without the term, 3.9 at the calibrated one: RBDS001, 3.5 m/s, 171.4 steps/min,
 # docs/concepts/muscles.md) made of order 0.1.
 FORCE_RATE_SCALE = 0.01
+# The force-rate term's scale with power 1 (m): its integral per distance (int sum_legs sum_i
+# V_i |F'_i| / sum V dt / d: 1.18 /m at weight 1, 24 nodes; 0.69 at the calibrated weight 12:
+# RBDS001, 3.5 m/s, graded 80 nodes, docs/concepts/muscles.md) made of order 0.1.
+FORCE_RATE_ABS_SCALE = 0.1
 # A small weight on the tendon forces' squared rates (per distance) keeps F' from chattering
 # where the muscles are slack (problems/muscle_redundancy.py uses the same).
 MUSCLE_RATE_REGULARISATION = 1e-4
@@ -136,15 +143,16 @@ class CostTerm:
 
 
 def own_terms(objective: str, mass: float, muscles: bool = False,
-              force_rate_weight: float = FORCE_RATE_WEIGHT) -> list[CostTerm]:
+              force_rate_weight: float = FORCE_RATE_WEIGHT, force_rate_power: int = 2) -> list[CostTerm]:
     """An objective's own terms (problem.OBJECTIVES; module docstring), without its
     regularisation, the impacts and the smoothing."""
     weight = mass * GRAVITY
     if muscles:
         if objective == "activation":
             return [CostTerm("activation", ACTIVATION_SCALE)]
-        return [CostTerm("muscle_metabolic", 1.0 / weight),
-                CostTerm("force_rate", FORCE_RATE_SCALE, force_rate_weight)]
+        rate = (CostTerm("force_rate", FORCE_RATE_SCALE, force_rate_weight) if force_rate_power == 2
+                else CostTerm("force_rate_abs", FORCE_RATE_ABS_SCALE, force_rate_weight))
+        return [CostTerm("muscle_metabolic", 1.0 / weight), rate]
     if objective == "effort":
         return [CostTerm("effort", 100.0 / weight ** 2)]
     if objective == "work":
@@ -158,7 +166,7 @@ def own_terms(objective: str, mass: float, muscles: bool = False,
 def terms(settings: StrideSettings, mass: float) -> tuple[CostTerm, ...]:
     """The cost terms of a stride's settings (module docstring)."""
     muscles = settings.muscles is not None
-    out = own_terms(settings.objective, mass, muscles, settings.force_rate_weight)
+    out = own_terms(settings.objective, mass, muscles, settings.rate_weight, settings.force_rate_power)
     if muscles:
         out += [CostTerm("muscle_rates", 1.0, MUSCLE_RATE_REGULARISATION), CostTerm("reserves", 1.0, settings.reserve_weight)]
     if settings.moment_time:  # T^2 times the effort's scale: sum_j tau_j^2 + T^2 tau_j'^2

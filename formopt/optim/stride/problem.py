@@ -132,6 +132,18 @@ SMOOTHING = 1e-6
 # 2026-11-27; docs/concepts/muscles.md, "In the stride"); with Riener & Edrich's moments added to
 # the muscles' own passive fibres 166.0 / 202.1 / 218.7: their passive elasticity counted twice.
 FORCE_RATE_WEIGHT = 80.0
+# The force-rate term's power (StrideSettings.force_rate_power): 2, the squared rates above, or 1,
+# their absolute values (mechanics.muscles.force_rate_cost: Kram & Taylor 1990's cost of force
+# per contact time, docs/concepts/muscles.md "The force rate's power"), each with its own weight
+# calibrated on RBDS001 at 3.5 m/s. Power 1's, 12, on the free optimum of the mesh near converged
+# for cadence (graded 1, 80 nodes, the global search's on 40 solved again on 80: `cd problems &&
+# python muscle_energy.py --speed 3.5 --grading 1 --nodes 80 --start search --power 1 --weight 12`):
+# 170.8 steps/min against the runner's 171.4; bracketed warm from weight 120's stride (`--load
+# --free`): 8 / 15 / 30 / 60 / 120 gave 179.9 / 168.2 / 164.1 / 161.6 / 159.4 (at 24 nodes the
+# cadence stays above 175 at any weight: `python problems/muscle_calibration.py --power 1 --weights
+# 30 60 120 240`, 187.5 / 180.0 / 175.7 from 60 up, so that mesh cannot calibrate it).
+FORCE_RATE_POWERS = (1, 2)
+FORCE_RATE_WEIGHTS = {2: FORCE_RATE_WEIGHT, 1: 12.0}
 # The muscles' reserve moments' weight (m/s per (N m/kg)^2; costs' `reserves` term): at 100,
 # 1 N m/kg held over a step costs about 30, four to twelve times a stride's whole objective
 # (2.4-7.1 with the force-rate term, RBDS001 at 2.5-4.5 m/s), at 10000 a hundred times that. The
@@ -275,7 +287,9 @@ class StrideSettings:
     tendons: dict = field(default_factory=dict)  # joint ("hip", "knee", "ankle") -> N m/rad/kg
     transcription: str = "trapezoid"  # or "hermite-simpson" (transcription.TRANSCRIPTIONS)
     muscles: Muscles | None = None  # one leg's muscles scaled to the body: the "muscles" rung
-    force_rate_weight: float = FORCE_RATE_WEIGHT  # the muscles' metabolic objective's one weight (calibration only)
+    # the muscles' metabolic objective's one weight (calibration only; None: FORCE_RATE_WEIGHTS')
+    force_rate_weight: float | None = None
+    force_rate_power: int = 2  # the force-rate term's power (FORCE_RATE_POWERS)
     reserve_weight: float = RESERVE_WEIGHT  # the muscles' reserves' weight (a what-if only)
     # s, > 0: the torque rungs' moments as states, their squared rates weighed by its square
     # (actuation.Torques, costs.py: the time below which a change costs more than its moment)
@@ -337,8 +351,10 @@ class StrideSettings:
             raise InputError(f"law {self.law!r}: expected no-slip or coulomb (frictionless "
                              "impacts leave the foot sliding, a phase the stride does not model)")
         check("impact_weight", self.impact_weight)
-        if not 0.0 <= self.force_rate_weight < math.inf:
+        if self.force_rate_weight is not None and not 0.0 <= self.force_rate_weight < math.inf:
             raise InputError(f"force_rate_weight = {self.force_rate_weight}: expected a finite number >= 0")
+        if self.force_rate_power not in FORCE_RATE_POWERS:
+            raise InputError(f"force_rate_power = {self.force_rate_power}: expected 1 (|F'|) or 2 (F'^2)")
         if not 0.0 <= self.moment_time <= MOMENT_TIME_MAX or (self.moment_time and self.muscles is not None):
             raise InputError(f"moment_time = {self.moment_time}: expected 0 to {MOMENT_TIME_MAX} s, "
                              "0 with muscles (their moments are their tendons' forces)")
@@ -371,6 +387,11 @@ class StrideSettings:
     def actuation(self) -> str:
         """The rung of ACTUATIONS these settings build."""
         return "muscles" if self.muscles is not None else "torque+springs" if any(self.tendons.values()) else "torque"
+
+    @property
+    def rate_weight(self) -> float:
+        """The force-rate term's weight: force_rate_weight, or its power's calibrated one."""
+        return FORCE_RATE_WEIGHTS[self.force_rate_power] if self.force_rate_weight is None else self.force_rate_weight
 
     @property
     def phases(self) -> tuple[Phase, ...]:

@@ -18,6 +18,7 @@ from formopt.optim.stride.problem import RUNNER_TENDONS
 
 FORCE_RATE = {"strike": "flat", "nodes": 14, "objective": "metabolic", "muscles": "gait2d",
               "force_rate_weight": 1e4}  # the force-rate term dominant
+FORCE_RATE_ABS = {**FORCE_RATE, "force_rate_power": 1, "force_rate_weight": 1e3}  # |F'|, smoothed
 CASES = [{"strike": "heel", "tendons": RUNNER_TENDONS},
          {"strike": "heel", "tendons": RUNNER_TENDONS, "consistency_rows": "trapezoid"},  # its one-sided rows
          {"strike": "forefoot", "objective": "metabolic", "impact_weight": 1.0},
@@ -37,8 +38,9 @@ def case(request):
     nlp = StrideNLP(JointSpace(paper_body()), StrideSettings(**{"nodes": 18, **settings}))
     rng = np.random.default_rng(SEED)
     guess = nlp._with_power_split(perturbed(ballistic(nlp, 3.5), rng))
-    if nlp.settings.objective == "joint-metabolic" or nlp.settings.moment_time:  # moments (or with moment
-        # dynamics their rates) of order one: beyond the joint-metabolic smoothing (0.2 N m/kg)
+    if nlp.settings.objective == "joint-metabolic" or nlp.settings.moment_time or nlp.settings.force_rate_power == 1:
+        # moments (or with moment dynamics their rates, with |F'| the tendon-force rates F'/10) of order
+        # one: beyond the joint-metabolic smoothing (0.2 N m/kg), |F'|'s (0.5 /s)
         for phase in nlp.phases:
             guess[f"U_{phase.name}"] = rng.uniform(-2.0, 2.0, np.shape(guess[f"U_{phase.name}"]))
     x = nlp.blocks.join(guess)
@@ -110,12 +112,19 @@ def test_gradient_against_finite_differences(case):
         assert grad[k] == pytest.approx(numeric, rel=1e-5, abs=1e-6)
 
 
-@pytest.mark.parametrize("case", [FORCE_RATE], indirect=True, ids=["force-rate"])
+@pytest.mark.parametrize("case", [FORCE_RATE_ABS], indirect=True, ids=["force-rate-abs"])
+def test_force_rate_abs_against_casadis_own_derivatives(case):
+    """The smoothed |F'| term's gradient, Jacobian and Hessian, node by node, as CasADi's."""
+    test_against_casadis_own_derivatives(case)
+
+
+@pytest.mark.parametrize("case", [FORCE_RATE, FORCE_RATE_ABS], indirect=True, ids=["force-rate", "force-rate-abs"])
 def test_force_rate_gradient_against_finite_differences(case):
     """The muscles' force-rate term (the metabolic objective's weighted sum V_i F'_i^2 / sum V_i
-    per distance), where it dominates: the objective's gradient in the tendon-force rates'
-    controls F'/10 of both legs, at every phase's first, middle and last column, against
-    central differences (the random columns of the test above may miss them)."""
+    per distance, or with power 1 its smoothed |F'_i|), where it dominates: the objective's
+    gradient in the tendon-force rates' controls F'/10 of both legs, at every phase's first,
+    middle and last column, against central differences (the random columns of the test above
+    may miss them)."""
     nlp, ours, x, p, _ = case
     n = len(nlp.settings.muscles.names)
     grad = np.asarray(ours["grad_f"](x, p)[1], float).ravel()

@@ -11,8 +11,15 @@ from formopt.mechanics import muscles as hill
 from formopt.mechanics.body import paper_body, scaled_body
 from formopt.mechanics.errors import InputError
 from formopt.optim.stride.actuation import MuscleDriven
+from formopt.optim.stride.costs import terms
 from formopt.optim.stride.layout import Rows
-from formopt.optim.stride.problem import MUSCLE_MESH_SHIFT, StrideSettings, mesh_note
+from formopt.optim.stride.problem import (
+    FORCE_RATE_WEIGHT,
+    FORCE_RATE_WEIGHTS,
+    MUSCLE_MESH_SHIFT,
+    StrideSettings,
+    mesh_note,
+)
 
 BODY = scaled_body(62.0, 1.81)
 
@@ -92,6 +99,39 @@ def test_force_rate_integrand_is_volume_weighted(rung):
     got = rung.integrands(ca.DM.zeros(9), ca.DM.zeros(9), ca.DM.ones(rung.states) * 0.2, ca.DM(u))["force_rate"]
     share = rung.muscles.volume / rung.muscles.volume.sum()
     assert float(got) == pytest.approx(9.0 + 25.0 * share[0], rel=1e-12)
+
+
+def test_force_rate_abs_integrand_is_volume_weighted_and_smooth(rung):
+    """Power 1's integrand: sum over legs of sum_i V_i (sqrt(F'_i^2 + eps^2) - eps) / sum_i V_i
+    (1/s), within eps of |F'|, zero at F' = 0."""
+    eps = hill.FORCE_RATE_SMOOTHING
+    u = np.zeros(rung.controls)
+    u[16:24] = 0.3  # F' = 3 /s, the right leg's muscles
+    u[40] = -0.5  # the left iliopsoas, F' = -5 /s
+    got = rung.integrands(ca.DM.zeros(9), ca.DM.zeros(9), ca.DM.ones(rung.states) * 0.2, ca.DM(u))["force_rate_abs"]
+    share = rung.muscles.volume / rung.muscles.volume.sum()
+    smooth = [np.sqrt(x ** 2 + eps ** 2) - eps for x in (3.0, 5.0)]
+    assert float(got) == pytest.approx(smooth[0] + smooth[1] * share[0], rel=1e-12)
+    assert 3.0 - eps < smooth[0] < 3.0
+    zero = rung.integrands(ca.DM.zeros(9), ca.DM.zeros(9), ca.DM.ones(rung.states) * 0.2, ca.DM.zeros(rung.controls))
+    assert float(zero["force_rate_abs"]) == 0.0
+
+
+@pytest.mark.parametrize("power, integral, weight", [(2, "force_rate", FORCE_RATE_WEIGHT),
+                                                     (1, "force_rate_abs", FORCE_RATE_WEIGHTS[1])])
+def test_the_force_rate_power_picks_its_term_and_its_calibrated_weight(power, integral, weight):
+    settings = StrideSettings(muscles=body_muscles(paper_body()), objective="metabolic", force_rate_power=power)
+    rate = [t for t in terms(settings, 70.0) if t.integral.startswith("force_rate")]
+    assert [(t.integral, t.weight) for t in rate] == [(integral, weight)]
+    given = StrideSettings(muscles=body_muscles(paper_body()), objective="metabolic", force_rate_power=power,
+                           force_rate_weight=3.0)
+    assert [t.weight for t in terms(given, 70.0) if t.integral == integral] == [3.0]
+
+
+@pytest.mark.parametrize("power", [0, 3, 1.5])
+def test_force_rate_power_must_be_1_or_2(power):
+    with pytest.raises(InputError, match="force_rate_power"):
+        StrideSettings(muscles=body_muscles(paper_body()), objective="metabolic", force_rate_power=power)
 
 
 @pytest.mark.parametrize("weight", [-1.0, float("nan"), float("inf")])
