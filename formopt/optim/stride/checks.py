@@ -18,6 +18,7 @@
 
 from __future__ import annotations
 
+import threading
 import weakref
 
 import casadi as ca
@@ -140,15 +141,18 @@ def muscle_dynamics(nlp: StrideNLP, i: int) -> ca.Function:
 
 
 def replay(nlp: StrideNLP, i: int, excitations: bool) -> ca.Function:
-    """Phase i's forward simulation, a CasADi integrator built once per NLP and kept with it:
-    `integrator` on the phase's `grid`."""
+    """Phase i's forward simulation, a CasADi integrator built once per NLP and thread and kept
+    with the NLP: `integrator` on the phase's `grid`. One per thread: two threads calling one
+    CVODES integrator at once crash the process (CasADi 3.8.2; a Dask worker runs its tasks in
+    threads, and collocation.build shares an NLP among them)."""
     replays = _REPLAYS.setdefault(nlp, {})
-    if (i, excitations) not in replays:
-        replays[i, excitations] = integrator(nlp, i, excitations, grid(nlp, i)[0])
-    return replays[i, excitations]
+    key = (i, excitations, threading.get_ident())
+    if key not in replays:
+        replays[key] = integrator(nlp, i, excitations, grid(nlp, i)[0])
+    return replays[key]
 
 
-_REPLAYS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # `replay`'s, per NLP
+_REPLAYS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # `replay`'s, per NLP (and thread)
 
 
 def integrator(nlp: StrideNLP, i: int, excitations: bool, fractions: np.ndarray) -> ca.Function:

@@ -7,7 +7,10 @@ Hermite-Simpson heel strike and a 14-node muscle-driven flat strike. Measured di
 phases' replays (reset_theta) 6e-9 rad or less, the open loop 1e-6 rad and 3e-4 in its rates and
 periodicity (the open loop amplifies every difference), the slip 3e-9 m/s."""
 
+import gc
 import json
+import weakref
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -64,3 +67,24 @@ def test_a_failed_integration_is_an_infinite_error(js):
     assert out["reset_per_phase"][1] == np.inf and out["periodicity"] == np.inf
     assert out["per_phase_theta"][1:] == [np.inf] * (len(nlp.phases) - 1)
     np.testing.assert_allclose(np.delete(out["reset_per_phase"], 1), np.delete(old["reset_per_phase"], 1), atol=1e-7)
+
+
+def test_threads_share_an_nlp_safely(js):
+    """Four threads forward-checking one NLP at once (a Dask worker's threads; collocation.build
+    shares an NLP among them) get the figures one thread gets: each thread its own integrators
+    (checks.replay; one CVODES integrator called by two threads at once crashed the process)."""
+    nlp, blocks, parameters, _ = pinned(js, "slide24")
+    alone = forward(nlp, blocks, parameters)
+    with ThreadPoolExecutor(4) as pool:
+        together = list(pool.map(lambda _: forward(nlp, blocks, parameters), range(8)))
+    assert all(out == alone for out in together)
+
+
+def test_an_nlps_replays_go_with_it(js):
+    """The integrators kept per NLP (checks.replay) do not keep it alive."""
+    nlp, blocks, parameters, _ = pinned(js, "heel24")
+    forward(nlp, blocks, parameters)
+    gone = weakref.ref(nlp)
+    del nlp
+    gc.collect()
+    assert gone() is None
