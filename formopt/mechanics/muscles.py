@@ -219,13 +219,15 @@ def tendon_force_rate(muscles: Muscles) -> ca.Function:
     tendon forces' rates, the explicit form of the implicit tendon dynamics (a forward simulation's
     right-hand side). The residual falls monotonically with F' (a faster-stretching tendon leaves
     a slower fibre, and f_V and the damping rise with the fibre's velocity); Newton from F' = 0
-    (CasADi's rootfinder, which raises where it does not converge)."""
+    (CasADi's rootfinder, which raises where it does not converge; its evaluation warnings off:
+    a replay from outside the muscles' domain printed one per Newton step, thousands)."""
     n = len(muscles.names)
     angles, rates = ca.SX.sym("theta", 3), ca.SX.sym("theta_dot", 3)
     act, force, rate = ca.SX.sym("a", n), ca.SX.sym("F", n), ca.SX.sym("F_dot", n)
     residual = ca.Function("residual", [rate, ca.vertcat(angles, rates, act, force)],
                            [hill_residual(muscles, act, angles, rates, force, rate)])
-    solver = ca.rootfinder("tendon_rate", "newton", residual, {"abstol": 1e-10, "max_iter": 50})
+    solver = ca.rootfinder("tendon_rate", "newton", residual, {"abstol": 1e-10, "max_iter": 50,
+                                                               "show_eval_warnings": False})
     return ca.Function("tendon_force_rate", [angles, rates, act, force],
                        [solver(ca.DM.zeros(n), ca.vertcat(angles, rates, act, force))])
 

@@ -20,7 +20,7 @@ from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import paper_body
 from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings
-from formopt.optim.stride.checks import forward
+from formopt.optim.stride.checks import forward, replayed
 
 PINS = np.load(Path(__file__).with_name("forward_pins.npz"))
 CASES = ["heel24", "flat24", "forefoot24", "slide24", "hermite24", "muscles14"]
@@ -88,3 +88,19 @@ def test_an_nlps_replays_go_with_it(js):
     del nlp
     gc.collect()
     assert gone() is None
+
+
+def test_a_muscle_replay_out_of_the_muscles_domain_is_quiet(js, capfd):
+    """Activations below zero (NaN in the Hill equilibrium's Jacobian at Newton's steps,
+    mechanics.muscles.tendon_force_rate) replay without the rootfinder's evaluation warnings
+    (13,748 lines of stderr for this start, as many under scipy's LSODA before); tendon forces
+    of 1e6 F_max, where Newton does not converge, fail the replay (None), CasADi's dump of the
+    failing call's inputs its one print (26 lines)."""
+    nlp, blocks, parameters, _ = pinned(js, "muscles14")
+    name = nlp.phases[1].name
+    x, z = blocks[f"X_{name}"][:, 0], blocks[f"Z_{name}"][:, 0]
+    capfd.readouterr()
+    assert replayed(nlp, 1, blocks, parameters, True, np.r_[x, z - 5.0]) is not None
+    assert capfd.readouterr().err == ""
+    assert replayed(nlp, 1, blocks, parameters, True, np.r_[x, z * 1e6]) is None
+    assert len(capfd.readouterr().err.splitlines()) < 100
