@@ -27,7 +27,7 @@ from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY
 from formopt.optim.stride.collocation import build
 from formopt.optim.stride.local import optimum
-from formopt.optim.stride.problem import RESERVE_WEIGHT, StrideSettings
+from formopt.optim.stride.problem import FORCE_RATE_POWERS, RESERVE_WEIGHT, StrideSettings
 
 
 def log_weight(weight: float) -> float:
@@ -57,7 +57,7 @@ def main(argv=None) -> int:
     parser.add_argument("--nodes", type=int, default=24)
     parser.add_argument("--mass", type=float, default=62.0)
     parser.add_argument("--reserve-weight", type=float, default=RESERVE_WEIGHT)
-    parser.add_argument("--power", type=int, default=2, help="the force-rate term's power, 1 or 2")
+    parser.add_argument("--power", type=int, default=2, choices=FORCE_RATE_POWERS, help="the force-rate term's power")
     args = parser.parse_args(argv)
     body = scaled_body(args.mass, 1.81)
     base = StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic", muscles=body_muscles(body),

@@ -51,7 +51,7 @@ from formopt.mechanics.joint_space import GRAVITY, JOINTS, JointSpace
 from formopt.optim.stride.collocation import NX, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS, step_length
-from formopt.optim.stride.problem import StrideSettings
+from formopt.optim.stride.problem import FORCE_RATE_POWERS, StrideSettings
 from formopt.optim.stride.refine import refined, warm_options
 from formopt.optim.stride.search import global_optimum
 
@@ -309,7 +309,7 @@ def main(argv=None) -> int:
     parser.add_argument("--nodes", type=int, default=24)
     parser.add_argument("--mass", type=float, default=62.0)
     parser.add_argument("--weight", type=float, help="the force-rate weight (default: the power's calibrated one)")
-    parser.add_argument("--power", type=int, default=2, help="the force-rate term's power, 1 or 2")
+    parser.add_argument("--power", type=int, default=2, choices=FORCE_RATE_POWERS, help="the force-rate term's power")
     parser.add_argument("--grading", type=float, default=0.0, help="StrideSettings.grading")
     parser.add_argument("--start", default="generic", choices=("generic", "search"),
                         help="each cadence from the generic start, or warm from its neighbour from the free optimum")
@@ -323,6 +323,8 @@ def main(argv=None) -> int:
     parser.add_argument("--rate-smoothing", type=float, help="1/s: --power 1's eps (a what-if; 0.5)")
     parser.add_argument("--detail", action="store_true", help="force rate by muscle, time at a > 0.9, a table")
     args = parser.parse_args(argv)
+    if args.rate_smoothing is not None and (args.power != 1 or not args.rate_smoothing > 0):
+        parser.error("--rate-smoothing: |F'|'s eps (1/s, > 0) with --power 1")
     if args.dorsiflexion is not None:  # a what-if: this process's ranges, read when the NLP is built
         joint_space.RANGES["ankle"] = (joint_space.RANGES["ankle"][0], np.radians(args.dorsiflexion))
     if args.rate_smoothing is not None:  # a what-if: this process's |F'| smoothing, read when the NLP is built

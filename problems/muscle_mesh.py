@@ -270,7 +270,8 @@ def main(argv=None) -> int:
                              "(default grading --grading's; a phase's duration held in ms)")
     parser.add_argument("--start", default="search", choices=("search", "path"))
     parser.add_argument("--spend", type=int, default=1)
-    parser.add_argument("--power", type=int, default=2, help="the force-rate term's power, 1 or 2 (its calibrated weight)")
+    parser.add_argument("--power", type=int, default=2, choices=problem.FORCE_RATE_POWERS,
+                        help="the force-rate term's power (its calibrated weight)")
     parser.add_argument("--mu-init", type=float, nargs="+", default=[MUSCLE_WARM_START["mu_init"]],
                         help="IPOPT's first barrier for each finer mesh's solve, each in turn")
     parser.add_argument("--no-consistency-rows", dest="consistency_rows", action="store_const", const="off",
@@ -292,7 +293,8 @@ def main(argv=None) -> int:
           f"the first mesh's stride {'the search at spend ' + str(args.spend) if args.start == 'search' else 'the default path'}"
           f"{'' if args.consistency_rows == 'exact' else ', without the consistency rows'}"
           f"{f', grading {args.grading:g}' if args.grading else ''}"
-          f"{f' (the first mesh {args.first_grading:g})' if args.first_grading is not None else ''}",
+          f"{f' (the first mesh {args.first_grading:g})' if args.first_grading is not None else ''}"
+          f"{f', force-rate power {args.power}' if args.power != 2 else ''}",
           flush=True)
     strides = []
     first_grading = args.grading if args.first_grading is None else args.first_grading
