@@ -74,8 +74,9 @@ def leg_terms(muscles: hill.Muscles) -> ca.Function:
 
 def breakdown(nlp, stride) -> dict:
     """Per leg role (stance, swing) the integrals (J, n muscles) of A, M, S, W, E and W-, the
-    reserves' work and moment impulses, and per muscle (`by_muscle`) int V_i F'_i^2 / sum V dt
-    (1/s) and the time at activation > 0.9 (s)."""
+    reserves' work and moment impulses, and per muscle (`by_muscle`) int V_i |F'_i|^p / sum V dt
+    (1/s^(p-1), p the force-rate power: mechanics.muscles.charged_force_rate) and the time at
+    activation > 0.9 (s)."""
     act = nlp.ocp.models[0].actuation
     n, m, blocks = act.n, nlp.mass, stride.solved.blocks
     function = leg_terms(act.muscles)
@@ -94,7 +95,7 @@ def breakdown(nlp, stride) -> dict:
             role = "stance" if k == 0 and phase.rows else "swing"
             out[role] += np.vstack([np.asarray(v, float) @ w for v in values]).reshape(6, n)
             Fd, ad = act.RATE_SCALE * U[3 * n * k + 2 * n:3 * n * (k + 1)], act.ACTIVATION_SCALE * U[3 * n * k + n:3 * n * k + 2 * n]
-            charged = rate_power(Fd, nlp.settings.force_rate_power)
+            charged = np.asarray(hill.charged_force_rate(ca.DM(Fd), nlp.settings.force_rate_power), float)
             rates[f"force_rate_{role}"] += float(volume @ charged @ w)
             by_muscle["force_rate"][role] += volume * (charged @ w)
             by_muscle["saturated_s"][role] += (Z[2 * n * k:2 * n * k + n] > 0.9) @ w
@@ -110,12 +111,6 @@ def breakdown(nlp, stride) -> dict:
         reserve["muscle_impulse"] += float(np.abs(muscle).sum(axis=0) @ w)
         reserve["squared"] += float((U[6 * n:] ** 2).sum(axis=0) @ w)
     return {"roles": out, "reserve": reserve, "names": act.muscles.names, "rates": rates, "by_muscle": by_muscle}
-
-
-def rate_power(rates, power: int):
-    """|F'|^p as the force-rate term charges it (mechanics.muscles.force_rate_cost; p = 1 smoothed)."""
-    eps = hill.FORCE_RATE_SMOOTHING
-    return rates ** 2 if power == 2 else np.sqrt(rates ** 2 + eps ** 2) - eps
 
 
 def rate_term(nlp):
@@ -135,7 +130,7 @@ def cost_terms(nlp, stride) -> dict:
 
 def detail(nlp, stride, parts: dict) -> None:
     """Per muscle (both legs' share of one step) the force-rate term's part of the objective,
-    w s int V_i F'_i^2 / sum V dt / d (costs.CostTerm), stance and swing, and the time at
+    w s int V_i |F'_i|^p / sum V dt / d (costs.CostTerm), stance and swing, and the time at
     activation > 0.9 (s, the right leg's stance and the rest)."""
     term = rate_term(nlp)
     rates, saturated = parts["by_muscle"]["force_rate"], parts["by_muscle"]["saturated_s"]

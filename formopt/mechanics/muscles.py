@@ -349,11 +349,16 @@ def force_rate_cost(muscles: Muscles, force_rate, power: int = 2):
     p = 1: |F'| ~ sqrt(F'^2 + eps^2) - eps (FORCE_RATE_SMOOTHING), a loading to F and back costing
     2 F whatever its time, so per step F_peak ~ W T / t_c, Kram & Taylor 1990's 1 / t_c. Either
     charges a falling force as a rising one; a stand-in for Kipp's rate, not its equation."""
-    volume = ca.DM(muscles.volume / muscles.volume.sum())
+    return ca.dot(ca.DM(muscles.volume / muscles.volume.sum()), charged_force_rate(force_rate, power))
+
+
+def charged_force_rate(force_rate, power: int = 2):
+    """|F'|^p (1/s^p) of each rate F' (1/s) as `force_rate_cost` charges it: F'^2, or with p = 1
+    sqrt(F'^2 + eps^2) - eps (FORCE_RATE_SMOOTHING); CasADi, elementwise."""
     if power == 1:
         eps = FORCE_RATE_SMOOTHING
-        return ca.dot(volume, ca.sqrt(force_rate**2 + eps**2) - eps)
-    return ca.dot(volume, force_rate**2)
+        return ca.sqrt(force_rate**2 + eps**2) - eps
+    return force_rate**2
 
 
 @dataclass(frozen=True)
