@@ -2,8 +2,9 @@
 solve_ivp gave on the same solutions before it replaced it (DOP853 at rtol 1e-10 for the moments,
 LSODA at 1e-8 for the excitations), pinned in forward_pins.npz by `python
 benchmarks/forward_speed.py pin` (2026-11-27, on the scipy path): the paper's body at 3.5 m/s,
-24-node heel, flat and forefoot strikes, a sliding forefoot strike (Coulomb, mu 0.3), a
-Hermite-Simpson heel strike and a 14-node muscle-driven flat strike. Measured differences: the
+24-node heel, flat and forefoot strikes, a 40-node heel strike, a sliding forefoot strike
+(Coulomb, mu 0.3), a Hermite-Simpson heel strike and a 14-node muscle-driven flat strike.
+Measured differences: the
 phases' replays (reset_theta) 6e-9 rad or less, the open loop 1e-6 rad and 3e-4 in its rates and
 periodicity (the open loop amplifies every difference), the slip 3e-9 m/s."""
 
@@ -23,7 +24,7 @@ from formopt.optim.stride import StrideNLP, StrideSettings
 from formopt.optim.stride.checks import forward, replayed
 
 PINS = np.load(Path(__file__).with_name("forward_pins.npz"))
-CASES = ["heel24", "flat24", "forefoot24", "slide24", "hermite24", "muscles14"]
+CASES = ["heel24", "heel40", "flat24", "forefoot24", "slide24", "hermite24", "muscles14"]
 
 
 @pytest.fixture(scope="module")
