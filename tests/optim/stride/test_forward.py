@@ -4,9 +4,9 @@ LSODA at 1e-8 for the excitations), pinned in forward_pins.npz by `python
 benchmarks/forward_speed.py pin` (2026-11-27, on the scipy path): the paper's body at 3.5 m/s,
 24-node heel, flat and forefoot strikes, a 40-node heel strike, a sliding forefoot strike
 (Coulomb, mu 0.3), a Hermite-Simpson heel strike and a 14-node muscle-driven flat strike.
-Measured differences: the
-phases' replays (reset_theta) 6e-9 rad or less, the open loop 1e-6 rad and 3e-4 in its rates and
-periodicity (the open loop amplifies every difference), the slip 3e-9 m/s."""
+Measured differences: the phases' replays (reset_theta) 6e-9 rad or less, the open loop 1e-6
+rad and 3e-4 in its rates and periodicity (the open loop amplifies every difference), the slip
+3e-9 m/s."""
 
 import gc
 import json
