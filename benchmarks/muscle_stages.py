@@ -27,7 +27,8 @@ from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, collocation
 from formopt.optim.stride.checks import half_period
 from formopt.optim.stride.guess import ballistic, from_torques
-from formopt.optim.stride.problem import RESERVE_CONTINUATION, RUNNER_TENDONS
+from formopt.optim.stride.local import torque_start
+from formopt.optim.stride.problem import RESERVE_CONTINUATION
 
 
 def stage(label: str, nlp: StrideNLP, run):
@@ -54,7 +55,7 @@ def main():
     body, v = scaled_body(62.0, 1.81), args.speed
     nlp = StrideNLP(JointSpace(body), rung_settings("muscles", body, args.nodes), args.ipopt, False)
     print(f"RBDS001's body, heel, {args.nodes} nodes, {v:g} m/s, interpreted; CPU s")
-    base = nlp.variant(muscles=None, objective="effort", tendons=RUNNER_TENDONS, transcription="trapezoid")
+    base = torque_start(nlp)
     torques = stage("torque+springs", base, lambda: base.solve(ballistic(base, v), v))
     start = from_torques(nlp, base, torques)
     for weight in (w for w in RESERVE_CONTINUATION if w < nlp.settings.reserve_weight):

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..mechanics.joint_space import JointSpace
+from ..optim.stride.problem import FORCE_RATE_WEIGHTS
 from ..optim.stride.result import RESERVE_WINDOW_S
 from ..studies.stride import CYCLE_JOINTS, StrideStudy, predicted_cycle
 from .figures import new_figure
@@ -177,7 +178,8 @@ def stride_table(study: StrideStudy) -> str:
                          f"({m['metabolic_J'] / (s.mass_kg * s.step_length_m):.2f} J/kg/m), tendons store "
                          f"{m['tendon_stored_J']:.1f} J (soleus and gastrocnemius {m['achilles_stored_J']:.1f} J) "
                          f"and return {m['tendon_returned_J']:.1f} J, reserves up to {m['reserve_nm_per_kg']:.3f} N m/kg "
-                         f"over {RESERVE_WINDOW_S * 1e3:g} ms ({m['reserve_peak_nm_per_kg']:.3f} at a node)")
+                         f"over {RESERVE_WINDOW_S * 1e3:g} ms ({m['reserve_peak_nm_per_kg']:.3f} at a node)"
+                         + rate_text(s))
     for s in study.strides:
         if not s.valid:
             why = s.failed_checks if s.success else [f"IPOPT: {s.status}", *s.failed_checks]
@@ -187,6 +189,16 @@ def stride_table(study: StrideStudy) -> str:
     checked = [f"NOTE mesh {s.strike}: {s.mesh_check.text()}" for s in study.strides if s.mesh_check is not None]
     lines += checked or ([f"NOTE mesh: {study.mesh}; --mesh-check measures this stride"] if study.mesh else [])
     return "\n".join(lines)
+
+
+def rate_text(stride) -> str:
+    """The muscles' line's word on its force-rate term where it is not the default (problem.
+    FORCE_RATE_WEIGHTS: the power 2 at its calibrated weight), empty otherwise."""
+    rate = stride.muscles["force_rate_term"]
+    if stride.objective != "metabolic" or (rate["power"], rate["weight"]) == (2, FORCE_RATE_WEIGHTS[2]):
+        return ""
+    term = "|F'|" if rate["power"] == 1 else "F'^2"
+    return f"; its force-rate term {term} at weight {rate['weight']:g}"
 
 
 def search_text(stride) -> str:

@@ -53,7 +53,7 @@ from ...mechanics.muscles import force_velocity
 from .problem import (
     EFFICIENCY_NEGATIVE,
     EFFICIENCY_POSITIVE,
-    FORCE_RATE_WEIGHT,
+    FORCE_RATE_WEIGHTS,
     SMOOTHING,
     WORK_REGULARISATION,
     StrideSettings,
@@ -143,10 +143,13 @@ class CostTerm:
 
 
 def own_terms(objective: str, mass: float, muscles: bool = False,
-              force_rate_weight: float = FORCE_RATE_WEIGHT, force_rate_power: int = 2) -> list[CostTerm]:
+              force_rate_weight: float | None = None, force_rate_power: int = 2) -> list[CostTerm]:
     """An objective's own terms (problem.OBJECTIVES; module docstring), without its
-    regularisation, the impacts and the smoothing."""
+    regularisation, the impacts and the smoothing; the force-rate term's weight by default its
+    power's calibrated one (problem.FORCE_RATE_WEIGHTS)."""
     weight = mass * GRAVITY
+    if force_rate_weight is None:
+        force_rate_weight = FORCE_RATE_WEIGHTS[force_rate_power]
     if muscles:
         if objective == "activation":
             return [CostTerm("activation", ACTIVATION_SCALE)]

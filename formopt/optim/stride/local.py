@@ -71,6 +71,13 @@ def best_of(nlp: StrideNLP, solves: list[Solved], simulate: bool = True) -> Stri
     return best
 
 
+def torque_start(nlp: StrideNLP) -> StrideNLP:
+    """The torque+springs NLP a muscle NLP starts from (`muscle_start`): its mesh and strike,
+    effort, problem.RUNNER_TENDONS, trapezoid, without the muscles' settings."""
+    return nlp.variant(muscles=None, objective="effort", tendons=RUNNER_TENDONS, transcription="trapezoid",
+                       force_rate_power=2, force_rate_weight=None)
+
+
 def muscle_start(nlp: StrideNLP, speed: float, slope: float, mu: float, cadence: float | None) -> dict:
     """The muscles' start: the torque+springs rung's optimum (effort, problem.RUNNER_TENDONS,
     trapezoid) of the same strike and mesh from the generic guess, its net moments split among
@@ -80,7 +87,7 @@ def muscle_start(nlp: StrideNLP, speed: float, slope: float, mu: float, cadence:
     the default 10000 ends in a costlier optimum: problem.RESERVE_WEIGHT). From the generic
     guess itself the muscle NLP did not converge in 600 iterations (RBDS001, heel, 40 nodes,
     3.5 m/s, 2026-11-25)."""
-    base = nlp.variant(muscles=None, objective="effort", tendons=RUNNER_TENDONS, transcription="trapezoid")
+    base = torque_start(nlp)
     start = from_torques(nlp, base, base.solve(ballistic(base, speed), speed, slope, mu, cadence))
     for weight in (w for w in RESERVE_CONTINUATION if w < nlp.settings.reserve_weight):
         step = nlp.variant({**CONTINUATION_IPOPT, **(nlp.ipopt or {})}, reserve_weight=weight)

@@ -331,12 +331,7 @@ class StrideSettings:
         if self.touchdown == "slide" and (self.law != "coulomb" or self.strike not in SLIDING_PHASES):
             raise InputError(f"touchdown 'slide': expected law coulomb and strike "
                              f"{' or '.join(SLIDING_PHASES)}, not {self.law} and {self.strike}")
-        if self.muscles is not None and (self.tendons or self.objective not in MUSCLE_OBJECTIVES):
-            raise InputError(f"actuation 'muscles': expected objective {' or '.join(MUSCLE_OBJECTIVES)} and no "
-                             f"tendons (the muscles' tendons are in series), not {self.objective!r}"
-                             + (f" and tendons {self.tendons}" if self.tendons else ""))
-        if self.muscles is None and self.objective == "activation":
-            raise InputError("objective 'activation': expected actuation 'muscles'")
+        self._check_muscles()
         if self.transcription not in TRANSCRIPTIONS:
             raise InputError(f"transcription {self.transcription!r}: expected {' or '.join(TRANSCRIPTIONS)}")
         if self.slip not in (1, -1):
@@ -351,10 +346,6 @@ class StrideSettings:
             raise InputError(f"law {self.law!r}: expected no-slip or coulomb (frictionless "
                              "impacts leave the foot sliding, a phase the stride does not model)")
         check("impact_weight", self.impact_weight)
-        if self.force_rate_weight is not None and not 0.0 <= self.force_rate_weight < math.inf:
-            raise InputError(f"force_rate_weight = {self.force_rate_weight}: expected a finite number >= 0")
-        if self.force_rate_power not in FORCE_RATE_POWERS:
-            raise InputError(f"force_rate_power = {self.force_rate_power}: expected 1 (|F'|) or 2 (F'^2)")
         if not 0.0 <= self.moment_time <= MOMENT_TIME_MAX or (self.moment_time and self.muscles is not None):
             raise InputError(f"moment_time = {self.moment_time}: expected 0 to {MOMENT_TIME_MAX} s, "
                              "0 with muscles (their moments are their tendons' forces)")
@@ -382,6 +373,23 @@ class StrideSettings:
                 check("duration_s", bound, name=f"duration {name}")
             if not lo < hi:
                 raise InputError(f"duration {name} = ({lo}, {hi}): expected low < high")
+
+    def _check_muscles(self):
+        """The muscles' settings (__post_init__): their objectives, no tendons in parallel, the
+        force-rate term's power and weight, none of them on a torque rung."""
+        if self.muscles is not None and (self.tendons or self.objective not in MUSCLE_OBJECTIVES):
+            raise InputError(f"actuation 'muscles': expected objective {' or '.join(MUSCLE_OBJECTIVES)} and no "
+                             f"tendons (the muscles' tendons are in series), not {self.objective!r}"
+                             + (f" and tendons {self.tendons}" if self.tendons else ""))
+        if self.muscles is None and self.objective == "activation":
+            raise InputError("objective 'activation': expected actuation 'muscles'")
+        if self.force_rate_weight is not None and not 0.0 <= self.force_rate_weight < math.inf:
+            raise InputError(f"force_rate_weight = {self.force_rate_weight}: expected a finite number >= 0")
+        if self.force_rate_power not in FORCE_RATE_POWERS:
+            raise InputError(f"force_rate_power = {self.force_rate_power}: expected 1 (|F'|) or 2 (F'^2)")
+        if self.muscles is None and (self.force_rate_power != 2 or self.force_rate_weight is not None):
+            raise InputError("force_rate_power / force_rate_weight: the muscles' metabolic objective's, "
+                             "expected actuation 'muscles'")
 
     @property
     def actuation(self) -> str:

@@ -444,7 +444,8 @@ def muscle_outputs(nlp: StrideNLP, solved: Solved, checks: dict, t: np.ndarray) 
     the sums of the rises and of the falls of each tendon's elastic energy,
     mechanics.muscles.tendon_energy; `achilles`: soleus and gastrocnemius); adds the reserves'
     largest mean over RESERVE_WINDOW_S (`reserve_mean`, the validity's) and largest node value
-    (N m/kg) to `checks`; t (c,) the node times (s)."""
+    (N m/kg) to `checks`; `force_rate_term`: the objective's force-rate power and weight (the
+    metabolic objective's); t (c,) the node times (s)."""
     act, blocks = nlp.ocp.models[0].actuation, solved.blocks
     if not isinstance(act, MuscleDriven):
         return None
@@ -462,7 +463,8 @@ def muscle_outputs(nlp: StrideNLP, solved: Solved, checks: dict, t: np.ndarray) 
     checks["reserve_nm_per_kg"] = reserve_mean(t, U[6 * n:])
     checks["reserve_peak_nm_per_kg"] = float(np.abs(U[6 * n:]).max())
     achilles = [k for k, name in enumerate(names) if name.split("_")[0] in ("soleus", "gastrocnemius")]
-    return {"metabolic_J": metabolic_J, "tendon_stored_J": float(rises.sum()),
+    rate = {"power": nlp.settings.force_rate_power, "weight": nlp.settings.rate_weight}
+    return {"metabolic_J": metabolic_J, "force_rate_term": rate, "tendon_stored_J": float(rises.sum()),
             "tendon_returned_J": float(falls.sum()), "achilles_stored_J": float(rises[achilles].sum()),
             "reserve_nm_per_kg": checks["reserve_nm_per_kg"], "reserve_peak_nm_per_kg": checks["reserve_peak_nm_per_kg"],
             "names": names, "activation": activation.T,

@@ -134,6 +134,14 @@ def test_force_rate_power_must_be_1_or_2(power):
         StrideSettings(muscles=body_muscles(paper_body()), objective="metabolic", force_rate_power=power)
 
 
+@pytest.mark.parametrize("change", [{"force_rate_power": 1}, {"force_rate_weight": 3.0}])
+def test_the_force_rate_term_is_the_muscles_alone(change):
+    """A torque rung has no force-rate term: its power or weight set there is refused, and the
+    muscles' torque+springs start (local.torque_start) drops them."""
+    with pytest.raises(InputError, match="force_rate_power / force_rate_weight"):
+        StrideSettings(objective="effort", **change)
+
+
 @pytest.mark.parametrize("weight", [-1.0, float("nan"), float("inf")])
 def test_force_rate_weight_must_be_finite_and_not_negative(weight):
     """An infinite weight was taken: the objective inf, or nan where the force rates are zero."""

@@ -5,6 +5,8 @@ for the optimum, beyond it when the stance leg's muscles are switched off. The c
 stride there is (14 nodes, the flat strike's least mesh, is the least of any strike): the file
 takes about 20 s of CPU, against 31 s with the heel strike at its least mesh (18 nodes)."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -14,6 +16,7 @@ from formopt.mechanics.joint_space import JointSpace
 from formopt.optim.stride import StrideNLP, StrideSettings, optimum
 from formopt.optim.stride.checks import forward
 from formopt.optim.stride.result import TOLERANCES
+from formopt.report.stride import rate_text
 
 
 @pytest.fixture(scope="module")
@@ -56,3 +59,13 @@ def test_the_muscles_warm_start_reaches_the_neighbouring_speed(muscle_stride):
     nlp, stride = muscle_stride
     warm = nlp.resolve(stride.solved, 3.6)
     assert warm.success and warm.iterations < 100
+
+
+def test_the_stride_records_its_force_rate_term(muscle_stride):
+    """The muscles' record names the objective's force-rate power and weight (the JSON's
+    `muscles.force_rate_term`); the report's muscles line says them only off the default."""
+    _, stride = muscle_stride
+    assert stride.muscles["force_rate_term"] == {"power": 2, "weight": 80.0}
+    assert rate_text(stride) == ""
+    other = dataclasses.replace(stride, muscles={**stride.muscles, "force_rate_term": {"power": 1, "weight": 12.0}})
+    assert rate_text(other) == "; its force-rate term |F'| at weight 12"
