@@ -53,10 +53,10 @@ from ...mechanics.muscles import force_velocity
 from .problem import (
     EFFICIENCY_NEGATIVE,
     EFFICIENCY_POSITIVE,
-    FORCE_RATE_WEIGHTS,
     SMOOTHING,
     WORK_REGULARISATION,
     StrideSettings,
+    force_rate_weight,
 )
 
 # The activation term's scale (m/s): its integral per distance (s/m, about 0.01-0.05 a step)
@@ -143,18 +143,17 @@ class CostTerm:
 
 
 def own_terms(objective: str, mass: float, muscles: bool = False,
-              force_rate_weight: float | None = None, force_rate_power: int = 2) -> list[CostTerm]:
+              rate_weight: float | None = None, force_rate_power: int = 2) -> list[CostTerm]:
     """An objective's own terms (problem.OBJECTIVES; module docstring), without its
     regularisation, the impacts and the smoothing; the force-rate term's weight by default its
-    power's calibrated one (problem.FORCE_RATE_WEIGHTS)."""
+    power's calibrated one (problem.force_rate_weight)."""
     weight = mass * GRAVITY
-    if force_rate_weight is None:
-        force_rate_weight = FORCE_RATE_WEIGHTS[force_rate_power]
     if muscles:
         if objective == "activation":
             return [CostTerm("activation", ACTIVATION_SCALE)]
-        rate = (CostTerm("force_rate", FORCE_RATE_SCALE, force_rate_weight) if force_rate_power == 2
-                else CostTerm("force_rate_abs", FORCE_RATE_ABS_SCALE, force_rate_weight))
+        rate_weight = force_rate_weight(force_rate_power, rate_weight)
+        rate = (CostTerm("force_rate", FORCE_RATE_SCALE, rate_weight) if force_rate_power == 2
+                else CostTerm("force_rate_abs", FORCE_RATE_ABS_SCALE, rate_weight))
         return [CostTerm("muscle_metabolic", 1.0 / weight), rate]
     if objective == "effort":
         return [CostTerm("effort", 100.0 / weight ** 2)]

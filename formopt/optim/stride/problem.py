@@ -144,6 +144,12 @@ FORCE_RATE_WEIGHT = 80.0
 # 30 60 120 240`, 187.5 / 180.0 / 175.7 from 60 up, so that mesh cannot calibrate it).
 FORCE_RATE_POWERS = (1, 2)
 FORCE_RATE_WEIGHTS = {2: FORCE_RATE_WEIGHT, 1: 12.0}
+
+
+def force_rate_weight(power: int, weight: float | None = None) -> float:
+    """The force-rate term's weight: `weight`, or (None) its power's calibrated one
+    (FORCE_RATE_WEIGHTS)."""
+    return FORCE_RATE_WEIGHTS[power] if weight is None else weight
 # The muscles' reserve moments' weight (m/s per (N m/kg)^2; costs' `reserves` term): at 100,
 # 1 N m/kg held over a step costs about 30, four to twelve times a stride's whole objective
 # (2.4-7.1 with the force-rate term, RBDS001 at 2.5-4.5 m/s), at 10000 a hundred times that. The
@@ -398,8 +404,8 @@ class StrideSettings:
 
     @property
     def rate_weight(self) -> float:
-        """The force-rate term's weight: force_rate_weight, or its power's calibrated one."""
-        return FORCE_RATE_WEIGHTS[self.force_rate_power] if self.force_rate_weight is None else self.force_rate_weight
+        """The force-rate term's weight (`force_rate_weight`)."""
+        return force_rate_weight(self.force_rate_power, self.force_rate_weight)
 
     @property
     def phases(self) -> tuple[Phase, ...]:
