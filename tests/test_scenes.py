@@ -34,6 +34,14 @@ def test_an_unknown_name_is_refused_naming_the_shipped_ones():
         formopt.load("nosuch")
 
 
+def test_list_names_every_shipped_scene_with_or_without_its_word(capsys):
+    assert main(["scenes"]) == 0
+    listed = capsys.readouterr().out
+    assert main(["scenes", "list"]) == 0
+    assert capsys.readouterr().out == listed
+    assert all(name in listed for name in formopt.scenes())
+
+
 def test_copy_writes_once_and_refuses_to_overwrite(tmp_path, capsys):
     assert main(["scenes", "copy", "demo", str(tmp_path / "mine")]) == 0
     copied = tmp_path / "mine" / "demo.toml"

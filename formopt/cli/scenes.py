@@ -1,4 +1,4 @@
-"""formopt scenes [copy NAME DIR]: the scenes shipped with formopt, one line each, and a copy
+"""formopt scenes [list | copy NAME DIR]: the scenes shipped with formopt, one line each, and a copy
 of one to edit (every command also takes a shipped scene's name in place of a file)."""
 
 from __future__ import annotations
@@ -13,6 +13,7 @@ def add_parser(commands):
     cmd = commands.add_parser("scenes", help="list the shipped scenes; `scenes copy NAME DIR` "
                               "copies one to edit")
     actions = cmd.add_subparsers(dest="action")
+    actions.add_parser("list", help="the shipped scenes, one line each (the default)")
     copy = actions.add_parser("copy", help="copy the shipped scene NAME into the folder DIR")
     copy.add_argument("name", help="a shipped scene's name (`formopt scenes` lists them)")
     copy.add_argument("dir", help="folder to copy it into (created if needed)")
