@@ -17,6 +17,7 @@ from formopt.io.scene import SceneError, parse
 from formopt.optim.stride import optimum, refine
 from formopt.optim.stride.refine import MESH_TOLERANCE_PCT, MeshCheck, fine_nodes, mesh_check, refined
 from formopt.report.stride import stride_table
+from formopt.studies import stride as study
 from formopt.studies.stride import StrideStudy, mesh_text, stages
 
 SCENE = SHIPPED / "stride.toml"
@@ -117,13 +118,27 @@ def test_fine_nodes_refuses_past_the_range():
         fine_nodes(61)
 
 
-def test_the_command_reports_the_check(coarse, tmp_path, capsys):
+def test_the_command_reports_the_check(coarse, checked, tmp_path, capsys, monkeypatch):
     """`--mesh-check` over a scene without the key: the record in the JSON (the best stride's and
-    its row), the mesh note what was measured, one progress stage more."""
-    scene, _, stride = coarse
+    its row), the mesh note what was measured, one progress stage more. The command's two solves
+    are the module's (its NLP's settings and the stride's speed and starts checked): solving them
+    again cost 3 s of CPU; `formopt stride` solving end to end: test_stride_scene.py."""
+    scene, nlp, stride = coarse
     path = tmp_path / "small.toml"
     path.write_text(SCENE.read_text().replace("nodes = 40", f"nodes = {NODES}\nstarts = 1"))
     assert stages(scene) == 1 and stages(parse(scene_data(mesh_check=True))) == 2
+
+    def solved(on, speed, slope, mu, cadence, simulate, starts):
+        assert (on.settings, speed, slope, mu, cadence, simulate, starts) == \
+            (nlp.settings, scene.speed, scene.slope, scene.friction, scene.cadence, True, 1)
+        return stride
+
+    def mesh_checked(on, coarse_stride, simulate):
+        assert on.settings == nlp.settings and coarse_stride is stride and simulate
+        return checked
+
+    monkeypatch.setattr(study, "optimum", solved)
+    monkeypatch.setattr(study, "mesh_check", mesh_checked)
     code = main(["stride", str(path), "--json", "--mesh-check", "--out", str(tmp_path / "out")])
     report = json.loads(capsys.readouterr().out)
     assert code == (0 if report["valid"] else 1)
