@@ -165,48 +165,50 @@ if LoadFileScheduling is not None:
         return ByFile(config, log) if config.getvalue("dist") == "loadfile" else None
 
 
-# The files (and the Dask tests' unit, "dask") by CPU seconds of their tests, slowest first: each
-# file alone in one process (pytest --cpu-times FILES, no -n), 2026-11-27, the compile cache warm
-# but for test_speed_paths and test_bench (a fresh clone's: pytest -p no:cacheprovider), on a
-# machine with 2 other solves beside it. They are handed out in this order, then the others (under
-# 1 s each) in xdist's: the longest first, so the two workers end close together (a file of 5.8 s
-# left out of the list came late). A stale list costs only balance, never a test.
-SLOW = ("optim/stride/test_derivatives.py",  # 17.3
-        "studies/test_stride_sweep.py",  # 13.0
-        "optim/stride/test_speed_paths.py",  # 12.8 (6.9 with the compile cache of an earlier run)
-        "test_examples.py",  # 11.6
-        "optim/stride/test_mesh_check.py",  # 11.6 (measured alone after the list, 2026-11-27)
-        "test_notebooks.py",  # 9.9
-        "test_bad_input.py",  # 9.2
-        "optim/test_stride.py",  # 9.1
-        "cli/test_compare_command.py",  # 8.7
-        "optim/stride/test_search.py",  # 7.8
-        "optim/stride/test_muscle_stride.py",  # 7.3
-        "optim/stride/test_collocation.py",  # 7.0
-        "optim/test_posture.py",  # 7.0
-        "optim/stride/test_consistency_rows.py",  # 5.8
-        "mechanics/test_contact.py",  # 5.4
-        "studies/test_compare_stride.py",  # 5.4
-        "studies/test_bench.py",  # 5.1 (3.9 with the compile cache)
-        "measure/test_corruption.py",  # 4.9
-        "test_docs.py",  # 4.6
-        "optim/test_gait.py",  # 4.2
-        "test_signals.py",  # 3.7 (its subprocesses)
-        "dask",  # about 3.5: the cluster, its worker, the pools beside it and their files' fixtures
-        "mechanics/test_joint_moments.py",  # 3.2
-        "optim/test_stride_slide.py",  # 3.1
-        "studies/test_compare.py",  # 3.0
-        "mechanics/test_impact.py",  # 2.7
-        "studies/test_stride_scene.py",  # 2.6
-        "mechanics/test_landing.py",  # about 2 without its Dask test
-        "optim/stride/test_grading.py",  # 2.4
-        "optim/test_stride_tendons.py",  # 2.2
-        "mechanics/test_extremes.py",  # 2.0
-        "studies/test_optimum_map.py",  # about 1.7 without its Dask test
+# The files (and the Dask tests' unit, "dask") by CPU seconds of their tests, slowest first: the
+# suite on 2 workers (pytest -n 2 --dist loadfile --cpu-times), 2026-11-27 (helper suite5), the
+# compile cache warm; the few whose figure there held another file's late-reaped children (a
+# pool's, a killed sweep's) measured alone. They are handed out in this order, then the others
+# (under 1 s each) in xdist's: the longest first, so the two workers end close together (the
+# list before, which left test_forward.py out and ranked test_mesh_check.py at 11.6 s, gave the
+# workers 96.8 and 106.5 s of CPU). A stale list costs only balance, never a test.
+SLOW = ("optim/stride/test_derivatives.py",  # 18.8
+        "studies/test_stride_sweep.py",  # 12.5
+        "test_examples.py",  # 11.3
+        "cli/test_compare_command.py",  # 9.8
+        "test_notebooks.py",  # 9.6 (its kernel's)
+        "test_bad_input.py",  # 9.5 (12 s of wall: its subprocesses)
+        "optim/test_posture.py",  # 7.8
+        "optim/test_stride.py",  # 7.7
+        "optim/stride/test_search.py",  # 7.4
+        "optim/stride/test_collocation.py",  # 7.3
+        "optim/stride/test_muscle_stride.py",  # 6.6
+        "optim/stride/test_speed_paths.py",  # 6.6 (12 with a cold compile cache)
+        "studies/test_compare_stride.py",  # 5.6
+        "optim/stride/test_forward.py",  # 5.4
+        "measure/test_corruption.py",  # 4.7
+        "optim/stride/test_consistency_rows.py",  # 4.7
+        "test_docs.py",  # 4.5
+        "optim/stride/test_mesh_check.py",  # 4.4
+        "mechanics/test_contact.py",  # 4.3
+        "mechanics/test_joint_moments.py",  # 3.4
+        "measure/test_pipeline.py",  # 3.3 alone (the measured trials it shares with measure/)
+        "studies/test_bench.py",  # 3.1
+        "studies/test_compare.py",  # 2.9
+        "measure/test_stance.py",  # 2.8
+        "dask",  # 2.7: the cluster, its worker and the two Dask tests
+        "mechanics/test_landing.py",  # 2.6 without its Dask test
+        "optim/test_gait.py",  # 2.6
+        "studies/test_optimum_map.py",  # 2.6 without its Dask test
+        "studies/test_stride_scene.py",  # 2.4
+        "mechanics/test_extremes.py",  # 2.3
+        "optim/test_stride_slide.py",  # 2.2
+        "optim/stride/test_grading.py",  # 2.1
+        "test_signals.py",  # 2.0 (its subprocesses)
+        "mechanics/test_impact.py",  # 1.9
+        "optim/test_stride_tendons.py",  # 1.8
         "io/test_numerics.py",  # 1.7
-        "measure/test_stance.py",  # 1.7
-        "cli/test_reports.py",  # 1.5
-        "optim/stride/test_moment_dynamics.py",  # 1.4
-        "measure/test_pipeline.py",  # 1.3
+        "cli/test_reports.py",  # 1.6
+        "optim/stride/test_moment_dynamics.py",  # 1.3
         "io/test_mocap.py",  # 1.1
-        "measure/test_joints.py")  # 1.1
+        "mechanics/test_joint_space.py")  # 1.0
