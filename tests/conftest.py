@@ -142,12 +142,16 @@ if LoadFileScheduling is not None:
 
     class ByFile(LoadFileScheduling):
         """`pytest -n 2 --dist loadfile` (the Makefile): each file's tests on one worker, so its
-        module fixtures are built once, and the Dask tests (named "...dask...") together on one
-        worker, so one cluster starts. (xdist's loadgroup marks do not reach its scheduler under
-        pytest 9, which no longer reads the node id xdist rewrites.)"""
+        module fixtures are built once, the Dask tests (named "...dask...") together on one
+        worker, so one cluster starts, and tests/measure/'s files together, so its conftest's
+        session fixtures (the trials read and measured: 1.3 s of CPU) are built once. (xdist's
+        loadgroup marks do not reach its scheduler under pytest 9, which no longer reads the node
+        id xdist rewrites.)"""
 
         def _split_scope(self, nodeid: str) -> str:
-            return "dask" if "dask" in nodeid.rsplit("::", 1)[-1] else super()._split_scope(nodeid)
+            if "dask" in nodeid.rsplit("::", 1)[-1]:
+                return "dask"
+            return MEASURE if nodeid.startswith(MEASURE) else super()._split_scope(nodeid)
 
         def _assign_work_unit(self, node) -> None:
             """Hand out the files of SLOW first, in its order, then the others in xdist's order: the
@@ -157,6 +161,8 @@ if LoadFileScheduling is not None:
             self.workqueue.move_to_end(first, last=False)
             super()._assign_work_unit(node)
 
+    MEASURE = "tests/measure/"  # one unit of work (ByFile)
+
     def _rank(nodeid: str) -> int:
         path = nodeid.split("::", 1)[0].removeprefix("tests/")
         return SLOW.index(path) if path in SLOW else len(SLOW)
@@ -165,9 +171,9 @@ if LoadFileScheduling is not None:
         return ByFile(config, log) if config.getvalue("dist") == "loadfile" else None
 
 
-# The files (and the Dask tests' unit, "dask") by CPU seconds of their tests, slowest first: the
-# suite on 2 workers (pytest -n 2 --dist loadfile --cpu-times), 2026-11-27 (helper suite5), the
-# compile cache warm; the few whose figure there held another file's late-reaped children (a
+# The files (and the units of the Dask tests, "dask", and of tests/measure/) by CPU seconds of
+# their tests, slowest first: the suite on 2 workers (pytest -n 2 --dist loadfile --cpu-times),
+# 2026-11-27, the compile cache warm; the few whose figure there held another file's late-reaped children (a
 # pool's, a killed sweep's) measured alone. They are handed out in this order, then the others
 # (under 1 s each) in xdist's: the longest first, so the two workers end close together (the
 # list before, which left test_forward.py out and ranked test_mesh_check.py at 11.6 s, gave the
@@ -178,6 +184,7 @@ SLOW = ("optim/stride/test_derivatives.py",  # 18.8
         "cli/test_compare_command.py",  # 9.8
         "test_notebooks.py",  # 9.6 (its kernel's)
         "test_bad_input.py",  # 9.5 (12 s of wall: its subprocesses)
+        "measure/",  # 8.9: tests/measure/'s files, one unit (ByFile)
         "optim/test_posture.py",  # 7.8
         "optim/test_stride.py",  # 7.7
         "optim/stride/test_search.py",  # 7.4
@@ -186,16 +193,13 @@ SLOW = ("optim/stride/test_derivatives.py",  # 18.8
         "optim/stride/test_speed_paths.py",  # 6.6 (12 with a cold compile cache)
         "studies/test_compare_stride.py",  # 5.6
         "optim/stride/test_forward.py",  # 5.4
-        "measure/test_corruption.py",  # 4.7
         "optim/stride/test_consistency_rows.py",  # 4.7
         "test_docs.py",  # 4.5
         "optim/stride/test_mesh_check.py",  # 4.4
         "mechanics/test_contact.py",  # 4.3
         "mechanics/test_joint_moments.py",  # 3.4
-        "measure/test_pipeline.py",  # 3.3 alone (the measured trials it shares with measure/)
         "studies/test_bench.py",  # 3.1
         "studies/test_compare.py",  # 2.9
-        "measure/test_stance.py",  # 2.8
         "dask",  # 2.7: the cluster, its worker and the two Dask tests
         "mechanics/test_landing.py",  # 2.6 without its Dask test
         "optim/test_gait.py",  # 2.6
