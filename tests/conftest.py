@@ -171,11 +171,11 @@ if LoadFileScheduling is not None:
         return ByFile(config, log) if config.getvalue("dist") == "loadfile" else None
 
 
-# The files (and the units of the Dask tests, "dask", and of tests/measure/) by CPU seconds of
-# their tests, slowest first: the suite on 2 workers (pytest -n 2 --dist loadfile --cpu-times),
+# The files (and the units of the Dask tests, "dask", and of tests/measure/) by CPU seconds of their
+# tests, slowest first: the suite on 2 workers (pytest -n 2 --dist loadfile --cpu-times),
 # 2026-11-27, the compile cache warm; the few whose figure there held another file's late-reaped
-# children (a pool's, a killed sweep's) measured alone. They are handed out in this order, then
-# the others (under 1 s each) in xdist's: the longest first, so the two workers end close together (the
+# children (a pool's, a killed sweep's) measured alone. They are handed out in this order, then the
+# others (under 1 s each) in xdist's: the longest first, so the two workers end close together (the
 # list before, which left test_forward.py out and ranked test_mesh_check.py at 11.6 s, gave the
 # workers 96.8 and 106.5 s of CPU). A stale list costs only balance, never a test.
 SLOW = ("optim/stride/test_derivatives.py",  # 18.8
