@@ -48,6 +48,7 @@ from formopt.mechanics import joint_space
 from formopt.mechanics import muscles as hill
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY, JOINTS, JointSpace
+from formopt.optim.stride import actuation
 from formopt.optim.stride.collocation import NX, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS, step_length
@@ -300,7 +301,7 @@ def durations(items: list[str]) -> dict:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
-    parser.add_argument("--cadences", type=float, nargs="+", default=[171.4, 222.0])
+    parser.add_argument("--cadences", type=float, nargs="*", default=[171.4, 222.0])
     parser.add_argument("--nodes", type=int, default=24)
     parser.add_argument("--mass", type=float, default=62.0)
     parser.add_argument("--weight", type=float, help="the force-rate weight (default: the power's calibrated one)")
@@ -316,6 +317,8 @@ def main(argv=None) -> int:
     parser.add_argument("--duration", nargs="*", default=[], help="phase=low-high (ms): its bounds (a what-if)")
     parser.add_argument("--dorsiflexion", type=float, help="deg: the ankle's range's end (a what-if; 30)")
     parser.add_argument("--rate-smoothing", type=float, help="1/s: --power 1's eps (a what-if; 0.5)")
+    parser.add_argument("--activation-smoothing", type=float,
+                        help="a' scale in the transcription's smoothing (a what-if; actuation.ACTIVATION_RATE_SMOOTHING)")
     parser.add_argument("--detail", action="store_true", help="force rate by muscle, time at a > 0.9, a table")
     args = parser.parse_args(argv)
     if args.rate_smoothing is not None and (args.power != 1 or not args.rate_smoothing > 0):
@@ -324,6 +327,8 @@ def main(argv=None) -> int:
         joint_space.RANGES["ankle"] = (joint_space.RANGES["ankle"][0], np.radians(args.dorsiflexion))
     if args.rate_smoothing is not None:  # a what-if: this process's |F'| smoothing, read when the NLP is built
         hill.FORCE_RATE_SMOOTHING = args.rate_smoothing
+    if args.activation_smoothing is not None:  # a what-if: read when the NLP is built
+        actuation.ACTIVATION_RATE_SMOOTHING = args.activation_smoothing
     body = scaled_body(args.mass, 1.81)
     settings = StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic", grading=args.grading,
                               muscles=strengthened(body_muscles(body), args.strength), force_rate_weight=args.weight,
@@ -335,7 +340,8 @@ def main(argv=None) -> int:
           + (f", F_max x {' '.join(args.strength)}" if args.strength else "")
           + (f", durations (ms) {' '.join(args.duration)}" if args.duration else "")
           + (f", ankle range to {args.dorsiflexion:g} deg" if args.dorsiflexion is not None else "")
-          + (f", |F'| smoothing {args.rate_smoothing:g} /s" if args.rate_smoothing is not None else ""), flush=True)
+          + (f", |F'| smoothing {args.rate_smoothing:g} /s" if args.rate_smoothing is not None else "")
+          + f", a' smoothing scale {actuation.ACTIVATION_RATE_SMOOTHING:g}", flush=True)
     if args.start == "search" or args.load:
         strides = walk(nlp, args, free_start(nlp, args))
     else:

@@ -41,6 +41,7 @@ OWN_INTEGRANDS = ("activation", "muscle_metabolic", "force_rate", "force_rate_ab
 # of ms, activation dynamics of 15-60 ms: mechanics.muscles); u = tau' / (m MOMENT_RATE_SCALE),
 # of order one for a moment of 3 N m/kg rising in 30 ms, within +-MOMENT_RATE_LIMIT: 1000
 # N m/kg/s (0 to 3 N m/kg in 3 ms), a numerical box the rate's cost keeps the optimum off.
+ACTIVATION_RATE_SMOOTHING = 10.0
 MOMENT_RATE_SCALE = 100.0  # N m/kg/s per unit control
 MOMENT_RATE_LIMIT = 10.0
 
@@ -79,6 +80,11 @@ class Torques:
 
     def rows(self, rows, theta, thetad, z, u) -> None:
         """The actuation's algebraic rows at a node: none."""
+
+    def smoothed(self, U):
+        """The rates the transcription's smoothing closes beside the accelerations (a column per
+        node): none here."""
+        return U[:0, :]
 
     def integrands(self, theta, thetad, z, u) -> dict:
         """Its own cost integrands (OWN_INTEGRANDS): with `dynamic` the moments' squared rates
@@ -190,6 +196,15 @@ class MuscleDriven(Torques):
         return ca.vertcat(*[ca.vertcat(self.ACTIVATION_SCALE * U[3 * n * k + n:3 * n * k + 2 * n, :],
                                        self.RATE_SCALE * U[3 * n * k + 2 * n:3 * n * (k + 1), :])
                             for k in range(2)])
+
+    def smoothed(self, U):
+        """The activations' rates a' (1/s, 2n rows, a column per node) times
+        ACTIVATION_RATE_SMOOTHING, for the transcription's smoothing: a' is a control tied to the
+        excitation by the activation dynamics' row, and a' alternating node to node leaves the
+        trapezoid's defects unchanged while the excitation zig-zags between its bounds."""
+        n = self.n
+        return ACTIVATION_RATE_SMOOTHING * self.ACTIVATION_SCALE * ca.vertcat(
+            *[U[3 * n * k + n:3 * n * k + 2 * n, :] for k in range(2)])
 
     def _joint(self, theta, k):
         return theta[3 + 3 * k:6 + 3 * k]
