@@ -5,7 +5,7 @@ the muscles' "metabolic" objective, the cadence imposed in turn.
                                      [--grading 1] [--start search [--search-nodes 40] | --load FILE]
                                      [--save FILE] [--free] [--strength iliopsoas=1.5]
                                      [--duration flight=80-250] [--dorsiflexion 20] [--rate-smoothing 0.25]
-                                     [--detail]
+                                     [--activation-smoothing 10] [--detail]
 
 Per cadence: the objective's terms (per distance, as IPOPT sees them); the muscles' energy per
 step (J) split by muscle, into stance (the right leg while it holds the ground) and swing (the
@@ -26,7 +26,9 @@ variant with that muscle's F_max (and so its volume and mass) scaled, not a defa
 phase=low-high` (ms): that phase's duration bounds (StrideSettings.duration), a what-if;
 `--dorsiflexion D` (deg): the ankle's range of motion ends at D (joint_space.RANGES, 30 deg: the
 solve's bound D + 5 deg and the range wall there), a what-if; `--rate-smoothing EPS` (1/s): --power 1's
-|F'| smoothing (mechanics.muscles.FORCE_RATE_SMOOTHING, 0.5), a what-if. `--detail`:
+|F'| smoothing (mechanics.muscles.FORCE_RATE_SMOOTHING, 0.5), a what-if; `--activation-smoothing S`:
+the activation rates' scale in the transcription's smoothing (actuation.ACTIVATION_RATE_SMOOTHING,
+10; 0 leaves their null mode open), a what-if; `--cadences` with no value: the free stride alone. `--detail`:
 per cadence also the force-rate term's part of the objective by muscle, stance and swing, and each
 muscle's time at activation > 0.9; at the end one line per cadence (the table of
 docs/concepts/muscles.md, "Why the cadence is low at 2.5 m/s") and the relaxed ankle's passive
