@@ -28,7 +28,8 @@ phase=low-high` (ms): that phase's duration bounds (StrideSettings.duration), a 
 solve's bound D + 5 deg and the range wall there), a what-if; `--rate-smoothing EPS` (1/s): --power 1's
 |F'| smoothing (mechanics.muscles.FORCE_RATE_SMOOTHING, 0.5), a what-if; `--activation-smoothing S`:
 the activation rates' scale in the transcription's smoothing (actuation.ACTIVATION_RATE_SMOOTHING,
-10; 0 leaves their null mode open), a what-if; `--cadences` with no value: the free stride alone. `--detail`:
+10; 0 leaves their null mode open), a what-if; `--cadences` with no value: the free stride alone;
+`--nodes` past the scenes' 120 (as problems/muscle_mesh.py), for a --load'ed stride. `--detail`:
 per cadence also the force-rate term's part of the objective by muscle, stance and swing, and each
 muscle's time at activation > 0.9; at the end one line per cadence (the table of
 docs/concepts/muscles.md, "Why the cadence is low at 2.5 m/s") and the relaxed ankle's passive
