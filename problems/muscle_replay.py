@@ -3,16 +3,21 @@ stride failing its forward check): a stride pickled by problems/muscle_energy.py
 RBDS001's body (62 kg, 1.81 m), heel strike, the muscles' "metabolic" objective.
 
     python problems/muscle_replay.py FILE [--speed 2.5] [--nodes 80] [--grading 1] [--power 1]
-                                     [--weight 12] [--rate-smoothing 0.5]
+                                     [--weight 12] [--rate-smoothing 0.5] [--intervals forefoot]
 
 Per phase, replayed from the NLP's state at its start (optim.stride.checks.replayed, the
 excitations through the activation dynamics and the Hill equilibrium: checks.forward's figure):
 the largest angle error (rad) and its coordinate and node; the largest activation and tendon-force
 errors (a, F_max) and their muscle; the phase's duration and nodes. Then the stance leg's
 tendon-force rates F' (1/s, the NLP's controls) where the force is loaded (F > 0.1 F_max):
-their median and 90th percentile of |F'|, against the |F'| smoothing eps; and how the excitations
-chatter, per phase: the share of interior nodes where e's second difference changes sign twice
-running (a zig-zag), and the largest |e_k+1 - e_k| between neighbours.
+their median, quartile and 90th percentile of |F'|, against the |F'| smoothing eps; and how the
+controls chatter, per phase: the share of nodes where the excitation e zig-zags (its steps change
+direction at two neighbouring nodes running, the step between them over 0.02), the largest
+|e_k+1 - e_k|, and the share where F' changes direction with a step over 1 /s. `--intervals
+PHASE ...`: each interval of those phases replayed alone from the NLP's state at its first node
+(the one-interval error: angles, angle rates, activations, tendon forces) beside the error grown
+from the phase's start at its second. The NLP (its mesh and objective) must be the stride's own:
+the replay reads its node times.
 """
 
 from __future__ import annotations
