@@ -5,7 +5,7 @@ the muscles' "metabolic" objective, the cadence imposed in turn.
                                      [--grading 1] [--start search [--search-nodes 40] | --load FILE]
                                      [--save FILE] [--free] [--strength iliopsoas=1.5]
                                      [--duration flight=80-250] [--dorsiflexion 20] [--rate-smoothing 0.25]
-                                     [--detail]
+                                     [--activation-smoothing 10] [--detail]
 
 Per cadence: the objective's terms (per distance, as IPOPT sees them); the muscles' energy per
 step (J) split by muscle, into stance (the right leg while it holds the ground) and swing (the
@@ -26,7 +26,10 @@ variant with that muscle's F_max (and so its volume and mass) scaled, not a defa
 phase=low-high` (ms): that phase's duration bounds (StrideSettings.duration), a what-if;
 `--dorsiflexion D` (deg): the ankle's range of motion ends at D (joint_space.RANGES, 30 deg: the
 solve's bound D + 5 deg and the range wall there), a what-if; `--rate-smoothing EPS` (1/s): --power 1's
-|F'| smoothing (mechanics.muscles.FORCE_RATE_SMOOTHING, 0.5), a what-if. `--detail`:
+|F'| smoothing (mechanics.muscles.FORCE_RATE_SMOOTHING, 0.5), a what-if; `--activation-smoothing S`:
+the activation rates' scale in the transcription's smoothing (actuation.ACTIVATION_RATE_SMOOTHING,
+10; 0 leaves their null mode open), a what-if; `--cadences` with no value: the free stride alone;
+`--nodes` past the scenes' 120 (as problems/muscle_mesh.py), for a --load'ed stride. `--detail`:
 per cadence also the force-rate term's part of the objective by muscle, stance and swing, and each
 muscle's time at activation > 0.9; at the end one line per cadence (the table of
 docs/concepts/muscles.md, "Why the cadence is low at 2.5 m/s") and the relaxed ankle's passive
@@ -48,6 +51,8 @@ from formopt.mechanics import joint_space
 from formopt.mechanics import muscles as hill
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY, JOINTS, JointSpace
+from formopt.mechanics.limits import Range
+from formopt.optim.stride import actuation, ranges
 from formopt.optim.stride.collocation import NX, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS, step_length
@@ -300,7 +305,7 @@ def durations(items: list[str]) -> dict:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
-    parser.add_argument("--cadences", type=float, nargs="+", default=[171.4, 222.0])
+    parser.add_argument("--cadences", type=float, nargs="*", default=[171.4, 222.0])
     parser.add_argument("--nodes", type=int, default=24)
     parser.add_argument("--mass", type=float, default=62.0)
     parser.add_argument("--weight", type=float, help="the force-rate weight (default: the power's calibrated one)")
@@ -316,6 +321,8 @@ def main(argv=None) -> int:
     parser.add_argument("--duration", nargs="*", default=[], help="phase=low-high (ms): its bounds (a what-if)")
     parser.add_argument("--dorsiflexion", type=float, help="deg: the ankle's range's end (a what-if; 30)")
     parser.add_argument("--rate-smoothing", type=float, help="1/s: --power 1's eps (a what-if; 0.5)")
+    parser.add_argument("--activation-smoothing", type=float,
+                        help="a' scale in the transcription's smoothing (a what-if; actuation.ACTIVATION_RATE_SMOOTHING)")
     parser.add_argument("--detail", action="store_true", help="force rate by muscle, time at a > 0.9, a table")
     args = parser.parse_args(argv)
     if args.rate_smoothing is not None and (args.power != 1 or not args.rate_smoothing > 0):
@@ -324,6 +331,9 @@ def main(argv=None) -> int:
         joint_space.RANGES["ankle"] = (joint_space.RANGES["ankle"][0], np.radians(args.dorsiflexion))
     if args.rate_smoothing is not None:  # a what-if: this process's |F'| smoothing, read when the NLP is built
         hill.FORCE_RATE_SMOOTHING = args.rate_smoothing
+    ranges.RANGES["nodes"] = Range(14, max(args.nodes, 120))  # past the scenes' 120, as problems/muscle_mesh.py
+    if args.activation_smoothing is not None:  # a what-if: read when the NLP is built
+        actuation.ACTIVATION_RATE_SMOOTHING = args.activation_smoothing
     body = scaled_body(args.mass, 1.81)
     settings = StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic", grading=args.grading,
                               muscles=strengthened(body_muscles(body), args.strength), force_rate_weight=args.weight,
@@ -335,7 +345,8 @@ def main(argv=None) -> int:
           + (f", F_max x {' '.join(args.strength)}" if args.strength else "")
           + (f", durations (ms) {' '.join(args.duration)}" if args.duration else "")
           + (f", ankle range to {args.dorsiflexion:g} deg" if args.dorsiflexion is not None else "")
-          + (f", |F'| smoothing {args.rate_smoothing:g} /s" if args.rate_smoothing is not None else ""), flush=True)
+          + (f", |F'| smoothing {args.rate_smoothing:g} /s" if args.rate_smoothing is not None else "")
+          + f", a' smoothing scale {actuation.ACTIVATION_RATE_SMOOTHING:g}", flush=True)
     if args.start == "search" or args.load:
         strides = walk(nlp, args, free_start(nlp, args))
     else:

@@ -19,7 +19,7 @@ durations (ms; one on its duration bound marked low or high), validity and the f
 the forward check's worst deviation per phase (rad: the excitations replayed, each phase
 from the NLP's state at its start), the held points' contact drift (mm), the energy budget's
 balance (% of W+), the reserves' largest mean over 10 ms and largest node value (N m/kg), IPOPT's iterations (the kept
-solve's; the search's total in brackets) and the CPU seconds (time.process_time, the search
+solve's; the search's total in brackets) and its return status and the CPU seconds (time.process_time, the search
 or solve with its checks; under the search's answer its record: spend, solves, the grid's
 objective per cadence, the optima met and their spread), and the objective's parts per phase and cost term (costs.terms:
 the muscles' energy, the force rate, the muscle rates, the reserves, the smoothing; `phase_costs`)
@@ -79,7 +79,7 @@ def report(nodes: int, stride, seconds: float, grading: float = 0.0) -> str:
             f"stance {stride.stance_s:.3f} s; phases ms: {phases}; valid "
             f"{'yes' if stride.valid else 'NO: ' + '; '.join(stride.failed_checks)}; forward rad per phase [{forward}]; drift "
             f"{stride.checks['drift_m'] * 1e3:.3f} mm, balance {stride.checks['balance_relative'] * 100:.2e} %, "
-            f"reserves {stride.checks['reserve_nm_per_kg']:.3f} N m/kg over 10 ms ({stride.checks['reserve_peak_nm_per_kg']:.3f} at a node); {stride.iterations}{total} iterations, "
+            f"reserves {stride.checks['reserve_nm_per_kg']:.3f} N m/kg over 10 ms ({stride.checks['reserve_peak_nm_per_kg']:.3f} at a node); {stride.iterations}{total} iterations ({stride.status}), "
             f"{seconds:.1f} s CPU")
 
 

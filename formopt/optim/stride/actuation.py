@@ -43,6 +43,20 @@ OWN_INTEGRANDS = ("activation", "muscle_metabolic", "force_rate", "force_rate_ab
 # N m/kg/s (0 to 3 N m/kg in 3 ms), a numerical box the rate's cost keeps the optimum off.
 MOMENT_RATE_SCALE = 100.0  # N m/kg/s per unit control
 MOMENT_RATE_LIMIT = 10.0
+# The transcription's smoothing (problem.SMOOTHING) charges the activations' rates a' (1/s) times
+# this scale beside the accelerations (MuscleDriven.smoothed): a' is a control tied to the
+# excitation e by the activation dynamics' row, and a' alternating node to node leaves the
+# trapezoid's defects unchanged, while nothing else in the objective reads e (Bhargava's energy
+# reads a), so e zig-zagged between its bounds at 5-22 % of the nodes; replayed linear between the
+# nodes through activation dynamics fast to rise (15 ms) and slow to fall (60 ms), a zig-zag is
+# another activation, and |F'|'s searched 2.5 m/s stride (graded 80 nodes) left its replay by
+# 0.171 rad (the iliopsoas's e 0.86, 0, 0.89, 0.06, ... at late stance: problems/muscle_replay.py).
+# Chosen at the calibration speed (3.5 m/s, |F'|, graded 80, warm from its searched stride:
+# problems/muscle_energy.py --activation-smoothing S, 2026-11-27): at 0 / 1 / 10 / 100 the forward
+# check 0.038 / 0.038 / 0.009 / 0.002 rad, zig-zags at up to 17 / 16 / 5 / 0 % of a phase's
+# nodes, the smoothing 0.1 / 0.1 / 0.5 / 4.3 % of the objective, 170.8 / 170.8 / 171.2 / 172.2
+# steps/min: 10, the null mode mostly gone for under 1 % of the cost.
+ACTIVATION_RATE_SMOOTHING = 10.0
 
 
 class Torques:
@@ -79,6 +93,11 @@ class Torques:
 
     def rows(self, rows, theta, thetad, z, u) -> None:
         """The actuation's algebraic rows at a node: none."""
+
+    def smoothed(self, U):
+        """The rates the transcription's smoothing closes beside the accelerations (a column per
+        node): none here."""
+        return U[:0, :]
 
     def integrands(self, theta, thetad, z, u) -> dict:
         """Its own cost integrands (OWN_INTEGRANDS): with `dynamic` the moments' squared rates
@@ -190,6 +209,15 @@ class MuscleDriven(Torques):
         return ca.vertcat(*[ca.vertcat(self.ACTIVATION_SCALE * U[3 * n * k + n:3 * n * k + 2 * n, :],
                                        self.RATE_SCALE * U[3 * n * k + 2 * n:3 * n * (k + 1), :])
                             for k in range(2)])
+
+    def smoothed(self, U):
+        """The activations' rates a' (1/s, 2n rows, a column per node) times
+        ACTIVATION_RATE_SMOOTHING, for the transcription's smoothing: a' is a control tied to the
+        excitation by the activation dynamics' row, and a' alternating node to node leaves the
+        trapezoid's defects unchanged while the excitation zig-zags between its bounds."""
+        n = self.n
+        return ACTIVATION_RATE_SMOOTHING * self.ACTIVATION_SCALE * ca.vertcat(
+            *[U[3 * n * k + n:3 * n * k + 2 * n, :] for k in range(2)])
 
     def _joint(self, theta, k):
         return theta[3 + 3 * k:6 + 3 * k]

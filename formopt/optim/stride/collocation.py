@@ -313,7 +313,8 @@ class StrideNLP:
         integrals = ell @ self.transcription.weights(h, s).T
         for k, key in enumerate(INTEGRANDS):
             self.terms[key] += integrals[k]
-        self.terms["smoothing"] += self.transcription.smoothing(A, h, s)
+        smoothed = ca.vertcat(A, self.ocp.models[i].actuation.smoothed(U))
+        self.terms["smoothing"] += self.transcription.smoothing(smoothed, h, s)
 
     def _release_heights(self, i: int, lower: np.ndarray) -> None:
         """Phase i's released points' heights at its first column, the phase before's held drift

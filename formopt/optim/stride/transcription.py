@@ -85,7 +85,8 @@ class Trapezoid:
 
     @staticmethod
     def smoothing(A, h, s: np.ndarray):
-        """The smoothing's sum (problem.SMOOTHING) of the accelerations A (a column per column)."""
+        """The smoothing's sum (problem.SMOOTHING) of the accelerations A (a column per column; with
+        muscles their activations' rates below them: actuation.MuscleDriven.smoothed)."""
         return h * ca.sumsqr(_per_interval(A[:, 1:] - A[:, :-1], np.sqrt(s)))
 
 
@@ -136,7 +137,8 @@ class HermiteSimpson:
     @staticmethod
     def smoothing(A, h, s: np.ndarray):
         """The smoothing's sum (problem.SMOOTHING) of the accelerations A (2n + 1 columns, mesh
-        points even): sum over the intervals of h_k |A_k - 2 A_m + A_k+1|^2."""
+        points even; with muscles their activations' rates below them): sum over the intervals of
+        h_k |A_k - 2 A_m + A_k+1|^2."""
         return h * ca.sumsqr(_per_interval(A[:, :-2:2] - 2 * A[:, 1::2] + A[:, 2::2], np.sqrt(s)))
 
 

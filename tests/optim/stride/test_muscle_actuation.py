@@ -10,7 +10,7 @@ from formopt.io.muscle_table import body_muscles
 from formopt.mechanics import muscles as hill
 from formopt.mechanics.body import paper_body, scaled_body
 from formopt.mechanics.errors import InputError
-from formopt.optim.stride.actuation import MuscleDriven
+from formopt.optim.stride.actuation import ACTIVATION_RATE_SMOOTHING, MuscleDriven, Torques
 from formopt.optim.stride.costs import terms
 from formopt.optim.stride.layout import Rows
 from formopt.optim.stride.problem import (
@@ -51,6 +51,18 @@ def test_states_swap_legs(rung):
     z = np.arange(32.0)
     swapped = np.asarray(rung.swap(ca.DM(z)), float).ravel()
     np.testing.assert_array_equal(swapped, np.r_[z[16:], z[:16]])
+
+
+def test_the_smoothing_sees_the_activation_rates(rung):
+    """The rates the transcription's smoothing adds to the accelerations: the activations' a'
+    (1/s, controls b = a'/100) of both legs times ACTIVATION_RATE_SMOOTHING, none of the tendon
+    forces' rates, the excitations or the reserves; the torque rung's none."""
+    n = rung.n
+    U = np.random.default_rng(0).uniform(-1.0, 1.0, (rung.controls, 5))
+    smoothed = np.asarray(rung.smoothed(ca.DM(U)), float)
+    rows = np.r_[n:2 * n, 4 * n:5 * n]  # b_R, b_L (MuscleDriven's u)
+    np.testing.assert_allclose(smoothed, ACTIVATION_RATE_SMOOTHING * rung.ACTIVATION_SCALE * U[rows])
+    assert Torques(62.0, 4.0).smoothed(ca.DM(U[:6])).shape == (0, 5)
 
 
 def test_reserves_are_moments_per_kg(rung):
