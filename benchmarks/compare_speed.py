@@ -24,8 +24,9 @@ compiled, and the CPU of the NLPs' and solvers' builds and of the forward checks
 models (collocation.COMPILED; once, then from the disk cache: the section with every NLP
 compiled); `--solves`: every IPOPT run of this process too (stage, NLP, solver: `stride_warm`
 the warm start with multipliers, cadence, iterations, status, objective, CPU s). `--diff`: the
-stride sections of two comparison.json files (or --json files), number by number: each relative difference over 1e-9
-and the largest, and any other value that differs (the section's `seconds` left out).
+stride sections of two comparison.json files (or --json files), number by number: each
+relative difference over 1e-9 and the largest, and any other value that differs (the
+section's `seconds` left out).
 """
 
 from __future__ import annotations

@@ -332,7 +332,7 @@ def _polish(order: list[float], free_cadence: float, kept: dict, attempt) -> Non
             target = sweep[i]
             if target == free_cadence:
                 continue
-            j = i - 2 if sweep[i - 1] == free_cadence else i - 1  # the neighbour, beyond the free optimum's
+            j = i - 2 if sweep[i - 1] == free_cadence else i - 1  # the neighbour, past the free one
             if j < 0 or (sweep[j] not in changed and sweep[j] not in now):
                 continue
             stride = kept[sweep[j]][0]

@@ -97,7 +97,8 @@ def test_a_what_if_between_two_families_and_a_free_optimum_off_the_envelope_are_
 def _solved(task):
     """Stands for compare_band.stride_at: which scene, from which start, at which cadence."""
     scene, starts, cadence = task
-    return SimpleNamespace(scene=scene, start=starts[0], success=True, cadence_spm=cadence or starts[0].cadence_spm)
+    start = starts[0]
+    return SimpleNamespace(scene=scene, start=start, success=True, cadence_spm=cadence or start.cadence_spm)
 
 
 def test_the_band_is_solved_longest_first_and_kept_in_its_order(monkeypatch):
