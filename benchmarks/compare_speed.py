@@ -10,7 +10,7 @@ one process; side by side, the per-step optima done the way the NLP was built be
 reference became one of its parameters: one PostureProblem (symbolic build and solver) per
 step. No peer tool computes this (OpenSim and Visual3D give the angles, not an optimum).
 
-    python benchmarks/compare_speed.py --stride T25 [--workers 1] [--json FILE] [--compiled true]
+    python benchmarks/compare_speed.py --stride T25 [--workers 1] [--json FILE] [--compiled true] [--solves]
     python benchmarks/compare_speed.py --diff BEFORE.json AFTER.json
 
 `--stride`: compare's stride section (studies.compare_stride.answer) for one runner of
@@ -22,9 +22,11 @@ the runner's, others the band's) the solves, iterations, CPU and ms an iteration
 compiled, and the CPU of the NLPs' and solvers' builds and of the forward checks;
 `--workers 1` puts every stage in this process; `--compiled true` compiles every NLP's node
 models (collocation.COMPILED; once, then from the disk cache: the section with every NLP
-compiled). `--diff`: the stride sections of two
-comparison.json files (or --json files), number by number: each relative difference over 1e-9
-and the largest, and any other value that differs (the section's `seconds` left out).
+compiled); `--solves`: every IPOPT run of this process too (stage, NLP, solver: `stride_warm`
+the warm start with multipliers, cadence, iterations, status, objective, CPU s). `--diff`: the
+stride sections of two comparison.json files (or --json files), number by number: each
+relative difference over 1e-9 and the largest, and any other value that differs (the
+section's `seconds` left out).
 """
 
 from __future__ import annotations
@@ -55,6 +57,7 @@ def main():
     parser.add_argument("--json", help="--stride: write the section's JSON here")
     parser.add_argument("--compiled", choices=("auto", "true", "false"), default="auto",
                         help="--stride: the stride NLPs' node models in C (collocation.COMPILED)")
+    parser.add_argument("--solves", action="store_true", help="--stride: print every IPOPT run of this process")
     parser.add_argument("--diff", nargs=2, metavar=("BEFORE", "AFTER"))
     args = parser.parse_args()
     if args.diff:
@@ -62,7 +65,7 @@ def main():
     if args.stride:
         from formopt.optim.stride import collocation
         collocation.COMPILED = {"auto": "auto", "true": True, "false": False}[args.compiled]
-        return stride_stages(args.stride, args.workers, args.json)
+        return stride_stages(args.stride, args.workers, args.json, args.solves)
     exe = str(Path(sys.executable).with_name("formopt"))
     walls = []
     for _ in range(args.repeats):
@@ -134,7 +137,7 @@ def cpu_s() -> float:
     return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
 
 
-def stride_stages(runner: str, workers: int | None, out: str | None) -> None:
+def stride_stages(runner: str, workers: int | None, out: str | None, each: bool = False) -> None:
     """The stride section's time for one runner, and per stage of this process (module doc)."""
     from formopt.optim.stride import collocation
     from formopt.studies import compare_band, compare_stride
@@ -153,6 +156,11 @@ def stride_stages(runner: str, workers: int | None, out: str | None) -> None:
         spent = time.process_time() - start
         for row in (runs[(stage, nlp._solver_compiled)], nlps[(label(nlp), nlp._solver_compiled)]):
             row[0], row[1], row[2] = row[0] + 1, row[1] + got.iterations, row[2] + spent
+        if each:
+            cadence = got.parameters["cadence"]
+            print(f"solve | {stage} | {label(nlp)} | {solver.name()} | "
+                  f"{'free' if cadence is None else f'{cadence:.2f}'} | {got.iterations} | {got.status} | "
+                  f"{got.objective:.9g} | {spent:.2f}", flush=True)
         return got
 
     def label(nlp) -> str:

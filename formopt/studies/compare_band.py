@@ -93,11 +93,11 @@ def band_variants(nominal: StrideScene, body: dict) -> list[Variant]:
 
 
 def solve_band(variants: list[Variant], starts: list[tuple], workers: int, say) -> dict[str, list[Stride]]:
-    """Each variant's strides by name, one per (start, cadence) of `starts` and in its order
-    (the nominal's free optimum with cadence None, then its stride at each cadence), each solved
-    warm from its start (`stride_at`). The solves, independent of each other, run on `workers`
-    processes, the longest variants' first (LONGEST_FIRST; forked after the nominal: each worker
-    holds its NLP); `say("variant NAME done")` as each variant's last solve is got."""
+    """Each variant's strides by name, one per (starts, cadence) of `starts` and in its order
+    (the nominal's free optima with cadence None, then its stride at each cadence), each solved
+    warm from one of its starts (`stride_at`). The solves, independent of each other, run on
+    `workers` processes, the longest variants' first (LONGEST_FIRST; forked after the nominal:
+    each worker holds its NLP); `say("variant NAME done")` as each variant's last solve is got."""
     order = sorted(variants, key=lambda v: LONGEST_FIRST.index(v.part))
     tasks = [(stride_at, (v.scene, start, cadence), f"variant {v.name} done" if k == len(starts) - 1 else "")
              for v in order for k, (start, cadence) in enumerate(starts)]
@@ -107,10 +107,12 @@ def solve_band(variants: list[Variant], starts: list[tuple], workers: int, say) 
 
 
 def stride_at(task: tuple) -> Stride:
-    """The scene's stride at `cadence` (None: free), warm-started from `start`, from
-    (scene, start, cadence)."""
-    scene, start, cadence = task
+    """The scene's stride at `cadence` (None: free), warm-started from the first of `starts`
+    (strides) that is a solution of the scene's NLP, so with its multipliers (stride_map.warm),
+    else from the first's primal values, from (scene, starts, cadence)."""
+    scene, starts, cadence = task
     nlp = scene.nlp()
+    start = next((s for s in starts if s.solved is not None and s.solved.layout == nlp.layout), starts[0])
     return summarise(nlp, warm(nlp, start, scene.speed, scene.slope, scene.friction, cadence), False)
 
 

@@ -422,12 +422,22 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
 def band_curves(nominal: Curve, variants: list[Variant], workers: int, say) -> list[Curve]:
     """The band's variants' curves (variant_curve), in `variants`' order, each variant solved
     warm from the nominal's free optimum and strides (compare_band.solve_band, on `workers`
-    processes); without a nominal each is named and left out."""
+    processes); without a nominal each is named and left out. A variant's free optimum starts
+    from the nominal's sticking strides' own (`Curve.envelope_free`) where the nominal's slides
+    and the variant's NLP is the nominal's (friction, the legs' mass), so with its multipliers:
+    RBDS001's four took 29/114/56/84 IPOPT iterations from the sliding one's primal values,
+    7/8/8/8 from it on T25 (T35 84/52/55/68 -> 8/10/8/8, RIC 71/67/97/64 -> 16/9/9/10), the same
+    optima (objective 3e-6-2.1e-5 higher: where the warm start's barrier stops,
+    collocation.WARM_START; 2026-11-27). Another objective's starts from the sliding one's primal
+    values, as before: the metabolic's from the sticking one's was cheaper on T25 (objective
+    0.1776 -> 0.0748) and costlier on T35 (0.1840 -> 0.2089), its landscape's local optima more
+    than the start."""
     if not nominal.ok:
         for v in variants:  # each variant's stage, told as the band's are
             say(f"variant {v.name}: no nominal")
         return [Curve(v.name, nominal.cadences, why_not="no nominal", part=v.part) for v in variants]
-    starts = [(nominal.free, None), *zip(nominal.strides, nominal.cadences)]
+    starts = [((nominal.free, nominal.envelope_free), None),
+              *(((s,), c) for s, c in zip(nominal.strides, nominal.cadences))]
     solved = solve_band(variants, starts, workers, say)
     return [replace(variant_curve(v.name, nominal, solved[v.name]), part=v.part) for v in variants]
 

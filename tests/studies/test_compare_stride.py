@@ -96,7 +96,8 @@ def test_a_what_if_between_two_families_and_a_free_optimum_off_the_envelope_are_
 
 def _solved(task):
     """Stands for compare_band.stride_at: which scene, from which start, at which cadence."""
-    scene, start, cadence = task
+    scene, starts, cadence = task
+    start = starts[0]
     return SimpleNamespace(scene=scene, start=start, success=True, cadence_spm=cadence or start.cadence_spm)
 
 

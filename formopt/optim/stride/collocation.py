@@ -74,14 +74,21 @@ CONTINUATION_IPOPT = {"mu_init": 1e-3}
 # IPOPT's warm start from a neighbouring solution's primal and dual values (StrideNLP.resolve):
 # the barrier starts small and decreases monotonically. Along a cadence chain (paper body, 30
 # nodes, tendons, 165-180 steps/min at 3.5 m/s) 12-20 iterations instead of 43-52, the same
-# optima to IPOPT's tolerance (benchmarks/stride_sweep_speed.py measures the map).
+# optima to IPOPT's tolerance (benchmarks/stride_sweep_speed.py measures the map). The
+# complementarity to 1e-8 (IPOPT's compl_inf_tol, 1e-4 by default): with it at 1e-4 the monotone
+# barrier stopped about 2e-5 (relative) above the optimum, even resolved at the optimum's own
+# parameters (RBDS001 T25, 40 nodes, forefoot, 2.54 m/s: compare's "other starts' optima"
+# 1.7-2.1e-5 costlier were this), with it within 3e-7 of a cold solve's; compare's 34 warm solves
+# a section took T25 555 -> 575, T35 458 -> 533, RIC 513 -> 692 iterations. IPOPT's adaptive
+# barrier instead also ended there, but left the branch it started on (RBDS001 RIC's family at
+# 164 steps/min, 0.24 % costlier; 2026-11-27).
 WARM_START = {"warm_start_init_point": "yes", "mu_strategy": "monotone", "mu_init": 1e-5,
               "warm_start_bound_push": 1e-6, "warm_start_mult_bound_push": 1e-6,
-              "warm_start_slack_bound_push": 1e-6}
+              "warm_start_slack_bound_push": 1e-6, "compl_inf_tol": 1e-8}
 # The muscles' warm start from a barrier of 3e-4: RBDS001 (heel, 40 nodes) 0.1 m/s faster from
 # the optimum at 2.5 / 3.5 / 4.5 m/s in 32 / 28 / 31 iterations instead of 23 / 56 / 173 from
 # 1e-5 (1e-4: 23 / 27 / 113; 1e-3: 38 / 33 / 31), the same optima (3.17067, 5.47877, 10.75843).
-MUSCLE_WARM_START = {"mu_init": 3e-4}
+MUSCLE_WARM_START = {"mu_init": 3e-4, "compl_inf_tol": 1e-4}  # IPOPT's default (WARM_START's 1e-8 not tried here)
 
 
 # The node models and their derivatives in C (derivatives.py, mechanics.compiled's disk cache):
