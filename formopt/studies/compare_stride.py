@@ -437,9 +437,9 @@ def band_curves(nominal: Curve, variants: list[Variant], workers: int, say) -> l
         for v in variants:  # each variant's stage, told as the band's are
             say(f"variant {v.name}: no nominal")
         return [Curve(v.name, nominal.cadences, why_not="no nominal", part=v.part) for v in variants]
-    starts = [((nominal.free, nominal.envelope_free), None),
+    points = [((nominal.free, nominal.envelope_free), None),
               *(((s,), c) for s, c in zip(nominal.strides, nominal.cadences))]
-    solved = solve_band(variants, starts, workers, say)
+    solved = solve_band(variants, points, workers, say)
     return [replace(variant_curve(v.name, nominal, solved[v.name]), part=v.part) for v in variants]
 
 
