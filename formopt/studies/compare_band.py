@@ -108,11 +108,12 @@ def solve_band(variants: list[Variant], points: list[tuple], workers: int, say) 
 
 def stride_at(task: tuple) -> Stride:
     """The scene's stride at `cadence` (None: free), warm-started from the first of `starts`
-    (strides) that is a solution of the scene's NLP, so with its multipliers (stride_map.warm),
-    else from the first's primal values, from (scene, starts, cadence)."""
+    (strides) that is a converged solution of the scene's NLP, so with its multipliers
+    (stride_map.warm), else from the first's primal values, from (scene, starts, cadence)."""
     scene, starts, cadence = task
     nlp = scene.nlp()
-    start = next((s for s in starts if s.solved is not None and s.solved.layout == nlp.layout), starts[0])
+    start = next((s for s in starts if s.success and s.solved is not None and s.solved.layout == nlp.layout),
+                 starts[0])
     return summarise(nlp, warm(nlp, start, scene.speed, scene.slope, scene.friction, cadence), False)
 
 

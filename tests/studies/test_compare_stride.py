@@ -130,22 +130,24 @@ def test_the_band_is_solved_longest_first_and_kept_in_its_order(monkeypatch):
 
 
 def test_a_variant_starts_from_the_first_solution_of_its_own_nlp(monkeypatch):
-    """compare_band.stride_at: warm (with multipliers) from the first start solved on the
+    """compare_band.stride_at: warm (with multipliers) from the first start converged on the
     variant's NLP (its layout: the nominal's sticking free optimum where the nominal's slides),
-    else from the first start's primal values (another objective's NLP)."""
+    else from the first start's primal values (another objective's NLP, or the sticking twin
+    failed)."""
     seen = []
     monkeypatch.setattr(compare_band, "warm", lambda nlp, start, *values: seen.append((start, values)) or start)
     monkeypatch.setattr(compare_band, "summarise", lambda nlp, solved, simulate: solved)
     scene = SimpleNamespace(nlp=lambda: SimpleNamespace(layout="sticking"), speed=3.5, slope=0.0, friction=0.6)
-    sliding = SimpleNamespace(solved=SimpleNamespace(layout="sliding"))
-    sticking = SimpleNamespace(solved=SimpleNamespace(layout="sticking"))
-    unsolved = SimpleNamespace(solved=None)
+    sliding = SimpleNamespace(success=True, solved=SimpleNamespace(layout="sliding"))
+    sticking = SimpleNamespace(success=True, solved=SimpleNamespace(layout="sticking"))
+    failed = SimpleNamespace(success=False, solved=SimpleNamespace(layout="sticking"))
+    unsolved = SimpleNamespace(success=True, solved=None)
     assert compare_band.stride_at((scene, (sliding, sticking), None)) is sticking
     assert compare_band.stride_at((scene, (sticking, sliding), 170.0)) is sticking
+    assert compare_band.stride_at((scene, (sliding, failed), None)) is sliding  # a failed twin: no start
     assert compare_band.stride_at((scene, (sliding, unsolved), None)) is sliding
     assert compare_band.stride_at((scene, (unsolved, sliding), None)) is unsolved
-    assert [values for _, values in seen] == [(3.5, 0.0, 0.6, None), (3.5, 0.0, 0.6, 170.0),
-                                              (3.5, 0.0, 0.6, None), (3.5, 0.0, 0.6, None)]
+    assert [values for _, values in seen] == [(3.5, 0.0, 0.6, None), (3.5, 0.0, 0.6, 170.0)] + [(3.5, 0.0, 0.6, None)] * 3
 
 
 def test_each_stage_told_has_its_share_of_the_time():
