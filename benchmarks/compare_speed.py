@@ -157,10 +157,7 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
         for row in (runs[(stage, nlp._solver_compiled)], nlps[(label(nlp), nlp._solver_compiled)]):
             row[0], row[1], row[2] = row[0] + 1, row[1] + got.iterations, row[2] + spent
         if each:
-            cadence = got.parameters["cadence"]
-            print(f"solve | {stage} | {label(nlp)} | {solver.name()} | "
-                  f"{'free' if cadence is None else f'{cadence:.2f}'} | {got.iterations} | {got.status} | "
-                  f"{got.objective:.9g} | {spent:.2f}", flush=True)
+            print(solve_line(stage, label(nlp), solver.name(), got, spent), flush=True)
         return got
 
     def label(nlp) -> str:
@@ -198,6 +195,13 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
     print("outside IPOPT (this process): " + "; ".join(f"{k} {v:.2f} s CPU" for k, v in other.items()))
     if out:
         Path(out).write_text(json.dumps(section.to_dict(), default=str))
+
+
+def solve_line(stage: str, nlp: str, solver: str, got, spent: float) -> str:
+    """One IPOPT run for `--solves`: stage, NLP, solver, cadence, iterations, status, objective, CPU s."""
+    cadence = got.parameters["cadence"]
+    return (f"solve | {stage} | {nlp} | {solver} | {'free' if cadence is None else f'{cadence:.2f}'} | "
+            f"{got.iterations} | {got.status} | {got.objective:.9g} | {spent:.2f}")
 
 
 def diff(before: str, after: str) -> None:

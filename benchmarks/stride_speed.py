@@ -16,9 +16,10 @@ IPOPT and MUMPS); `--ipopt` sets IPOPT options over collocation's. Issue 34's ta
 <= 1 s and warm <= 0.2 s of CPU. Measured 2026-11-27 (2-core machine, load 1.4-1.8; one run;
 docs/reference/performance.md): interpreted cold 2.30 s, warm 0.41 s; compiled cold 0.94 s (85
 iterations: 1.6 ms of functions and 9.4 ms of IPOPT and MUMPS each), warm 0.15 s (15
-iterations), resolve 0.13 s (16); the first compiled build 28 s (2026-11-26). `--same` solves RBDS001's body (62 kg, 1.81 m; heel, 40 nodes) at 2.5, 3.5
-and 4.5 m/s both ways and prints the iterations, objectives and cadences side by side. The
-peer: opty's human-gait example on gait2d (torque-driven, planar, 3 m/s, 40 nodes, smooth
+iterations), resolve 0.13 s (16; 0.14 s and 17 since WARM_START's complementarity tolerance
+1e-8); the first compiled build 28 s (2026-11-26). `--same` solves RBDS001's body (62 kg, 1.81
+m; heel, 40 nodes) at 2.5, 3.5 and 4.5 m/s both ways and prints the iterations, objectives and
+cadences side by side. The peer: opty's human-gait example on gait2d (torque-driven, planar, 3 m/s, 40 nodes, smooth
 contact; ../shared/peers/opty_gait2d), run cold (its zero guess) and warm (its shipped
 solution) by its run_peer.py in the venv that its install.sh makes (`--peer VENV`, else the
 environment variable FORMOPT_PEER_VENV), a subprocess each, medians of the same N repeats. Without

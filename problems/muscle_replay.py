@@ -102,11 +102,9 @@ def rates_and_chatter(nlp, blocks: dict, eps: float) -> None:
     loaded = []
     for phase in nlp.phases:
         Z, U = blocks[f"Z_{phase.name}"], blocks[f"U_{phase.name}"]
-        for leg in range(2):
-            F = Z[2 * n * leg + n:2 * n * (leg + 1)]
-            Fd = act.RATE_SCALE * U[3 * n * leg + 2 * n:3 * n * (leg + 1)]
-            if phase.rows and leg == 0:
-                loaded.append(np.abs(Fd[F > 0.1]))
+        if phase.rows:  # the right leg holds the ground: its tendons' forces F and rates F'
+            F, Fd = Z[n:2 * n], act.RATE_SCALE * U[2 * n:3 * n]
+            loaded.append(np.abs(Fd[F > 0.1]))
         E = np.vstack([U[3 * n * leg:3 * n * leg + n] for leg in range(2)])
         d = np.diff(E, axis=1)
         flips = np.sign(d[:, 1:]) * np.sign(d[:, :-1]) < 0

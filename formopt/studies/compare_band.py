@@ -92,27 +92,28 @@ def band_variants(nominal: StrideScene, body: dict) -> list[Variant]:
         body["mass_kg"], body["height_m"], body["sex"], legs=f))) for f in LEG_MASS_BAND]
 
 
-def solve_band(variants: list[Variant], starts: list[tuple], workers: int, say) -> dict[str, list[Stride]]:
-    """Each variant's strides by name, one per (starts, cadence) of `starts` and in its order
+def solve_band(variants: list[Variant], points: list[tuple], workers: int, say) -> dict[str, list[Stride]]:
+    """Each variant's strides by name, one per (starts, cadence) of `points` and in its order
     (the nominal's free optima with cadence None, then its stride at each cadence), each solved
     warm from one of its starts (`stride_at`). The solves, independent of each other, run on
     `workers` processes, the longest variants' first (LONGEST_FIRST; forked after the nominal:
     each worker holds its NLP); `say("variant NAME done")` as each variant's last solve is got."""
     order = sorted(variants, key=lambda v: LONGEST_FIRST.index(v.part))
-    tasks = [(stride_at, (v.scene, start, cadence), f"variant {v.name} done" if k == len(starts) - 1 else "")
-             for v in order for k, (start, cadence) in enumerate(starts)]
+    tasks = [(stride_at, (v.scene, starts, cadence), f"variant {v.name} done" if k == len(points) - 1 else "")
+             for v in order for k, (starts, cadence) in enumerate(points)]
     with Background(min(workers, len(tasks))) as pool:
         strides = iter(pool.results(pool.start(tasks), say))
-    return {v.name: [next(strides) for _ in starts] for v in order}
+    return {v.name: [next(strides) for _ in points] for v in order}
 
 
 def stride_at(task: tuple) -> Stride:
     """The scene's stride at `cadence` (None: free), warm-started from the first of `starts`
-    (strides) that is a solution of the scene's NLP, so with its multipliers (stride_map.warm),
-    else from the first's primal values, from (scene, starts, cadence)."""
+    (strides) that is a converged solution of the scene's NLP, so with its multipliers
+    (stride_map.warm), else from the first's primal values, from (scene, starts, cadence)."""
     scene, starts, cadence = task
     nlp = scene.nlp()
-    start = next((s for s in starts if s.solved is not None and s.solved.layout == nlp.layout), starts[0])
+    start = next((s for s in starts if s.success and s.solved is not None and s.solved.layout == nlp.layout),
+                 starts[0])
     return summarise(nlp, warm(nlp, start, scene.speed, scene.slope, scene.friction, cadence), False)
 
 

@@ -271,8 +271,9 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
 
     1. The free optimum (scene.starts starts, or `start`: a free optimum of this scene at
        these parameters found before); every cadence solved from it.
-    2. Sweeps along the cadences (the free optimum among them), alternately falling and rising:
-       each cadence re-solved warm from its neighbour when that neighbour changed since, the
+    2. Sweeps along the cadences (the free optimum's among them, neither re-solved nor a
+       source: step 1 solved from it), alternately falling and rising: each cadence re-solved
+       warm from its neighbour (past the free optimum's) when that neighbour changed since, the
        better kept, until a sweep changes nothing (at most PASSES): a better family of strides
        found at one cadence spreads to its neighbours.
     3. The free optimum solved again from the least costly imposed stride, kept if better.

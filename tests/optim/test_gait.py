@@ -55,7 +55,7 @@ _NEWTONS: dict = {}
 
 def _gait_newton(problem):
     """The placement's residual F(hip and knee, state, ankle) and its Newton solver, built once
-    per problem (the scans call on_gait thousands of times)."""
+    per problem (each scan maps them over its thousands of ankle angles: on_gait)."""
     if id(problem) not in _NEWTONS:
         u, x, ankle = ca.SX.sym("u", 2), ca.SX.sym("x", len(STATE)), ca.SX.sym("ankle")
         state = ca.vertcat(*[u[0] if k == HIP else u[1] if k == KNEE else ankle if k == ANKLE else x[k]

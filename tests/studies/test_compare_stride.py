@@ -3,6 +3,7 @@ what-if arithmetic, and one cheap run (22 nodes, the nominal variant only) check
 independent readings: the imposed cadence against 60 / half-period, per-joint work against the
 budget's W+ and W-, the JSON and the table's words."""
 
+from dataclasses import replace
 from types import SimpleNamespace
 
 import numpy as np
@@ -95,10 +96,11 @@ def test_a_what_if_between_two_families_and_a_free_optimum_off_the_envelope_are_
 
 
 def _solved(task):
-    """Stands for compare_band.stride_at: which scene, from which start, at which cadence."""
+    """Stands for compare_band.stride_at: which scene, from which starts, at which cadence."""
     scene, starts, cadence = task
     start = starts[0]
-    return SimpleNamespace(scene=scene, start=start, success=True, cadence_spm=cadence or start.cadence_spm)
+    return SimpleNamespace(scene=scene, start=start, starts=starts, success=True,
+                           cadence_spm=cadence or start.cadence_spm)
 
 
 def test_the_band_is_solved_longest_first_and_kept_in_its_order(monkeypatch):
@@ -118,8 +120,34 @@ def test_the_band_is_solved_longest_first_and_kept_in_its_order(monkeypatch):
         assert [(c.name, c.part) for c in curves] == [(n, p) for n, p, _ in variants]
         for curve, (_, _, scene) in zip(curves, variants):
             assert curve.ok and curve.free.scene == scene and curve.free.cadence_spm == 165.0
+            assert curve.free.starts == (nominal.free, nominal.free)  # no sticking twin: the free optimum
             assert [s.scene for s in curve.strides] == [scene] * 3
             assert [s.cadence_spm for s in curve.strides] == cadences
+            assert [s.starts for s in curve.strides] == [(s,) for s in nominal.strides]
+    sticking = SimpleNamespace(cadence_spm=163.0)
+    curves = band_curves(replace(nominal, own_free=sticking), variants, 1, [].append)
+    assert all(c.free.starts == (nominal.free, sticking) for c in curves)
+
+
+def test_a_variant_starts_from_the_first_solution_of_its_own_nlp(monkeypatch):
+    """compare_band.stride_at: warm (with multipliers) from the first start converged on the
+    variant's NLP (its layout: the nominal's sticking free optimum where the nominal's slides),
+    else from the first start's primal values (another objective's NLP, or the sticking twin
+    failed)."""
+    seen = []
+    monkeypatch.setattr(compare_band, "warm", lambda nlp, start, *values: seen.append((start, values)) or start)
+    monkeypatch.setattr(compare_band, "summarise", lambda nlp, solved, simulate: solved)
+    scene = SimpleNamespace(nlp=lambda: SimpleNamespace(layout="sticking"), speed=3.5, slope=0.0, friction=0.6)
+    sliding = SimpleNamespace(success=True, solved=SimpleNamespace(layout="sliding"))
+    sticking = SimpleNamespace(success=True, solved=SimpleNamespace(layout="sticking"))
+    failed = SimpleNamespace(success=False, solved=SimpleNamespace(layout="sticking"))
+    unsolved = SimpleNamespace(success=True, solved=None)
+    assert compare_band.stride_at((scene, (sliding, sticking), None)) is sticking
+    assert compare_band.stride_at((scene, (sticking, sliding), 170.0)) is sticking
+    assert compare_band.stride_at((scene, (sliding, failed), None)) is sliding  # a failed twin: no start
+    assert compare_band.stride_at((scene, (sliding, unsolved), None)) is sliding
+    assert compare_band.stride_at((scene, (unsolved, sliding), None)) is unsolved
+    assert [values for _, values in seen] == [(3.5, 0.0, 0.6, None), (3.5, 0.0, 0.6, 170.0)] + [(3.5, 0.0, 0.6, None)] * 3
 
 
 def test_each_stage_told_has_its_share_of_the_time():

@@ -4,6 +4,7 @@ bad parameters are refused in one line. Cheap: 24 nodes, 1 start, a 2 x 2 grid."
 
 import dataclasses
 from itertools import pairwise
+from types import SimpleNamespace
 
 import casadi as ca
 import numpy as np
@@ -136,6 +137,22 @@ def test_the_cadence_curve_is_the_least_costly_optimum_its_neighbours_reach(scen
                 continue
             again = stride_map.warm(nlp, source, 3.5, 0.0, scene.friction, cadence)
             assert not again.success or again.objective >= kept.objective_value * (1 - 1e-6)
+
+
+def test_the_polish_sweeps_from_neighbours_past_the_free_optimum():
+    """stride_map._polish (cadence_curve's step 2): each cadence re-solved from its neighbour,
+    both ways once, the free optimum's cadence (165) neither re-solved nor a source (step 1 solved
+    every cadence from it): its neighbours from the cadence beyond it; no change ends it."""
+    kept = {c: (SimpleNamespace(success=True, cadence=c), "free") for c in (150.0, 160.0, 170.0, 180.0)}
+    tried = []
+
+    def attempt(target, source, how):
+        tried.append((target, source.cadence))
+        return False
+
+    stride_map._polish([150.0, 160.0, 165.0, 170.0, 180.0], 165.0, kept, attempt)
+    assert tried == [(170.0, 180.0), (160.0, 170.0), (150.0, 160.0),  # falling
+                     (160.0, 150.0), (170.0, 160.0), (180.0, 170.0)]  # rising, then nothing changed
 
 
 def test_figures_and_cli(scene, grid, tmp_path, capsys):

@@ -44,7 +44,8 @@ OWN_INTEGRANDS = ("activation", "muscle_metabolic", "force_rate", "force_rate_ab
 MOMENT_RATE_SCALE = 100.0  # N m/kg/s per unit control
 MOMENT_RATE_LIMIT = 10.0
 # The transcription's smoothing (problem.SMOOTHING) charges the activations' rates a' (1/s) times
-# this scale beside the accelerations (MuscleDriven.smoothed): a' is a control tied to the
+# this scale (1/s, so in 1/s^2 as the accelerations' rad/s^2) beside the accelerations, their
+# changes between nodes alike (MuscleDriven.smoothed): a' is a control tied to the
 # excitation e by the activation dynamics' row, and a' alternating node to node leaves the
 # trapezoid's defects unchanged, while nothing else in the objective reads e (Bhargava's energy
 # reads a), so e zig-zagged between its bounds at 5-22 % of the nodes; replayed linear between the
@@ -55,7 +56,8 @@ MOMENT_RATE_LIMIT = 10.0
 # problems/muscle_energy.py --activation-smoothing S, 2026-11-27): at 0 / 1 / 10 / 100 the forward
 # check 0.038 / 0.038 / 0.009 / 0.002 rad, zig-zags at up to 17 / 16 / 5 / 0 % of a phase's
 # nodes, the smoothing 0.1 / 0.1 / 0.5 / 4.3 % of the objective, 170.8 / 170.8 / 171.2 / 172.2
-# steps/min: 10, the null mode mostly gone for under 1 % of the cost.
+# steps/min: 10, the smallest power of ten that closes most of the null mode for under 1 % of
+# the cost (docs/concepts/muscles.md, "The 2.5 m/s replay").
 ACTIVATION_RATE_SMOOTHING = 10.0
 
 

@@ -116,6 +116,7 @@ WORK_REGULARISATION = 1e-2
 # without the term (150.9 at 1e-6); at 1e-4 Hermite-Simpson 20 did not converge in 3000 (193).
 # Nor is the free cadence: imposed at 150.9, Hermite-Simpson 40 converged in 124 iterations
 # (0.5 % below the free solve's optimum at that cadence), but imposed at 155 it had not in 1500.
+# With muscles the activations' rates join the accelerations (actuation.ACTIVATION_RATE_SMOOTHING).
 SMOOTHING = 1e-6
 # The one weight of the muscles' "metabolic" objective: FORCE_RATE_WEIGHT times the force-rate
 # term (costs.FORCE_RATE_SCALE: the volume-weighted squared tendon-force rates per distance, Kipp

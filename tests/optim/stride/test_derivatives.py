@@ -125,11 +125,33 @@ def test_force_rate_gradient_against_finite_differences(case):
     gradient in the tendon-force rates' controls F'/10 of both legs, at every phase's first,
     middle and last column, against central differences (the random columns of the test above
     may miss them)."""
-    nlp, ours, x, p, _ = case
+    n = len(case[0].settings.muscles.names)
+    _gradient_in_controls(case, [*range(2 * n, 3 * n), *range(5 * n, 6 * n)])  # the legs' F'/10
+
+
+@pytest.mark.parametrize("case", [FORCE_RATE], indirect=True, ids=["force-rate"])
+def test_activation_rate_smoothing_gradient_against_finite_differences(case):
+    """The transcription's smoothing of the activations' rates (actuation.MuscleDriven.smoothed):
+    the objective's gradient in the controls a'/100 of both legs, which only it reads, at every
+    phase's first, middle and last column, against central differences; those controls of order
+    one, so that the term is felt (at the guess they are near zero)."""
+    nlp, ours, x, p, rng = case
     n = len(nlp.settings.muscles.names)
+    rows = [*range(n, 2 * n), *range(4 * n, 5 * n)]  # the legs' a'/100
+    x = x.copy()
+    for phase in nlp.phases:
+        start, (height, width) = nlp.blocks.offsets[f"U_{phase.name}"], nlp.blocks.shapes[f"U_{phase.name}"]
+        for row in rows:
+            x[start + row:start + height * width:height] = rng.uniform(-1.0, 1.0, width)
+    _gradient_in_controls((nlp, ours, x, p, rng), rows)
+
+
+def _gradient_in_controls(case, rows: list[int]) -> None:
+    """The objective's gradient in the controls' `rows` (actuation.MuscleDriven's u) at every
+    phase's first, middle and last column against central differences, felt there (not zeros)."""
+    nlp, ours, x, p, _ = case
     grad = np.asarray(ours["grad_f"](x, p)[1], float).ravel()
     f = ca.Function("f", [nlp.problem["x"], nlp.problem["p"]], [nlp.problem["f"]])
-    rows = [*range(2 * n, 3 * n), *range(5 * n, 6 * n)]  # the legs' F'/10 (actuation.MuscleDriven._legs)
     checked = 0
     for phase in nlp.phases:
         name = f"U_{phase.name}"
