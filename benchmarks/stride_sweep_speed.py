@@ -75,6 +75,8 @@ def main():
     parser.add_argument("--nodes", type=int, help="collocation intervals (default: the scene's)")
     parser.add_argument("--cold", type=int, default=5, help="cold solves for the comparison")
     args = parser.parse_args()
+    if args.cold < 1:
+        parser.error(f"--cold {args.cold}: at least 1 (the warm-start gain is against cold solves)")
     scene = load(args.scene)
     if args.nodes:
         scene = stride_map.for_nodes(scene, args.nodes)

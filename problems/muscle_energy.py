@@ -51,7 +51,6 @@ from formopt.mechanics import joint_space
 from formopt.mechanics import muscles as hill
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY, JOINTS, JointSpace
-from formopt.mechanics.limits import Range
 from formopt.optim.stride import actuation, ranges
 from formopt.optim.stride.collocation import NX, build
 from formopt.optim.stride.local import optimum
@@ -331,7 +330,7 @@ def main(argv=None) -> int:
         joint_space.RANGES["ankle"] = (joint_space.RANGES["ankle"][0], np.radians(args.dorsiflexion))
     if args.rate_smoothing is not None:  # a what-if: this process's |F'| smoothing, read when the NLP is built
         hill.FORCE_RATE_SMOOTHING = args.rate_smoothing
-    ranges.RANGES["nodes"] = Range(14, max(args.nodes, 120))  # past the scenes' 120, as problems/muscle_mesh.py
+    ranges.allow_nodes(args.nodes)
     if args.activation_smoothing is not None:  # a what-if: read when the NLP is built
         actuation.ACTIVATION_RATE_SMOOTHING = args.activation_smoothing
     body = scaled_body(args.mass, 1.81)

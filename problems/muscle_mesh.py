@@ -58,7 +58,6 @@ from stride_mesh import convergence  # problems/, this script's directory
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import JOINTS
-from formopt.mechanics.limits import Range
 from formopt.optim.stride import checks, problem, ranges
 from formopt.optim.stride.collocation import MUSCLE_WARM_START, NX, build
 from formopt.optim.stride.local import optimum
@@ -287,7 +286,7 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     if args.replay_cost and args.power != 2:
         parser.error("--replay-cost replays the squared force rates: it needs --power 2")
-    ranges.RANGES["nodes"] = Range(14, max([n for n, *_ in args.nodes] + [120]))  # past the scenes' 120: each finer mesh is warm
+    ranges.allow_nodes(max(n for n, *_ in args.nodes))
     body = scaled_body(62.0, 1.81)
     print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, muscles, metabolic, {args.speed} m/s, "
           f"the first mesh's stride {'the search at spend ' + str(args.spend) if args.start == 'search' else 'the default path'}"

@@ -32,7 +32,6 @@ import numpy as np
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics import muscles as hill
 from formopt.mechanics.body import scaled_body
-from formopt.mechanics.limits import Range
 from formopt.optim.stride import ranges
 from formopt.optim.stride.checks import forward, grid, muscle_dynamics, replayed
 from formopt.optim.stride.collocation import NX, build
@@ -133,7 +132,7 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     if args.rate_smoothing is not None:
         hill.FORCE_RATE_SMOOTHING = args.rate_smoothing
-    ranges.RANGES["nodes"] = Range(14, max(args.nodes, 120))  # past the scenes' 120, as problems/muscle_mesh.py
+    ranges.allow_nodes(args.nodes)
     body = scaled_body(62.0, 1.81)
     settings = StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic", grading=args.grading,
                               muscles=body_muscles(body), force_rate_weight=args.weight,

@@ -67,7 +67,6 @@ import numpy as np
 
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY, JOINTS, RANGES, THETA, JointSpace
-from formopt.mechanics.limits import Range
 from formopt.optim.stride import collocation, contact, costs, ocp, ranges
 from formopt.optim.stride.collocation import StrideNLP, build
 from formopt.optim.stride.local import optimum
@@ -424,7 +423,7 @@ def study_overrides(args) -> None:
     collocation.RANGES = {j: (lo - widen, hi + widen) for j, (lo, hi) in RANGES.items()}
     if args.ankle_max:
         collocation.RANGES["ankle"] = (collocation.RANGES["ankle"][0], math.radians(args.ankle_max))
-    ranges.RANGES["nodes"] = Range(14, max([n for _, n, _ in args.meshes] + [120]))
+    ranges.allow_nodes(max(n for _, n, _ in args.meshes))
 
 
 def report(label: str, nlp, stride, seconds: float, speed: float) -> None:

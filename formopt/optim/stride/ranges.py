@@ -64,6 +64,13 @@ RANGES = {
 }
 
 
+
+def allow_nodes(most: int) -> None:
+    """Lets a mesh study build meshes of up to `most` intervals, past the scenes' 120
+    (RANGES["nodes"]: each finer mesh solved warm from the one before, where a cold solve at 160
+    does not converge); for problems/' mesh scripts, never a scene."""
+    RANGES["nodes"] = Range(RANGES["nodes"].low, max(most, 120))
+
 def check(key: str, value, whole: bool = False, name: str = "") -> float:
     """`value` within RANGES[key] (a finite number), else InputError naming `name` (default:
     the key)."""

@@ -69,3 +69,11 @@ def test_settings_use_the_same_ranges():
                      ({"duration": {"heell": (0.01, 0.1)}}, "duration heell: expected a phase")):
         with pytest.raises(InputError, match=key):
             StrideSettings(**bad)
+
+
+def test_a_mesh_study_may_pass_the_scenes_nodes_never_go_below_them(monkeypatch):
+    monkeypatch.setitem(ranges.RANGES, "nodes", ranges.RANGES["nodes"])  # restored after the test
+    ranges.allow_nodes(160)
+    assert 160 in ranges.RANGES["nodes"] and 161 not in ranges.RANGES["nodes"]
+    ranges.allow_nodes(80)
+    assert ranges.RANGES["nodes"].high == 120 and ranges.RANGES["nodes"].low == 14
