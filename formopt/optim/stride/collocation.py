@@ -61,7 +61,8 @@ IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive",
 # MUMPS's ordering METIS instead of its own choice (PORD here) factorises the muscles' KKT matrix
 # (5,064 variables, 4,299 rows) faster: 40 iterations of the solve at reserve weight 10000 from
 # the one at 100 (RBDS001, heel, 40 nodes, 3.5 m/s, one BLAS thread) 2.53 instead of 3.71 s of
-# user CPU, the same optima to round-off (5.161650, 177.81 steps/min). Not for the torque rungs:
+# user CPU, the same optima to round-off (5.161650, 177.81 steps/min, 2026-11-26: before the
+# activations' rates joined the smoothing, 177.67 since). Not for the torque rungs:
 # no faster on their 3,027 rows (docs/reference/performance.md), and its round-off moved RBDS001's
 # torque optimum at 3.5 m/s to another local one (217.2 -> 188.7 steps/min).
 MUSCLE_IPOPT = {"mu_strategy": "monotone", "mu_init": 1e-2, "mumps_pivot_order": 5}
