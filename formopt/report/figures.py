@@ -361,7 +361,8 @@ FONT_PT = 6  # the names' font size; a character about 0.6 of it wide
 def stride_cadence_figure(s: dict) -> Figure:
     """compare's stride section (compare_stride.StrideAnswer.to_dict): mechanical power and
     impact loss (W) against the imposed cadence, one line per variant of the band (the nominal
-    bold, through its free optimum: the envelope), the runner's own cadence marked (dashed) and, on the power panel, each variant's free
+    bold, through its free optimum, or its sticking strides' own where that is given (`own_free_*`;
+    through neither where that is null: it did not converge): the envelope), the runner's own cadence marked (dashed) and, on the power panel, each variant's free
     optimum (star) where it has one; a panel's title names the stars only when it draws them."""
     fig, axes = _subplots(1, 2, figsize=(12, 4.4))
     for key, ax, title in (("mechanical_power_W", axes[0], "mechanical power W+ / T"),

@@ -87,12 +87,23 @@ class Curve:
     family_gap: list = field(default_factory=list)
     # under Coulomb, when the free optimum's touchdown slides and the imposed strides stick
     # (cadence_curve solves them sticking): the sticking strides' own free optimum, solved warm
-    # from the least costly of them (`sticking_free`); the envelope and the family are theirs
+    # from the least costly of them (`sticking_free`, kept converged or not); the envelope and
+    # the family are theirs
     own_free: Stride | None = None
 
     @property
+    def own_free_failed(self) -> bool:
+        """The sticking strides' own free optimum was solved and did not converge."""
+        return self.own_free is not None and not self.own_free.success
+
+    @property
     def envelope_free(self) -> Stride | None:
-        """The free optimum of the curve's own strides (`own_free`, else `free`)."""
+        """Where the family and the band's sticking starts begin: the free optimum of the
+        curve's own strides (`own_free`, else `free`); where `own_free` did not converge, the
+        least costly imposed stride (optim.stride.rank: the best sticking stride known, no
+        optimum; the sliding `free` is not of their NLP)."""
+        if self.own_free_failed:
+            return min(self.strides, key=rank, default=None)
         return self.own_free or self.free
 
     @property
@@ -101,12 +112,13 @@ class Curve:
         return [g is not None and g <= FAMILY for g in self.family_gap]
 
     @property
-    def envelope_gap(self) -> float:
+    def envelope_gap(self) -> float | None:
         """How far (relative) the free optimum's objective lies above the least imposed
-        stride's (<= 0: it is the curve's minimum)."""
+        stride's (<= 0: it is the curve's minimum); None without a free optimum of the strides'
+        NLP (none solved, no strides, or `own_free` did not converge)."""
         free = self.envelope_free
-        if free is None or not self.strides:
-            return 0.0
+        if free is None or not self.strides or self.own_free_failed:
+            return None
         least = min(s.objective_value for s in self.strides if s.success)
         return (free.objective_value - least) / abs(free.objective_value)
 
@@ -129,10 +141,12 @@ class Curve:
                        free_mechanical_power_W=self.free.mechanical_power_W,
                        free_impact_loss_W=self.free.budget["impacts_J"] / self.free.half_period_s,
                        envelope_gap=self.envelope_gap)
-        if self.ok and self.own_free is not None:
+        if self.ok and self.own_free is not None:  # its figures null where it did not converge
             own = self.own_free
-            out.update(own_free_cadence_spm=own.cadence_spm, own_free_mechanical_power_W=own.mechanical_power_W,
-                       own_free_impact_loss_W=own.budget["impacts_J"] / own.half_period_s)
+            values = {"cadence_spm": own.cadence_spm, "mechanical_power_W": own.mechanical_power_W,
+                      "impact_loss_W": own.budget["impacts_J"] / own.half_period_s}
+            out.update({f"own_free_{k}": v if own.success else None for k, v in values.items()},
+                       own_free_status=own.status)
         if self.family_gap:
             out.update(family_gap=self.family_gap, same_family=self.same_family)
         return out
@@ -205,8 +219,12 @@ class StrideAnswer:
         return best if best is not None and solved[best].valid else None
 
     def to_dict(self) -> dict:
+        """The section as JSON; `sticking_optimum_*` the nominal's `own_free`, null where it is
+        none or did not converge (`sticking_optimum_status`: IPOPT's, null where none)."""
         own = self.nominal.free
         best = self.best_strike
+        tried = self.nominal.own_free
+        sticking = tried if tried is not None and tried.success else None
         return {"speed_mps": self.speed_mps, "law": self.law, "nodes": self.nominal_nodes,
                 "measured_cadence_spm": self.measured["cadence_spm"],
                 "measured_step_length_m": self.measured["step_length_m"],
@@ -220,10 +238,10 @@ class StrideAnswer:
                 "optimum_impact_loss_W": own.budget["impacts_J"] / own.half_period_s if own else None,
                 "optimum_joint_work_J": joint_work(own) if own else None,
                 "optimum_remarks": own.remarks if own else [],
-                "sticking_optimum_cadence_spm": self.nominal.own_free.cadence_spm if self.nominal.own_free else None,
-                "sticking_optimum_mechanical_power_W":
-                    self.nominal.own_free.mechanical_power_W if self.nominal.own_free else None,
-                "sticking_optimum_valid": self.nominal.own_free.valid if self.nominal.own_free else None,
+                "sticking_optimum_cadence_spm": sticking.cadence_spm if sticking else None,
+                "sticking_optimum_mechanical_power_W": sticking.mechanical_power_W if sticking else None,
+                "sticking_optimum_valid": sticking.valid if sticking else None,
+                "sticking_optimum_status": tried.status if tried else None,
                 "best_strike": best,
                 "strikes": {k: None if s is None else
                             {"success": s.success, "objective_value": s.objective_value,
@@ -337,11 +355,10 @@ def optima_notes(curve: Curve) -> list[str]:
         notes.append(f"the free optimum was found again from the stride at {curve.free_from} steps/min "
                      "(the generic guess's was a costlier local optimum)")
     if curve.own_free is not None and curve.free is not None:
-        notes.append(f"the free optimum's touchdown slides ({'; '.join(curve.free.remarks)}); the imposed "
-                     f"cadences are solved sticking: their own free optimum is at {curve.own_free.cadence_spm:.0f} "
-                     f"steps/min, {curve.own_free.mechanical_power_W:.0f} W, and the envelope and what-ifs are theirs")
-    if curve.envelope_gap > ENVELOPE:
-        notes.append(f"the free optimum lies {curve.envelope_gap * 100:.1f} % above the least costly imposed "
+        notes.append(sticking_note(curve.free, curve.own_free, curve.envelope_free))
+    gap = curve.envelope_gap
+    if gap is not None and gap > ENVELOPE:
+        notes.append(f"the free optimum lies {gap * 100:.1f} % above the least costly imposed "
                      f"stride (tolerance {ENVELOPE * 100:g} %): it is a local optimum, not the curve's least")
     others = [f"{c:.0f}" for c, same in zip(curve.cadences, curve.same_family) if not same]
     if curve.family_gap and others:
@@ -358,6 +375,21 @@ def optima_notes(curve: Curve) -> list[str]:
         notes.append(f"the solve's bounds hold the strides at {', '.join(f'{s.cadence_spm:.0f}' for s in held)} "
                      "steps/min (each stride's `held` in the JSON; the optimum's are printed under it)")
     return notes
+
+
+def sticking_note(free: Stride, own: Stride, start: Stride | None) -> str:
+    """The free optimum slides and the imposed strides stick: their own free optimum `own`, or
+    that it did not converge (IPOPT's status) and that the family and the band start from
+    `start` (Curve.envelope_free: the least costly imposed stride) instead."""
+    said = f"the free optimum's touchdown slides ({'; '.join(free.remarks)}); the imposed cadences are solved sticking"
+    if own.success:
+        return (said + f": their own free optimum is at {own.cadence_spm:.0f} steps/min, "
+                f"{own.mechanical_power_W:.0f} W, and the envelope and what-ifs are theirs")
+    where = "" if start is None else f" ({start.cadence_spm:.0f} steps/min, {start.mechanical_power_W:.0f} W)"
+    return (said + f", and their own free optimum, solved warm from the least costly of them, did not converge "
+            f"(IPOPT: {own.status}): no sticking optimum and no envelope; the family and the band's variants "
+            f"start from that least costly stride{where}, which is no optimum, and the what-ifs are between "
+            "the sticking strides")
 
 
 def what_ifs(curves: list[Curve], cadences: list[float],
@@ -423,7 +455,8 @@ def band_curves(nominal: Curve, variants: list[Variant], workers: int, say) -> l
     """The band's variants' curves (variant_curve), in `variants`' order, each variant solved
     warm from the nominal's free optimum and strides (compare_band.solve_band, on `workers`
     processes); without a nominal each is named and left out. A variant's free optimum starts
-    from the nominal's sticking strides' own (`Curve.envelope_free`) where the nominal's slides
+    from the nominal's sticking strides' own (`Curve.envelope_free`: their least costly where
+    that did not converge) where the nominal's slides
     and the variant's NLP is the nominal's (friction, the legs' mass), so with its multipliers:
     RBDS001's four took 29/114/56/84 IPOPT iterations from the sliding one's primal values,
     7/8/8/8 from it on T25 (T35 84/52/55/68 -> 8/10/8/8, RIC 71/67/97/64 -> 16/9/9/10), the same

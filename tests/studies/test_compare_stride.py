@@ -11,8 +11,9 @@ import pytest
 
 from formopt.mechanics.body import scaled_body
 from formopt.optim.stride import summarise
+from formopt.report.figures import stride_cadence_figure
 from formopt.report.tables import stride_lines
-from formopt.studies import compare_band
+from formopt.studies import compare_band, compare_stride
 from formopt.studies.compare_band import Variant, stage_count, stage_shares
 from formopt.studies.compare_stride import (
     ENVELOPE,
@@ -21,6 +22,7 @@ from formopt.studies.compare_stride import (
     WhatIf,
     answer,
     band_curves,
+    family,
     optima_notes,
     what_ifs,
 )
@@ -95,6 +97,39 @@ def test_a_what_if_between_two_families_and_a_free_optimum_off_the_envelope_are_
                                          "`held` in the JSON; the optimum's are printed under it)")
 
 
+def _failed_own_free():
+    """Stands for the sticking strides' own free optimum where IPOPT did not converge."""
+    return SimpleNamespace(success=False, valid=False, status="Maximum_Iterations_Exceeded", cadence_spm=150.0,
+                           mechanical_power_W=999.0, objective_value=0.5, budget={"impacts_J": 9.0},
+                           half_period_s=0.4)
+
+
+def test_a_failed_sticking_free_optimum_is_no_reference(monkeypatch):
+    """The free optimum slides, the imposed strides stick and their own free optimum failed: no
+    envelope is measured, no cadence is called their optimum, and the family and the band's
+    variants start from the least costly imposed stride (review8)."""
+    nominal = _curve("nominal", [100, 110, 104, 98, 97], objective=[1.0, 1.2, 1.1, 0.95, 0.97])
+    nominal.free = SimpleNamespace(objective_value=0.8, cadence_spm=143.0, success=True, valid=True, held=[],
+                                   remarks=["forefoot impact of leg L solved sliding under coulomb"])
+    nominal.own_free = _failed_own_free()
+    least = nominal.strides[3]  # 178.5 steps/min, objective 0.95
+    assert nominal.envelope_free is least and nominal.envelope_gap is None
+    notes = " ".join(optima_notes(nominal))
+    assert ("the imposed cadences are solved sticking, and their own free optimum, solved warm from the least "
+            "costly of them, did not converge (IPOPT: Maximum_Iterations_Exceeded): no sticking optimum and no "
+            "envelope; the family and the band's variants start from that least costly stride (178 steps/min, "
+            "98 W), which is no optimum") in notes
+    assert "150 steps/min" not in notes and "above the least costly" not in notes
+    monkeypatch.setattr(compare_band, "stride_at", _solved)
+    variant, = band_curves(nominal, [Variant("friction 0.6", "friction", "mu")], 1, [].append)
+    assert variant.free.starts == (nominal.free, least)
+    starts = []
+    monkeypatch.setattr(compare_stride, "warm", lambda nlp, start, *values: starts.append(start) or start)
+    monkeypatch.setattr(compare_stride, "summarise", lambda nlp, solved, simulate: solved)
+    family(SimpleNamespace(nlp=lambda: None, slope=0.0, friction=0.6), 3.5, nominal)
+    assert starts[0] is least  # the continuation begins at it
+
+
 def _solved(task):
     """Stands for compare_band.stride_at: which scene, from which starts, at which cadence."""
     scene, starts, cadence = task
@@ -124,7 +159,7 @@ def test_the_band_is_solved_longest_first_and_kept_in_its_order(monkeypatch):
             assert [s.scene for s in curve.strides] == [scene] * 3
             assert [s.cadence_spm for s in curve.strides] == cadences
             assert [s.starts for s in curve.strides] == [(s,) for s in nominal.strides]
-    sticking = SimpleNamespace(cadence_spm=163.0)
+    sticking = SimpleNamespace(cadence_spm=163.0, success=True)
     curves = band_curves(replace(nominal, own_free=sticking), variants, 1, [].append)
     assert all(c.free.starts == (nominal.free, sticking) for c in curves)
 
@@ -258,3 +293,20 @@ def test_the_free_optimum_is_forward_checked_and_an_invalid_strike_says_why(sect
     assert d["strikes"]["heel"]["failed_checks"] == section.nominal.free.failed_checks
     d["strikes"]["flat"] = {**d["strikes"]["heel"], "valid": False, "failed_checks": ["forward_theta 0.291 > 0.1"]}
     assert "(INVALID: forward_theta 0.291 > 0.1)" in "\n".join(stride_lines(d))
+
+
+def test_a_failed_sticking_free_optimum_reads_as_failed(section):
+    """The JSON, the table and the figure of a section whose sticking strides' own free
+    optimum did not converge: its status, no cadence of it, no envelope gap."""
+    nominal = replace(section.nominal, own_free=_failed_own_free())
+    d = replace(section, curves=[nominal, *section.curves[1:]]).to_dict()
+    assert d["sticking_optimum_status"] == "Maximum_Iterations_Exceeded"
+    assert d["sticking_optimum_cadence_spm"] is d["sticking_optimum_mechanical_power_W"] is None
+    curve = d["curves"][0]
+    assert curve["own_free_status"] == "Maximum_Iterations_Exceeded" and curve["envelope_gap"] is None
+    assert curve["own_free_cadence_spm"] is curve["own_free_mechanical_power_W"] is None
+    assert "sticking strides' optimum" not in "\n".join(stride_lines(d))
+    power = stride_cadence_figure(d).axes[0]
+    line = next(ln for ln in power.lines if ln.get_marker() == "o")
+    assert sorted(line.get_xdata()) == sorted(nominal.cadences)  # through no free optimum
+    assert section.to_dict()["sticking_optimum_status"] is None  # no-slip: none solved
