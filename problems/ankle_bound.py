@@ -3,7 +3,7 @@ shipped muscle scene (formopt/scenes/stride_muscles.toml: RBDS001, 3.5 m/s, heel
 solved once, then read at its stance nodes.
 
     python problems/ankle_bound.py [--speed 3.5] [--dorsiflexion 30] [--wall anderson-pandy]
-                                   [--width soleus=0.56] [--brief | --no-solve]
+                                   [--width soleus=0.56] [--strike heel] [--brief | --no-solve]
 
 Per stance node (R the stance leg): the ankle angle (deg), the soleus's and gastrocnemius's
 normalised fibre length l~ = l_M / l_opt, tendon strain l_T / l_Ts - 1, normalised tendon force F,
@@ -205,6 +205,7 @@ def main(argv=None) -> int:
     parser.add_argument("--wall", choices=("formopt", "anderson-pandy"), default="formopt",
                         help="the ankle's range wall (a what-if: anderson-pandy)")
     parser.add_argument("--width", nargs="*", default=[], help="muscle=w: its force-length width (a what-if)")
+    parser.add_argument("--strike", default="heel", choices=("heel", "forefoot", "flat"), help="the scene's strike (a what-if)")
     parser.add_argument("--brief", action="store_true", help="the solve's one-line summary alone")
     parser.add_argument("--no-solve", action="store_true", help="the runner's lengths and the relaxed ankle alone")
     args = parser.parse_args(argv)
@@ -217,7 +218,7 @@ def main(argv=None) -> int:
         scene = dataclasses.replace(scene, settings=dataclasses.replace(
             scene.settings, muscles=widened(scene.settings.muscles, args.width)))
     if not args.no_solve:
-        nlp = scene.nlp("heel")
+        nlp = scene.nlp(args.strike)
         stride = optimum(nlp, args.speed, scene.slope, scene.friction, starts=scene.starts)
         if not args.brief:
             stance_table(nlp, stride)
