@@ -34,6 +34,7 @@ from __future__ import annotations
 import argparse
 import collections
 import inspect
+import itertools
 import json
 import os
 import resource
@@ -111,7 +112,7 @@ def main():
 SCENE = Path(__file__).resolve().parents[1] / "problems" / "compare" / "runners.toml"
 # a solve's stage: the first of these among its callers (studies.compare_stride, compare_band,
 # stride_map, optim.stride.local)
-STAGES = ("_free_or_none", "sticking_free", "family", "stride_at", "_better_free", "optimum", "attempt")
+STAGES = ("_free_or_none", "sticking_free", "family", "stride_at", "_better_free", "optimum", "solved_from", "attempt")
 
 
 def comparison(runner: str):
@@ -151,13 +152,16 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
 
     def timed(nlp, solver, *args):
         stage = next((f.function for f in inspect.stack()[1:16] if f.function in STAGES), "other")
-        start = time.process_time()
+        start, begun = time.process_time(), time.perf_counter()
         got = solve(nlp, solver, *args)
         spent = time.process_time() - start
+        timeline.add(begun, "solve", stage)
+        ended = time.perf_counter() - timeline.start
         for row in (runs[(stage, nlp._solver_compiled)], nlps[(label(nlp), nlp._solver_compiled)]):
             row[0], row[1], row[2] = row[0] + 1, row[1] + got.iterations, row[2] + spent
         if each:
-            print(solve_line(stage, label(nlp), solver.name(), got, spent), flush=True)
+            print(solve_line(stage, label(nlp), solver.name(), got, spent)
+                  + f" | {os.getpid()} | {begun - timeline.start:.2f}-{ended:.2f}", flush=True)
         return got
 
     def label(nlp) -> str:
@@ -168,11 +172,12 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
 
     def cpu_of(name: str, fn):
         def counted(*args, **kwargs):
-            start = time.process_time()
+            start, begun = time.process_time(), time.perf_counter()
             try:
                 return fn(*args, **kwargs)
             finally:
                 other[name] += time.process_time() - start
+                timeline.add(begun, "other", name)
         return counted
 
     collocation.StrideNLP._run = timed
@@ -180,6 +185,7 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
     collocation.StrideNLP.solver = property(cpu_of("solver builds (derivatives, compiles)",
                                                    collocation.StrideNLP.solver.fget))
     compare_band.forward_checked = cpu_of("forward checks", compare_band.forward_checked)
+    timeline = Timeline()
     wall, cpu, told = time.perf_counter(), cpu_s(), []
     stages = {"progress": lambda text: told.append((time.perf_counter() - wall, text))}
     answer = compare_stride.answer
@@ -193,8 +199,94 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
         for (key, compiled), (n, its, s) in sorted(rows.items(), key=lambda kv: -kv[1][2]):
             print(f"{key} | {compiled} | {n} | {its} | {s:.2f} | {s / max(its, 1) * 1e3:.1f}")
     print("outside IPOPT (this process): " + "; ".join(f"{k} {v:.2f} s CPU" for k, v in other.items()))
+    timeline.report(wall, [(t, text) for t, text in told])
     if out:
         Path(out).write_text(json.dumps(section.to_dict(), default=str))
+
+
+class Timeline:
+    """When each process of the section is busy: this process and its pools' workers (forked:
+    they inherit the patches and the file) append (pid, start, end, kind, what) lines to one
+    file, time.perf_counter's clock (system-wide on Linux). Kinds: a pool task (`task`), this
+    process waiting for its pool's results (`wait`), an IPOPT run (`solve`), a build or a forward
+    check (`other`)."""
+
+    def __init__(self):
+        global TIMELINE
+        fd, self.path = tempfile.mkstemp(prefix="timeline")
+        os.close(fd)
+        self.fd, self.start, self.pid = os.open(self.path, os.O_WRONLY | os.O_APPEND), time.perf_counter(), os.getpid()
+        TIMELINE = self
+        from formopt.studies import pool
+        started, results = pool.Background.start, pool.Background.results
+
+        def start(bg, tasks):
+            return started(bg, [(_task, (fn, args), name) for fn, args, name in tasks])
+
+        def waited(bg, handles, say):
+            begun = time.perf_counter()
+            try:
+                return results(bg, handles, say)
+            finally:
+                self.add(begun, "wait", "results")
+        pool.Background.start, pool.Background.results = start, waited
+
+    def add(self, begun: float, kind: str, what: str) -> None:
+        os.write(self.fd, f"{os.getpid()}|{begun - self.start:.3f}|{time.perf_counter() - self.start:.3f}|"
+                          f"{kind}|{what}\n".encode())
+
+    def report(self, end: float, told: list) -> None:
+        """Per process, its busy seconds in each window of the section (the nominal curve, its
+        family, the band: from the stages told) and in all; this process is busy but where it
+        waits for its pool, a worker in its tasks."""
+        os.close(self.fd)
+        rows = [line.split("|") for line in Path(self.path).read_text().splitlines()]
+        os.unlink(self.path)
+        marks = [0.0] + [next((t for t, text in told if key in text), end) for key in ("family", "variants")] + [end]
+        windows = list(itertools.pairwise(marks))
+        pids = list(dict.fromkeys([str(self.pid)] + [r[0] for r in rows]))
+        print(f"busy s per process (nominal {marks[0]:.1f}-{marks[1]:.1f} | family -{marks[2]:.1f} | band "
+              f"-{marks[3]:.1f} | all; solves' wall s; this process first)")
+        for pid in pids:
+            own = [(float(a), float(b), kind) for p, a, b, kind, _ in rows if p == pid]
+            if pid == str(self.pid):
+                busy = _minus([(0.0, end)], [(a, b) for a, b, k in own if k == "wait"])
+            else:
+                busy = _union([(a, b) for a, b, k in own if k == "task"])
+            solves = sum(b - a for a, b, k in own if k == "solve")
+            cut = [sum(max(0.0, min(b, hi) - max(a, lo)) for a, b in busy) for lo, hi in windows]
+            print(f"  {pid}: " + " | ".join(f"{c:.1f}" for c in cut) + f" | {sum(cut):.1f}; solves {solves:.1f}")
+
+
+TIMELINE: Timeline | None = None  # the section's timeline (its pool tasks write to it)
+
+
+def _task(task: tuple):
+    """A pool task (fn, args) run and its busy interval added to TIMELINE."""
+    fn, args = task
+    begun = time.perf_counter()
+    try:
+        return fn(args)
+    finally:
+        TIMELINE.add(begun, "task", fn.__name__)
+
+
+def _union(spans: list) -> list:
+    """The union of (start, end) intervals, sorted."""
+    out: list = []
+    for a, b in sorted(spans):
+        if out and a <= out[-1][1]:
+            out[-1] = (out[-1][0], max(out[-1][1], b))
+        else:
+            out.append((a, b))
+    return out
+
+
+def _minus(spans: list, holes: list) -> list:
+    """(start, end) intervals `spans` without the intervals `holes`."""
+    for h0, h1 in _union(holes):
+        spans = [piece for a, b in spans for piece in ((a, min(b, h0)), (max(a, h1), b)) if piece[1] > piece[0]]
+    return spans
 
 
 def solve_line(stage: str, nlp: str, solver: str, got, spent: float) -> str:
