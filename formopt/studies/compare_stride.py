@@ -433,6 +433,7 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
                            measured["strike"], "effort", c.settings["friction"], law, nodes)
     others = [s for s in STRIKES if s != measured["strike"]] if band else []
     variants = band_variants(nominal, body) if band else []
+    _ = nominal.nlp().solver  # built before the pool forks: its workers inherit it (the first sweep's)
     with Background(workers if band else 1) as beside:
         strikes = beside.start(strike_tasks(nominal, speed, others))
         say(f"stride: the nominal (effort) at {len(cadences)} cadences, {len(others)} other strikes beside it")
