@@ -155,7 +155,7 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
         start, begun = time.process_time(), time.perf_counter()
         got = solve(nlp, solver, *args)
         spent = time.process_time() - start
-        timeline.add(begun, "solve", stage)
+        timeline.add(begun, start, "solve", stage)
         ended = time.perf_counter() - timeline.start
         for row in (runs[(stage, nlp._solver_compiled)], nlps[(label(nlp), nlp._solver_compiled)]):
             row[0], row[1], row[2] = row[0] + 1, row[1] + got.iterations, row[2] + spent
@@ -177,7 +177,7 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
                 return fn(*args, **kwargs)
             finally:
                 other[name] += time.process_time() - start
-                timeline.add(begun, "other", name)
+                timeline.add(begun, start, "other", name)
         return counted
 
     collocation.StrideNLP._run = timed
@@ -206,16 +206,17 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
 
 class Timeline:
     """When each process of the section is busy: this process and its pools' workers (forked:
-    they inherit the patches and the file) append (pid, start, end, kind, what) lines to one
-    file, time.perf_counter's clock (system-wide on Linux). Kinds: a pool task (`task`), this
-    process waiting for its pool's results (`wait`), an IPOPT run (`solve`), a build or a forward
-    check (`other`)."""
+    they inherit the patches and the file) append one line an interval: pid, start and end
+    (s, time.perf_counter's clock: system-wide on Linux), the process's CPU s at both
+    (time.process_time), kind and what. Kinds: a pool task (`task`), this process waiting for
+    its pool's results (`wait`), an IPOPT run (`solve`), a build or a forward check (`other`)."""
 
     def __init__(self):
         global TIMELINE
         fd, self.path = tempfile.mkstemp(prefix="timeline")
         os.close(fd)
-        self.fd, self.start, self.pid = os.open(self.path, os.O_WRONLY | os.O_APPEND), time.perf_counter(), os.getpid()
+        self.fd, self.pid = os.open(self.path, os.O_WRONLY | os.O_APPEND), os.getpid()
+        self.start, self.cpu = time.perf_counter(), time.process_time()
         TIMELINE = self
         from formopt.studies import pool
         started, results = pool.Background.start, pool.Background.results
@@ -224,38 +225,58 @@ class Timeline:
             return started(bg, [(_task, (fn, args), name) for fn, args, name in tasks])
 
         def waited(bg, handles, say):
-            begun = time.perf_counter()
+            begun, cpu = time.perf_counter(), time.process_time()
             try:
                 return results(bg, handles, say)
             finally:
-                self.add(begun, "wait", "results")
+                self.add(begun, cpu, "wait", "results")
         pool.Background.start, pool.Background.results = start, waited
 
-    def add(self, begun: float, kind: str, what: str) -> None:
+    def add(self, begun: float, cpu: float, kind: str, what: str) -> None:
+        """An interval of this process from `begun` (perf_counter) and `cpu` (process_time) to now."""
         os.write(self.fd, f"{os.getpid()}|{begun - self.start:.3f}|{time.perf_counter() - self.start:.3f}|"
-                          f"{kind}|{what}\n".encode())
+                          f"{cpu:.3f}|{time.process_time():.3f}|{kind}|{what}\n".encode())
 
     def report(self, end: float, told: list) -> None:
-        """Per process, its busy seconds in each window of the section (the nominal curve, its
-        family, the band: from the stages told) and in all; this process is busy but where it
-        waits for its pool, a worker in its tasks."""
+        """Per process, its busy wall s and CPU s in each window of the section (the nominal curve,
+        its family, the band: from the stages told), this process busy but where it waits for
+        its pool, a worker in its tasks; and the wall the section would take alone on 2 cores
+        (`two_cores`)."""
         os.close(self.fd)
         rows = [line.split("|") for line in Path(self.path).read_text().splitlines()]
         os.unlink(self.path)
         marks = [0.0] + [next((t for t, text in told if key in text), end) for key in ("family", "variants")] + [end]
-        windows = list(itertools.pairwise(marks))
-        pids = list(dict.fromkeys([str(self.pid)] + [r[0] for r in rows]))
-        print(f"busy s per process (nominal {marks[0]:.1f}-{marks[1]:.1f} | family -{marks[2]:.1f} | band "
-              f"-{marks[3]:.1f} | all; solves' wall s; this process first)")
-        for pid in pids:
-            own = [(float(a), float(b), kind) for p, a, b, kind, _ in rows if p == pid]
-            if pid == str(self.pid):
-                busy = _minus([(0.0, end)], [(a, b) for a, b, k in own if k == "wait"])
-            else:
-                busy = _union([(a, b) for a, b, k in own if k == "task"])
-            solves = sum(b - a for a, b, k in own if k == "solve")
-            cut = [sum(max(0.0, min(b, hi) - max(a, lo)) for a, b in busy) for lo, hi in windows]
-            print(f"  {pid}: " + " | ".join(f"{c:.1f}" for c in cut) + f" | {sum(cut):.1f}; solves {solves:.1f}")
+        spans = self._spans(rows, end)
+        print(f"busy wall s, CPU s per process (nominal {marks[0]:.1f}-{marks[1]:.1f} | family -{marks[2]:.1f} | "
+              f"band -{marks[3]:.1f} | all; this process first)")
+        for pid, own in spans.items():
+            cut = [_within(own, lo, hi) for lo, hi in itertools.pairwise(marks)]
+            parts: dict = collections.defaultdict(float)  # CPU s in its solves, builds and checks
+            for p, _, _, c0, c1, kind, what in rows:
+                if p == pid and kind in ("solve", "other"):
+                    parts["IPOPT" if kind == "solve" else what] += float(c1) - float(c0)
+            print(f"  {pid}: " + " | ".join(f"{w:.1f}, {c:.1f}" for w, c in cut)
+                  + f" | {sum(w for w, _ in cut):.1f}, {sum(c for _, c in cut):.1f}; CPU s: "
+                  + "; ".join(f"{k} {v:.1f}" for k, v in parts.items()))
+        waits = sorted({float(x) for r in rows if r[0] == str(self.pid) and r[5] == "wait" for x in r[1:3]})
+        print(f"alone on 2 cores (each process's CPU in each interval between this process's waits, "
+              f"the interval max(its largest, its sum / 2)): {two_cores(spans, [0.0, *waits, end]):.1f} s")
+
+    def _spans(self, rows: list, end: float) -> dict:
+        """{pid: [(start, end, CPU s)]}: this process's busy intervals (between its waits, and
+        its tasks: with one worker a pool's tasks run here), each worker's tasks."""
+        out: dict = {str(self.pid): []}
+        for p, a, b, c0, c1, kind, _ in rows:
+            if kind == "task":
+                out.setdefault(p, []).append((float(a), float(b), float(c1) - float(c0)))
+        mine = sorted((float(a), float(b), float(c0), float(c1)) for p, a, b, c0, c1, kind, _ in rows
+                      if p == str(self.pid) and kind == "wait")
+        t, c = 0.0, self.cpu
+        for a, b, c0, c1 in [*mine, (end, end, time.process_time(), 0.0)]:
+            if a > t:
+                out[str(self.pid)].append((t, a, c0 - c))
+            t, c = max(t, b), c1
+        return out
 
 
 TIMELINE: Timeline | None = None  # the section's timeline (its pool tasks write to it)
@@ -264,29 +285,32 @@ TIMELINE: Timeline | None = None  # the section's timeline (its pool tasks write
 def _task(task: tuple):
     """A pool task (fn, args) run and its busy interval added to TIMELINE."""
     fn, args = task
-    begun = time.perf_counter()
+    begun, cpu = time.perf_counter(), time.process_time()
     try:
         return fn(args)
     finally:
-        TIMELINE.add(begun, "task", fn.__name__)
+        TIMELINE.add(begun, cpu, "task", fn.__name__)
 
 
-def _union(spans: list) -> list:
-    """The union of (start, end) intervals, sorted."""
-    out: list = []
-    for a, b in sorted(spans):
-        if out and a <= out[-1][1]:
-            out[-1] = (out[-1][0], max(out[-1][1], b))
-        else:
-            out.append((a, b))
-    return out
+def _within(spans: list, lo: float, hi: float) -> tuple[float, float]:
+    """(wall s, CPU s) of (start, end, CPU) intervals within [lo, hi], an interval's CPU shared
+    in proportion to its wall."""
+    wall = cpu = 0.0
+    for a, b, c in spans:
+        part = max(0.0, min(b, hi) - max(a, lo))
+        wall, cpu = wall + part, cpu + (c * part / (b - a) if b > a else 0.0)
+    return wall, cpu
 
 
-def _minus(spans: list, holes: list) -> list:
-    """(start, end) intervals `spans` without the intervals `holes`."""
-    for h0, h1 in _union(holes):
-        spans = [piece for a, b in spans for piece in ((a, min(b, h0)), (max(a, h1), b)) if piece[1] > piece[0]]
-    return spans
+def two_cores(spans: dict, marks: list) -> float:
+    """The section's wall alone on 2 idle cores, estimated: between each two `marks` (this
+    process's waits for its pool begin and end), each process's CPU there (`_within`), the
+    interval's wall the larger of the most of one process and half their sum."""
+    total = 0.0
+    for lo, hi in itertools.pairwise(marks):
+        cpus = [_within(own, lo, hi)[1] for own in spans.values()]
+        total += max(max(cpus), sum(cpus) / 2)
+    return total
 
 
 def solve_line(stage: str, nlp: str, solver: str, got, spent: float) -> str:
