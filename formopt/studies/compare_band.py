@@ -53,19 +53,19 @@ FRICTION_BAND = (0.6, 1.0)
 OBJECTIVE_BAND = ("metabolic",)
 LEG_MASS_BAND = (0.95, 1.05)
 BAND_PARTS = ("friction", "objective", "body")  # the band's parts, in `Curve.part`
-# the other strikes' free optima (beside the nominal) and the band's variants (after it) are
-# independent of each other: solved on this many processes (studies.pool.Background; the
-# brief's budget for compare is 2 cores)
+# the section's pool (compare_stride.answer): the other strikes' free optima, the nominal curve's
+# first sweep and the band's solves, independent of each other, on this many processes
+# (studies.pool.Background; the brief's budget for compare is 2 cores)
 WORKERS = min(2, os.cpu_count() or 1)
 # the band's parts, their variants started in this order: the longest first (RBDS001 T25, one
 # process, CPU s: the metabolic objective 15.3, from the nominal's primal values alone, another
 # objective's NLP; each legs' mass 3-4; each friction 1-1.5, the nominal's NLP; 2026-11-27)
 LONGEST_FIRST = ("objective", "body", "friction")
 # the section's wall time on 2 processes, shares (`stage_shares`): the nominal curve, its
-# family, the band until its first variant ends, the rest of the band (RBDS001 T25, 2 processes,
-# load 4-5: 50.5, 3.2, 38.8 and 12.2 s of 104.7, benchmarks/compare_speed.py --stride's timeline,
-# 2026-11-27)
-STAGE_SHARES = (0.48, 0.03, 0.37, 0.12)
+# family (the band's free optima beside it), the band until its first variant ends, the rest of
+# the band (benchmarks/compare_speed.py --stride's timeline, 2026-11-27, load 2-3.2: RBDS001 T25
+# 8.1, 1.7, 5.4 and 1.9 s of 17.1; T35 14.7, 2.9, 7.8, 2.3 of 27.7; RIC 12.2, 3.5, 9.3, 4.6 of 29.6)
+STAGE_SHARES = (0.47, 0.11, 0.30, 0.12)
 
 
 class Variant(NamedTuple):
