@@ -435,7 +435,9 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
     variants = band_variants(nominal, body) if band else []
     _ = nominal.nlp().solver  # built before the pool forks: its workers inherit it (the first sweep's)
     with Background(workers if band else 1) as beside:
-        strikes = beside.start(strike_tasks(nominal, speed, others))
+        # one other strike beside the nominal's free optimum, the rest behind the first sweep
+        strikes = beside.start(strike_tasks(nominal, speed, others[:1]))
+        strikes += beside.start(strike_tasks(nominal, speed, others[1:]), later=True)
         say(f"stride: the nominal (effort) at {len(cadences)} cadences, {len(others)} other strikes beside it")
         curves = [run_curve("effort (nominal)", nominal, speed, cadences, beside)]
         pair = (curves[0].free, curves[0].own_free)  # forward-checked beside the family
