@@ -221,8 +221,8 @@ class Timeline:
         from formopt.studies import pool
         started, results = pool.Background.start, pool.Background.results
 
-        def start(bg, tasks, later=False):
-            return started(bg, [(_task, (fn, args), name) for fn, args, name in tasks], later)
+        def start(bg, tasks, **later):
+            return started(bg, [(_task, (fn, args), name) for fn, args, name in tasks], **later)
 
         def waited(bg, handles, say):
             begun, cpu = time.perf_counter(), time.process_time()
