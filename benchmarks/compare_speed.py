@@ -19,11 +19,16 @@ CPU time (this process and its pool's, resource.getrusage), and per stage of thi
 caller of each IPOPT run: the free optimum, the cadence curve's attempts, the family, the band's
 variants, the other strikes) and per NLP (strike, objective, a sliding touchdown, the body: 0
 the runner's, others the band's) the solves, iterations, CPU and ms an iteration, interpreted or
-compiled, and the CPU of the NLPs' and solvers' builds and of the forward checks;
+compiled, and the CPU of the NLPs' and solvers' builds and of the forward checks; per process
+(this one and its pool's workers: `Timeline`), its busy wall and CPU s while the nominal curve,
+its family and the band are told, its CPU in IPOPT, builds and checks, and the section's wall
+alone on 2 idle cores estimated from each process's CPU between this process's waits for its
+pool (`two_cores`: on the shared machine the wall measures the other runs as much as this one);
 `--workers 1` puts every stage in this process; `--compiled true` compiles every NLP's node
 models (collocation.COMPILED; once, then from the disk cache: the section with every NLP
-compiled); `--solves`: every IPOPT run of this process too (stage, NLP, solver: `stride_warm`
-the warm start with multipliers, cadence, iterations, status, objective, CPU s). `--diff`: the
+compiled); `--solves`: every IPOPT run of every process (stage, NLP, solver: `stride_warm` the
+warm start with multipliers, cadence, iterations, status, objective, CPU s, pid, its wall from
+the section's start to its end). `--diff`: the
 stride sections of two comparison.json files (or --json files), number by number: each
 relative difference over 1e-9 and the largest, and any other value that differs (the
 section's `seconds` left out).
