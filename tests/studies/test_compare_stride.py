@@ -22,6 +22,7 @@ from formopt.studies.compare_stride import (
     WhatIf,
     answer,
     band_curves,
+    band_points,
     family,
     optima_notes,
     what_ifs,
@@ -161,6 +162,11 @@ def test_the_band_is_solved_longest_first_and_kept_in_its_order(monkeypatch):
             assert [s.scene for s in curve.strides] == [scene] * 3
             assert [s.cadence_spm for s in curve.strides] == cadences
             assert [s.starts for s in curve.strides] == [(s,) for s in nominal.strides]
+    with Background(2) as pool:  # the free optima started before (beside the family): the same curves
+        early = band_curves(nominal, variants, pool, [].append,
+                            compare_band.start_band(variants, band_points(nominal)[:1], pool))
+    assert [(c.free.starts, [s.starts for s in c.strides]) for c in early] == \
+        [(c.free.starts, [s.starts for s in c.strides]) for c in curves]
     sticking = SimpleNamespace(cadence_spm=163.0, success=True)
     curves = band_curves(replace(nominal, own_free=sticking), variants, Background(1), [].append)
     assert all(c.free.starts == (nominal.free, sticking) for c in curves)
