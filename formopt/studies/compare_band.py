@@ -15,9 +15,10 @@ share that width over the parts' summed widths (compare_stride.WhatIf.parts and 
 JSON's `band_parts_W` and `band_shares`).
 
 The solves that do not wait for each other run on WORKERS processes (studies.pool.Background,
-one pool for the section): the other strikes' free optima and the nominal's forward checks
-beside the nominal curve (`strike_tasks`, `check_tasks`), the band's solves after it, the
-longest variants' first (LONGEST_FIRST). `stage_count` and `stage_shares` are the progress stages the section tells.
+one pool for the section, compare_stride.answer): the other strikes' free optima beside the
+nominal curve (`strike_tasks`), the nominal's forward checks and the band's free optima beside
+its family (`check_tasks`, `start_band`), the band's strides after it, the longest variants'
+first (LONGEST_FIRST). `stage_count` and `stage_shares` are the progress stages the section tells.
 """
 
 from __future__ import annotations
