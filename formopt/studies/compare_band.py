@@ -93,7 +93,7 @@ def band_variants(nominal: StrideScene, body: dict) -> list[Variant]:
         body["mass_kg"], body["height_m"], body["sex"], legs=f))) for f in LEG_MASS_BAND]
 
 
-def start_band(variants: list[Variant], points: list[tuple], pool: Background) -> list[list[tuple]]:
+def start_band(variants: list[Variant], points: list[tuple], pool: Background) -> list[list[list]]:
     """Each variant's strides at `points` (its (starts, cadence): the nominal's free optima with
     cadence None, or its stride at a cadence), each solved warm from one of its starts
     (`stride_at`), started on `pool` (independent of each other), the longest variants first
@@ -102,7 +102,7 @@ def start_band(variants: list[Variant], points: list[tuple], pool: Background) -
     return [pool.start([(stride_at, (v.scene, starts, cadence), "") for starts, cadence in points]) for v in order]
 
 
-def band_results(variants: list[Variant], started: list[list[list[tuple]]], pool: Background,
+def band_results(variants: list[Variant], started: list[list[list[list]]], pool: Background,
                  say) -> dict[str, list[Stride]]:
     """Each variant's strides by name, from the tasks of each `start_band` call in `started`
     (its points' order), got in LONGEST_FIRST's order, `say("variant NAME done")` as each
