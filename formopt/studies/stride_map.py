@@ -326,9 +326,10 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
 def first_sweep(scene: StrideScene, base: Stride, speed, slope, mu, cadences: list[float],
                 beside: Background | None) -> list[Stride]:
     """Step 1 of `cadence_curve`: each cadence solved warm from the free optimum `base`, in the
-    order of `cadences`; on `beside`'s pool where given (studies.pool.Background), the farthest
-    from `base`'s cadence first (the longest solves: RBDS001 T25's +10 %, 143 IPOPT iterations
-    of the sweep's 548; 2026-11-27), each the same solve as here."""
+    order of `cadences`; on `beside`'s pool where given (studies.pool.Background), each the same
+    solve as here, the farthest from `base`'s cadence first (often the longest: RBDS001 T25's
+    +10 %, 143 IPOPT iterations of the sweep's 548; not always: RIC's longest, 219 of 534, was
+    its nearest; 2026-11-27)."""
     tasks = [(solved_from, (scene, base, speed, slope, mu, c), "") for c in cadences]
     if beside is None:
         return [solved_from(args) for _, args, _ in tasks]
