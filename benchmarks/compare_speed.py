@@ -19,11 +19,16 @@ CPU time (this process and its pool's, resource.getrusage), and per stage of thi
 caller of each IPOPT run: the free optimum, the cadence curve's attempts, the family, the band's
 variants, the other strikes) and per NLP (strike, objective, a sliding touchdown, the body: 0
 the runner's, others the band's) the solves, iterations, CPU and ms an iteration, interpreted or
-compiled, and the CPU of the NLPs' and solvers' builds and of the forward checks;
+compiled, and the CPU of the NLPs' and solvers' builds and of the forward checks; per process
+(this one and its pool's workers: `Timeline`), its busy wall and CPU s while the nominal curve,
+its family and the band are told, its CPU in IPOPT, builds and checks, and the section's wall
+alone on 2 idle cores estimated from each process's CPU between this process's waits for its
+pool (`two_cores`: on the shared machine the wall measures the other runs as much as this one);
 `--workers 1` puts every stage in this process; `--compiled true` compiles every NLP's node
 models (collocation.COMPILED; once, then from the disk cache: the section with every NLP
-compiled); `--solves`: every IPOPT run of this process too (stage, NLP, solver: `stride_warm`
-the warm start with multipliers, cadence, iterations, status, objective, CPU s). `--diff`: the
+compiled); `--solves`: every IPOPT run of every process (stage, NLP, solver: `stride_warm` the
+warm start with multipliers, cadence, iterations, status, objective, CPU s, pid, its wall from
+the section's start to its end). `--diff`: the
 stride sections of two comparison.json files (or --json files), number by number: each
 relative difference over 1e-9 and the largest, and any other value that differs (the
 section's `seconds` left out).
@@ -34,6 +39,7 @@ from __future__ import annotations
 import argparse
 import collections
 import inspect
+import itertools
 import json
 import os
 import resource
@@ -111,7 +117,7 @@ def main():
 SCENE = Path(__file__).resolve().parents[1] / "problems" / "compare" / "runners.toml"
 # a solve's stage: the first of these among its callers (studies.compare_stride, compare_band,
 # stride_map, optim.stride.local)
-STAGES = ("_free_or_none", "sticking_free", "family", "stride_at", "_better_free", "optimum", "attempt")
+STAGES = ("_free_or_none", "sticking_free", "family", "stride_at", "_better_free", "optimum", "solved_from", "attempt")
 
 
 def comparison(runner: str):
@@ -151,13 +157,16 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
 
     def timed(nlp, solver, *args):
         stage = next((f.function for f in inspect.stack()[1:16] if f.function in STAGES), "other")
-        start = time.process_time()
+        start, begun = time.process_time(), time.perf_counter()
         got = solve(nlp, solver, *args)
         spent = time.process_time() - start
+        timeline.add(begun, start, "solve", stage)
+        ended = time.perf_counter() - timeline.start
         for row in (runs[(stage, nlp._solver_compiled)], nlps[(label(nlp), nlp._solver_compiled)]):
             row[0], row[1], row[2] = row[0] + 1, row[1] + got.iterations, row[2] + spent
         if each:
-            print(solve_line(stage, label(nlp), solver.name(), got, spent), flush=True)
+            print(solve_line(stage, label(nlp), solver.name(), got, spent)
+                  + f" | {os.getpid()} | {begun - timeline.start:.2f}-{ended:.2f}", flush=True)
         return got
 
     def label(nlp) -> str:
@@ -168,11 +177,12 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
 
     def cpu_of(name: str, fn):
         def counted(*args, **kwargs):
-            start = time.process_time()
+            start, begun = time.process_time(), time.perf_counter()
             try:
                 return fn(*args, **kwargs)
             finally:
                 other[name] += time.process_time() - start
+                timeline.add(begun, start, "other", name)
         return counted
 
     collocation.StrideNLP._run = timed
@@ -180,6 +190,7 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
     collocation.StrideNLP.solver = property(cpu_of("solver builds (derivatives, compiles)",
                                                    collocation.StrideNLP.solver.fget))
     compare_band.forward_checked = cpu_of("forward checks", compare_band.forward_checked)
+    timeline = Timeline()
     wall, cpu, told = time.perf_counter(), cpu_s(), []
     stages = {"progress": lambda text: told.append((time.perf_counter() - wall, text))}
     answer = compare_stride.answer
@@ -193,8 +204,118 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
         for (key, compiled), (n, its, s) in sorted(rows.items(), key=lambda kv: -kv[1][2]):
             print(f"{key} | {compiled} | {n} | {its} | {s:.2f} | {s / max(its, 1) * 1e3:.1f}")
     print("outside IPOPT (this process): " + "; ".join(f"{k} {v:.2f} s CPU" for k, v in other.items()))
+    timeline.report(wall, [(t, text) for t, text in told])
     if out:
         Path(out).write_text(json.dumps(section.to_dict(), default=str))
+
+
+class Timeline:
+    """When each process of the section is busy: this process and its pools' workers (forked:
+    they inherit the patches and the file) append one line an interval: pid, start and end
+    (s, time.perf_counter's clock: system-wide on Linux), the process's CPU s at both
+    (time.process_time), kind and what. Kinds: a pool task (`task`), this process waiting for
+    its pool's results (`wait`), an IPOPT run (`solve`), a build or a forward check (`other`)."""
+
+    def __init__(self):
+        global TIMELINE
+        fd, self.path = tempfile.mkstemp(prefix="timeline")
+        os.close(fd)
+        self.fd, self.pid = os.open(self.path, os.O_WRONLY | os.O_APPEND), os.getpid()
+        self.start, self.cpu = time.perf_counter(), time.process_time()
+        TIMELINE = self
+        from formopt.studies import pool
+        started, results = pool.Background.start, pool.Background.results
+
+        def start(bg, tasks, **later):
+            return started(bg, [(_task, (fn, args), name) for fn, args, name in tasks], **later)
+
+        def waited(bg, handles, say):
+            begun, cpu = time.perf_counter(), time.process_time()
+            try:
+                return results(bg, handles, say)
+            finally:
+                self.add(begun, cpu, "wait", "results")
+        pool.Background.start, pool.Background.results = start, waited
+
+    def add(self, begun: float, cpu: float, kind: str, what: str) -> None:
+        """An interval of this process from `begun` (perf_counter) and `cpu` (process_time) to now."""
+        os.write(self.fd, f"{os.getpid()}|{begun - self.start:.3f}|{time.perf_counter() - self.start:.3f}|"
+                          f"{cpu:.3f}|{time.process_time():.3f}|{kind}|{what}\n".encode())
+
+    def report(self, end: float, told: list) -> None:
+        """Per process, its busy wall s and CPU s in each window of the section (the nominal curve,
+        its family, the band: from the stages told), this process busy but where it waits for
+        its pool, a worker in its tasks; and the wall the section would take alone on 2 cores
+        (`two_cores`)."""
+        os.close(self.fd)
+        rows = [line.split("|") for line in Path(self.path).read_text().splitlines()]
+        os.unlink(self.path)
+        marks = [0.0] + [next((t for t, text in told if key in text), end) for key in ("family", "variants")] + [end]
+        spans = self._spans(rows, end)
+        print(f"busy wall s, CPU s per process (nominal {marks[0]:.1f}-{marks[1]:.1f} | family -{marks[2]:.1f} | "
+              f"band -{marks[3]:.1f} | all; this process first)")
+        for pid, own in spans.items():
+            cut = [_within(own, lo, hi) for lo, hi in itertools.pairwise(marks)]
+            parts: dict = collections.defaultdict(float)  # CPU s in its solves, builds and checks
+            for p, _, _, c0, c1, kind, what in rows:
+                if p == pid and kind in ("solve", "other"):
+                    parts["IPOPT" if kind == "solve" else what] += float(c1) - float(c0)
+            print(f"  {pid}: " + " | ".join(f"{w:.1f}, {c:.1f}" for w, c in cut)
+                  + f" | {sum(w for w, _ in cut):.1f}, {sum(c for _, c in cut):.1f}; CPU s: "
+                  + "; ".join(f"{k} {v:.1f}" for k, v in parts.items()))
+        waits = sorted({float(x) for r in rows if r[0] == str(self.pid) and r[5] == "wait" for x in r[1:3]})
+        print(f"alone on 2 cores (each process's CPU in each interval between this process's waits, "
+              f"the interval max(its largest, its sum / 2)): {two_cores(spans, [0.0, *waits, end]):.1f} s")
+
+    def _spans(self, rows: list, end: float) -> dict:
+        """{pid: [(start, end, CPU s)]}: this process's busy intervals (between its waits, and
+        its tasks: with one worker a pool's tasks run here), each worker's tasks."""
+        out: dict = {str(self.pid): []}
+        for p, a, b, c0, c1, kind, _ in rows:
+            if kind == "task":
+                out.setdefault(p, []).append((float(a), float(b), float(c1) - float(c0)))
+        mine = sorted((float(a), float(b), float(c0), float(c1)) for p, a, b, c0, c1, kind, _ in rows
+                      if p == str(self.pid) and kind == "wait")
+        t, c = 0.0, self.cpu
+        for a, b, c0, c1 in [*mine, (end, end, time.process_time(), 0.0)]:
+            if a > t:
+                out[str(self.pid)].append((t, a, c0 - c))
+            t, c = max(t, b), c1
+        return out
+
+
+TIMELINE: Timeline | None = None  # the section's timeline (its pool tasks write to it)
+
+
+def _task(task: tuple):
+    """A pool task (fn, args) run and its busy interval added to TIMELINE."""
+    fn, args = task
+    begun, cpu = time.perf_counter(), time.process_time()
+    try:
+        return fn(args)
+    finally:
+        TIMELINE.add(begun, cpu, "task", fn.__name__)
+
+
+def _within(spans: list, lo: float, hi: float) -> tuple[float, float]:
+    """(wall s, CPU s) of (start, end, CPU) intervals within [lo, hi], an interval's CPU shared
+    in proportion to its wall."""
+    wall = cpu = 0.0
+    for a, b, c in spans:
+        part = max(0.0, min(b, hi) - max(a, lo))
+        wall, cpu = wall + part, cpu + (c * part / (b - a) if b > a else 0.0)
+    return wall, cpu
+
+
+def two_cores(spans: dict, marks: list) -> float:
+    """The section's wall alone on 2 idle cores, estimated: between each two `marks` (this
+    process's waits for its pool begin and end), each process's CPU there (`_within`), the
+    interval's wall the larger of the most of one process and half their sum."""
+    total = 0.0
+    for lo, hi in itertools.pairwise(marks):
+        cpus = [_within(own, lo, hi)[1] for own in spans.values()]
+        total += max(max(cpus), sum(cpus) / 2)
+    return total
 
 
 def solve_line(stage: str, nlp: str, solver: str, got, spent: float) -> str:

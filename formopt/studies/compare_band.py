@@ -3,7 +3,7 @@
 The band says how much of a what-if's change (studies.compare_stride) the model cannot tell
 from what it does not know about the runner. Its parts, each a few variants of the nominal
 scene (`band_variants`), each variant solved at the nominal's cadences warm from the nominal's
-strides there (`solve_band`):
+strides there (`start_band`, `band_results`):
 
 - friction: the coefficient at FRICTION_BAND's ends;
 - objective: OBJECTIVE_BAND's objectives beside the nominal's effort;
@@ -14,10 +14,11 @@ converged; a part's own width is the span over the nominal and that part's varia
 share that width over the parts' summed widths (compare_stride.WhatIf.parts and .shares; the
 JSON's `band_parts_W` and `band_shares`).
 
-The solves that do not wait for each other run on WORKERS processes (studies.pool.Background):
-the other strikes' free optima and the nominal's forward checks beside the nominal curve
-(`strike_tasks`, `check_tasks`), the band's solves after it, the longest variants' first
-(LONGEST_FIRST). `stage_count` and `stage_shares` are the progress stages the section tells.
+The solves that do not wait for each other run on WORKERS processes (studies.pool.Background,
+one pool for the section, compare_stride.answer): the other strikes' free optima beside the
+nominal curve (`strike_tasks`), the nominal's forward checks and the band's free optima beside
+its family (`check_tasks`, `start_band`), the band's strides after it, the longest variants'
+first (LONGEST_FIRST). `stage_count` and `stage_shares` are the progress stages the section tells.
 """
 
 from __future__ import annotations
@@ -53,19 +54,19 @@ FRICTION_BAND = (0.6, 1.0)
 OBJECTIVE_BAND = ("metabolic",)
 LEG_MASS_BAND = (0.95, 1.05)
 BAND_PARTS = ("friction", "objective", "body")  # the band's parts, in `Curve.part`
-# the other strikes' free optima (beside the nominal) and the band's variants (after it) are
-# independent of each other: solved on this many processes (studies.pool.Background; the
-# brief's budget for compare is 2 cores)
+# the section's pool (compare_stride.answer): the other strikes' free optima, the nominal curve's
+# first sweep and the band's solves, independent of each other, on this many processes
+# (studies.pool.Background; the brief's budget for compare is 2 cores)
 WORKERS = min(2, os.cpu_count() or 1)
 # the band's parts, their variants started in this order: the longest first (RBDS001 T25, one
 # process, CPU s: the metabolic objective 15.3, from the nominal's primal values alone, another
 # objective's NLP; each legs' mass 3-4; each friction 1-1.5, the nominal's NLP; 2026-11-27)
 LONGEST_FIRST = ("objective", "body", "friction")
 # the section's wall time on 2 processes, shares (`stage_shares`): the nominal curve, its
-# family, the band until its first variant ends, the rest of the band (RBDS001 T25, 2 processes,
-# load 4-5: 50.5, 3.2, 38.8 and 12.2 s of 104.7, benchmarks/compare_speed.py --stride's timeline,
-# 2026-11-27)
-STAGE_SHARES = (0.48, 0.03, 0.37, 0.12)
+# family (the band's free optima beside it), the band until its first variant ends, the rest of
+# the band (benchmarks/compare_speed.py --stride's timeline, 2026-11-27, load 2-3.2: RBDS001 T25
+# 8.1, 1.7, 5.4 and 1.9 s of 17.1; T35 14.7, 2.9, 7.8, 2.3 of 27.7; RIC 12.2, 3.5, 9.3, 4.6 of 29.6)
+STAGE_SHARES = (0.47, 0.11, 0.30, 0.12)
 
 
 class Variant(NamedTuple):
@@ -92,18 +93,26 @@ def band_variants(nominal: StrideScene, body: dict) -> list[Variant]:
         body["mass_kg"], body["height_m"], body["sex"], legs=f))) for f in LEG_MASS_BAND]
 
 
-def solve_band(variants: list[Variant], points: list[tuple], workers: int, say) -> dict[str, list[Stride]]:
-    """Each variant's strides by name, one per (starts, cadence) of `points` and in its order
-    (the nominal's free optima with cadence None, then its stride at each cadence), each solved
-    warm from one of its starts (`stride_at`). The solves, independent of each other, run on
-    `workers` processes, the longest variants' first (LONGEST_FIRST; forked after the nominal:
-    each worker holds its NLP); `say("variant NAME done")` as each variant's last solve is got."""
+def start_band(variants: list[Variant], points: list[tuple], pool: Background) -> list[list[list]]:
+    """Each variant's strides at `points` (its (starts, cadence): the nominal's free optima with
+    cadence None, or its stride at a cadence), each solved warm from one of its starts
+    (`stride_at`), started on `pool` (independent of each other), the longest variants first
+    (LONGEST_FIRST): the started tasks, variant by variant in that order (`band_results`)."""
     order = sorted(variants, key=lambda v: LONGEST_FIRST.index(v.part))
-    tasks = [(stride_at, (v.scene, starts, cadence), f"variant {v.name} done" if k == len(points) - 1 else "")
-             for v in order for k, (starts, cadence) in enumerate(points)]
-    with Background(min(workers, len(tasks))) as pool:
-        strides = iter(pool.results(pool.start(tasks), say))
-    return {v.name: [next(strides) for _ in points] for v in order}
+    return [pool.start([(stride_at, (v.scene, starts, cadence), "") for starts, cadence in points]) for v in order]
+
+
+def band_results(variants: list[Variant], started: list[list[list[list]]], pool: Background,
+                 say) -> dict[str, list[Stride]]:
+    """Each variant's strides by name, from the tasks of each `start_band` call in `started`
+    (its points' order), got in LONGEST_FIRST's order, `say("variant NAME done")` as each
+    variant's last is got."""
+    order = sorted(variants, key=lambda v: LONGEST_FIRST.index(v.part))
+    out = {}
+    for k, v in enumerate(order):
+        out[v.name] = pool.results([task for part in started for task in part[k]], say)
+        say(f"variant {v.name} done")
+    return out
 
 
 def stride_at(task: tuple) -> Stride:

@@ -25,9 +25,11 @@ the variants (studies.compare_band: the friction, the objective and the legs' sh
 body's mass), each solved warm from the nominal's stride at the same cadence (variant_curve);
 `WhatIf.parts` is each part's own width (the span of dP over the nominal and that part's
 variants). A variant that fails to converge at any cadence is left out of the band and named
-in `notes`. A change whose band holds zero is "no change the model can resolve". The other
-strikes' free optima are solved on worker processes beside the nominal curve, the band's
-solves after it (compare_band; benchmarks/compare_speed.py --stride times each stage,
+in `notes`. A change whose band holds zero is "no change the model can resolve". The solves
+that do not wait for each other run on one pool of worker processes (studies.pool.Background):
+the other strikes' free optima beside the nominal curve, the curve's first sweep
+(stride_map.first_sweep), the band's free optima beside the family and its strides after it
+(compare_band; benchmarks/compare_speed.py --stride times each stage and process,
 docs/reference/performance.md).
 """
 
@@ -45,10 +47,11 @@ from .compare_band import (
     BAND_PARTS,
     WORKERS,
     Variant,
+    band_results,
     band_text,
     band_variants,
     check_tasks,
-    solve_band,
+    start_band,
     strike_tasks,
 )
 from .pool import Background
@@ -267,17 +270,18 @@ def measured_form(c) -> dict:
             "placement_m": float(np.mean(ahead)), "strike": side.point}
 
 
-def run_curve(name: str, scene, speed: float, cadences: list[float]) -> Curve:
+def run_curve(name: str, scene, speed: float, cadences: list[float], beside: Background | None = None) -> Curve:
     """The variant's strides at `cadences`: at each the least costly optimum found
-    (stride_map.cadence_curve), solved again from a better free optimum found on the curve
-    (ROUNDS), so that the free optimum is the curve's least (module docstring)."""
+    (stride_map.cadence_curve, its first sweep on `beside`'s pool where given), solved again
+    from a better free optimum found on the curve (ROUNDS), so that the free optimum is the
+    curve's least (module docstring)."""
     curve = Curve(name, cadences)
     try:
-        got = cadence_curve(scene, speed, cadences)
+        got = cadence_curve(scene, speed, cadences, beside=beside)
         for _ in range(ROUNDS):
             if got.free_from == "free":
                 break
-            again = cadence_curve(scene, speed, cadences, start=got.free)
+            again = cadence_curve(scene, speed, cadences, start=got.free, beside=beside)
             got = again if again.free_from != "free" else replace(again, free_from=got.free_from)
     except RuntimeError as err:
         curve.why_not = str(err)
@@ -296,7 +300,7 @@ def variant_curve(name: str, nominal: Curve, solved: list[Stride]) -> Curve:
     family of strides. (Warm-started along its own cadences instead, the mass -5 % variant
     of RBDS001 at 3.58 m/s jumped at -10 % to another local optimum, 565 W against the
     nominal's 463 W, and made the band 10 times wider, 2026-11-23.) `solved`: its
-    strides solved (compare_band.solve_band: the free optimum first)."""
+    strides solved (compare_band.band_results: the free optimum first)."""
     curve = Curve(name, nominal.cadences)
     curve.free, *curve.strides = solved
     failed = [f"{s.cadence_spm:.0f} steps/min" for s in curve.strides if not s.success]
@@ -416,8 +420,7 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
     friction and law); `progress(text)` is told of each stage; `band` False: the nominal
     variant and strike only (every band then the nominal value, no other strike: a cheap check,
     not a report); `changes`: the what-ifs' cadence changes (% of the runner's); `workers`: the
-    processes solving the other strikes (beside the nominal) and the band's variants (after
-    it), studies.compare_band."""
+    processes of the section's pool (module docstring; band False: none, every solve here)."""
     say = progress or (lambda text: None)
     start = time.perf_counter()
     measured = measured_form(c)
@@ -429,12 +432,19 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
     nominal = stride_scene(scaled_body(body["mass_kg"], body["height_m"], body["sex"]), speed,
                            measured["strike"], "effort", c.settings["friction"], law, nodes)
     others = [s for s in STRIKES if s != measured["strike"]] if band else []
-    with Background(min(workers, len(others))) as beside:
-        strikes = beside.start(strike_tasks(nominal, speed, others))
+    variants = band_variants(nominal, body) if band else []
+    _ = nominal.nlp().solver  # built before the pool forks: its workers inherit it (the first sweep's)
+    with Background(workers if band else 1) as beside:
+        # one other strike beside the nominal's free optimum, the rest behind the first sweep
+        strikes = beside.start(strike_tasks(nominal, speed, others[:1]))
+        strikes += beside.start(strike_tasks(nominal, speed, others[1:]), later=True)
         say(f"stride: the nominal (effort) at {len(cadences)} cadences, {len(others)} other strikes beside it")
-        curves = [run_curve("effort (nominal)", nominal, speed, cadences)]
+        curves = [run_curve("effort (nominal)", nominal, speed, cadences, beside)]
         pair = (curves[0].free, curves[0].own_free)  # forward-checked beside the family
         checking = beside.start(check_tasks(nominal, [s for s in pair if s is not None]))
+        # the band's free optima beside the family where their starts are known before it
+        frees = None if not curves[0].ok or curves[0].own_free_failed else \
+            start_band(variants, band_points(curves[0])[:1], beside)
         say("stride: the free optimum's family along the cadences")
         if curves[0].ok and curves[0].free is not None:
             family(nominal, speed, curves[0])
@@ -442,19 +452,20 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
         curves[0].free, curves[0].own_free = (None if s is None else next(checked) for s in pair)
         best = {s: curves[0].free if s == measured["strike"] else None for s in STRIKES}
         best.update(zip(others, beside.results(strikes, say)))
-    variants = band_variants(nominal, body) if band else []
-    say(f"stride: {len(variants)} variants warm from the nominal on {min(workers, len(variants)) or 1} processes")
-    curves += band_curves(curves[0], variants, workers, say)
+        say(f"stride: {len(variants)} variants warm from the nominal on {min(workers, len(variants)) or 1} processes")
+        curves += band_curves(curves[0], variants, beside, say, frees)
     notes += _notes(curves, best, runner, nominal)
     return StrideAnswer(speed, law, measured, curves, best,
                         what_ifs(curves, cadences, changes) if curves[0].ok else [], notes,
                         time.perf_counter() - start, nominal.settings.nodes)
 
 
-def band_curves(nominal: Curve, variants: list[Variant], workers: int, say) -> list[Curve]:
+def band_curves(nominal: Curve, variants: list[Variant], beside: Background, say,
+                frees: list | None = None) -> list[Curve]:
     """The band's variants' curves (variant_curve), in `variants`' order, each variant solved
-    warm from the nominal's free optimum and strides (compare_band.solve_band, on `workers`
-    processes); without a nominal each is named and left out. A variant's free optimum starts
+    warm from the nominal's free optimum and strides (`band_points`; compare_band.start_band on
+    `beside`'s pool, `frees` its free optima started before where given); without a nominal
+    each is named and left out. A variant's free optimum starts
     from the nominal's sticking strides' own (`Curve.envelope_free`: their least costly where
     that did not converge) where the nominal's slides
     and the variant's NLP is the nominal's (friction, the legs' mass), so with its multipliers:
@@ -470,10 +481,21 @@ def band_curves(nominal: Curve, variants: list[Variant], workers: int, say) -> l
         for v in variants:  # each variant's stage, told as the band's are
             say(f"variant {v.name}: no nominal")
         return [Curve(v.name, nominal.cadences, why_not="no nominal", part=v.part) for v in variants]
-    points = [((nominal.free, nominal.envelope_free), None),
-              *(((s,), c) for s, c in zip(nominal.strides, nominal.cadences))]
-    solved = solve_band(variants, points, workers, say)
+    points = band_points(nominal)
+    if frees is None:
+        frees = start_band(variants, points[:1], beside)
+    solved = band_results(variants, [frees, start_band(variants, points[1:], beside)], beside, say)
     return [replace(variant_curve(v.name, nominal, solved[v.name]), part=v.part) for v in variants]
+
+
+def band_points(nominal: Curve) -> list[tuple]:
+    """The band's (starts, cadence) per stride of a variant (compare_band.stride_at): its free
+    optimum from the nominal's (the sliding one and `Curve.envelope_free`), cadence None, then
+    each cadence from the nominal's stride there. The free optimum's starts are known once the
+    nominal's curve is (but for a failed sticking free optimum: then the least costly stride,
+    which `family` may replace), its strides' once their family is."""
+    return [((nominal.free, nominal.envelope_free), None),
+            *(((s,), c) for s, c in zip(nominal.strides, nominal.cadences))]
 
 
 def _notes(curves: list[Curve], best: dict, runner: float, nominal) -> list[str]:

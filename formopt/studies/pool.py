@@ -30,13 +30,15 @@ def local_pool(workers: int):
 
 class Background:
     """Independent tasks (fn, args, name) started on a local pool of `workers` processes as soon
-    as they are `start`ed, while this process works on (fork: each worker inherits what the run
-    built when the pool started; 1 worker: each task runs here when its result is asked);
-    `results` waits for them, in their order, `say(name)` as each is got. fn must be picklable
-    (a module's function). Use as a context manager: the pool ends with the block (local_pool)."""
+    as they are `start`ed (or held `later`), while this process works on (fork: each worker
+    inherits what the run built when the pool started; 1 worker: each task runs here when its
+    result is asked); `results` waits for them, in their order, `say(name)` as each is got. fn
+    must be picklable (a module's function). Use as a context manager: the pool ends with the
+    block (local_pool)."""
 
     def __init__(self, workers: int):
         self.workers, self.pool, self._stack = workers, None, contextlib.ExitStack()
+        self._held: list[list] = []  # started `later`, not yet on the pool
 
     def __enter__(self) -> Background:
         if self.workers > 1:
@@ -46,16 +48,28 @@ class Background:
     def __exit__(self, *exc) -> None:
         self._stack.__exit__(*exc)
 
-    def start(self, tasks: list[tuple]) -> list[tuple]:
+    def start(self, tasks: list[tuple], later: bool = False) -> list[list]:
         """The tasks started (on the pool; here, their handles only), longest first where the
-        caller orders them so."""
-        if self.pool is None:
-            return [(None, task) for task in tasks]
-        return [(self.pool.apply_async(task[0], (task[1],)), task) for task in tasks]
+        caller orders them so; `later`: held, and started behind the next call's tasks (or when
+        a result is asked), to fill the pool once what the caller waits for is started."""
+        started = [[None, task] for task in tasks]
+        if later:
+            self._held += started
+        else:
+            self._submit(started + self._held)
+            self._held = []
+        return started
 
-    def results(self, started: list[tuple], say) -> list:
+    def _submit(self, started: list[list]) -> None:
+        """Each started task put on the pool (none: it runs here when its result is asked)."""
+        if self.pool is not None:
+            for handle in started:
+                handle[0] = self.pool.apply_async(handle[1][0], (handle[1][1],))
+
+    def results(self, started: list[list], say) -> list:
         """[fn(args) for each started task], in their order, `say(name)` as each is got (a task
-        named "" is not told: a part of a stage)."""
+        named "" is not told: a part of a stage); tasks still held are started first."""
+        self.start([])
         out = []
         for handle, (fn, args, name) in started:
             out.append(fn(args) if handle is None else handle.get())

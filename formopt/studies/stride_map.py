@@ -34,6 +34,7 @@ from ..optim.stride import Stride, StrideNLP, costs, ranges, rank, summarise
 from ..optim.stride.guess import ballistic, fitted
 from ..optim.stride.layout import Solved
 from ..optim.stride.local import optimum
+from .pool import Background
 
 PARAMETERS = {"speed_mps": "running speed, m/s", "cadence_spm": "imposed cadence, steps/min",
               "step_length_m": "imposed step length (a half stride), m",
@@ -264,7 +265,8 @@ PASSES = 4  # sweeps of the polish, alternating direction, at most
 
 
 def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | None = None,
-                  friction: float | None = None, start: Stride | None = None) -> CadenceCurve:
+                  friction: float | None = None, start: Stride | None = None,
+                  beside: Background | None = None) -> CadenceCurve:
     """The scene's stride at `speed` (m/s) with each cadence of `cadences` (steps/min)
     imposed: the least costly optimum found from several starts, since the stride's
     landscape has several local optima at an imposed cadence.
@@ -278,7 +280,8 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
        found at one cadence spreads to its neighbours.
     3. The free optimum solved again from the least costly imposed stride, kept if better.
 
-    `slope` (rad), `friction`: the scene's when None. Strides in the order of `cadences`."""
+    `slope` (rad), `friction`: the scene's when None; `beside`: a pool for step 1's solves,
+    independent of each other (`first_sweep`). Strides in the order of `cadences`."""
     slope = scene.slope if slope is None else slope
     mu = scene.friction if friction is None else friction
     values = [float(c) for c in cadences]
@@ -293,7 +296,10 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
 
     def attempt(c: float, source: Stride, how: str) -> bool:
         """Solve cadence c warm from `source`; keep it if it is better; True if kept."""
-        stride = summarise(nlp, warm(nlp, source, speed, slope, mu, c), False)
+        return keep(c, summarise(nlp, warm(nlp, source, speed, slope, mu, c), False), how)
+
+    def keep(c: float, stride: Stride, how: str) -> bool:
+        """Keep cadence c's `stride` if it is better than the one kept; True if kept."""
         if stride.success:
             tried[c].append(stride.objective_value)
         old = kept.get(c)
@@ -302,8 +308,8 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
             return True
         return False
 
-    for c in values:
-        attempt(c, base, "free")
+    for c, stride in zip(values, first_sweep(scene, base, speed, slope, mu, values, beside)):
+        keep(c, stride, "free")
     _polish(sorted(set(values) | {base.cadence_spm}), base.cadence_spm, kept, attempt)
     for c in values:  # no warm start gave a valid stride: the generic guess, as a map's chain would
         if not kept[c][0].valid:
@@ -315,6 +321,29 @@ def cadence_curve(scene: StrideScene, speed: float, cadences, slope: float | Non
     curve = CadenceCurve(base, [kept[c][0] for c in values], [kept[c][1] for c in values],
                          [tried[c] for c in values])
     return _better_free(curve, nlp, speed, slope, mu)
+
+
+def first_sweep(scene: StrideScene, base: Stride, speed, slope, mu, cadences: list[float],
+                beside: Background | None) -> list[Stride]:
+    """Step 1 of `cadence_curve`: each cadence solved warm from the free optimum `base`, in the
+    order of `cadences`; on `beside`'s pool where given (studies.pool.Background), each the same
+    solve as here, the farthest from `base`'s cadence first (often the longest: RBDS001 T25's
+    +10 %, 143 IPOPT iterations of the sweep's 548; not always: RIC's longest, 219 of 534, was
+    its nearest; 2026-11-27)."""
+    tasks = [(solved_from, (scene, base, speed, slope, mu, c), "") for c in cadences]
+    if beside is None:
+        return [solved_from(args) for _, args, _ in tasks]
+    order = sorted(range(len(tasks)), key=lambda k: -abs(cadences[k] - base.cadence_spm))
+    got = dict(zip(order, beside.results(beside.start([tasks[k] for k in order]), lambda text: None)))
+    return [got[k] for k in range(len(tasks))]
+
+
+def solved_from(task: tuple) -> Stride:
+    """The scene's stride at `cadence` warm from `source` (`warm`), from (scene, source, speed,
+    slope, mu, cadence)."""
+    scene, source, speed, slope, mu, cadence = task
+    nlp = scene.nlp()
+    return summarise(nlp, warm(nlp, source, speed, slope, mu, cadence), False)
 
 
 def _polish(order: list[float], free_cadence: float, kept: dict, attempt) -> None:

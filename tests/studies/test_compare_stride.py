@@ -22,10 +22,12 @@ from formopt.studies.compare_stride import (
     WhatIf,
     answer,
     band_curves,
+    band_points,
     family,
     optima_notes,
     what_ifs,
 )
+from formopt.studies.pool import Background
 from formopt.studies.stride_form import joint_work, stride_scene
 from formopt.studies.stride_map import warm
 
@@ -121,7 +123,7 @@ def test_a_failed_sticking_free_optimum_is_no_reference(monkeypatch):
             "98 W), which is no optimum") in notes
     assert "150 steps/min" not in notes and "above the least costly" not in notes
     monkeypatch.setattr(compare_band, "stride_at", _solved)
-    variant, = band_curves(nominal, [Variant("friction 0.6", "friction", "mu")], 1, [].append)
+    variant, = band_curves(nominal, [Variant("friction 0.6", "friction", "mu")], Background(1), [].append)
     assert variant.free.starts == (nominal.free, least)
     starts = []
     monkeypatch.setattr(compare_stride, "warm", lambda nlp, start, *values: starts.append(start) or start)
@@ -139,7 +141,7 @@ def _solved(task):
 
 
 def test_the_band_is_solved_longest_first_and_kept_in_its_order(monkeypatch):
-    """band_curves: every variant's solves (compare_band.solve_band: the free optimum, then
+    """band_curves: every variant's solves (compare_band.start_band: the free optimum, then
     each cadence) as tasks on two processes, the objective's first (LONGEST_FIRST); each curve
     assembled from its own solves, in the variants' order, each told once."""
     monkeypatch.setattr(compare_band, "stride_at", _solved)
@@ -150,7 +152,8 @@ def test_the_band_is_solved_longest_first_and_kept_in_its_order(monkeypatch):
                 Variant("legs' mass +5 %", "body", "legs")]
     for workers in (1, 2):
         told: list[str] = []
-        curves = band_curves(nominal, variants, workers, told.append)
+        with Background(workers) as pool:
+            curves = band_curves(nominal, variants, pool, told.append)
         assert told == ["variant metabolic done", "variant legs' mass +5 % done", "variant friction 0.6 done"]
         assert [(c.name, c.part) for c in curves] == [(n, p) for n, p, _ in variants]
         for curve, (_, _, scene) in zip(curves, variants):
@@ -159,8 +162,13 @@ def test_the_band_is_solved_longest_first_and_kept_in_its_order(monkeypatch):
             assert [s.scene for s in curve.strides] == [scene] * 3
             assert [s.cadence_spm for s in curve.strides] == cadences
             assert [s.starts for s in curve.strides] == [(s,) for s in nominal.strides]
+    with Background(2) as pool:  # the free optima started before (beside the family): the same curves
+        early = band_curves(nominal, variants, pool, [].append,
+                            compare_band.start_band(variants, band_points(nominal)[:1], pool))
+    assert [(c.free.starts, [s.starts for s in c.strides]) for c in early] == \
+        [(c.free.starts, [s.starts for s in c.strides]) for c in curves]
     sticking = SimpleNamespace(cadence_spm=163.0, success=True)
-    curves = band_curves(replace(nominal, own_free=sticking), variants, 1, [].append)
+    curves = band_curves(replace(nominal, own_free=sticking), variants, Background(1), [].append)
     assert all(c.free.starts == (nominal.free, sticking) for c in curves)
 
 

@@ -13,3 +13,16 @@ def test_background_tasks_keep_their_order():
             started = pool.start(tasks)
             assert pool.results(started, told.append) == [2, 3, 4.0]
         assert told == ["a", "b", "c"]
+
+
+def test_held_tasks_start_behind_the_next():
+    """Tasks started `later` go on the pool behind the next start's tasks, or when a result is
+    asked: every result got, in each call's order."""
+    for workers in (1, 2):
+        with Background(workers) as pool:
+            held = pool.start([(abs, -1, "")], later=True)
+            assert held[0][0] is None  # not on the pool yet
+            first = pool.start([(abs, -2, "")])
+            assert pool.results(first, print) == [2] and pool.results(held, print) == [1]
+            again = pool.start([(abs, -5, "")], later=True)
+            assert pool.results(again, print) == [5]

@@ -18,6 +18,7 @@ from formopt.optim.stride import summarise
 from formopt.optim.stride.guess import ballistic
 from formopt.report.stride_sweep import stride_sweep_figures
 from formopt.studies import stride_map, sweep
+from formopt.studies.pool import Background
 
 PARAMS = [("speed_mps", np.array([3.0, 3.5])), ("cadence_spm", np.array([165.0, 185.0]))]
 
@@ -137,6 +138,19 @@ def test_the_cadence_curve_is_the_least_costly_optimum_its_neighbours_reach(scen
                 continue
             again = stride_map.warm(nlp, source, 3.5, 0.0, scene.friction, cadence)
             assert not again.success or again.objective >= kept.objective_value * (1 - 1e-6)
+
+
+def test_the_first_sweep_on_a_pool_is_the_same_solves(scene):
+    """stride_map.first_sweep: each cadence solved from the free optimum on a pool's workers
+    (the farthest first) gives the strides solved here, bit for bit, in the cadences' order."""
+    base = stride_map.free(scene, 3.5, 0.0, scene.friction)
+    cadences = [175.0, 160.0, 190.0]
+    here = stride_map.first_sweep(scene, base, 3.5, 0.0, scene.friction, cadences, None)
+    with Background(2) as pool:
+        there = stride_map.first_sweep(scene, base, 3.5, 0.0, scene.friction, cadences, pool)
+    assert [s.cadence_spm for s in there] == pytest.approx(cadences, rel=1e-9)
+    assert [s.objective_value for s in there] == [s.objective_value for s in here]
+    assert all(np.array_equal(a.solved.x, b.solved.x) for a, b in zip(here, there))
 
 
 def test_the_polish_sweeps_from_neighbours_past_the_free_optimum():
