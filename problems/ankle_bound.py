@@ -45,6 +45,7 @@ from formopt.optim.stride.bounds import held_text
 from formopt.optim.stride.collocation import NX
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS, step_length
+from formopt.optim.stride.problem import STRIKES
 from formopt.studies.stride import measured_cycle
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -112,7 +113,7 @@ def stance_table(nlp, stride) -> None:
     high = joint_space.RANGES["ankle"][1] + joint_space.LIMIT_MARGIN
     print(f"\nthe stance nodes (the ankle's bound {math.degrees(high):.1f} deg; lam_x per rad of it)")
     head = "".join(f"{m[:4]:>5s} l~ strain    F  f_PE     a " for m in PLANTARFLEXORS)
-    print(f"{'phase':>9s} {'t ms':>6s} {'ankle':>6s} {'knee':>6s} " + head + " tau_mus  wall  lam_x")
+    print(f"{'phase':>9s} {'node':>6s} {'ankle':>6s} {'knee':>6s} " + head + " tau_mus  wall  lam_x")
     for phase in nlp.phases:
         if not phase.rows:
             continue
@@ -199,15 +200,16 @@ def relaxed(body) -> None:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--dorsiflexion", type=float, help="deg: the ankle's range's end (a what-if; 30)")
     parser.add_argument("--wall", choices=("formopt", "anderson-pandy"), default="formopt",
                         help="the ankle's range wall (a what-if: anderson-pandy)")
     parser.add_argument("--width", nargs="*", default=[], help="muscle=w: its force-length width (a what-if)")
-    parser.add_argument("--strike", default="heel", choices=("heel", "forefoot", "flat"), help="the scene's strike (a what-if)")
-    parser.add_argument("--brief", action="store_true", help="the solve's one-line summary alone")
-    parser.add_argument("--no-solve", action="store_true", help="the runner's lengths and the relaxed ankle alone")
+    parser.add_argument("--strike", default="heel", choices=STRIKES, help="the scene's strike (a what-if)")
+    only = parser.add_mutually_exclusive_group()
+    only.add_argument("--brief", action="store_true", help="the solve's one-line summary alone")
+    only.add_argument("--no-solve", action="store_true", help="the runner's lengths and the relaxed ankle alone")
     args = parser.parse_args(argv)
     if args.dorsiflexion is not None:  # a what-if: this process's ranges, read when the NLP is built
         joint_space.RANGES["ankle"] = (joint_space.RANGES["ankle"][0], math.radians(args.dorsiflexion))

@@ -58,3 +58,17 @@ def test_muscle_redundancy_converges_from_a_poor_guess(monkeypatch, capfd):
     assert "Solve_Succeeded" in out
     reserve = next(line for line in out.splitlines() if line.startswith("largest reserve"))
     assert float(reserve.split()[-3]) < 5.0  # "largest reserve moment: 3.58 N m"
+
+
+def test_ankle_bound_script_reads_the_runner_without_a_solve(monkeypatch, capfd):
+    """problems/ankle_bound.py --no-solve (docs/concepts/muscles.md, "Why the ankle goes to its
+    bound"): the plantarflexors over RBDS001's stance and the relaxed ankle against Riener &
+    Edrich, the figures the page quotes; --brief and --no-solve exclude each other."""
+    script = ROOT / "problems" / "ankle_bound.py"
+    out = run_script(script, ["--no-solve"], monkeypatch, capfd)
+    assert "knee 40, ankle 22 deg: soleus l~ 1.073 / 0.868, gastrocnemius 1.324 / 0.973" in out
+    relaxed = {int(line.split()[1]): line.split() for line in out.splitlines() if line.strip().startswith("knee ")}
+    assert relaxed[0][-2:] == ["100.8", "154.6"] and relaxed[0][8] == "25.3"  # 30 deg: muscles, measured
+    assert relaxed[50][8] == "6.9" and relaxed[50][-2] == "40.8"
+    with pytest.raises(AssertionError, match="exited with 2"):
+        run_script(script, ["--brief", "--no-solve"], monkeypatch, capfd)

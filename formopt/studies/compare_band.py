@@ -98,8 +98,8 @@ def start_band(variants: list[Variant], points: list[tuple], pool: Background) -
     cadence None, or its stride at a cadence), each solved warm from one of its starts
     (`stride_at`), started on `pool` (independent of each other), the longest variants first
     (LONGEST_FIRST): the started tasks, variant by variant in that order (`band_results`)."""
-    order = sorted(variants, key=lambda v: LONGEST_FIRST.index(v.part))
-    return [pool.start([(stride_at, (v.scene, starts, cadence), "") for starts, cadence in points]) for v in order]
+    return [pool.start([(stride_at, (v.scene, starts, cadence), "") for starts, cadence in points])
+            for v in _longest_first(variants)]
 
 
 def band_results(variants: list[Variant], started: list[list[list[list]]], pool: Background,
@@ -107,12 +107,17 @@ def band_results(variants: list[Variant], started: list[list[list[list]]], pool:
     """Each variant's strides by name, from the tasks of each `start_band` call in `started`
     (its points' order), got in LONGEST_FIRST's order, `say("variant NAME done")` as each
     variant's last is got."""
-    order = sorted(variants, key=lambda v: LONGEST_FIRST.index(v.part))
     out = {}
-    for k, v in enumerate(order):
+    for k, v in enumerate(_longest_first(variants)):
         out[v.name] = pool.results([task for part in started for task in part[k]], say)
         say(f"variant {v.name} done")
     return out
+
+
+def _longest_first(variants: list[Variant]) -> list[Variant]:
+    """The variants in the order their solves start and their results are got (LONGEST_FIRST:
+    by part, each part's in `variants`' order): `start_band`'s tasks and `band_results`' index."""
+    return sorted(variants, key=lambda v: LONGEST_FIRST.index(v.part))
 
 
 def stride_at(task: tuple) -> Stride:

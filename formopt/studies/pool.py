@@ -1,6 +1,7 @@
-"""A local process pool whose workers end with their run (studies.sweep's chunks, compare's
-band and strikes, `Background`): the workers ignore Ctrl-C (the run stops them), die with a killed parent, and are
-terminated when the run ends, by an error or an interrupt as well."""
+"""A local process pool whose workers end with their run (studies.sweep's chunks; `Background`:
+compare's stride section, its other strikes, first sweep, forward checks and band on one pool):
+the workers ignore Ctrl-C (the run stops them), die with a killed parent, and are terminated
+when the run ends, by an error or an interrupt as well."""
 
 from __future__ import annotations
 

@@ -172,6 +172,43 @@ def test_the_band_is_solved_longest_first_and_kept_in_its_order(monkeypatch):
     assert all(c.free.starts == (nominal.free, sticking) for c in curves)
 
 
+def test_the_band_starts_its_free_optima_beside_the_family_only_when_their_starts_are_known(monkeypatch):
+    """compare_stride.answer: the band's free optima start before the family (beside it) from
+    the nominal's free optima; where the sticking free optimum failed, their start is the least
+    costly imposed stride, which the family may replace: they start after it, from its stride."""
+    events = []
+    start_band = compare_stride.start_band
+    monkeypatch.setattr(compare_stride, "start_band", lambda *a: events.append("band") or start_band(*a))
+    monkeypatch.setattr(compare_band, "stride_at", _solved)
+    monkeypatch.setattr(compare_stride, "measured_form", lambda c: {"cadence_spm": 170.0, "strike": "heel"})
+    monkeypatch.setattr(compare_stride, "stride_scene", lambda *a: SimpleNamespace(
+        nlp=lambda: SimpleNamespace(solver=None), settings=SimpleNamespace(nodes=18)))
+    monkeypatch.setattr(compare_stride, "band_variants", lambda scene, body: [Variant("friction 0.6", "friction", "mu")])
+    monkeypatch.setattr(compare_stride, "strike_tasks", lambda scene, speed, strikes: [(type, s, "") for s in strikes])
+    monkeypatch.setattr(compare_stride, "check_tasks", lambda scene, strides: [(lambda s: s, s, "") for s in strides])
+    monkeypatch.setattr(compare_stride, "_notes", lambda *a: [])
+    monkeypatch.setattr(compare_stride, "what_ifs", lambda *a: [])
+    cheaper = SimpleNamespace(objective_value=0.9, success=True, valid=True, cadence_spm=178.5)
+
+    def family(scene, speed, curve):
+        events.append("family")
+        curve.strides[3] = cheaper  # a continuation better than the curve's stride replaces it
+
+    monkeypatch.setattr(compare_stride, "family", family)
+    c = SimpleNamespace(steps=SimpleNamespace(speed=3.5), settings={"body": {"mass_kg": 62.0, "height_m": 1.81, "sex": "male"},
+                                                         "friction": 0.8}, law="no-slip")
+    sticking = SimpleNamespace(success=True, cadence_spm=163.0)
+    for own, first, after in ((sticking, "band", ("band", "family", "band")),
+                              (_failed_own_free(), cheaper, ("family", "band", "band"))):
+        nominal = _curve("nominal", [100, 110, 104, 98, 97], objective=[1.0, 1.2, 1.1, 0.95, 0.97])
+        nominal.free, nominal.own_free = SimpleNamespace(cadence_spm=165.0, success=True), own
+        monkeypatch.setattr(compare_stride, "run_curve", lambda *a, curve=nominal: curve)
+        events.clear()
+        variant = answer(c, workers=1).curves[1]
+        assert tuple(events) == after
+        assert variant.free.starts == (nominal.free, own if first == "band" else cheaper)
+
+
 def test_a_variant_starts_from_the_first_solution_of_its_own_nlp(monkeypatch):
     """compare_band.stride_at: warm (with multipliers) from the first start converged on the
     variant's NLP (its layout: the nominal's sticking free optimum where the nominal's slides),
