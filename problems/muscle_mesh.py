@@ -12,7 +12,7 @@ finer mesh, guess.fitted), so every mesh solves the same stride.
                                    [--no-consistency-rows [--rows-first]]
                                    [--grading 0.9 [--first-grading 0]] (a mesh's own: --nodes 160:1;
                                    a phase's duration held, ms: --nodes 160:0@flat=59.5-60.1)
-                                   [--replay-cost] [--power 1] [--goals] [--mass 75]
+                                   [--replay-cost] [--power 1] [--goals] [--angles] [--mass 75]
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -44,7 +44,11 @@ and along its excitations replayed forward (`replayed_force_rate`): the cost of 
 controls by a method no mesh's quadrature shares. `--goals`: at the end, each mesh's stride in
 problems/stride_ladder.py's columns (its `row`: cadence, stance, peak vertical force, the joint
 angles' RMS, peak ankle power, the tendons' energy, the swing foot's height...) against
-RBDS001's processed mean cycle: issue 33's goals on the searched, refined stride.
+RBDS001's processed mean cycle: issue 33's goals on the searched, refined stride. `--angles`:
+the finest mesh's joint angles taken apart (problems/stride_angles.py's `table`: per joint the
+offset, the time shift, the shape, the range and when the extremes fall; at 2.5 and 3.5 m/s the
+thigh from the vertical against the runner's markers) and its ankle push-off against the
+runner's (`push_off`).
 """
 
 from __future__ import annotations
@@ -56,7 +60,8 @@ import time
 
 import casadi as ca
 import numpy as np
-from stride_ladder import RBDS, header, row  # problems/, this script's directory
+from stride_angles import TRIALS, measured_segments, table  # problems/, this script's directory
+from stride_ladder import RBDS, header, row
 from stride_mesh import convergence
 
 from formopt.io.muscle_table import body_muscles
@@ -69,7 +74,7 @@ from formopt.optim.stride.ocp import INTEGRANDS, step_length
 from formopt.optim.stride.problem import StrideSettings
 from formopt.optim.stride.refine import refined
 from formopt.optim.stride.search import global_optimum
-from formopt.studies.stride import measured_cycle
+from formopt.studies.stride import measured_cycle, predicted_cycle
 
 
 def report(nodes: int, stride, seconds: float, grading: float = 0.0) -> str:
@@ -258,6 +263,19 @@ def goals(strides, speed: float) -> str:
     return "\n".join(["issue 33's goals (problems/stride_ladder.py's columns):", header("mesh objective"), *rows])
 
 
+def push_off(stride, measured: dict) -> str:
+    """The ankle's peak positive power (W/kg, P = -tau theta'), predicted and measured (the data
+    set's own joint power), with when it peaks (% of the cycle), the net moment there (N m/kg),
+    the joint's speed P / |M| (rad/s) that makes it, and the largest moment (N m/kg)."""
+    parts = []
+    for name, cycle in (("predicted", predicted_cycle(stride)), ("measured", measured)):
+        P, M = np.nan_to_num(cycle["powers"]["ankle"]), np.nan_to_num(cycle["moments"]["ankle"])
+        k = int(np.argmax(P))
+        parts.append(f"{name} {P[k]:.1f} W/kg at {cycle['percent'][k]:.0f} % of the cycle, moment "
+                     f"{abs(M[k]):.2f} N m/kg at {P[k] / abs(M[k]):.1f} rad/s, largest moment {np.abs(M).max():.2f}")
+    return "ankle push-off: " + "; ".join(parts)
+
+
 def node_token(text: str) -> tuple[int, float | None, dict]:
     """A mesh "nodes[:grading][@phase=low-high]" as (nodes, grading or None: --first-grading's or
     --grading's, {phase: (low, high) s}: a phase's duration held between low and high ms)."""
@@ -299,6 +317,8 @@ def main(argv=None) -> int:
                         help="at the end, each mesh's force-rate integral by its quadrature and replayed")
     parser.add_argument("--goals", action="store_true",
                         help="at the end, each mesh's stride in problems/stride_ladder.py's goal columns")
+    parser.add_argument("--angles", action="store_true",
+                        help="at the end, the finest mesh's joint angles taken apart and its ankle push-off")
     parser.add_argument("--mass", type=float, default=62.0,
                         help="the body's mass (kg) at RBDS001's height: a heavier runner")
     args = parser.parse_args(argv)
@@ -332,6 +352,11 @@ def main(argv=None) -> int:
         print(replayed_force_rate(nlp, stride), flush=True)
     if args.goals:
         print(goals(strides, args.speed), flush=True)
+    if args.angles:
+        measured = measured_cycle(RBDS, args.speed)
+        segments = measured_segments(args.speed) if args.speed in TRIALS else None
+        table(f"{args.nodes[-1][0]} nodes", strides[-1][0], measured, segments)
+        print(push_off(strides[-1][0], measured), flush=True)
     return 0
 
 
