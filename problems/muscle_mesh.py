@@ -1,6 +1,7 @@
 """The muscles' stride on N against 2N nodes (issue 34 item 2 on issue 33's body): RBDS001's body
-(62 kg, 1.81 m; `--mass` another at the same height), `actuation = "muscles"` (io.muscle_table.body_muscles, "metabolic" objective,
-the default force-rate and reserve weights), free cadence, at one speed and strike. The first
+(62 kg, 1.81 m; `--mass`: another mass at the same height), `actuation = "muscles"`
+(io.muscle_table.body_muscles, "metabolic" objective, the default force-rate and reserve
+weights), free cadence, at one speed and strike. The first
 mesh's stride is the global search's answer there (optim.stride.search.global_optimum at
 `--spend`: the stride the tables of docs/concepts/muscles.md report), or with `--start path`
 the default path's (local.optimum's one start: problems/stride_ladder.py's); each finer mesh
