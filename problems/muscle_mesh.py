@@ -1,6 +1,7 @@
 """The muscles' stride on N against 2N nodes (issue 34 item 2 on issue 33's body): RBDS001's body
-(62 kg, 1.81 m), `actuation = "muscles"` (io.muscle_table.body_muscles, "metabolic" objective,
-the default force-rate and reserve weights), free cadence, at one speed and strike. The first
+(62 kg, 1.81 m; `--mass`: another mass at the same height), `actuation = "muscles"`
+(io.muscle_table.body_muscles, "metabolic" objective, the default force-rate and reserve
+weights), free cadence, at one speed and strike. The first
 mesh's stride is the global search's answer there (optim.stride.search.global_optimum at
 `--spend`: the stride the tables of docs/concepts/muscles.md report), or with `--start path`
 the default path's (local.optimum's one start: problems/stride_ladder.py's); each finer mesh
@@ -12,7 +13,7 @@ finer mesh, guess.fitted), so every mesh solves the same stride.
                                    [--no-consistency-rows [--rows-first]]
                                    [--grading 0.9 [--first-grading 0]] (a mesh's own: --nodes 160:1;
                                    a phase's duration held, ms: --nodes 160:0@flat=59.5-60.1)
-                                   [--replay-cost] [--power 1]
+                                   [--replay-cost] [--power 1] [--goals] [--angles] [--mass 75]
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -41,7 +42,14 @@ finer mesh is from the one before), so that every mesh solves the rows-kept stri
 meshes). Each finer mesh starts from the one before at both meshes' node times (guess.fitted).
 `--replay-cost`: at the end, each mesh's force-rate integral per phase by the NLP's quadrature
 and along its excitations replayed forward (`replayed_force_rate`): the cost of each stride's
-controls by a method no mesh's quadrature shares.
+controls by a method no mesh's quadrature shares. `--goals`: at the end, each mesh's stride in
+problems/stride_ladder.py's columns (its `row`: cadence, stance, peak vertical force, the joint
+angles' RMS, peak ankle power, the tendons' energy, the swing foot's height...) against
+RBDS001's processed mean cycle: issue 33's goals on the searched, refined stride. `--angles`:
+the finest mesh's joint angles taken apart (problems/stride_angles.py's `table`: per joint the
+offset, the time shift, the shape, the range and when the extremes fall; at 2.5 and 3.5 m/s the
+thigh from the vertical against the runner's markers) and its ankle push-off against the
+runner's (`push_off`).
 """
 
 from __future__ import annotations
@@ -53,7 +61,9 @@ import time
 
 import casadi as ca
 import numpy as np
-from stride_mesh import convergence  # problems/, this script's directory
+from stride_angles import TRIALS, measured_segments, table  # problems/, this script's directory
+from stride_ladder import RBDS, header, row
+from stride_mesh import convergence
 
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
@@ -65,6 +75,7 @@ from formopt.optim.stride.ocp import INTEGRANDS, step_length
 from formopt.optim.stride.problem import StrideSettings
 from formopt.optim.stride.refine import refined
 from formopt.optim.stride.search import global_optimum
+from formopt.studies.stride import measured_cycle, predicted_cycle
 
 
 def report(nodes: int, stride, seconds: float, grading: float = 0.0) -> str:
@@ -244,6 +255,28 @@ def replayed_force_rate(nlp, stride) -> str:
             f"all {sum(quadrature):.4f} / {sum(replayed):.4f}")
 
 
+def goals(strides, speed: float) -> str:
+    """Each mesh's stride in problems/stride_ladder.py's columns (its `row`: issue 33's goals)
+    against RBDS001's processed mean cycle and measured cadence at `speed`."""
+    measured = measured_cycle(RBDS, speed)
+    rows = [row(f"{nlp.settings.nodes} nodes" + (f" graded {nlp.settings.grading:g}" if nlp.settings.grading else ""),
+                speed, stride, measured) for stride, _, nlp in strides]
+    return "\n".join(["issue 33's goals (problems/stride_ladder.py's columns):", header("mesh objective"), *rows])
+
+
+def push_off(stride, measured: dict) -> str:
+    """The ankle's peak positive power (W/kg, P = -tau theta'), predicted and measured (the data
+    set's own joint power), with when it peaks (% of the cycle), the net moment there (N m/kg),
+    the joint's speed P / |M| (rad/s) that makes it, and the largest moment (N m/kg)."""
+    parts = []
+    for name, cycle in (("predicted", predicted_cycle(stride)), ("measured", measured)):
+        P, M = np.nan_to_num(cycle["powers"]["ankle"]), np.nan_to_num(cycle["moments"]["ankle"])
+        k = int(np.argmax(P))
+        parts.append(f"{name} {P[k]:.1f} W/kg at {cycle['percent'][k]:.0f} % of the cycle, moment "
+                     f"{abs(M[k]):.2f} N m/kg at {P[k] / abs(M[k]):.1f} rad/s, largest moment {np.abs(M).max():.2f}")
+    return "ankle push-off: " + "; ".join(parts)
+
+
 def node_token(text: str) -> tuple[int, float | None, dict]:
     """A mesh "nodes[:grading][@phase=low-high]" as (nodes, grading or None: --first-grading's or
     --grading's, {phase: (low, high) s}: a phase's duration held between low and high ms)."""
@@ -283,12 +316,18 @@ def main(argv=None) -> int:
                         help="the first mesh's stride solved with the rows, then without them from it")
     parser.add_argument("--replay-cost", action="store_true",
                         help="at the end, each mesh's force-rate integral by its quadrature and replayed")
+    parser.add_argument("--goals", action="store_true",
+                        help="at the end, each mesh's stride in problems/stride_ladder.py's goal columns")
+    parser.add_argument("--angles", action="store_true",
+                        help="at the end, the finest mesh's joint angles taken apart and its ankle push-off")
+    parser.add_argument("--mass", type=float, default=62.0,
+                        help="the body's mass (kg) at RBDS001's height: a heavier runner")
     args = parser.parse_args(argv)
     if args.replay_cost and args.power != 2:
         parser.error("--replay-cost replays the squared force rates: it needs --power 2")
     ranges.allow_nodes(max(n for n, *_ in args.nodes))
-    body = scaled_body(62.0, 1.81)
-    print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, muscles, metabolic, {args.speed} m/s, "
+    body = scaled_body(args.mass, 1.81)
+    print(f"RBDS001's {'body' if args.mass == 62.0 else 'height'} ({args.mass:g} kg, 1.81 m), {args.strike} strike, muscles, metabolic, {args.speed} m/s, "
           f"the first mesh's stride {'the search at spend ' + str(args.spend) if args.start == 'search' else 'the default path'}"
           f"{'' if args.consistency_rows == 'exact' else ', without the consistency rows'}"
           f"{f', grading {args.grading:g}' if args.grading else ''}"
@@ -312,6 +351,13 @@ def main(argv=None) -> int:
             print(convergence(name, values, [n for n, *_ in args.nodes]))
     for stride, _, nlp in strides if args.replay_cost else []:
         print(replayed_force_rate(nlp, stride), flush=True)
+    if args.goals:
+        print(goals(strides, args.speed), flush=True)
+    if args.angles:
+        measured = measured_cycle(RBDS, args.speed)
+        segments = measured_segments(args.speed) if args.speed in TRIALS else None
+        table(f"{args.nodes[-1][0]} nodes", strides[-1][0], measured, segments)
+        print(push_off(strides[-1][0], measured), flush=True)
     return 0
 
 

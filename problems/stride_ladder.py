@@ -65,6 +65,13 @@ def settings(rung: str, body, strike: str, nodes: int, weight: float, objective:
     return base
 
 
+def header(first: str = "rung objective") -> str:
+    """The columns `row` prints, `first` naming its first."""
+    return (f"{first:30s} {'v':>4s} {'spm':>7s} {'meas':>6s} {'stance':>6s} {'GRF':>6s} {'m.st':>6s} {'m.GRF':>6s}"
+            f" {'hipRMS':>5s} {'knRMS':>5s} {'anRMS':>5s} {'hipSh':>5s} {'knSh':>5s} {'anSh':>5s} {'P+ank':>5s} {'m.P+':>5s} {'Ach J':>5s} {'all J':>5s}"
+            f" {'res':>5s} {'E/kg/m':>6s} {'ankDF':>5s} {'swing':>6s} {'J':>6s} {'valid':>5s} {'iter':>5s} {'build':>5s} {'solve':>6s}")
+
+
 def row(rung, speed, stride, measured) -> str:
     rung = f"{rung} {stride.objective}"
     cycle = compare_cycle(stride, measured) if measured else None
@@ -125,9 +132,7 @@ def main(argv=None) -> int:
     body = scaled_body(args.mass, 1.81)
     print(f"RBDS001's height (1.81 m), {args.mass:g} kg, {args.strike} strike, {args.nodes} nodes, {args.starts} start(s), "
           f"force-rate weight {weight:g}, reserve weight {args.reserve_weight:g}", flush=True)
-    print(f"{'rung objective':30s} {'v':>4s} {'spm':>7s} {'meas':>6s} {'stance':>6s} {'GRF':>6s} {'m.st':>6s} {'m.GRF':>6s}"
-          f" {'hipRMS':>5s} {'knRMS':>5s} {'anRMS':>5s} {'hipSh':>5s} {'knSh':>5s} {'anSh':>5s} {'P+ank':>5s} {'m.P+':>5s} {'Ach J':>5s} {'all J':>5s}"
-          f" {'res':>5s} {'E/kg/m':>6s} {'ankDF':>5s} {'swing':>6s} {'J':>6s} {'valid':>5s} {'iter':>5s} {'build':>5s} {'solve':>6s}", flush=True)
+    print(header(), flush=True)
     runs = [(rung, objective) for rung in args.rungs
             for objective in (["metabolic"] if rung == "muscles" else args.objectives)]
     for rung, objective in runs:
