@@ -36,6 +36,7 @@ from pathlib import Path
 
 import casadi as ca
 import numpy as np
+from muscle_energy import cost_terms, what_if  # problems/, this script's directory
 
 from formopt.io.muscle_table import body_muscles
 from formopt.io.scene import load
@@ -44,7 +45,6 @@ from formopt.mechanics import muscles as hill
 from formopt.optim.stride.bounds import held_text
 from formopt.optim.stride.collocation import NX
 from formopt.optim.stride.local import optimum
-from formopt.optim.stride.ocp import INTEGRANDS, step_length
 from formopt.optim.stride.problem import STRIKES
 from formopt.studies.stride import measured_cycle
 
@@ -73,17 +73,6 @@ def anderson_pandy(range_wall):
     return wall
 
 
-def widened(muscles: hill.Muscles, items: list[str]) -> hill.Muscles:
-    """`muscles` with each named muscle's force-length width set ("soleus=0.56"): a what-if."""
-    width = muscles.width.copy()
-    for item in items:
-        name, _, value = item.partition("=")
-        if name not in muscles.names:
-            raise SystemExit(f"--width {item}: no muscle {name!r}; expected one of {', '.join(muscles.names)}")
-        width[muscles.names.index(name)] = float(value)
-    return dataclasses.replace(muscles, width=width)
-
-
 def tendon_strain(force):
     """l_T / l_Ts - 1 of De Groote's tendon at normalised force F (mechanics.muscles.tendon_length)."""
     return np.asarray(hill.tendon_length(ca.DM(force)), float).ravel() - 1.0
@@ -94,14 +83,6 @@ def node_state(leg: hill.Muscles, angles, rates, force, rate) -> dict:
     length, _ = (np.asarray(v, float).ravel() for v in hill.fibre_state(leg, angles, rates, force, rate))
     passive = np.asarray(hill.passive_force_length(length, leg.passive_slack, leg.passive_stiffness), float).ravel()
     return {"length": length, "strain": tendon_strain(force), "passive": passive}
-
-
-def cost_terms(nlp, stride) -> dict:
-    """Each cost term's value (per distance, as the objective; problems/muscle_energy.py's)."""
-    sums = np.sum([L @ w for L, w in nlp.integrands(stride.solved.blocks, stride.solved.parameters)], axis=0)
-    integrals = dict(zip(INTEGRANDS, sums))
-    d = step_length(stride.speed_mps, stride.half_period_s)
-    return {term.integral: float(term(integrals, d)) for term in nlp.ocp.cost_terms if term.integral in integrals}
 
 
 def stance_table(nlp, stride) -> None:
@@ -218,7 +199,7 @@ def main(argv=None) -> int:
     scene = load(SCENE)
     if args.width:
         scene = dataclasses.replace(scene, settings=dataclasses.replace(
-            scene.settings, muscles=widened(scene.settings.muscles, args.width)))
+            scene.settings, muscles=what_if(scene.settings.muscles, args.width, "width", "--width", False)))
     if not args.no_solve:
         nlp = scene.nlp(args.strike)
         stride = optimum(nlp, args.speed, scene.slope, scene.friction, starts=scene.starts)

@@ -243,15 +243,18 @@ def relaxed_ankle(body) -> None:
               + "; range wall " + ", ".join(f"{w:.1f}" for w in wall))
 
 
-def strengthened(muscles: hill.Muscles, factors: list[str]) -> hill.Muscles:
-    """`muscles` with each named muscle's F_max times its factor ("iliopsoas=1.5"): a what-if."""
-    force = muscles.max_force.copy()
-    for item in factors:
-        name, _, factor = item.partition("=")
+def what_if(muscles: hill.Muscles, items: list[str], field: str, option: str, scale: bool) -> hill.Muscles:
+    """`muscles` with each named muscle's parameter `field` (hill.Muscles') times the value
+    (`scale`) or set to it, from "name=value" items of the command-line `option`: a what-if
+    ("iliopsoas=1.5" with --strength: F_max times 1.5; "soleus=0.56" with --width: its width)."""
+    values = getattr(muscles, field).copy()
+    for item in items:
+        name, _, value = item.partition("=")
         if name not in muscles.names:
-            raise SystemExit(f"--strength {item}: no muscle {name!r}; expected one of {', '.join(muscles.names)}")
-        force[muscles.names.index(name)] *= float(factor)
-    return dataclasses.replace(muscles, max_force=force)
+            raise SystemExit(f"{option} {item}: no muscle {name!r}; expected one of {', '.join(muscles.names)}")
+        k = muscles.names.index(name)
+        values[k] = values[k] * float(value) if scale else float(value)
+    return dataclasses.replace(muscles, **{field: values})
 
 
 def free_start(nlp, args) -> tuple:
@@ -335,7 +338,7 @@ def main(argv=None) -> int:
         actuation.ACTIVATION_RATE_SMOOTHING = args.activation_smoothing
     body = scaled_body(args.mass, 1.81)
     settings = StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic", grading=args.grading,
-                              muscles=strengthened(body_muscles(body), args.strength), force_rate_weight=args.weight,
+                              muscles=what_if(body_muscles(body), args.strength, "max_force", "--strength", True), force_rate_weight=args.weight,
                               force_rate_power=args.power,
                               duration=durations(args.duration))
     nlp = build(body, settings)

@@ -8,6 +8,7 @@ runs every example as a new interpreter."""
 
 import runpy
 import sys
+from pathlib import Path
 
 import matplotlib.pyplot as plt
 import pytest
@@ -18,9 +19,11 @@ EXAMPLES = sorted((ROOT / "examples").glob("*.py"))
 
 def run_script(path, args, monkeypatch, capfd) -> str:
     """What `python path *args` prints (its standard output, the C libraries' included), run
-    in this process: the file as __main__ with sys.argv set; an exit other than 0 fails, and
-    the figures it left open are closed."""
+    in this process: the file as __main__ with sys.argv set and its folder first on sys.path (as
+    python puts it: problems/ scripts import each other); an exit other than 0 fails, and the
+    figures it left open are closed."""
     monkeypatch.setattr(sys, "argv", [str(path), *map(str, args)])
+    monkeypatch.syspath_prepend(str(Path(path).parent))
     capfd.readouterr()
     try:
         runpy.run_path(str(path), run_name="__main__")
