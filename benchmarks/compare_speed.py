@@ -196,6 +196,15 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
     answer = compare_stride.answer
     section = answer(c, workers=workers, **stages) if workers else answer(c, **stages)
     wall, cpu = time.perf_counter() - wall, cpu_s() - cpu
+    print_stages(runner, told, wall, cpu, runs, nlps, other)
+    timeline.report(wall, [(t, text) for t, text in told])
+    if out:
+        Path(out).write_text(json.dumps(section.to_dict(), default=str))
+
+
+def print_stages(runner: str, told: list, wall: float, cpu: float, runs: dict, nlps: dict, other: dict) -> None:
+    """stride_stages' tables: the stages told, the section's wall and CPU (s), this process's
+    solves, iterations and CPU per stage and per NLP, and its CPU outside IPOPT."""
     print("timeline (s, the stage told): " + "; ".join(f"{t:.1f} {text}" for t, text in told))
     print(f"compare's stride section, {runner}: {wall:.1f} s wall, {cpu:.1f} s CPU (this process and its "
           f"pool's), load {os.getloadavg()[0]:.1f} at the end")
@@ -204,9 +213,6 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
         for (key, compiled), (n, its, s) in sorted(rows.items(), key=lambda kv: -kv[1][2]):
             print(f"{key} | {compiled} | {n} | {its} | {s:.2f} | {s / max(its, 1) * 1e3:.1f}")
     print("outside IPOPT (this process): " + "; ".join(f"{k} {v:.2f} s CPU" for k, v in other.items()))
-    timeline.report(wall, [(t, text) for t, text in told])
-    if out:
-        Path(out).write_text(json.dumps(section.to_dict(), default=str))
 
 
 class Timeline:

@@ -293,7 +293,8 @@ def node_token(text: str) -> tuple[int, float | None, dict]:
     return int(nodes), float(grading) if grading else None, bounds
 
 
-def main(argv=None) -> int:
+def arguments(argv):
+    """The command line's options (the module docstring)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--strike", default="heel", choices=problem.STRIKES)
@@ -325,6 +326,11 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     if args.replay_cost and args.power != 2:
         parser.error("--replay-cost replays the squared force rates: it needs --power 2")
+    return args
+
+
+def main(argv=None) -> int:
+    args = arguments(argv)
     ranges.allow_nodes(max(n for n, *_ in args.nodes))
     body = scaled_body(args.mass, 1.81)
     print(f"RBDS001's {'body' if args.mass == 62.0 else 'height'} ({args.mass:g} kg, 1.81 m), {args.strike} strike, muscles, metabolic, {args.speed} m/s, "
