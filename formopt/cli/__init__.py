@@ -184,6 +184,7 @@ def _run(argv) -> int:
     from ..io.files import OutputError
     from ..mechanics.errors import InputError
     from ..mechanics.landing import Diverged
+    from ..studies.pool import WorkerLost
     from .common import check_kind
 
     args = None
@@ -201,7 +202,7 @@ def _run(argv) -> int:
             not str(err).startswith(str(where)) else ""
         print(f"formopt: error: {one_line(f'{prefix}{err}', 600)}", file=sys.stderr)
         return 2
-    except Diverged as err:  # not a result: the run did not reach its goal
+    except (Diverged, WorkerLost) as err:  # not a result: the run did not reach its goal
         print(f"formopt: {one_line(err, 600)}", file=sys.stderr)
         return 1
 

@@ -1,7 +1,8 @@
 """A local process pool whose workers end with their run (studies.sweep's chunks; `Background`:
 compare's stride section, its other strikes, first sweep, forward checks and band on one pool):
 the workers ignore Ctrl-C (the run stops them), die with a killed parent, and are terminated
-when the run ends, by an error or an interrupt as well."""
+when the run ends, by an error or an interrupt as well; a worker that dies while the run waits
+for it (killed, out of memory) is an error (`WorkerLost`), not a run that waits forever."""
 
 from __future__ import annotations
 
@@ -22,11 +23,35 @@ def local_pool(workers: int):
     Linux, so each inherits what the run built), closed when the block ends, then terminated
     (`end`) whichever way it ends."""
     pool = multiprocessing.Pool(workers, _worker_start, (os.getpid(),))
+    pool.formopt_workers = _pids(pool)  # type: ignore[attr-defined]  # `watched`: the workers it began with
     try:
         yield pool
         pool.close()
     finally:  # Ctrl-C or an error: the workers end with the run
         end(pool)
+
+
+class WorkerLost(RuntimeError):
+    """A pool worker ended while the run waited for a result (killed, or out of memory)."""
+
+
+def watched(pool, get):
+    """get(timeout)'s result, a pool's (AsyncResult.get, IMapIterator.next), waited for in
+    WATCH-second steps; WorkerLost where one of the workers local_pool began with has ended:
+    multiprocessing's Pool starts another in its place, but the task the dead one held never
+    returns, and a plain get() would wait for it forever."""
+    while True:
+        try:
+            return get(WATCH)
+        except multiprocessing.TimeoutError:
+            if not _pids(pool) <= pool.formopt_workers or any(w.exitcode is not None for w in pool._pool):
+                raise WorkerLost("a worker process ended while it worked (killed, or out of memory: "
+                                 "the system's log says which); its task is lost, so the run stops") from None
+
+
+def _pids(pool) -> frozenset[int]:
+    """The process ids of a Pool's workers now."""
+    return frozenset(w.pid for w in pool._pool)
 
 
 class Background:
@@ -73,7 +98,7 @@ class Background:
         self.start([])
         out = []
         for handle, (fn, args, name) in started:
-            out.append(fn(args) if handle is None else handle.get())
+            out.append(fn(args) if handle is None else watched(self.pool, handle.get))
             if name:
                 say(name)
         return out

@@ -38,7 +38,7 @@ from ..mechanics.errors import InputError
 from ..mechanics.landing import simulate_state
 from ..mechanics.model import STATE, joint_angles
 from . import optimum_map, stride_map
-from .pool import local_pool
+from .pool import local_pool, watched
 
 PARAMETERS = {"speed_mps": "hip_vx", "trunk_deg": "trunk", "hip_deg": "hip", "knee_deg": "knee", "ankle_deg": "ankle",
               "hip_vx": "hip_vx", "hip_vz": "hip_vz", "friction": None, "slope_deg": None}
@@ -304,7 +304,9 @@ def _results(work, scene, chunks, workers, scheduler, tick=None):
                 yield futures[future], future.result()
     elif workers > 1 and len(chunks) > 1:
         with local_pool(workers) as pool:
-            yield from pool.imap_unordered(_chunk_rows, [(work, scene, chunk) for chunk in chunks])
+            got = pool.imap_unordered(_chunk_rows, [(work, scene, chunk) for chunk in chunks])
+            for _ in chunks:
+                yield watched(pool, got.next)
     else:
         for chunk in chunks:
             yield chunk, work(scene, chunk, tick) if tick else work(scene, chunk)
