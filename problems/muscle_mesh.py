@@ -14,7 +14,7 @@ finer mesh, guess.fitted), so every mesh solves the same stride.
                                    [--grading 0.9 [--first-grading 0]] (a mesh's own: --nodes 160:1;
                                    a phase's duration held, ms: --nodes 160:0@flat=59.5-60.1)
                                    [--replay-cost] [--power 1] [--goals] [--angles] [--mass 75]
-                                   [--activation-smoothing 0 10] [--ipopt max_cpu_time=600 file_print_level=5 ...]
+                                   [--activation-smoothing 0 10 [--chained]] [--ipopt max_cpu_time=600 file_print_level=5 ...]
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -52,7 +52,8 @@ offset, the time shift, the shape, the range and when the extremes fall; at 2.5 
 thigh from the vertical against the runner's markers) and its ankle push-off against the
 runner's (`push_off`). `--activation-smoothing S...`: the last mesh solved from the one before with
 the activations' rates' scale in the transcription's smoothing (actuation.ACTIVATION_RATE_SMOOTHING)
-at each value in turn, each reported (the meshes before at the default). `--ipopt KEY=VALUE...`:
+at each value in turn, each reported (the meshes before at the default); with `--chained` each
+value's solve from the one before's stride, not from the mesh before (a continuation). `--ipopt KEY=VALUE...`:
 IPOPT options over the finer meshes' solves (e.g. max_cpu_time=600, output_file=ipopt.log
 file_print_level=5: a slow solve's iterations).
 """
@@ -232,6 +233,19 @@ def start(nlp, args):
     return stride, parts, nlp
 
 
+def smoothings(body, args, nodes: int, grading: float, held: dict, before):
+    """The last mesh solved at each of `--activation-smoothing`'s scales (actuation.
+    ACTIVATION_RATE_SMOOTHING, read when the NLP is built) from `before` (`finer`'s), or with
+    `--chained` from the scale before's stride; returns the last scale's."""
+    last = before
+    for scale in args.activation_smoothing:
+        actuation.ACTIVATION_RATE_SMOOTHING = scale
+        print(f"the activations' rates' smoothing scale {scale:g}:", flush=True)
+        last = finer(mesh(body, args, nodes, args.consistency_rows, grading, held, anew=True),
+                     args.speed, last if args.chained else before, args.mu_init, args.ipopt)
+    return last
+
+
 def replayed_force_rate(nlp, stride) -> str:
     """The force-rate integral int sum_legs sum_i V_i F'_i^2 / sum_i V_i dt (1/s, costs'
     "force_rate" before its weight and distance) per phase, by the NLP's quadrature and along
@@ -346,6 +360,8 @@ def arguments(argv):
                         help="the body's mass (kg) at RBDS001's height: a heavier runner")
     parser.add_argument("--activation-smoothing", type=float, nargs="+", default=None,
                         help="the last mesh solved at each a' scale in the smoothing (actuation.ACTIVATION_RATE_SMOOTHING)")
+    parser.add_argument("--chained", action="store_true",
+                        help="with --activation-smoothing, each scale's solve from the one before's stride (a continuation)")
     parser.add_argument("--ipopt", type=ipopt_option, nargs="+", default=[],
                         help="KEY=VALUE IPOPT options over the finer meshes' solves, e.g. max_cpu_time=600")
     args = parser.parse_args(argv)
@@ -372,12 +388,7 @@ def main(argv=None) -> int:
         grading = own if own is not None else first_grading if not strides else args.grading
         nlp = mesh(body, args, nodes, args.consistency_rows, grading, held)
         if strides and args.activation_smoothing and nodes == args.nodes[-1][0]:
-            for scale in args.activation_smoothing:  # read when the NLP is built
-                actuation.ACTIVATION_RATE_SMOOTHING = scale
-                print(f"the activations' rates' smoothing scale {scale:g}:", flush=True)
-                last = finer(mesh(body, args, nodes, args.consistency_rows, grading, held, anew=True),
-                             args.speed, strides[-1], args.mu_init, args.ipopt)
-            strides.append(last)
+            strides.append(smoothings(body, args, nodes, grading, held, strides[-1]))
             continue
         if strides:
             strides.append(finer(nlp, args.speed, strides[-1], args.mu_init, args.ipopt))
