@@ -14,6 +14,7 @@ finer mesh, guess.fitted), so every mesh solves the same stride.
                                    [--grading 0.9 [--first-grading 0]] (a mesh's own: --nodes 160:1;
                                    a phase's duration held, ms: --nodes 160:0@flat=59.5-60.1)
                                    [--replay-cost] [--power 1] [--goals] [--angles] [--mass 75]
+                                   [--activation-smoothing 0 10 [--chained]] [--ipopt max_cpu_time=600 file_print_level=5 ...]
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -49,7 +50,12 @@ RBDS001's processed mean cycle: issue 33's goals on the searched, refined stride
 the finest mesh's joint angles taken apart (problems/stride_angles.py's `table`: per joint the
 offset, the time shift, the shape, the range and when the extremes fall; at 2.5 and 3.5 m/s the
 thigh from the vertical against the runner's markers) and its ankle push-off against the
-runner's (`push_off`).
+runner's (`push_off`). `--activation-smoothing S...`: the last mesh solved from the one before with
+the activations' rates' scale in the transcription's smoothing (actuation.ACTIVATION_RATE_SMOOTHING)
+at each value in turn, each reported (the meshes before at the default); with `--chained` each
+value's solve from the one before's stride, not from the mesh before (a continuation). `--ipopt KEY=VALUE...`:
+IPOPT options over the finer meshes' solves (e.g. max_cpu_time=600, output_file=ipopt.log
+file_print_level=5: a slow solve's iterations).
 """
 
 from __future__ import annotations
@@ -67,9 +73,9 @@ from stride_mesh import convergence
 
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
-from formopt.mechanics.joint_space import JOINTS
-from formopt.optim.stride import checks, problem, ranges
-from formopt.optim.stride.collocation import MUSCLE_WARM_START, NX, build
+from formopt.mechanics.joint_space import JOINTS, JointSpace
+from formopt.optim.stride import actuation, checks, problem, ranges
+from formopt.optim.stride.collocation import MUSCLE_WARM_START, NX, StrideNLP, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS, step_length
 from formopt.optim.stride.problem import StrideSettings
@@ -181,15 +187,15 @@ def change(before, after) -> str:
             f"cadence {(after.cadence_spm / before.cadence_spm - 1) * 100:+.2f} %")
 
 
-def finer(nlp, speed: float, before, mu_inits: list[float]):
+def finer(nlp, speed: float, before, mu_inits: list[float], ipopt: dict):
     """The stride on `nlp`'s (finer) mesh from `before` (a stride, its `phase_costs` and its NLP)
     interpolated onto it (guess.fitted, at both meshes' times), solved with IPOPT's barrier
-    starting at each of `mu_inits` in turn, each reported with its change from `before`; returns
-    the first (with its parts and NLP)."""
+    starting at each of `mu_inits` in turn (`ipopt`: options over them), each reported with its
+    change from `before`; returns the first (with its parts and NLP)."""
     out = []
     for mu in mu_inits:
         clock = time.process_time()
-        stride = refined(nlp.variant({"mu_init": mu}), before[0], before[2])
+        stride = refined(nlp.variant({"mu_init": mu, **ipopt}), before[0], before[2])
         print(report(nlp.settings.nodes, stride, time.process_time() - clock, nlp.settings.grading)
               + f" (mu_init {mu:g})", flush=True)
         parts = phase_costs(nlp, stride.solved, speed)
@@ -201,13 +207,16 @@ def finer(nlp, speed: float, before, mu_inits: list[float]):
     return out[0]
 
 
-def mesh(body, args, nodes: int, consistency_rows: str, grading: float, held: dict | None = None):
+def mesh(body, args, nodes: int, consistency_rows: str, grading: float, held: dict | None = None,
+         anew: bool = False):
     """The muscles' stride NLP on `nodes` nodes at the command line's strike and `grading`;
-    `held`: phase -> (low, high) duration bounds (s) over StrideSettings' defaults."""
+    `held`: phase -> (low, high) duration bounds (s) over StrideSettings' defaults; `anew`: built
+    again, not build's kept one (its key does not hold actuation.ACTIVATION_RATE_SMOOTHING)."""
     duration = {**StrideSettings().duration, **(held or {})}
-    return build(body, StrideSettings(strike=args.strike, nodes=nodes, muscles=body_muscles(body),
-                                      objective="metabolic", consistency_rows=consistency_rows,
-                                      grading=grading, duration=duration, force_rate_power=args.power))
+    settings = StrideSettings(strike=args.strike, nodes=nodes, muscles=body_muscles(body), objective="metabolic",
+                              consistency_rows=consistency_rows, grading=grading, duration=duration,
+                              force_rate_power=args.power)
+    return StrideNLP(JointSpace(body), settings) if anew else build(body, settings)
 
 
 def start(nlp, args):
@@ -222,6 +231,19 @@ def start(nlp, args):
     print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, args.speed) + "\n  "
           + reserve_peaks(nlp, stride.solved), flush=True)
     return stride, parts, nlp
+
+
+def smoothings(body, args, nodes: int, grading: float, held: dict, before):
+    """The last mesh solved at each of `--activation-smoothing`'s scales (actuation.
+    ACTIVATION_RATE_SMOOTHING, read when the NLP is built) from `before` (`finer`'s), or with
+    `--chained` from the scale before's stride; returns the last scale's."""
+    last = before
+    for scale in args.activation_smoothing:
+        actuation.ACTIVATION_RATE_SMOOTHING = scale
+        print(f"the activations' rates' smoothing scale {scale:g}:", flush=True)
+        last = finer(mesh(body, args, nodes, args.consistency_rows, grading, held, anew=True),
+                     args.speed, last if args.chained else before, args.mu_init, args.ipopt)
+    return last
 
 
 def replayed_force_rate(nlp, stride) -> str:
@@ -293,6 +315,19 @@ def node_token(text: str) -> tuple[int, float | None, dict]:
     return int(nodes), float(grading) if grading else None, bounds
 
 
+def ipopt_option(text: str) -> tuple[str, float | int | str]:
+    """An IPOPT option "key=value" as (key, value): an int, a float or else the text."""
+    key, equals, value = text.partition("=")
+    if not equals:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected an IPOPT option as key=value")
+    for kind in (int, float):
+        try:
+            return key, kind(value)
+        except ValueError:
+            pass
+    return key, value
+
+
 def arguments(argv):
     """The command line's options (the module docstring)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -323,7 +358,14 @@ def arguments(argv):
                         help="at the end, the finest mesh's joint angles taken apart and its ankle push-off")
     parser.add_argument("--mass", type=float, default=62.0,
                         help="the body's mass (kg) at RBDS001's height: a heavier runner")
+    parser.add_argument("--activation-smoothing", type=float, nargs="+", default=None,
+                        help="the last mesh solved at each a' scale in the smoothing (actuation.ACTIVATION_RATE_SMOOTHING)")
+    parser.add_argument("--chained", action="store_true",
+                        help="with --activation-smoothing, each scale's solve from the one before's stride (a continuation)")
+    parser.add_argument("--ipopt", type=ipopt_option, nargs="+", default=[],
+                        help="KEY=VALUE IPOPT options over the finer meshes' solves, e.g. max_cpu_time=600")
     args = parser.parse_args(argv)
+    args.ipopt = dict(args.ipopt)
     if args.replay_cost and args.power != 2:
         parser.error("--replay-cost replays the squared force rates: it needs --power 2")
     return args
@@ -345,11 +387,14 @@ def main(argv=None) -> int:
     for nodes, own, held in args.nodes:
         grading = own if own is not None else first_grading if not strides else args.grading
         nlp = mesh(body, args, nodes, args.consistency_rows, grading, held)
+        if strides and args.activation_smoothing and nodes == args.nodes[-1][0]:
+            strides.append(smoothings(body, args, nodes, grading, held, strides[-1]))
+            continue
         if strides:
-            strides.append(finer(nlp, args.speed, strides[-1], args.mu_init))
+            strides.append(finer(nlp, args.speed, strides[-1], args.mu_init, args.ipopt))
             continue
         first = start(mesh(body, args, nodes, "exact", grading, held) if args.rows_first else nlp, args)
-        strides.append(finer(nlp, args.speed, first, args.mu_init) if args.rows_first else first)
+        strides.append(finer(nlp, args.speed, first, args.mu_init, args.ipopt) if args.rows_first else first)
     if len(strides) > 2:
         print("mesh convergence:")
         for name, values in (("objective", [s.objective_value for s, *_ in strides]),
