@@ -69,7 +69,7 @@ import casadi as ca
 import numpy as np
 from stride_angles import TRIALS, measured_segments, table  # problems/, this script's directory
 from stride_ladder import RBDS, header, row
-from stride_mesh import convergence
+from stride_mesh import convergence, ipopt_option
 
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
@@ -313,19 +313,6 @@ def node_token(text: str) -> tuple[int, float | None, dict]:
         except ValueError:
             raise argparse.ArgumentTypeError(f"{text!r}: expected nodes[:grading][@phase=low-high] in ms") from None
     return int(nodes), float(grading) if grading else None, bounds
-
-
-def ipopt_option(text: str) -> tuple[str, float | int | str]:
-    """An IPOPT option "key=value" as (key, value): an int, a float or else the text."""
-    key, equals, value = text.partition("=")
-    if not equals:
-        raise argparse.ArgumentTypeError(f"{text!r}: expected an IPOPT option as key=value")
-    for kind in (int, float):
-        try:
-            return key, kind(value)
-        except ValueError:
-            pass
-    return key, value
 
 
 def arguments(argv):

@@ -246,7 +246,9 @@ def phase_duration(text: str) -> tuple[str, float]:
 
 def ipopt_option(text: str) -> tuple[str, int | float | str]:
     """An IPOPT option "key=value" as (key, value): an integer, a number or a string."""
-    key, _, value = text.partition("=")
+    key, equals, value = text.partition("=")
+    if not equals:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected an IPOPT option as key=value")
     for kind in (int, float):
         try:
             return key, kind(value)
