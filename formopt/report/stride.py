@@ -63,7 +63,7 @@ def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
     vertical and fore-aft, "vertical"); the measured mean beside them (dashed) when given (the
     measured force: vertical only)."""
     predicted = predicted_cycle(stride)
-    fig = new_figure((10, 3.2))
+    fig = new_figure((10, 3.4))
     if quantity == "vertical":
         predicted = {**predicted, "horizontal": np.r_[stride.force[:, :, 0].sum(axis=1),  # as predicted_cycle
                                                       np.zeros(len(stride.t))] / stride.mass_kg}
@@ -83,8 +83,9 @@ def cycle_figure(stride, measured: dict | None, quantity: str) -> Figure:
                     label="RBDS001 measured" + (f", {net}" if net else ""))
         ax.set_xlabel("gait cycle (%)")
         ax.set_title(f"{name if name != 'horizontal' else 'fore-aft (forward +)'} ({unit})")
-    fig.axes[0].legend(fontsize=8)
-    fig.tight_layout()
+    handles, labels = fig.axes[0].get_legend_handles_labels()  # below the panels: no curve hidden
+    fig.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
     return fig
 
 

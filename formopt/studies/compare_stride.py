@@ -440,8 +440,8 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
         strikes += beside.start(strike_tasks(nominal, speed, others[1:]), later=True)
         say(f"stride: the nominal (effort) at {len(cadences)} cadences, {len(others)} other strikes beside it")
         curves = [run_curve("effort (nominal)", nominal, speed, cadences, beside)]
-        pair = (curves[0].free, curves[0].own_free)  # forward-checked beside the family
-        checking = beside.start(check_tasks(nominal, [s for s in pair if s is not None]))
+        pair = (curves[0].free, curves[0].own_free)  # the converged ones forward-checked beside the family
+        checking = beside.start(check_tasks(nominal, [s for s in pair if s is not None and s.success]))
         # the band's free optima beside the family where their starts are known before it
         frees = None if not curves[0].ok or curves[0].own_free_failed else \
             start_band(variants, band_points(curves[0])[:1], beside)
@@ -449,7 +449,7 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
         if curves[0].ok and curves[0].free is not None:
             family(nominal, speed, curves[0])
         checked = iter(beside.results(checking, say))
-        curves[0].free, curves[0].own_free = (None if s is None else next(checked) for s in pair)
+        curves[0].free, curves[0].own_free = (next(checked) if s is not None and s.success else s for s in pair)
         best = {s: curves[0].free if s == measured["strike"] else None for s in STRIKES}
         best.update(zip(others, beside.results(strikes, say)))
         say(f"stride: {len(variants)} variants warm from the nominal on {min(workers, len(variants)) or 1} processes")
