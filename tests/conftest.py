@@ -12,7 +12,9 @@ from formopt.mechanics.compiled import compiler
 from formopt.mechanics.model import build_model
 from formopt.optim.stride import collocation
 
-pytest_plugins = ("cpu_times",)  # pytest --cpu-times: each file's CPU seconds (cpu_times.py)
+# pytest --cpu-times: each file's CPU seconds (cpu_times.py); pytest --stride-solves: each file's
+# stride solves, their CPU and the solves it repeats (stride_solves.py)
+pytest_plugins = ("cpu_times", "stride_solves")
 
 
 @pytest.fixture(scope="session")
