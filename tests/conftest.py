@@ -12,7 +12,9 @@ from formopt.mechanics.compiled import compiler
 from formopt.mechanics.model import build_model
 from formopt.optim.stride import collocation
 
-pytest_plugins = ("cpu_times",)  # pytest --cpu-times: each file's CPU seconds (cpu_times.py)
+# pytest --cpu-times: each file's CPU seconds (cpu_times.py); pytest --stride-solves: each file's
+# stride solves, their CPU and the solves it repeats (stride_solves.py)
+pytest_plugins = ("cpu_times", "stride_solves")
 
 
 @pytest.fixture(scope="session")
@@ -172,47 +174,51 @@ if LoadFileScheduling is not None:
 
 
 # The files (and the units of the Dask tests, "dask", and of tests/measure/) by CPU seconds of their
-# tests, slowest first: the suite on 2 workers (pytest -n 2 --dist loadfile --cpu-times),
-# 2026-11-27, the compile cache warm; the few whose figure there held another file's late-reaped
-# children (a pool's, a killed sweep's) measured alone. They are handed out in this order, then the
-# others (under 1 s each) in xdist's: the longest first, so the two workers end close together (the
-# list before, which left test_forward.py out and ranked test_mesh_check.py at 11.6 s, gave the
-# workers 96.8 and 106.5 s of CPU). A stale list costs only balance, never a test.
-SLOW = ("optim/stride/test_derivatives.py",  # 18.8
-        "studies/test_stride_sweep.py",  # 12.5
-        "test_examples.py",  # 11.3
-        "cli/test_compare_command.py",  # 9.8
-        "test_notebooks.py",  # 9.6 (its kernel's)
-        "test_bad_input.py",  # 9.5 (12 s of wall: its subprocesses)
-        "measure/",  # 8.9: tests/measure/'s files, one unit (ByFile)
-        "optim/test_posture.py",  # 7.8
-        "optim/test_stride.py",  # 7.7
-        "optim/stride/test_search.py",  # 7.4
-        "optim/stride/test_collocation.py",  # 7.3
-        "optim/stride/test_muscle_stride.py",  # 6.6
-        "optim/stride/test_speed_paths.py",  # 6.6 (12 with a cold compile cache)
-        "studies/test_compare_stride.py",  # 5.6
-        "optim/stride/test_forward.py",  # 5.4
-        "optim/stride/test_consistency_rows.py",  # 4.7
-        "test_docs.py",  # 4.5
-        "optim/stride/test_mesh_check.py",  # 4.4
-        "mechanics/test_contact.py",  # 4.3
-        "mechanics/test_joint_moments.py",  # 3.4
-        "studies/test_bench.py",  # 3.1
-        "studies/test_compare.py",  # 2.9
+# tests, slowest first: the mean of two runs of the suite on 2 workers (pytest -p no:cacheprovider
+# -n 2 --dist loadfile --cpu-times: the compile cache cold, as on a clean clone), 2026-11-27 evening,
+# another helper's solves beside them (load about 3: every figure stretched, by up to a half for the
+# solves, against a quiet machine's); test_stride_sweep.py alone after its cuts; "dask" and the two
+# files whose Dask test it holds from the list before (quiet, warm). They are handed out in this
+# order, then the others (under 1 s each) in xdist's: the longest first, so the two workers end close
+# together (these figures, greedy: 124.1 and 123.2 s). A stale list costs only balance, never a test.
+SLOW = ("studies/test_stride_sweep.py",  # 22.5
+        "optim/stride/test_derivatives.py",  # 20.1
+        "optim/stride/test_speed_paths.py",  # 13.7 (6.6 with a warm compile cache)
+        "test_examples.py",  # 13.3
+        "optim/test_stride.py",  # 13.2
+        "test_bad_input.py",  # 11.1 (more wall: its subprocesses)
+        "test_notebooks.py",  # 10.8 (its kernel's)
+        "cli/test_compare_command.py",  # 10.0
+        "measure/",  # 9.8: tests/measure/'s files, one unit (ByFile)
+        "optim/stride/test_collocation.py",  # 9.4
+        "optim/test_posture.py",  # 8.7
+        "optim/stride/test_search.py",  # 8.3
+        "optim/stride/test_muscle_stride.py",  # 7.8
+        "studies/test_compare_stride.py",  # 6.4
+        "optim/stride/test_forward.py",  # 6.2
+        "mechanics/test_contact.py",  # 5.8
+        "test_docs.py",  # 5.6
+        "optim/stride/test_consistency_rows.py",  # 5.5
+        "studies/test_bench.py",  # 5.2
+        "optim/stride/test_mesh_check.py",  # 5.0
+        "mechanics/test_joint_moments.py",  # 4.2
+        "io/test_numerics.py",  # 3.8
+        "studies/test_compare.py",  # 3.4
+        "optim/test_gait.py",  # 3.2
+        "studies/test_stride_scene.py",  # 3.1
+        "mechanics/test_extremes.py",  # 3.1
         "dask",  # 2.7: the cluster, its worker and the two Dask tests
         "mechanics/test_landing.py",  # 2.6 without its Dask test
-        "optim/test_gait.py",  # 2.6
         "studies/test_optimum_map.py",  # 2.6 without its Dask test
-        "studies/test_stride_scene.py",  # 2.4
-        "mechanics/test_extremes.py",  # 2.3
-        "optim/test_stride_slide.py",  # 2.2
-        "optim/stride/test_grading.py",  # 2.1
-        "test_signals.py",  # 2.0 (its subprocesses)
-        "mechanics/test_impact.py",  # 1.9
-        "optim/test_stride_tendons.py",  # 1.8
-        "io/test_numerics.py",  # 1.7
-        "cli/test_reports.py",  # 1.6
-        "optim/stride/test_moment_dynamics.py",  # 1.3
-        "io/test_mocap.py",  # 1.1
-        "mechanics/test_joint_space.py")  # 1.0
+        "optim/test_stride_slide.py",  # 2.5
+        "mechanics/test_impact.py",  # 2.5
+        "optim/stride/test_grading.py",  # 2.4
+        "optim/test_stride_tendons.py",  # 2.0
+        "cli/test_reports.py",  # 1.9
+        "io/test_mocap.py",  # 1.6
+        "optim/stride/test_moment_dynamics.py",  # 1.5
+        "test_signals.py",  # 1.4 (its subprocesses)
+        "mechanics/test_joint_space.py",  # 1.2
+        "test_layers.py",  # 1.1 (its subprocess)
+        "io/test_scene.py",  # 1.1
+        "report/test_figures.py")  # 1.0

@@ -48,6 +48,13 @@ def fresh(scene, grid):
                       float(r["cadence_spm"])) for r in rows]
 
 
+@pytest.fixture(scope="module")
+def free_optimum(scene):
+    """The free optimum at 3.5 m/s: the cadence curve's start and the first sweep's (one solve
+    for both tests; cadence_curve's `start` is such an optimum found before)."""
+    return stride_map.free(scene, 3.5, 0.0, scene.friction)
+
+
 def test_rows_are_no_worse_than_a_fresh_solve(grid, fresh):
     _, rows = grid
     assert [r["start"] for r in rows].count("neighbour") == 3  # one chain, its first from the free optimum
@@ -117,13 +124,16 @@ def test_a_step_length_imposes_its_cadence(scene):
     assert stride_map.point(scene, {"cadence_spm": 150.0, "step_length_m": 1.2})[0] == pytest.approx(3.0)
 
 
-def test_the_cadence_curve_is_the_least_costly_optimum_its_neighbours_reach(scene):
+def test_the_cadence_curve_is_the_least_costly_optimum_its_neighbours_reach(scene, free_optimum, monkeypatch):
     """Each cadence's stride lies above the free optimum, is the least costly of the optima
     its starts reached (CadenceCurve.tried), and no neighbour (the free optimum among them)
     leads a warm start to a cheaper one: the polish's fixed point (warm as the polish solves, so
-    that the check is of the polish and not of which start finds which local optimum)."""
+    that the check is of the polish and not of which start finds which local optimum). A warm
+    start the curve made is looked up, not solved again (`remembered`: the same solve, whose
+    result does not depend on where it runs: the first sweep's test below; 3 of the test's 8 solves)."""
+    remembered(monkeypatch)
     cadences = [160.0, 190.0]
-    curve = stride_map.cadence_curve(scene, 3.5, cadences)
+    curve = stride_map.cadence_curve(scene, 3.5, cadences, start=free_optimum)
     assert curve.free.success and set(curve.starts) <= {"free", "neighbour"}
     for cadence, stride, tried in zip(cadences, curve.strides, curve.tried):
         assert stride.success and stride.cadence_spm == pytest.approx(cadence, rel=1e-9)
@@ -140,10 +150,24 @@ def test_the_cadence_curve_is_the_least_costly_optimum_its_neighbours_reach(scen
             assert not again.success or again.objective >= kept.objective_value * (1 - 1e-6)
 
 
-def test_the_first_sweep_on_a_pool_is_the_same_solves(scene):
+def remembered(monkeypatch) -> None:
+    """stride_map.warm patched to keep each solve by its NLP, source stride (held, so that its
+    id is not reused), parameters and cadence, and to give a kept one again without solving."""
+    solve, kept = stride_map.warm, {}
+
+    def warm(nlp, previous, *point):
+        key = (id(nlp), id(previous), *point)
+        if key not in kept:
+            kept[key] = (previous, solve(nlp, previous, *point))
+        return kept[key][1]
+
+    monkeypatch.setattr(stride_map, "warm", warm)
+
+
+def test_the_first_sweep_on_a_pool_is_the_same_solves(scene, free_optimum):
     """stride_map.first_sweep: each cadence solved from the free optimum on a pool's workers
     (the farthest first) gives the strides solved here, bit for bit, in the cadences' order."""
-    base = stride_map.free(scene, 3.5, 0.0, scene.friction)
+    base = free_optimum
     cadences = [175.0, 160.0, 190.0]
     here = stride_map.first_sweep(scene, base, 3.5, 0.0, scene.friction, cadences, None)
     with Background(2) as pool:
