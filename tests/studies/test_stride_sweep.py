@@ -124,14 +124,11 @@ def test_a_step_length_imposes_its_cadence(scene):
     assert stride_map.point(scene, {"cadence_spm": 150.0, "step_length_m": 1.2})[0] == pytest.approx(3.0)
 
 
-def test_the_cadence_curve_is_the_least_costly_optimum_its_neighbours_reach(scene, free_optimum, monkeypatch):
+def test_the_cadence_curve_is_the_least_costly_optimum_its_neighbours_reach(scene, free_optimum):
     """Each cadence's stride lies above the free optimum, is the least costly of the optima
     its starts reached (CadenceCurve.tried), and no neighbour (the free optimum among them)
     leads a warm start to a cheaper one: the polish's fixed point (warm as the polish solves, so
-    that the check is of the polish and not of which start finds which local optimum). A warm
-    start the curve made is looked up, not solved again (`remembered`: the same solve, whose
-    result does not depend on where it runs: the first sweep's test below; 3 of the test's 8 solves)."""
-    remembered(monkeypatch)
+    that the check is of the polish and not of which start finds which local optimum)."""
     cadences = [160.0, 190.0]
     curve = stride_map.cadence_curve(scene, 3.5, cadences, start=free_optimum)
     assert curve.free.success and set(curve.starts) <= {"free", "neighbour"}
@@ -148,20 +145,6 @@ def test_the_cadence_curve_is_the_least_costly_optimum_its_neighbours_reach(scen
                 continue
             again = stride_map.warm(nlp, source, 3.5, 0.0, scene.friction, cadence)
             assert not again.success or again.objective >= kept.objective_value * (1 - 1e-6)
-
-
-def remembered(monkeypatch) -> None:
-    """stride_map.warm patched to keep each solve by its NLP, source stride (held, so that its
-    id is not reused), parameters and cadence, and to give a kept one again without solving."""
-    solve, kept = stride_map.warm, {}
-
-    def warm(nlp, previous, *point):
-        key = (id(nlp), id(previous), *point)
-        if key not in kept:
-            kept[key] = (previous, solve(nlp, previous, *point))
-        return kept[key][1]
-
-    monkeypatch.setattr(stride_map, "warm", warm)
 
 
 def test_the_first_sweep_on_a_pool_is_the_same_solves(scene, free_optimum):
