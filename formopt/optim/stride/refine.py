@@ -20,6 +20,7 @@ from dataclasses import asdict, dataclass
 from ...mechanics.errors import InputError
 from .collocation import MUSCLE_WARM_START, StrideNLP
 from .guess import fitted
+from .layout import Solved
 from .local import optimum
 from .ranges import RANGES
 from .result import Stride
@@ -43,7 +44,7 @@ class MeshCheck:
     failed_checks: tuple[str, ...]  # the 2N-node stride's (Stride.failed_checks)
     success: bool  # IPOPT converged on 2N nodes
     status: str  # IPOPT's return status
-    iterations: int
+    iterations: int  # the 2N-node solves' (a muscle stride's unsmoothed step's too: refine.refined)
     cpu_s: float  # s of CPU (time.process_time): the 2N-node NLP's build, solve and checks
     coarse_valid: bool = True  # the N-node stride's own (Stride.valid): invalid, it is no answer to converge
 
@@ -102,18 +103,45 @@ def warm_options(nlp: StrideNLP) -> dict:
     return dict(MUSCLE_WARM_START)
 
 
-def refined(nlp: StrideNLP, stride: Stride, source: StrideNLP | None = None, simulate: bool = True) -> Stride:
+def refined(nlp: StrideNLP, stride: Stride, source: StrideNLP | None = None, simulate: bool = True,
+            continuation: bool = True) -> Stride:
     """`stride` solved again on `nlp` (e.g. its settings on twice the nodes) from itself, at its
     own parameters (module docstring); `source`: an NLP of the stride's transcription and grading
     (default `nlp`'s), whose node times its histories are read at (guess.fitted); `simulate`:
-    the forward check."""
+    the forward check. A muscle stride through `unsmoothed` first (`continuation`: False, the
+    direct solve alone, a measurement's)."""
     if stride.solved is None:
         raise ValueError("refined: the stride has no solution to start from")
     options = warm_options(nlp)
     nlp = nlp.variant(options) if options else nlp
     par = stride.solved.parameters
-    return optimum(nlp, par["speed"], par["slope"], par["mu"], par["cadence"],
-                   guess=fitted(nlp, stride.solved.blocks, source), simulate=simulate)
+    guess = fitted(nlp, stride.solved.blocks, source)
+    first = unsmoothed(nlp, guess, par) if continuation else None
+    fine = optimum(nlp, par["speed"], par["slope"], par["mu"], par["cadence"],
+                   guess=guess if first is None or not first.success else first.blocks, simulate=simulate)
+    if first is not None:
+        fine.checks["unsmoothed"] = {"iterations": first.iterations, "status": first.status}
+    return fine
+
+
+def unsmoothed(nlp: StrideNLP, guess: dict, parameters: dict) -> Solved | None:
+    """A muscle NLP's (activation rates' smoothing > 0) continuation's first step: `guess` solved
+    on `nlp` with StrideSettings.activation_rate_smoothing 0 (its IPOPT options); `refined`
+    solves the smoothed NLP from it where it converged, else from `guess`. None: nothing to
+    continue (a torque rung, or the smoothing 0 already).
+
+    Measured (problems/muscle_mesh.py, 2026-11-27; docs/concepts/muscles.md, "The mesh: N
+    against 2N"): the forefoot stride at 3.5 m/s, graded 1, solved at 160 nodes directly from
+    its 80-node stride stalled (IPOPT's warm barrier, five restorations, a cost of 93 after 347 s
+    of CPU); through the unsmoothed solve it converged to the same stride as without the
+    smoothing (179.2 steps/min). The smoothing's zig-zag mode is what the start lacks: the
+    coarser stride's activations, interpolated, are smooth, but the finer NLP's optimum near
+    them is found first without the term that couples its nodes."""
+    p = parameters
+    if nlp.settings.muscles is None or not nlp.settings.activation_rate_smoothing:
+        return None
+    bare = nlp.variant(activation_rate_smoothing=0.0)
+    return bare.solve(guess, p["speed"], p["slope"], p["mu"], p["cadence"])
 
 
 def fine_nodes(nodes: int) -> int:
@@ -138,6 +166,7 @@ def mesh_check(nlp: StrideNLP, stride: Stride, simulate: bool = True) -> MeshChe
                      objective_value=(stride.objective_value, fine.objective_value),
                      touchdown=(stride.impacts[-1]["mode"], fine.impacts[-1]["mode"]),
                      valid=fine.valid, failed_checks=tuple(fine.failed_checks), success=fine.success,
-                     status=fine.status, iterations=fine.iterations, cpu_s=time.process_time() - clock,
+                     status=fine.status, iterations=fine.iterations + fine.checks.get("unsmoothed", {}).get("iterations", 0),
+                     cpu_s=time.process_time() - clock,
                      coarse_valid=stride.valid)
 
