@@ -53,7 +53,11 @@ thigh from the vertical against the runner's markers) and its ankle push-off aga
 runner's (`push_off`). `--activation-smoothing S...`: the last mesh solved from the one before with
 the activations' rates' scale in the transcription's smoothing (StrideSettings.activation_rate_smoothing)
 at each value in turn, each reported (the meshes before at the default); with `--chained` each
-value's solve from the one before's stride, not from the mesh before (a continuation). `--ipopt KEY=VALUE...`:
+value's solve from the one before's stride, not from the mesh before (a continuation; the scales' solves
+are each one, without refine.refined's unsmoothed step). Each finer mesh is solved as refine.refined solves it:
+without the activations' rates' smoothing first, then with it from there (refine.unsmoothed; the iterations
+printed "U unsmoothed + N"); `--direct`: each finer mesh solved with the smoothing alone, from the mesh before
+(the chain before 2026-11-27 evening, for the measurement: docs/concepts/muscles.md). `--ipopt KEY=VALUE...`:
 IPOPT options over the finer meshes' solves (e.g. max_cpu_time=600, output_file=ipopt.log
 file_print_level=5: a slow solve's iterations).
 """

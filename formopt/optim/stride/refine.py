@@ -8,7 +8,9 @@ IPOPT's barrier at collocation.MUSCLE_WARM_START (3e-4), which keeps the iterate
 it starts from: from their cold solves' 1e-2 the heel stride at 2.5 m/s went from 152.9
 steps/min at 40 nodes to another optimum at 80 (170.2, 6 % costlier; from 3e-4: 148.0,
 problems/muscle_mesh.py). The torque rungs with the NLP's own options, as problems/stride_mesh.py
-always solved its finer meshes. `mesh_check`: the stride on 2N nodes, everything else the same
+always solved its finer meshes. A muscle stride by continuation in its activation rates'
+smoothing (`unsmoothed`: at scale 0 first, then at the settings' from there), which reaches the
+stride where the direct solve stalls. `mesh_check`: the stride on 2N nodes, everything else the same
 (grading and transcription kept), and its `MeshCheck`; its own figures stay the N-node stride's.
 """
 
@@ -108,8 +110,10 @@ def refined(nlp: StrideNLP, stride: Stride, source: StrideNLP | None = None, sim
     """`stride` solved again on `nlp` (e.g. its settings on twice the nodes) from itself, at its
     own parameters (module docstring); `source`: an NLP of the stride's transcription and grading
     (default `nlp`'s), whose node times its histories are read at (guess.fitted); `simulate`:
-    the forward check. A muscle stride through `unsmoothed` first (`continuation`: False, the
-    direct solve alone, a measurement's)."""
+    the forward check. A muscle stride is solved without the activation rates' smoothing first
+    (`unsmoothed`), then with it from that solve where it converged (else from the stride
+    itself); `continuation` False: the direct solve alone (a measurement's, problems/muscle_mesh.py
+    --direct)."""
     if stride.solved is None:
         raise ValueError("refined: the stride has no solution to start from")
     options = warm_options(nlp)
@@ -125,18 +129,18 @@ def refined(nlp: StrideNLP, stride: Stride, source: StrideNLP | None = None, sim
 
 
 def unsmoothed(nlp: StrideNLP, guess: dict, parameters: dict) -> Solved | None:
-    """A muscle NLP's (activation rates' smoothing > 0) continuation's first step: `guess` solved
-    on `nlp` with StrideSettings.activation_rate_smoothing 0 (its IPOPT options); `refined`
-    solves the smoothed NLP from it where it converged, else from `guess`. None: nothing to
-    continue (a torque rung, or the smoothing 0 already).
+    """A muscle NLP's continuation's first step (`refined`): `guess` solved on `nlp` with
+    StrideSettings.activation_rate_smoothing 0 (its IPOPT options); None for a torque rung or a
+    smoothing of 0 already.
 
-    Measured (problems/muscle_mesh.py, 2026-11-27; docs/concepts/muscles.md, "The mesh: N
-    against 2N"): the forefoot stride at 3.5 m/s, graded 1, solved at 160 nodes directly from
-    its 80-node stride stalled (IPOPT's warm barrier, five restorations, a cost of 93 after 347 s
-    of CPU); through the unsmoothed solve it converged to the same stride as without the
-    smoothing (179.2 steps/min). The smoothing's zig-zag mode is what the start lacks: the
-    coarser stride's activations, interpolated, are smooth, but the finer NLP's optimum near
-    them is found first without the term that couples its nodes."""
+    Always, not only where the direct solve fails (problems/muscle_mesh.py, --direct against the
+    default, 2026-11-27; docs/concepts/muscles.md, "The refinement's continuation"): where the
+    direct solve converged (heel 3.5 m/s, 40 -> 80 -> 160 nodes; forefoot graded 40 -> 80; the
+    shipped stride_muscles' mesh check) the continuation gave the same strides to every printed
+    digit at 1.3-2.0 times the CPU (+3 to +19 s); where it stalled (forefoot 3.5 m/s, graded,
+    80 -> 160: IPOPT's restorations from iteration 63, no stride after 400 s) it converged in
+    121 + 327 iterations, 105 s. A capped direct try cannot tell them apart: the stall restores
+    from iteration 63, the heel's 160-node direct solve converges at 77."""
     p = parameters
     if nlp.settings.muscles is None or not nlp.settings.activation_rate_smoothing:
         return None

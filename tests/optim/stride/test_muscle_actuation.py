@@ -77,7 +77,7 @@ def test_the_activation_rate_smoothing_is_a_finite_number_at_least_zero(value):
 def test_the_activation_rate_smoothing_is_the_muscles_own():
     """Its default (ACTIVATION_RATE_SMOOTHING) on every rung; another value only with muscles."""
     assert StrideSettings().activation_rate_smoothing == ACTIVATION_RATE_SMOOTHING
-    with pytest.raises(InputError, match="activation_rate_smoothing: .*actuation 'muscles'"):
+    with pytest.raises(InputError, match=r"activation_rate_smoothing: .*actuation 'muscles'"):
         StrideSettings(activation_rate_smoothing=0.0)
 
 
