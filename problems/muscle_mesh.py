@@ -54,10 +54,11 @@ runner's (`push_off`). `--activation-smoothing S...`: the last mesh solved from 
 the activations' rates' scale in the transcription's smoothing (StrideSettings.activation_rate_smoothing)
 at each value in turn, each reported (the meshes before at the default); with `--chained` each
 value's solve from the one before's stride, not from the mesh before (a continuation; the scales' solves
-are each one, without refine.refined's unsmoothed step). Each finer mesh is solved as refine.refined solves it:
-without the activations' rates' smoothing first, then with it from there (refine.unsmoothed; the iterations
-printed "U unsmoothed + N"); `--direct`: each finer mesh solved with the smoothing alone, from the mesh before
-(the chain before 2026-11-27 evening, for the measurement: docs/concepts/muscles.md). `--ipopt KEY=VALUE...`:
+are each one, to its end). Each finer mesh is solved as refine.refined solves it: directly, IPOPT stopped at
+its first restoration phase, and where that fails without the activations' rates' smoothing first, then with
+it from there (refine.continued; the iterations printed "D direct + U unsmoothed + N"); `--direct`: each finer
+mesh solved directly to its end (the chain before 2026-11-27 evening, for the measurement:
+docs/concepts/muscles.md, "The refinement's continuation"). `--ipopt KEY=VALUE...`:
 IPOPT options over the finer meshes' solves (e.g. max_cpu_time=600, output_file=ipopt.log
 file_print_level=5: a slow solve's iterations).
 """
@@ -96,13 +97,14 @@ def report(nodes: int, stride, seconds: float, grading: float = 0.0) -> str:
                       for name, d in stride.phases)
     forward = " ".join(f"{e:.3f}" for e in stride.checks.get("forward_per_phase", []))
     total = f" [{stride.search['iterations']}]" if stride.search else ""
-    first = stride.checks.get("unsmoothed")  # refine.refined's unsmoothed step
-    unsmoothed = f"{first['iterations']} unsmoothed ({first['status']}) + " if first else ""
+    tried = stride.checks.get("continuation")  # refine.continued's tries
+    tries = (f"{tried['direct_iterations']} direct ({tried['direct_status']}) + {tried['unsmoothed_iterations']} "
+             f"unsmoothed ({tried['unsmoothed_status']}) + ") if tried else ""
     return (f"{nodes:4d} nodes{f' graded {grading:g}' if grading else ''}: {stride.cadence_spm:.1f} steps/min, objective {stride.objective_value:.5f}, "
             f"stance {stride.stance_s:.3f} s; phases ms: {phases}; valid "
             f"{'yes' if stride.valid else 'NO: ' + '; '.join(stride.failed_checks)}; forward rad per phase [{forward}]; drift "
             f"{stride.checks['drift_m'] * 1e3:.3f} mm, balance {stride.checks['balance_relative'] * 100:.2e} %, "
-            f"reserves {stride.checks['reserve_nm_per_kg']:.3f} N m/kg over 10 ms ({stride.checks['reserve_peak_nm_per_kg']:.3f} at a node); {unsmoothed}{stride.iterations}{total} iterations ({stride.status}), "
+            f"reserves {stride.checks['reserve_nm_per_kg']:.3f} N m/kg over 10 ms ({stride.checks['reserve_peak_nm_per_kg']:.3f} at a node); {tries}{stride.iterations}{total} iterations ({stride.status}), "
             f"{seconds:.1f} s CPU")
 
 
@@ -197,8 +199,8 @@ def change(before, after) -> str:
 def finer(nlp, speed: float, before, mu_inits: list[float], ipopt: dict, continuation: bool = True):
     """The stride on `nlp`'s (finer) mesh from `before` (a stride, its `phase_costs` and its NLP)
     interpolated onto it (guess.fitted, at both meshes' times), solved with IPOPT's barrier
-    starting at each of `mu_inits` in turn (`ipopt`: options over them; refine.refined, through
-    its unsmoothed step unless not `continuation`), each reported with its change from `before`;
+    starting at each of `mu_inits` in turn (`ipopt`: options over them; refine.refined, directly
+    to the end without `continuation`), each reported with its change from `before`;
     returns the first (with its parts and NLP)."""
     out = []
     for mu in mu_inits:
@@ -357,7 +359,7 @@ def arguments(argv):
     parser.add_argument("--chained", action="store_true",
                         help="with --activation-smoothing, each scale's solve from the one before's stride (a continuation)")
     parser.add_argument("--direct", action="store_true",
-                        help="each finer mesh solved directly, without refine.refined's unsmoothed step first")
+                        help="each finer mesh solved directly to its end, without refine.refined's continuation")
     parser.add_argument("--ipopt", type=ipopt_option, nargs="+", default=[],
                         help="KEY=VALUE IPOPT options over the finer meshes' solves, e.g. max_cpu_time=600")
     args = parser.parse_args(argv)

@@ -8,9 +8,10 @@ IPOPT's barrier at collocation.MUSCLE_WARM_START (3e-4), which keeps the iterate
 it starts from: from their cold solves' 1e-2 the heel stride at 2.5 m/s went from 152.9
 steps/min at 40 nodes to another optimum at 80 (170.2, 6 % costlier; from 3e-4: 148.0,
 problems/muscle_mesh.py). The torque rungs with the NLP's own options, as problems/stride_mesh.py
-always solved its finer meshes. A muscle stride by continuation in its activation rates'
-smoothing (`unsmoothed`: at scale 0 first, then at the settings' from there), which reaches the
-stride where the direct solve stalls. `mesh_check`: the stride on 2N nodes, everything else the same
+always solved its finer meshes. A muscle stride directly, IPOPT stopped at its first restoration
+phase, and where that fails by continuation in its activation rates' smoothing (`continued`: at
+scale 0 first, then at the settings' from there), which reaches the stride where the direct solve
+stalls. `mesh_check`: the stride on 2N nodes, everything else the same
 (grading and transcription kept), and its `MeshCheck`; its own figures stay the N-node stride's.
 """
 
@@ -22,13 +23,14 @@ from dataclasses import asdict, dataclass
 from ...mechanics.errors import InputError
 from .collocation import MUSCLE_WARM_START, StrideNLP
 from .guess import fitted
-from .layout import Solved
 from .local import optimum
 from .ranges import RANGES
 from .result import Stride
 
 # Issue 34 item 2: a reported stride's cost and cadence change by less than 1 % from N to 2N nodes
 MESH_TOLERANCE_PCT = 1.0
+# IPOPT stops at its first restoration phase: a muscle stride's direct try (`refined`)
+DIRECT_TRY = {"max_resto_iter": 0}
 
 
 @dataclass(frozen=True)
@@ -46,7 +48,7 @@ class MeshCheck:
     failed_checks: tuple[str, ...]  # the 2N-node stride's (Stride.failed_checks)
     success: bool  # IPOPT converged on 2N nodes
     status: str  # IPOPT's return status
-    iterations: int  # the 2N-node solves' (a muscle stride's unsmoothed step's too: refine.refined)
+    iterations: int  # the 2N-node solves' (a `continued` muscle stride's tries too)
     cpu_s: float  # s of CPU (time.process_time): the 2N-node NLP's build, solve and checks
     coarse_valid: bool = True  # the N-node stride's own (Stride.valid): invalid, it is no answer to converge
 
@@ -90,6 +92,12 @@ class MeshCheck:
         return f"{moved}: {verdict}{modes}"
 
 
+def _tries(stride: Stride) -> int:
+    """The iterations of a `continued` stride's tries before its own solve (0 for another)."""
+    tried = stride.checks.get("continuation", {})
+    return tried.get("direct_iterations", 0) + tried.get("unsmoothed_iterations", 0)
+
+
 def _change(pair: tuple[float, float]) -> float:
     """100 (b - a) / |a| of a pair (a, b)."""
     a, b = pair
@@ -110,42 +118,43 @@ def refined(nlp: StrideNLP, stride: Stride, source: StrideNLP | None = None, sim
     """`stride` solved again on `nlp` (e.g. its settings on twice the nodes) from itself, at its
     own parameters (module docstring); `source`: an NLP of the stride's transcription and grading
     (default `nlp`'s), whose node times its histories are read at (guess.fitted); `simulate`:
-    the forward check. A muscle stride is solved without the activation rates' smoothing first
-    (`unsmoothed`), then with it from that solve where it converged (else from the stride
-    itself); `continuation` False: the direct solve alone (a measurement's, problems/muscle_mesh.py
-    --direct)."""
+    the forward check. A muscle stride is tried directly with IPOPT stopped at its first
+    restoration phase (DIRECT_TRY) and, where that fails, `continued`; `continuation` False: the
+    direct solve alone, to its end (a measurement's: problems/muscle_mesh.py --direct)."""
     if stride.solved is None:
         raise ValueError("refined: the stride has no solution to start from")
     options = warm_options(nlp)
     nlp = nlp.variant(options) if options else nlp
     par = stride.solved.parameters
     guess = fitted(nlp, stride.solved.blocks, source)
-    first = unsmoothed(nlp, guess, par) if continuation else None
-    fine = optimum(nlp, par["speed"], par["slope"], par["mu"], par["cadence"],
-                   guess=guess if first is None or not first.success else first.blocks, simulate=simulate)
-    if first is not None:
-        fine.checks["unsmoothed"] = {"iterations": first.iterations, "status": first.status}
-    return fine
+    continues = continuation and nlp.settings.muscles is not None and nlp.settings.activation_rate_smoothing > 0
+    direct = optimum(nlp.variant(DIRECT_TRY) if continues else nlp, par["speed"], par["slope"], par["mu"],
+                     par["cadence"], guess=guess, simulate=simulate)
+    return continued(nlp, guess, par, direct, simulate) if continues and not direct.success else direct
 
 
-def unsmoothed(nlp: StrideNLP, guess: dict, parameters: dict) -> Solved | None:
-    """A muscle NLP's continuation's first step (`refined`): `guess` solved on `nlp` with
-    StrideSettings.activation_rate_smoothing 0 (its IPOPT options); None for a torque rung or a
-    smoothing of 0 already.
+def continued(nlp: StrideNLP, guess: dict, parameters: dict, direct: Stride, simulate: bool = True) -> Stride:
+    """A muscle stride's refinement where its direct try (`direct`, from `guess`) failed: `guess`
+    solved with StrideSettings.activation_rate_smoothing 0 first, then on `nlp` from that solve
+    where it converged (else from `guess`); both tries' iterations and status in its
+    checks["continuation"].
 
-    Always, not only where the direct solve fails (problems/muscle_mesh.py, --direct against the
-    default, 2026-11-27; docs/concepts/muscles.md, "The refinement's continuation"): where the
-    direct solve converged (heel 3.5 m/s, 40 -> 80 -> 160 nodes; forefoot graded 40 -> 80; the
-    shipped stride_muscles' mesh check) the continuation gave the same strides to every printed
-    digit at 1.3-2.0 times the CPU (+3 to +19 s); where it stalled (forefoot 3.5 m/s, graded,
-    80 -> 160: IPOPT's restorations from iteration 63, no stride after 400 s) it converged in
-    121 + 327 iterations, 105 s. A capped direct try cannot tell them apart: the stall restores
-    from iteration 63, the heel's 160-node direct solve converges at 77."""
+    Measured (problems/muscle_mesh.py, --direct against the default, 2026-11-27;
+    docs/concepts/muscles.md, "The refinement's continuation"): the forefoot stride at 3.5 m/s,
+    graded, 80 -> 160 nodes, stalled directly (IPOPT's restorations from about iteration 60, a
+    cost of 102 after 435 s of CPU) and converged through the unsmoothed solve (179.1 steps/min,
+    121 + 327 iterations, 105 s); where the direct solve converged (heel 3.5 m/s 40 -> 80 ->
+    160, forefoot graded 40 -> 80, stride_muscles' mesh check) it did so without a restoration,
+    and the continuation gave the same strides to every printed digit at 1.3-2.0 times its CPU,
+    its unsmoothed solve's iterations erratic (93 or 506 from 80-node strides alike to 5 digits).
+    So the continuation only where the direct solve meets a restoration."""
     p = parameters
-    if nlp.settings.muscles is None or not nlp.settings.activation_rate_smoothing:
-        return None
-    bare = nlp.variant(activation_rate_smoothing=0.0)
-    return bare.solve(guess, p["speed"], p["slope"], p["mu"], p["cadence"])
+    first = nlp.variant(activation_rate_smoothing=0.0).solve(guess, p["speed"], p["slope"], p["mu"], p["cadence"])
+    fine = optimum(nlp, p["speed"], p["slope"], p["mu"], p["cadence"],
+                   guess=first.blocks if first.success else guess, simulate=simulate)
+    fine.checks["continuation"] = {"direct_iterations": direct.iterations, "direct_status": direct.status,
+                                   "unsmoothed_iterations": first.iterations, "unsmoothed_status": first.status}
+    return fine
 
 
 def fine_nodes(nodes: int) -> int:
@@ -170,7 +179,7 @@ def mesh_check(nlp: StrideNLP, stride: Stride, simulate: bool = True) -> MeshChe
                      objective_value=(stride.objective_value, fine.objective_value),
                      touchdown=(stride.impacts[-1]["mode"], fine.impacts[-1]["mode"]),
                      valid=fine.valid, failed_checks=tuple(fine.failed_checks), success=fine.success,
-                     status=fine.status, iterations=fine.iterations + fine.checks.get("unsmoothed", {}).get("iterations", 0),
+                     status=fine.status, iterations=fine.iterations + _tries(fine),
                      cpu_s=time.process_time() - clock,
                      coarse_valid=stride.valid)
 

@@ -1,8 +1,9 @@
 """StrideSettings.activation_rate_smoothing, the muscles' activation rates' scale in the
 transcription's smoothing: collocation.build keeps one NLP per scale (its key is the settings)
-and the NLP's smoothing reads it; refine.refined solves a muscle stride without the smoothing
-first (refine.unsmoothed), then with it from there. The paper's body, flat strike, 14 nodes (the
-least muscle mesh): NLPs built, no IPOPT run (refined's solves recorded, not run)."""
+and the NLP's smoothing reads it; refine.refined tries a muscle stride directly (IPOPT stopped at
+a restoration) and, where that fails, solves it without the smoothing first, then with it from
+there (refine.continued). The paper's body, flat strike, 14 nodes (the least muscle mesh): NLPs
+built, no IPOPT run (refined's solves recorded, not run)."""
 
 from dataclasses import replace
 from types import SimpleNamespace
@@ -49,19 +50,24 @@ def solved(blocks: dict, success: bool = True, iterations: int = 0) -> Solved:
                   objective=1.0, x=np.zeros(1), lam_g=np.zeros(1), parameters=dict(PARAMETERS))
 
 
-def recorded(monkeypatch, success: bool = True) -> list:
-    """refine's solves recorded, not run: each StrideNLP.solve (`unsmoothed`'s, returning the
-    blocks {"unsmoothed": 1}, converged with `success`, in 7 iterations) and `optimum` as (what,
-    the NLP's scale, the guess); guess.fitted as {"fitted": blocks}."""
+def recorded(monkeypatch, direct_success: bool = True, unsmoothed_success: bool = True) -> list:
+    """refine's solves recorded, not run, as (what, the NLP's scale, whether IPOPT stops at a
+    restoration, the guess): each `optimum` (a stand-in stride, converged with `direct_success`
+    where IPOPT stops at a restoration, else always, in 5 iterations) and StrideNLP.solve
+    (`continued`'s unsmoothed solve: the blocks {"unsmoothed": 1}, converged with
+    `unsmoothed_success`, in 7 iterations); guess.fitted as {"fitted": blocks}."""
     seen: list = []
 
+    def stops(nlp) -> bool:
+        return (nlp.ipopt or {}).get("max_resto_iter") == 0
+
     def solve(nlp, guess, speed, slope, mu, cadence):
-        seen.append(("solve", nlp.settings.activation_rate_smoothing, guess))
-        return solved({"unsmoothed": 1}, success, 7)
+        seen.append(("solve", nlp.settings.activation_rate_smoothing, stops(nlp), guess))
+        return solved({"unsmoothed": 1}, unsmoothed_success, 7)
 
     def optimum(nlp, speed, slope, mu, cadence, guess, simulate):
-        seen.append(("optimum", nlp.settings.activation_rate_smoothing, guess))
-        return SimpleNamespace(checks={})
+        seen.append(("optimum", nlp.settings.activation_rate_smoothing, stops(nlp), guess))
+        return SimpleNamespace(checks={}, success=direct_success or not stops(nlp), iterations=5, status="status")
 
     monkeypatch.setattr(type(build(BODY, SETTINGS)), "solve", solve)
     monkeypatch.setattr(refine, "optimum", optimum)
@@ -71,25 +77,35 @@ def recorded(monkeypatch, success: bool = True) -> list:
 
 COARSE = SimpleNamespace(solved=solved({"coarse": 1}))  # a stand-in Stride on a coarser mesh
 FITTED = {"fitted": {"coarse": 1}}
+FINE = replace(SETTINGS, nodes=16)
+SCALE = ACTIVATION_RATE_SMOOTHING
 
 
-@pytest.mark.parametrize("success", [True, False])
-def test_refined_continues_a_muscle_stride_from_its_unsmoothed_solve(monkeypatch, success):
-    """A muscle stride on a finer mesh: first solved at scale 0 from the coarser stride (fitted),
-    then at the settings' scale from that solve where it converged (else from the fitted stride);
-    the unsmoothed step's iterations recorded on the stride."""
-    seen = recorded(monkeypatch, success)
-    fine = refine.refined(build(BODY, replace(SETTINGS, nodes=16)), COARSE)
-    assert seen == [("solve", 0.0, FITTED),
-                    ("optimum", ACTIVATION_RATE_SMOOTHING, {"unsmoothed": 1} if success else FITTED)]
-    assert fine.checks["unsmoothed"] == {"iterations": 7, "status": "status"}
+def test_refined_keeps_a_muscle_strides_direct_try_where_it_converges(monkeypatch):
+    """A muscle stride on a finer mesh: one solve from the coarser stride (fitted), IPOPT
+    stopped at a restoration (refine.DIRECT_TRY), kept where it converged."""
+    seen = recorded(monkeypatch)
+    fine = refine.refined(build(BODY, FINE), COARSE)
+    assert seen == [("optimum", SCALE, True, FITTED)] and "continuation" not in fine.checks
+
+
+@pytest.mark.parametrize("unsmoothed_success", [True, False])
+def test_refined_continues_a_muscle_stride_where_its_direct_try_fails(monkeypatch, unsmoothed_success):
+    """The direct try failed: solved at scale 0 from the coarser stride, then at the settings'
+    scale (restorations allowed) from that solve where it converged (else from the coarser
+    stride); the tries' iterations recorded on the stride."""
+    seen = recorded(monkeypatch, direct_success=False, unsmoothed_success=unsmoothed_success)
+    fine = refine.refined(build(BODY, FINE), COARSE)
+    assert seen == [("optimum", SCALE, True, FITTED), ("solve", 0.0, False, FITTED),
+                    ("optimum", SCALE, False, {"unsmoothed": 1} if unsmoothed_success else FITTED)]
+    assert fine.checks["continuation"] == {"direct_iterations": 5, "direct_status": "status",
+                                           "unsmoothed_iterations": 7, "unsmoothed_status": "status"}
 
 
 def test_refined_solves_a_torque_stride_or_a_direct_one_once(monkeypatch):
-    """The torque rungs, and `continuation=False`: one solve, from the fitted stride."""
-    seen = recorded(monkeypatch)
-    torque = replace(SETTINGS, muscles=None, objective="effort", tendons=RUNNER_TENDONS, nodes=16)
-    assert "unsmoothed" not in refine.refined(build(BODY, torque), COARSE).checks
-    assert "unsmoothed" not in refine.refined(build(BODY, replace(SETTINGS, nodes=16)), COARSE,
-                                              continuation=False).checks
-    assert seen == [("optimum", ACTIVATION_RATE_SMOOTHING, FITTED)] * 2
+    """The torque rungs, and `continuation=False`: one solve to its end, from the fitted stride."""
+    seen = recorded(monkeypatch, direct_success=False)
+    torque = replace(FINE, muscles=None, objective="effort", tendons=RUNNER_TENDONS)
+    assert "continuation" not in refine.refined(build(BODY, torque), COARSE).checks
+    assert "continuation" not in refine.refined(build(BODY, FINE), COARSE, continuation=False).checks
+    assert seen == [("optimum", SCALE, False, FITTED)] * 2
