@@ -142,12 +142,12 @@ def continued(nlp: StrideNLP, guess: dict, parameters: dict, direct: Stride, sim
     Measured (problems/muscle_mesh.py, --direct against the default, 2026-11-27;
     docs/concepts/muscles.md, "The refinement's continuation"): the forefoot stride at 3.5 m/s,
     graded, 80 -> 160 nodes, stalled directly (IPOPT's restorations from about iteration 60, a
-    cost of 102 after 435 s of CPU) and converged through the unsmoothed solve (179.1 steps/min,
-    121 + 327 iterations, 105 s); where the direct solve converged (heel 3.5 m/s 40 -> 80 ->
-    160, forefoot graded 40 -> 80, stride_muscles' mesh check) it did so without a restoration,
-    and the continuation gave the same strides to every printed digit at 1.3-2.0 times its CPU,
-    its unsmoothed solve's iterations erratic (93 or 506 from 80-node strides alike to 5 digits).
-    So the continuation only where the direct solve meets a restoration."""
+    cost of 102 after 435 s of CPU); its direct try stops at 56 iterations and the continuation
+    converges (265 + 101 iterations, 107 s in all: 179.2 steps/min, valid). Where the direct
+    solve converged (heel 3.5 m/s 40 -> 80 -> 160, forefoot graded 40 -> 80, stride_muscles'
+    mesh check) it met no restoration; continuing there too gave the same strides to every
+    printed digit at 1.3-2.0 times the CPU, its unsmoothed solve's iterations erratic (93 or
+    506 from 80-node strides alike to 5 digits): so the continuation only after a restoration."""
     p = parameters
     first = nlp.variant(activation_rate_smoothing=0.0).solve(guess, p["speed"], p["slope"], p["mu"], p["cadence"])
     fine = optimum(nlp, p["speed"], p["slope"], p["mu"], p["cadence"],
