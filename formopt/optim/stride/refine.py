@@ -141,7 +141,7 @@ def continued(nlp: StrideNLP, guess: dict, parameters: dict, direct: Stride, sim
 
     Measured (problems/muscle_mesh.py, --direct against the default, 2026-11-27;
     docs/concepts/muscles.md, "The refinement's continuation"): the forefoot stride at 3.5 m/s,
-    graded, 80 -> 160 nodes, stalled directly (IPOPT's restorations from about iteration 60, a
+    graded, 80 -> 160 nodes, stalled directly (IPOPT's restorations from iteration 55, a
     cost of 102 after 435 s of CPU); its direct try stops at 56 iterations and the continuation
     converges (265 + 101 iterations, 107 s in all: 179.2 steps/min, valid). Where the direct
     solve converged (heel 3.5 m/s 40 -> 80 -> 160, forefoot graded 40 -> 80, stride_muscles'
