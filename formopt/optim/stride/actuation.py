@@ -58,8 +58,8 @@ MOMENT_RATE_LIMIT = 10.0
 # nodes, the smoothing 0.1 / 0.1 / 0.5 / 4.3 % of the objective, 170.8 / 170.8 / 171.2 / 172.2
 # steps/min: 10, the smallest power of ten that closes most of the null mode for under 1 % of
 # the cost (docs/concepts/muscles.md, "The 2.5 m/s replay"). The default of
-# StrideSettings.activation_rate_smoothing, which sets it (0: the refinement's first step,
-# refine.refined).
+# StrideSettings.activation_rate_smoothing, which sets it (0: the first step of a stalled
+# refinement's continuation, refine.continued).
 ACTIVATION_RATE_SMOOTHING = 10.0
 
 

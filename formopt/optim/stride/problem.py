@@ -302,7 +302,7 @@ class StrideSettings:
     reserve_weight: float = RESERVE_WEIGHT  # the muscles' reserves' weight (a what-if only)
     # 1/s, >= 0: the muscles' activation rates' scale in the transcription's smoothing beside the
     # accelerations (actuation.MuscleDriven.smoothed; actuation.ACTIVATION_RATE_SMOOTHING says why
-    # 10); 0 leaves their null mode open, the refinement's first step (refine.refined)
+    # 10); 0 leaves their null mode open: a stalled refinement's first step (refine.continued)
     activation_rate_smoothing: float = ACTIVATION_RATE_SMOOTHING
     # s, > 0: the torque rungs' moments as states, their squared rates weighed by its square
     # (actuation.Torques, costs.py: the time below which a change costs more than its moment)
