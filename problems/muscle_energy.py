@@ -27,7 +27,7 @@ phase=low-high` (ms): that phase's duration bounds (StrideSettings.duration), a 
 `--dorsiflexion D` (deg): the ankle's range of motion ends at D (joint_space.RANGES, 30 deg: the
 solve's bound D + 5 deg and the range wall there), a what-if; `--rate-smoothing EPS` (1/s): --power 1's
 |F'| smoothing (mechanics.muscles.FORCE_RATE_SMOOTHING, 0.5), a what-if; `--activation-smoothing S`:
-the activation rates' scale in the transcription's smoothing (actuation.ACTIVATION_RATE_SMOOTHING,
+the activation rates' scale in the transcription's smoothing (StrideSettings.activation_rate_smoothing,
 10; 0 leaves their null mode open), a what-if; `--cadences` with no value: the free stride alone;
 `--nodes` past the scenes' 120 (as problems/muscle_mesh.py), for a --load'ed stride. `--detail`:
 per cadence also the force-rate term's part of the objective by muscle, stance and swing, and each
@@ -51,7 +51,8 @@ from formopt.mechanics import joint_space
 from formopt.mechanics import muscles as hill
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY, JOINTS, JointSpace
-from formopt.optim.stride import actuation, ranges
+from formopt.optim.stride import ranges
+from formopt.optim.stride.actuation import ACTIVATION_RATE_SMOOTHING
 from formopt.optim.stride.collocation import NX, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS, step_length
@@ -324,7 +325,7 @@ def main(argv=None) -> int:
     parser.add_argument("--dorsiflexion", type=float, help="deg: the ankle's range's end (a what-if; 30)")
     parser.add_argument("--rate-smoothing", type=float, help="1/s: --power 1's eps (a what-if; 0.5)")
     parser.add_argument("--activation-smoothing", type=float,
-                        help="a' scale in the transcription's smoothing (a what-if; actuation.ACTIVATION_RATE_SMOOTHING)")
+                        help="a' scale in the transcription's smoothing (a what-if; StrideSettings.activation_rate_smoothing)")
     parser.add_argument("--detail", action="store_true", help="force rate by muscle, time at a > 0.9, a table")
     args = parser.parse_args(argv)
     if args.rate_smoothing is not None and (args.power != 1 or not args.rate_smoothing > 0):
@@ -334,13 +335,12 @@ def main(argv=None) -> int:
     if args.rate_smoothing is not None:  # a what-if: this process's |F'| smoothing, read when the NLP is built
         hill.FORCE_RATE_SMOOTHING = args.rate_smoothing
     ranges.allow_nodes(args.nodes)
-    if args.activation_smoothing is not None:  # a what-if: read when the NLP is built
-        actuation.ACTIVATION_RATE_SMOOTHING = args.activation_smoothing
     body = scaled_body(args.mass, 1.81)
     settings = StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic", grading=args.grading,
                               muscles=what_if(body_muscles(body), args.strength, "max_force", "--strength", True), force_rate_weight=args.weight,
-                              force_rate_power=args.power,
-                              duration=durations(args.duration))
+                              force_rate_power=args.power, duration=durations(args.duration),
+                              activation_rate_smoothing=(ACTIVATION_RATE_SMOOTHING if args.activation_smoothing is None
+                                                         else args.activation_smoothing))
     nlp = build(body, settings)
     print(f"RBDS001's height, {args.mass:g} kg, heel, {args.nodes} nodes"
           f"{f' graded {args.grading:g}' if args.grading else ''}, {args.speed} m/s, force-rate weight {settings.rate_weight:g}, power {args.power}"
@@ -348,7 +348,7 @@ def main(argv=None) -> int:
           + (f", durations (ms) {' '.join(args.duration)}" if args.duration else "")
           + (f", ankle range to {args.dorsiflexion:g} deg" if args.dorsiflexion is not None else "")
           + (f", |F'| smoothing {args.rate_smoothing:g} /s" if args.rate_smoothing is not None else "")
-          + f", a' smoothing scale {actuation.ACTIVATION_RATE_SMOOTHING:g}", flush=True)
+          + f", a' smoothing scale {settings.activation_rate_smoothing:g}", flush=True)
     if args.start == "search" or args.load:
         strides = walk(nlp, args, free_start(nlp, args))
     else:

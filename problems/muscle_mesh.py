@@ -14,7 +14,7 @@ finer mesh, guess.fitted), so every mesh solves the same stride.
                                    [--grading 0.9 [--first-grading 0]] (a mesh's own: --nodes 160:1;
                                    a phase's duration held, ms: --nodes 160:0@flat=59.5-60.1)
                                    [--replay-cost] [--power 1] [--goals] [--angles] [--mass 75]
-                                   [--activation-smoothing 0 10 [--chained]] [--ipopt max_cpu_time=600 file_print_level=5 ...]
+                                   [--activation-smoothing 0 10 [--chained]] [--direct] [--ipopt max_cpu_time=600 ...]
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -51,9 +51,14 @@ the finest mesh's joint angles taken apart (problems/stride_angles.py's `table`:
 offset, the time shift, the shape, the range and when the extremes fall; at 2.5 and 3.5 m/s the
 thigh from the vertical against the runner's markers) and its ankle push-off against the
 runner's (`push_off`). `--activation-smoothing S...`: the last mesh solved from the one before with
-the activations' rates' scale in the transcription's smoothing (actuation.ACTIVATION_RATE_SMOOTHING)
+the activations' rates' scale in the transcription's smoothing (StrideSettings.activation_rate_smoothing)
 at each value in turn, each reported (the meshes before at the default); with `--chained` each
-value's solve from the one before's stride, not from the mesh before (a continuation). `--ipopt KEY=VALUE...`:
+value's solve from the one before's stride, not from the mesh before (a continuation; the scales' solves
+are each one, to its end). Each finer mesh is solved as refine.refined solves it: directly, IPOPT stopped at
+its first restoration phase, and where that fails without the activations' rates' smoothing first, then with
+it from there (refine.continued; the iterations printed "D direct + U unsmoothed + N"); `--direct`: each finer
+mesh solved directly to its end (the chain before 2026-11-27 evening, for the measurement:
+docs/concepts/muscles.md, "The refinement's continuation"). `--ipopt KEY=VALUE...`:
 IPOPT options over the finer meshes' solves (e.g. max_cpu_time=600, output_file=ipopt.log
 file_print_level=5: a slow solve's iterations).
 """
@@ -73,9 +78,10 @@ from stride_mesh import convergence, ipopt_option
 
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
-from formopt.mechanics.joint_space import JOINTS, JointSpace
-from formopt.optim.stride import actuation, checks, problem, ranges
-from formopt.optim.stride.collocation import MUSCLE_WARM_START, NX, StrideNLP, build
+from formopt.mechanics.joint_space import JOINTS
+from formopt.optim.stride import checks, problem, ranges
+from formopt.optim.stride.actuation import ACTIVATION_RATE_SMOOTHING
+from formopt.optim.stride.collocation import MUSCLE_WARM_START, NX, build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS, step_length
 from formopt.optim.stride.problem import StrideSettings
@@ -91,11 +97,14 @@ def report(nodes: int, stride, seconds: float, grading: float = 0.0) -> str:
                       for name, d in stride.phases)
     forward = " ".join(f"{e:.3f}" for e in stride.checks.get("forward_per_phase", []))
     total = f" [{stride.search['iterations']}]" if stride.search else ""
+    tried = stride.checks.get("continuation")  # refine.continued's tries
+    tries = (f"{tried['direct_iterations']} direct ({tried['direct_status']}) + {tried['unsmoothed_iterations']} "
+             f"unsmoothed ({tried['unsmoothed_status']}) + ") if tried else ""
     return (f"{nodes:4d} nodes{f' graded {grading:g}' if grading else ''}: {stride.cadence_spm:.1f} steps/min, objective {stride.objective_value:.5f}, "
             f"stance {stride.stance_s:.3f} s; phases ms: {phases}; valid "
             f"{'yes' if stride.valid else 'NO: ' + '; '.join(stride.failed_checks)}; forward rad per phase [{forward}]; drift "
             f"{stride.checks['drift_m'] * 1e3:.3f} mm, balance {stride.checks['balance_relative'] * 100:.2e} %, "
-            f"reserves {stride.checks['reserve_nm_per_kg']:.3f} N m/kg over 10 ms ({stride.checks['reserve_peak_nm_per_kg']:.3f} at a node); {stride.iterations}{total} iterations ({stride.status}), "
+            f"reserves {stride.checks['reserve_nm_per_kg']:.3f} N m/kg over 10 ms ({stride.checks['reserve_peak_nm_per_kg']:.3f} at a node); {tries}{stride.iterations}{total} iterations ({stride.status}), "
             f"{seconds:.1f} s CPU")
 
 
@@ -187,15 +196,16 @@ def change(before, after) -> str:
             f"cadence {(after.cadence_spm / before.cadence_spm - 1) * 100:+.2f} %")
 
 
-def finer(nlp, speed: float, before, mu_inits: list[float], ipopt: dict):
+def finer(nlp, speed: float, before, mu_inits: list[float], ipopt: dict, continuation: bool = True):
     """The stride on `nlp`'s (finer) mesh from `before` (a stride, its `phase_costs` and its NLP)
     interpolated onto it (guess.fitted, at both meshes' times), solved with IPOPT's barrier
-    starting at each of `mu_inits` in turn (`ipopt`: options over them), each reported with its
-    change from `before`; returns the first (with its parts and NLP)."""
+    starting at each of `mu_inits` in turn (`ipopt`: options over them; refine.refined, directly
+    to the end without `continuation`), each reported with its change from `before`;
+    returns the first (with its parts and NLP)."""
     out = []
     for mu in mu_inits:
         clock = time.process_time()
-        stride = refined(nlp.variant({"mu_init": mu, **ipopt}), before[0], before[2])
+        stride = refined(nlp.variant({"mu_init": mu, **ipopt}), before[0], before[2], continuation=continuation)
         print(report(nlp.settings.nodes, stride, time.process_time() - clock, nlp.settings.grading)
               + f" (mu_init {mu:g})", flush=True)
         parts = phase_costs(nlp, stride.solved, speed)
@@ -208,15 +218,15 @@ def finer(nlp, speed: float, before, mu_inits: list[float], ipopt: dict):
 
 
 def mesh(body, args, nodes: int, consistency_rows: str, grading: float, held: dict | None = None,
-         anew: bool = False):
+         smoothing: float = ACTIVATION_RATE_SMOOTHING):
     """The muscles' stride NLP on `nodes` nodes at the command line's strike and `grading`;
-    `held`: phase -> (low, high) duration bounds (s) over StrideSettings' defaults; `anew`: built
-    again, not build's kept one (its key does not hold actuation.ACTIVATION_RATE_SMOOTHING)."""
+    `held`: phase -> (low, high) duration bounds (s) over StrideSettings' defaults; `smoothing`:
+    StrideSettings.activation_rate_smoothing."""
     duration = {**StrideSettings().duration, **(held or {})}
     settings = StrideSettings(strike=args.strike, nodes=nodes, muscles=body_muscles(body), objective="metabolic",
                               consistency_rows=consistency_rows, grading=grading, duration=duration,
-                              force_rate_power=args.power)
-    return StrideNLP(JointSpace(body), settings) if anew else build(body, settings)
+                              force_rate_power=args.power, activation_rate_smoothing=smoothing)
+    return build(body, settings)
 
 
 def start(nlp, args):
@@ -234,15 +244,14 @@ def start(nlp, args):
 
 
 def smoothings(body, args, nodes: int, grading: float, held: dict, before):
-    """The last mesh solved at each of `--activation-smoothing`'s scales (actuation.
-    ACTIVATION_RATE_SMOOTHING, read when the NLP is built) from `before` (`finer`'s), or with
-    `--chained` from the scale before's stride; returns the last scale's."""
+    """The last mesh solved at each of `--activation-smoothing`'s scales (StrideSettings.
+    activation_rate_smoothing) from `before` (`finer`'s), or with `--chained` from the scale
+    before's stride; returns the last scale's."""
     last = before
     for scale in args.activation_smoothing:
-        actuation.ACTIVATION_RATE_SMOOTHING = scale
         print(f"the activations' rates' smoothing scale {scale:g}:", flush=True)
-        last = finer(mesh(body, args, nodes, args.consistency_rows, grading, held, anew=True),
-                     args.speed, last if args.chained else before, args.mu_init, args.ipopt)
+        last = finer(mesh(body, args, nodes, args.consistency_rows, grading, held, scale),
+                     args.speed, last if args.chained else before, args.mu_init, args.ipopt, continuation=False)
     return last
 
 
@@ -346,9 +355,11 @@ def arguments(argv):
     parser.add_argument("--mass", type=float, default=62.0,
                         help="the body's mass (kg) at RBDS001's height: a heavier runner")
     parser.add_argument("--activation-smoothing", type=float, nargs="+", default=None,
-                        help="the last mesh solved at each a' scale in the smoothing (actuation.ACTIVATION_RATE_SMOOTHING)")
+                        help="the last mesh solved at each a' scale in the smoothing (StrideSettings.activation_rate_smoothing)")
     parser.add_argument("--chained", action="store_true",
                         help="with --activation-smoothing, each scale's solve from the one before's stride (a continuation)")
+    parser.add_argument("--direct", action="store_true",
+                        help="each finer mesh solved directly to its end, without refine.refined's continuation")
     parser.add_argument("--ipopt", type=ipopt_option, nargs="+", default=[],
                         help="KEY=VALUE IPOPT options over the finer meshes' solves, e.g. max_cpu_time=600")
     args = parser.parse_args(argv)
@@ -378,10 +389,11 @@ def main(argv=None) -> int:
             strides.append(smoothings(body, args, nodes, grading, held, strides[-1]))
             continue
         if strides:
-            strides.append(finer(nlp, args.speed, strides[-1], args.mu_init, args.ipopt))
+            strides.append(finer(nlp, args.speed, strides[-1], args.mu_init, args.ipopt, not args.direct))
             continue
         first = start(mesh(body, args, nodes, "exact", grading, held) if args.rows_first else nlp, args)
-        strides.append(finer(nlp, args.speed, first, args.mu_init, args.ipopt) if args.rows_first else first)
+        strides.append(finer(nlp, args.speed, first, args.mu_init, args.ipopt, not args.direct)
+                       if args.rows_first else first)
     if len(strides) > 2:
         print("mesh convergence:")
         for name, values in (("objective", [s.objective_value for s, *_ in strides]),

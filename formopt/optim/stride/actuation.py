@@ -57,7 +57,9 @@ MOMENT_RATE_LIMIT = 10.0
 # check 0.038 / 0.038 / 0.009 / 0.002 rad, zig-zags at up to 17 / 16 / 5 / 0 % of a phase's
 # nodes, the smoothing 0.1 / 0.1 / 0.5 / 4.3 % of the objective, 170.8 / 170.8 / 171.2 / 172.2
 # steps/min: 10, the smallest power of ten that closes most of the null mode for under 1 % of
-# the cost (docs/concepts/muscles.md, "The 2.5 m/s replay").
+# the cost (docs/concepts/muscles.md, "The 2.5 m/s replay"). The default of
+# StrideSettings.activation_rate_smoothing, which sets it (0: the first step of a stalled
+# refinement's continuation, refine.continued).
 ACTIVATION_RATE_SMOOTHING = 10.0
 
 
@@ -174,9 +176,10 @@ class MuscleDriven(Torques):
     RATE_SCALE = 10.0  # F' = 10 g (De Groote et al. 2016 scale the rate so)
     ACTIVATION_SCALE = 100.0  # a' = 100 b: the controls of order one
 
-    def __init__(self, mass: float, muscles: hill.Muscles):
+    def __init__(self, mass: float, muscles: hill.Muscles, rate_smoothing: float = ACTIVATION_RATE_SMOOTHING):
         super().__init__(mass, 0.0)
         self.muscles, self.leg, self.n = muscles, hill.leg_functions(muscles), len(muscles.names)
+        self.rate_smoothing = rate_smoothing  # 1/s: `smoothed`'s scale (StrideSettings.activation_rate_smoothing)
 
     @property
     def states(self) -> int:
@@ -213,12 +216,12 @@ class MuscleDriven(Torques):
                             for k in range(2)])
 
     def smoothed(self, U):
-        """The activations' rates a' (1/s, 2n rows, a column per node) times
-        ACTIVATION_RATE_SMOOTHING, for the transcription's smoothing: a' is a control tied to the
+        """The activations' rates a' (1/s, 2n rows, a column per node) times `rate_smoothing`
+        (ACTIVATION_RATE_SMOOTHING's default), for the transcription's smoothing: a' is a control tied to the
         excitation by the activation dynamics' row, and a' alternating node to node leaves the
         trapezoid's defects unchanged while the excitation zig-zags between its bounds."""
         n = self.n
-        return ACTIVATION_RATE_SMOOTHING * self.ACTIVATION_SCALE * ca.vertcat(
+        return self.rate_smoothing * self.ACTIVATION_SCALE * ca.vertcat(
             *[U[3 * n * k + n:3 * n * k + 2 * n, :] for k in range(2)])
 
     def _joint(self, theta, k):
@@ -286,9 +289,10 @@ class MuscleDriven(Torques):
 
 
 def actuation(mass: float, limit: float, tendons: dict, muscles: hill.Muscles | None = None,
-              dynamic: bool = False) -> Torques:
-    """The actuation model of a stride's settings: muscles where given, else torques (moment
-    dynamics with `dynamic`), with springs where tendons are set."""
+              dynamic: bool = False, rate_smoothing: float = ACTIVATION_RATE_SMOOTHING) -> Torques:
+    """The actuation model of a stride's settings: muscles where given (their activation rates'
+    smoothing scale `rate_smoothing`, 1/s), else torques (moment dynamics with `dynamic`), with
+    springs where tendons are set."""
     if muscles is not None:
-        return MuscleDriven(mass, muscles)
+        return MuscleDriven(mass, muscles, rate_smoothing)
     return TorquesWithSprings(mass, limit, tendons, dynamic) if any(tendons.values()) else Torques(mass, limit, dynamic)

@@ -11,7 +11,7 @@ with the integrals I_k (the transcription's quadrature of the node integrands, o
     smoothing  the transcription's (collocation): trapezoid sum_k h |theta''_k+1 - theta''_k|^2,
                Hermite-Simpson sum_k h |theta''_k - 2 theta''_m + theta''_k+1|^2 (per distance);
                with muscles theta'' stacked with their activations' rates times
-               actuation.ACTIVATION_RATE_SMOOTHING (actuation.MuscleDriven.smoothed)
+               StrideSettings.activation_rate_smoothing (actuation.MuscleDriven.smoothed)
 
     joint_metabolic   int sum_j |tau_j| w_j phi(v_j) / f_V(-v_j) dt  (J; v_j = -tau_j theta'_j / (w_j |tau_j|):
                       Minetti & Alexander 1997's muscle at each joint, `joint_metabolic_rate`)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .actuation import ACTIVATION_RATE_SMOOTHING
 from .checks import impact_check
 from .collocation import CONTINUATION_IPOPT, NX, StrideNLP
 from .guess import ballistic, fitted, from_torques, perturbed, slide_guess
@@ -75,7 +76,7 @@ def torque_start(nlp: StrideNLP) -> StrideNLP:
     """The torque+springs NLP a muscle NLP starts from (`muscle_start`): its mesh and strike,
     effort, problem.RUNNER_TENDONS, trapezoid, without the muscles' settings."""
     return nlp.variant(muscles=None, objective="effort", tendons=RUNNER_TENDONS, transcription="trapezoid",
-                       force_rate_power=2, force_rate_weight=None)
+                       force_rate_power=2, force_rate_weight=None, activation_rate_smoothing=ACTIVATION_RATE_SMOOTHING)
 
 
 def muscle_start(nlp: StrideNLP, speed: float, slope: float, mu: float, cadence: float | None) -> dict:

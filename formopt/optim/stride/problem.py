@@ -35,6 +35,7 @@ from dataclasses import dataclass, field
 
 from ...mechanics.errors import InputError
 from ...mechanics.muscles import Muscles
+from .actuation import ACTIVATION_RATE_SMOOTHING
 from .contact import CLEARANCE
 from .ranges import check
 
@@ -116,7 +117,8 @@ WORK_REGULARISATION = 1e-2
 # without the term (150.9 at 1e-6); at 1e-4 Hermite-Simpson 20 did not converge in 3000 (193).
 # Nor is the free cadence: imposed at 150.9, Hermite-Simpson 40 converged in 124 iterations
 # (0.5 % below the free solve's optimum at that cadence), but imposed at 155 it had not in 1500.
-# With muscles the activations' rates join the accelerations (actuation.ACTIVATION_RATE_SMOOTHING).
+# With muscles the activations' rates join the accelerations, scaled by
+# StrideSettings.activation_rate_smoothing (actuation.ACTIVATION_RATE_SMOOTHING).
 SMOOTHING = 1e-6
 # The one weight of the muscles' "metabolic" objective: FORCE_RATE_WEIGHT times the force-rate
 # term (costs.FORCE_RATE_SCALE: the volume-weighted squared tendon-force rates per distance, Kipp
@@ -298,6 +300,10 @@ class StrideSettings:
     force_rate_weight: float | None = None
     force_rate_power: int = 2  # the force-rate term's power (FORCE_RATE_POWERS)
     reserve_weight: float = RESERVE_WEIGHT  # the muscles' reserves' weight (a what-if only)
+    # 1/s, >= 0: the muscles' activation rates' scale in the transcription's smoothing beside the
+    # accelerations (actuation.MuscleDriven.smoothed; actuation.ACTIVATION_RATE_SMOOTHING says why
+    # 10); 0 leaves their null mode open: a stalled refinement's first step (refine.continued)
+    activation_rate_smoothing: float = ACTIVATION_RATE_SMOOTHING
     # s, > 0: the torque rungs' moments as states, their squared rates weighed by its square
     # (actuation.Torques, costs.py: the time below which a change costs more than its moment)
     moment_time: float = 0.0
@@ -383,7 +389,8 @@ class StrideSettings:
 
     def _check_muscles(self):
         """The muscles' settings (__post_init__): their objectives, no tendons in parallel, the
-        force-rate term's power and weight, none of them on a torque rung."""
+        force-rate term's power and weight, the activation rates' smoothing scale, none of them
+        on a torque rung."""
         if self.muscles is not None and (self.tendons or self.objective not in MUSCLE_OBJECTIVES):
             raise InputError(f"actuation 'muscles': expected objective {' or '.join(MUSCLE_OBJECTIVES)} and no "
                              f"tendons (the muscles' tendons are in series), not {self.objective!r}"
@@ -397,6 +404,12 @@ class StrideSettings:
         if self.muscles is None and (self.force_rate_power != 2 or self.force_rate_weight is not None):
             raise InputError("force_rate_power / force_rate_weight: the muscles' metabolic objective's, "
                              "expected actuation 'muscles'")
+        if not 0.0 <= self.activation_rate_smoothing < math.inf:
+            raise InputError(f"activation_rate_smoothing = {self.activation_rate_smoothing}: expected a finite "
+                             "number >= 0 (1/s)")
+        if self.muscles is None and self.activation_rate_smoothing != ACTIVATION_RATE_SMOOTHING:
+            raise InputError("activation_rate_smoothing: the muscles' activation rates' scale, expected "
+                             "actuation 'muscles'")
 
     @property
     def actuation(self) -> str:

@@ -8,7 +8,10 @@ IPOPT's barrier at collocation.MUSCLE_WARM_START (3e-4), which keeps the iterate
 it starts from: from their cold solves' 1e-2 the heel stride at 2.5 m/s went from 152.9
 steps/min at 40 nodes to another optimum at 80 (170.2, 6 % costlier; from 3e-4: 148.0,
 problems/muscle_mesh.py). The torque rungs with the NLP's own options, as problems/stride_mesh.py
-always solved its finer meshes. `mesh_check`: the stride on 2N nodes, everything else the same
+always solved its finer meshes. A muscle stride directly, IPOPT stopped at its first restoration
+phase, and where that fails by continuation in its activation rates' smoothing (`continued`: at
+scale 0 first, then at the settings' from there), which reaches the stride where the direct solve
+stalls. `mesh_check`: the stride on 2N nodes, everything else the same
 (grading and transcription kept), and its `MeshCheck`; its own figures stay the N-node stride's.
 """
 
@@ -26,6 +29,8 @@ from .result import Stride
 
 # Issue 34 item 2: a reported stride's cost and cadence change by less than 1 % from N to 2N nodes
 MESH_TOLERANCE_PCT = 1.0
+# IPOPT stops at its first restoration phase: a muscle stride's direct try (`refined`)
+DIRECT_TRY = {"max_resto_iter": 0}
 
 
 @dataclass(frozen=True)
@@ -43,7 +48,7 @@ class MeshCheck:
     failed_checks: tuple[str, ...]  # the 2N-node stride's (Stride.failed_checks)
     success: bool  # IPOPT converged on 2N nodes
     status: str  # IPOPT's return status
-    iterations: int
+    iterations: int  # the 2N-node solves' (a `continued` muscle stride's tries too)
     cpu_s: float  # s of CPU (time.process_time): the 2N-node NLP's build, solve and checks
     coarse_valid: bool = True  # the N-node stride's own (Stride.valid): invalid, it is no answer to converge
 
@@ -87,6 +92,12 @@ class MeshCheck:
         return f"{moved}: {verdict}{modes}"
 
 
+def _tries(stride: Stride) -> int:
+    """The iterations of a `continued` stride's tries before its own solve (0 for another)."""
+    tried = stride.checks.get("continuation", {})
+    return tried.get("direct_iterations", 0) + tried.get("unsmoothed_iterations", 0)
+
+
 def _change(pair: tuple[float, float]) -> float:
     """100 (b - a) / |a| of a pair (a, b)."""
     a, b = pair
@@ -102,18 +113,49 @@ def warm_options(nlp: StrideNLP) -> dict:
     return dict(MUSCLE_WARM_START)
 
 
-def refined(nlp: StrideNLP, stride: Stride, source: StrideNLP | None = None, simulate: bool = True) -> Stride:
+def refined(nlp: StrideNLP, stride: Stride, source: StrideNLP | None = None, simulate: bool = True,
+            continuation: bool = True) -> Stride:
     """`stride` solved again on `nlp` (e.g. its settings on twice the nodes) from itself, at its
     own parameters (module docstring); `source`: an NLP of the stride's transcription and grading
     (default `nlp`'s), whose node times its histories are read at (guess.fitted); `simulate`:
-    the forward check."""
+    the forward check. A muscle stride is tried directly with IPOPT stopped at its first
+    restoration phase (DIRECT_TRY) and, where that fails, `continued`; `continuation` False: the
+    direct solve alone, to its end (a measurement's: problems/muscle_mesh.py --direct)."""
     if stride.solved is None:
         raise ValueError("refined: the stride has no solution to start from")
     options = warm_options(nlp)
     nlp = nlp.variant(options) if options else nlp
     par = stride.solved.parameters
-    return optimum(nlp, par["speed"], par["slope"], par["mu"], par["cadence"],
-                   guess=fitted(nlp, stride.solved.blocks, source), simulate=simulate)
+    guess = fitted(nlp, stride.solved.blocks, source)
+    continues = continuation and nlp.settings.muscles is not None and nlp.settings.activation_rate_smoothing > 0
+    direct = optimum(nlp.variant(DIRECT_TRY) if continues else nlp, par["speed"], par["slope"], par["mu"],
+                     par["cadence"], guess=guess, simulate=simulate)
+    return continued(nlp, guess, par, direct, simulate) if continues and not direct.success else direct
+
+
+def continued(nlp: StrideNLP, guess: dict, parameters: dict, direct: Stride, simulate: bool = True) -> Stride:
+    """A muscle stride's refinement where its direct try (`direct`, from `guess`) failed: `guess`
+    solved with StrideSettings.activation_rate_smoothing 0 first, then on `nlp` from that solve
+    where it converged (else from `guess`); both tries' iterations and status in its
+    checks["continuation"].
+
+    Measured (problems/muscle_mesh.py, --direct against the default, 2026-11-27;
+    docs/concepts/muscles.md, "The refinement's continuation"): the forefoot stride at 3.5 m/s,
+    graded, 80 -> 160 nodes, stalled directly (IPOPT's restorations from iteration 55, a
+    cost of 102 after 435 s of CPU); its direct try stops at 56 iterations and the continuation
+    converges (265 + 101 iterations, 107 s in all: 179.2 steps/min, valid); at 4.5 m/s alike
+    (direct: a cost of 14.2 after 430 s; the rule 164 + 187 + 166 iterations, 114 s). Where the direct
+    solve converged (heel 3.5 m/s 40 -> 80 -> 160, forefoot graded 40 -> 80, stride_muscles'
+    mesh check) it met no restoration; continuing there too gave the same strides to every
+    printed digit at 1.3-2.0 times the CPU, its unsmoothed solve's iterations erratic (93 or
+    506 from 80-node strides alike to 5 digits): so the continuation only after a restoration."""
+    p = parameters
+    first = nlp.variant(activation_rate_smoothing=0.0).solve(guess, p["speed"], p["slope"], p["mu"], p["cadence"])
+    fine = optimum(nlp, p["speed"], p["slope"], p["mu"], p["cadence"],
+                   guess=first.blocks if first.success else guess, simulate=simulate)
+    fine.checks["continuation"] = {"direct_iterations": direct.iterations, "direct_status": direct.status,
+                                   "unsmoothed_iterations": first.iterations, "unsmoothed_status": first.status}
+    return fine
 
 
 def fine_nodes(nodes: int) -> int:
@@ -138,6 +180,7 @@ def mesh_check(nlp: StrideNLP, stride: Stride, simulate: bool = True) -> MeshChe
                      objective_value=(stride.objective_value, fine.objective_value),
                      touchdown=(stride.impacts[-1]["mode"], fine.impacts[-1]["mode"]),
                      valid=fine.valid, failed_checks=tuple(fine.failed_checks), success=fine.success,
-                     status=fine.status, iterations=fine.iterations, cpu_s=time.process_time() - clock,
+                     status=fine.status, iterations=fine.iterations + _tries(fine),
+                     cpu_s=time.process_time() - clock,
                      coarse_valid=stride.valid)
 

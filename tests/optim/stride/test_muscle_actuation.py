@@ -10,7 +10,7 @@ from formopt.io.muscle_table import body_muscles
 from formopt.mechanics import muscles as hill
 from formopt.mechanics.body import paper_body, scaled_body
 from formopt.mechanics.errors import InputError
-from formopt.optim.stride.actuation import ACTIVATION_RATE_SMOOTHING, MuscleDriven, Torques
+from formopt.optim.stride.actuation import ACTIVATION_RATE_SMOOTHING, MuscleDriven, Torques, actuation
 from formopt.optim.stride.costs import terms
 from formopt.optim.stride.layout import Rows
 from formopt.optim.stride.problem import (
@@ -53,16 +53,32 @@ def test_states_swap_legs(rung):
     np.testing.assert_array_equal(swapped, np.r_[z[16:], z[:16]])
 
 
-def test_the_smoothing_sees_the_activation_rates(rung):
+@pytest.mark.parametrize("scale", [ACTIVATION_RATE_SMOOTHING, 0.0, 3.0])
+def test_the_smoothing_sees_the_activation_rates(rung, scale):
     """The rates the transcription's smoothing adds to the accelerations: the activations' a'
-    (1/s, controls b = a'/100) of both legs times ACTIVATION_RATE_SMOOTHING, none of the tendon
-    forces' rates, the excitations or the reserves; the torque rung's none."""
+    (1/s, controls b = a'/100) of both legs times the settings' scale
+    (StrideSettings.activation_rate_smoothing, through `actuation`), none of the tendon forces'
+    rates, the excitations or the reserves; the torque rung's none."""
     n = rung.n
     U = np.random.default_rng(0).uniform(-1.0, 1.0, (rung.controls, 5))
-    smoothed = np.asarray(rung.smoothed(ca.DM(U)), float)
+    scaled = actuation(62.0, 0.0, {}, rung.muscles, rate_smoothing=scale)
+    smoothed = np.asarray(scaled.smoothed(ca.DM(U)), float)
     rows = np.r_[n:2 * n, 4 * n:5 * n]  # b_R, b_L (MuscleDriven's u)
-    np.testing.assert_allclose(smoothed, ACTIVATION_RATE_SMOOTHING * rung.ACTIVATION_SCALE * U[rows])
+    np.testing.assert_allclose(smoothed, scale * rung.ACTIVATION_SCALE * U[rows])
     assert Torques(62.0, 4.0).smoothed(ca.DM(U[:6])).shape == (0, 5)
+
+
+@pytest.mark.parametrize("value", [-1.0, float("nan"), float("inf")])
+def test_the_activation_rate_smoothing_is_a_finite_number_at_least_zero(value):
+    with pytest.raises(InputError, match="activation_rate_smoothing = "):
+        StrideSettings(muscles=body_muscles(BODY), objective="metabolic", activation_rate_smoothing=value)
+
+
+def test_the_activation_rate_smoothing_is_the_muscles_own():
+    """Its default (ACTIVATION_RATE_SMOOTHING) on every rung; another value only with muscles."""
+    assert StrideSettings().activation_rate_smoothing == ACTIVATION_RATE_SMOOTHING
+    with pytest.raises(InputError, match=r"activation_rate_smoothing: .*actuation 'muscles'"):
+        StrideSettings(activation_rate_smoothing=0.0)
 
 
 def test_reserves_are_moments_per_kg(rung):
