@@ -23,13 +23,16 @@ from dataclasses import asdict, dataclass
 from ...mechanics.errors import InputError
 from .collocation import MUSCLE_WARM_START, StrideNLP
 from .guess import fitted
-from .local import optimum
+from .layout import Solved
+from .local import best_of, optimum
 from .ranges import RANGES
 from .result import Stride
 
 # Issue 34 item 2: a reported stride's cost and cadence change by less than 1 % from N to 2N nodes
 MESH_TOLERANCE_PCT = 1.0
-# IPOPT stops at its first restoration phase: a muscle stride's direct try (`refined`)
+# IPOPT stops at its first restoration phase: a muscle stride's direct try (`refined`). The
+# option is read only in a restoration phase, so a solve that meets none is the same bit for bit;
+# a stopped one returns IPOPT's "Maximum_Iterations_Exceeded" (success False) before max_iter
 DIRECT_TRY = {"max_resto_iter": 0}
 
 
@@ -118,22 +121,25 @@ def refined(nlp: StrideNLP, stride: Stride, source: StrideNLP | None = None, sim
     """`stride` solved again on `nlp` (e.g. its settings on twice the nodes) from itself, at its
     own parameters (module docstring); `source`: an NLP of the stride's transcription and grading
     (default `nlp`'s), whose node times its histories are read at (guess.fitted); `simulate`:
-    the forward check. A muscle stride is tried directly with IPOPT stopped at its first
-    restoration phase (DIRECT_TRY) and, where that fails, `continued`; `continuation` False: the
-    direct solve alone, to its end (a measurement's: problems/muscle_mesh.py --direct)."""
+    the forward check. A muscle stride (its activation rates' smoothing > 0) is tried directly
+    with IPOPT stopped at its first restoration phase (DIRECT_TRY) and, where that fails,
+    `continued`; `continuation` False: the direct solve alone, to its end (a measurement's:
+    problems/muscle_mesh.py --direct)."""
     if stride.solved is None:
         raise ValueError("refined: the stride has no solution to start from")
     options = warm_options(nlp)
     nlp = nlp.variant(options) if options else nlp
     par = stride.solved.parameters
     guess = fitted(nlp, stride.solved.blocks, source)
-    continues = continuation and nlp.settings.muscles is not None and nlp.settings.activation_rate_smoothing > 0
-    direct = optimum(nlp.variant(DIRECT_TRY) if continues else nlp, par["speed"], par["slope"], par["mu"],
-                     par["cadence"], guess=guess, simulate=simulate)
-    return continued(nlp, guess, par, direct, simulate) if continues and not direct.success else direct
+    if not (continuation and nlp.settings.muscles is not None and nlp.settings.activation_rate_smoothing > 0):
+        return optimum(nlp, par["speed"], par["slope"], par["mu"], par["cadence"], guess=guess, simulate=simulate)
+    direct = nlp.variant(DIRECT_TRY).solve(guess, par["speed"], par["slope"], par["mu"], par["cadence"])
+    # converged: summarised as `optimum` would (local.best_of), the touchdown's mode decided under
+    # Coulomb with `nlp`'s own options (a sliding solve stopped at a restoration is no answer)
+    return best_of(nlp, [direct], simulate) if direct.success else continued(nlp, guess, par, direct, simulate)
 
 
-def continued(nlp: StrideNLP, guess: dict, parameters: dict, direct: Stride, simulate: bool = True) -> Stride:
+def continued(nlp: StrideNLP, guess: dict, parameters: dict, direct: Solved, simulate: bool = True) -> Stride:
     """A muscle stride's refinement where its direct try (`direct`, from `guess`) failed: `guess`
     solved with StrideSettings.activation_rate_smoothing 0 first, then on `nlp` from that solve
     where it converged (else from `guess`); both tries' iterations and status in its

@@ -50,26 +50,35 @@ def solved(blocks: dict, success: bool = True, iterations: int = 0) -> Solved:
                   objective=1.0, x=np.zeros(1), lam_g=np.zeros(1), parameters=dict(PARAMETERS))
 
 
-def recorded(monkeypatch, direct_success: bool = True, unsmoothed_success: bool = True) -> list:
+def recorded(monkeypatch, direct_success: bool = True, unsmoothed_success: bool = True, options: list | None = None) -> list:
     """refine's solves recorded, not run, as (what, the NLP's scale, whether IPOPT stops at a
-    restoration, the guess): each `optimum` (a stand-in stride, converged with `direct_success`
-    where IPOPT stops at a restoration, else always, in 5 iterations) and StrideNLP.solve
-    (`continued`'s unsmoothed solve: the blocks {"unsmoothed": 1}, converged with
-    `unsmoothed_success`, in 7 iterations); guess.fitted as {"fitted": blocks}."""
+    restoration, the guess): StrideNLP.solve (the direct try, where IPOPT stops at a restoration:
+    the blocks {"direct": 1}, converged with `direct_success`, in 5 iterations; `continued`'s
+    unsmoothed solve: {"unsmoothed": 1}, converged with `unsmoothed_success`, in 7), local.best_of
+    (a converged direct try summarised; its guess the solve's blocks) and each `optimum` (a
+    stand-in stride, converged); guess.fitted as {"fitted": blocks}; `options`: each NLP's IPOPT
+    options appended."""
     seen: list = []
 
     def stops(nlp) -> bool:
+        (options if options is not None else []).append(dict(nlp.ipopt or {}))
         return (nlp.ipopt or {}).get("max_resto_iter") == 0
 
     def solve(nlp, guess, speed, slope, mu, cadence):
-        seen.append(("solve", nlp.settings.activation_rate_smoothing, stops(nlp), guess))
-        return solved({"unsmoothed": 1}, unsmoothed_success, 7)
+        stop = stops(nlp)
+        seen.append(("solve", nlp.settings.activation_rate_smoothing, stop, guess))
+        return solved({"direct": 1}, direct_success, 5) if stop else solved({"unsmoothed": 1}, unsmoothed_success, 7)
+
+    def best_of(nlp, solves, simulate):
+        seen.append(("best_of", nlp.settings.activation_rate_smoothing, stops(nlp), solves[0].blocks))
+        return SimpleNamespace(checks={}, success=solves[0].success)
 
     def optimum(nlp, speed, slope, mu, cadence, guess, simulate):
         seen.append(("optimum", nlp.settings.activation_rate_smoothing, stops(nlp), guess))
-        return SimpleNamespace(checks={}, success=direct_success or not stops(nlp), iterations=5, status="status")
+        return SimpleNamespace(checks={}, success=True, iterations=9, status="status")
 
     monkeypatch.setattr(type(build(BODY, SETTINGS)), "solve", solve)
+    monkeypatch.setattr(refine, "best_of", best_of)
     monkeypatch.setattr(refine, "optimum", optimum)
     monkeypatch.setattr(refine, "fitted", lambda nlp, blocks, source: {"fitted": blocks})
     return seen
@@ -83,10 +92,12 @@ SCALE = ACTIVATION_RATE_SMOOTHING
 
 def test_refined_keeps_a_muscle_strides_direct_try_where_it_converges(monkeypatch):
     """A muscle stride on a finer mesh: one solve from the coarser stride (fitted), IPOPT
-    stopped at a restoration (refine.DIRECT_TRY), kept where it converged."""
+    stopped at a restoration (refine.DIRECT_TRY), kept where it converged: summarised on the
+    NLP without DIRECT_TRY (its touchdown's mode decided under Coulomb by a solve to its end)."""
     seen = recorded(monkeypatch)
     fine = refine.refined(build(BODY, FINE), COARSE)
-    assert seen == [("optimum", SCALE, True, FITTED)] and "continuation" not in fine.checks
+    assert seen == [("solve", SCALE, True, FITTED), ("best_of", SCALE, False, {"direct": 1})]
+    assert "continuation" not in fine.checks
 
 
 @pytest.mark.parametrize("unsmoothed_success", [True, False])
@@ -96,7 +107,7 @@ def test_refined_continues_a_muscle_stride_where_its_direct_try_fails(monkeypatc
     stride); the tries' iterations recorded on the stride."""
     seen = recorded(monkeypatch, direct_success=False, unsmoothed_success=unsmoothed_success)
     fine = refine.refined(build(BODY, FINE), COARSE)
-    assert seen == [("optimum", SCALE, True, FITTED), ("solve", 0.0, False, FITTED),
+    assert seen == [("solve", SCALE, True, FITTED), ("solve", 0.0, False, FITTED),
                     ("optimum", SCALE, False, {"unsmoothed": 1} if unsmoothed_success else FITTED)]
     assert fine.checks["continuation"] == {"direct_iterations": 5, "direct_status": "status",
                                            "unsmoothed_iterations": 7, "unsmoothed_status": "status"}
@@ -109,3 +120,14 @@ def test_refined_solves_a_torque_stride_or_a_direct_one_once(monkeypatch):
     assert "continuation" not in refine.refined(build(BODY, torque), COARSE).checks
     assert "continuation" not in refine.refined(build(BODY, FINE), COARSE, continuation=False).checks
     assert seen == [("optimum", SCALE, False, FITTED)] * 2
+
+
+def test_refined_keeps_the_callers_ipopt_options_in_every_solve(monkeypatch):
+    """The caller's options (here a barrier and a CPU cap, as problems/muscle_mesh.py's) in the
+    direct try, the unsmoothed solve and the last one; DIRECT_TRY in the direct try alone."""
+    options: list = []
+    recorded(monkeypatch, direct_success=False, options=options)
+    caller = {"mu_init": 1e-2, "max_cpu_time": 600}
+    refine.refined(build(BODY, FINE).variant(caller), COARSE)
+    assert [o.get("max_resto_iter") for o in options] == [0, None, None]
+    assert all(o.items() >= caller.items() for o in options)
