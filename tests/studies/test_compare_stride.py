@@ -185,7 +185,9 @@ def test_the_band_starts_its_free_optima_beside_the_family_only_when_their_start
         nlp=lambda: SimpleNamespace(solver=None), settings=SimpleNamespace(nodes=18)))
     monkeypatch.setattr(compare_stride, "band_variants", lambda scene, body: [Variant("friction 0.6", "friction", "mu")])
     monkeypatch.setattr(compare_stride, "strike_tasks", lambda scene, speed, strikes: [(type, s, "") for s in strikes])
-    monkeypatch.setattr(compare_stride, "check_tasks", lambda scene, strides: [(lambda s: s, s, "") for s in strides])
+    checked: list = []  # the strides handed to the forward check: the converged free optima only
+    monkeypatch.setattr(compare_stride, "check_tasks",
+                        lambda scene, strides: checked.append(strides) or [(lambda s: s, s, "") for s in strides])
     monkeypatch.setattr(compare_stride, "_notes", lambda *a: [])
     monkeypatch.setattr(compare_stride, "what_ifs", lambda *a: [])
     cheaper = SimpleNamespace(objective_value=0.9, success=True, valid=True, cadence_spm=178.5)
@@ -207,6 +209,7 @@ def test_the_band_starts_its_free_optima_beside_the_family_only_when_their_start
         variant = answer(c, workers=1).curves[1]
         assert tuple(events) == after
         assert variant.free.starts == (nominal.free, own if first == "band" else cheaper)
+        assert checked[-1] == ([nominal.free, own] if own.success else [nominal.free]) and nominal.own_free is own
 
 
 def test_a_variant_starts_from_the_first_solution_of_its_own_nlp(monkeypatch):
