@@ -60,7 +60,8 @@ it from there (refine.continued; the iterations printed "D direct + U unsmoothed
 mesh solved directly to its end (the chain before 2026-11-27 evening, for the measurement:
 docs/concepts/muscles.md, "The refinement's continuation"). `--ipopt KEY=VALUE...`:
 IPOPT options over the finer meshes' solves (e.g. max_cpu_time=600, output_file=ipopt.log
-file_print_level=5: a slow solve's iterations).
+file_print_level=5: a slow solve's iterations), each of a continuation's three solves getting them
+(max_cpu_time=S: up to 3 S a mesh).
 """
 
 from __future__ import annotations
@@ -361,7 +362,7 @@ def arguments(argv):
     parser.add_argument("--direct", action="store_true",
                         help="each finer mesh solved directly to its end, without refine.refined's continuation")
     parser.add_argument("--ipopt", type=ipopt_option, nargs="+", default=[],
-                        help="KEY=VALUE IPOPT options over the finer meshes' solves, e.g. max_cpu_time=600")
+                        help="KEY=VALUE IPOPT options over the finer meshes' solves (each of a continuation's three), e.g. max_cpu_time=600")
     args = parser.parse_args(argv)
     args.ipopt = dict(args.ipopt)
     if args.replay_cost and args.power != 2:

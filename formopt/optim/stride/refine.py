@@ -54,6 +54,7 @@ class MeshCheck:
     iterations: int  # the 2N-node solves' (a `continued` muscle stride's tries too)
     cpu_s: float  # s of CPU (time.process_time): the 2N-node NLP's build, solve and checks
     coarse_valid: bool = True  # the N-node stride's own (Stride.valid): invalid, it is no answer to converge
+    continued: bool = False  # a muscle stride's direct try stopped at a restoration: solved by `continued`
 
     @property
     def cadence_change_pct(self) -> float:
@@ -92,7 +93,8 @@ class MeshCheck:
                    f"not converged at {MESH_TOLERANCE_PCT:g} %")
         a, b = ({"stick": "sticking", "slide": "sliding"}[mode] for mode in self.touchdown)
         modes = "" if a == b else f"; the touchdown {a} on {n} nodes, {b} on {fine}"
-        return f"{moved}: {verdict}{modes}"
+        path = "; solved by continuation (unsmoothed first: the direct solve met a restoration)" if self.continued else ""
+        return f"{moved}: {verdict}{modes}{path}"
 
 
 def _tries(stride: Stride) -> int:
@@ -188,5 +190,5 @@ def mesh_check(nlp: StrideNLP, stride: Stride, simulate: bool = True) -> MeshChe
                      valid=fine.valid, failed_checks=tuple(fine.failed_checks), success=fine.success,
                      status=fine.status, iterations=fine.iterations + _tries(fine),
                      cpu_s=time.process_time() - clock,
-                     coarse_valid=stride.valid)
+                     coarse_valid=stride.valid, continued="continuation" in fine.checks)
 

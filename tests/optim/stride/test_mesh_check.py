@@ -58,7 +58,7 @@ def test_the_record_holds_both_meshes(coarse, checked):
     assert checked.cadence_spm[0] == stride.cadence_spm and checked.objective_value[0] == stride.objective_value
     assert checked.success and checked.status == "Solve_Succeeded" and checked.iterations > 0 and checked.cpu_s > 0
     assert checked.valid == (not checked.failed_checks) and checked.coarse_valid == stride.valid
-    assert checked.touchdown == ("stick", "stick")  # no-slip
+    assert checked.touchdown == ("stick", "stick") and not checked.continued  # no-slip; a torque rung: direct
     (c1, c2), (j1, j2) = checked.cadence_spm, checked.objective_value
     assert checked.cadence_change_pct == pytest.approx(100 * (c2 / c1 - 1), rel=1e-12)
     assert checked.objective_change_pct == pytest.approx(100 * (j2 / j1 - 1), rel=1e-12)
@@ -85,6 +85,8 @@ def test_converged_needs_both_changes_under_the_tolerance_and_a_valid_fine_strid
     assert record((170.0, 170.0), (2.0, 2.0), touchdown=("slide", "stick")).text() == \
         "80 nodes, solved from this 40-node stride, move the cadence +0.00 % and the cost +0.00 %: converged " \
         "within 1 %; the touchdown sliding on 40 nodes, sticking on 80"
+    assert replace(record((170.0, 170.0), (2.0, 2.0)), continued=True).text().endswith(
+        "; solved by continuation (unsmoothed first: the direct solve met a restoration)")
 
 
 def test_the_fine_solve_starts_from_the_stride(coarse):
