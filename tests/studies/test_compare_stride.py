@@ -99,6 +99,22 @@ def test_a_what_if_between_two_families_and_a_free_optimum_off_the_envelope_are_
                                          "`held` in the JSON; the optimum's are printed under it)")
 
 
+def test_a_variant_off_its_envelope_is_said():
+    """A band variant whose free optimum lies above one of its imposed strides by more than
+    ENVELOPE is named: its strides are local optima (one warm solve each)."""
+    nominal, metabolic = _curve("nominal", [100, 110, 104, 98, 97]), _curve("metabolic", [200, 216, 203, 199, 201],
+                                                                          "objective", [0.17, 0.18, 0.17, 0.15, 0.2])
+    nominal.free = SimpleNamespace(objective_value=97.0, cadence_spm=187.0, success=True, valid=True, held=[])
+    metabolic.free = SimpleNamespace(objective_value=0.18, success=True)
+    scene = stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", nodes=24)
+    said = [n for n in compare_stride._notes([nominal, metabolic], {}, 170.0, scene) if n.startswith("metabolic")]
+    assert said == ["metabolic: its free optimum lies 16.7 % above its least costly imposed stride (tolerance 0.1 %): "
+                    "its strides, each one solve warm from the nominal's, are local optima, and its part of the band "
+                    "measures which ones as much as the variant"]
+    metabolic.free.objective_value = 0.15  # on its envelope: nothing said
+    assert not [n for n in compare_stride._notes([nominal, metabolic], {}, 170.0, scene) if n.startswith("metabolic")]
+
+
 def _failed_own_free():
     """Stands for the sticking strides' own free optimum where IPOPT did not converge."""
     return SimpleNamespace(success=False, valid=False, status="Maximum_Iterations_Exceeded", cadence_spm=150.0,
