@@ -46,18 +46,28 @@ def pytest_runtest_protocol(item, nextitem):
                         os.environ.get("PYTEST_XDIST_WORKER", "-")))
 
 
-def pytest_sessionfinish(session):
-    """An xdist worker hands its records to the main process (xdist's workeroutput)."""
-    records = session.config.stash.get(_RECORDS, None)
+def hand_over(session, stash: pytest.StashKey, key: str) -> None:
+    """An xdist worker hands its records (config.stash[stash]) to the main process under `key`
+    (xdist's workeroutput); the records' plugins share it (stride_solves.py)."""
+    records = session.config.stash.get(stash, None)
     if records is not None and hasattr(session.config, "workeroutput"):
-        session.config.workeroutput[KEY] = records
+        session.config.workeroutput[key] = records
+
+
+def take_over(node, stash: pytest.StashKey, key: str) -> None:
+    """The main process's records (config.stash[stash]) extended by a finished worker's."""
+    records = node.config.stash.get(stash, None)
+    if records is not None:
+        records.extend(tuple(r) for r in getattr(node, "workeroutput", {}).get(key, []))
+
+
+def pytest_sessionfinish(session):
+    hand_over(session, _RECORDS, KEY)
 
 
 @pytest.hookimpl(optionalhook=True)
 def pytest_testnodedown(node, error):
-    records = node.config.stash.get(_RECORDS, None)
-    if records is not None:
-        records.extend(tuple(r) for r in getattr(node, "workeroutput", {}).get(KEY, []))
+    take_over(node, _RECORDS, KEY)
 
 
 def pytest_terminal_summary(terminalreporter, config):

@@ -15,6 +15,7 @@ import time
 
 import numpy as np
 import pytest
+from cpu_times import hand_over, take_over
 
 KEY = "stride_solves"  # the records' key in xdist's workeroutput
 _RECORDS = pytest.StashKey[list]()  # (file, solve key, CPU s) per solve
@@ -70,17 +71,12 @@ def pytest_runtest_protocol(item, nextitem):
 
 
 def pytest_sessionfinish(session):
-    """An xdist worker hands its records to the main process (xdist's workeroutput)."""
-    records = session.config.stash.get(_RECORDS, None)
-    if records is not None and hasattr(session.config, "workeroutput"):
-        session.config.workeroutput[KEY] = records
+    hand_over(session, _RECORDS, KEY)
 
 
 @pytest.hookimpl(optionalhook=True)
 def pytest_testnodedown(node, error):
-    records = node.config.stash.get(_RECORDS, None)
-    if records is not None:
-        records.extend(tuple(r) for r in getattr(node, "workeroutput", {}).get(KEY, []))
+    take_over(node, _RECORDS, KEY)
 
 
 def pytest_terminal_summary(terminalreporter, config):
