@@ -498,14 +498,15 @@ def band_points(nominal: Curve) -> list[tuple]:
             *(((s,), c) for s, c in zip(nominal.strides, nominal.cadences))]
 
 
-def variant_envelope_note(curve: Curve) -> str:
-    """A band variant whose free optimum lies above one of its imposed strides by more than
-    ENVELOPE: each of its strides is one solve warm from the nominal's (variant_curve), so a
-    local optimum, and its part of the band measures which one as much as the variant. (The
+def variant_envelope_note(name: str, gap: float) -> str:
+    """A band variant (`name`) whose free optimum lies `gap` (relative, Curve.envelope_gap) above
+    one of its imposed strides, more than ENVELOPE: each of its strides is one solve warm from
+    the nominal's (variant_curve), so a local optimum, and its part of the band measures which
+    one as much as the variant. (The
     metabolic variant on RBDS001 T35 and T25: +8.5 % and +51 %, its objectives moving up to
     2-fold under other IPOPT barriers from the same starts: benchmarks/primal_start_options.py,
     2026-11-27.)"""
-    return (f"{curve.name}: its free optimum lies {curve.envelope_gap * 100:.1f} % above its least costly "
+    return (f"{name}: its free optimum lies {gap * 100:.1f} % above its least costly "
             f"imposed stride (tolerance {ENVELOPE * 100:g} %): its strides, each one solve warm from the "
             "nominal's, are local optima, and its part of the band measures which ones as much as the variant")
 
@@ -517,7 +518,8 @@ def _notes(curves: list[Curve], best: dict, runner: float, nominal) -> list[str]
     if not curves[0].ok:
         notes.append(f"the nominal stride did not converge ({curves[0].why_not}): no what-if")
     notes += [f"{cv.name} left out of the band: {cv.why_not}" for cv in curves[1:] if not cv.ok]
-    notes += [variant_envelope_note(cv) for cv in curves[1:] if cv.ok and (cv.envelope_gap or 0.0) > ENVELOPE]
+    notes += [variant_envelope_note(cv.name, gap) for cv in curves[1:]
+              if cv.ok and (gap := cv.envelope_gap) is not None and gap > ENVELOPE]
     if curves[0].free is not None and abs(curves[0].free.cadence_spm / runner - 1) > FAR:
         notes.append(f"the model's free optimum ({curves[0].free.cadence_spm:.0f} steps/min) is "
                      f"{(curves[0].free.cadence_spm / runner - 1) * 100:+.0f} % from the runner's cadence: "
