@@ -128,15 +128,15 @@ def report(runner: str, section, seen: dict, cpu: float) -> None:
     before, after, chain = seen["before"], next(cv for cv in section.curves if cv.name == "metabolic"), seen["chain"]
     print(f"{runner}: section {cpu:.1f} s CPU (this process and its pool's); polish {seen['rounds']} rounds, "
           f"{seen['cost'][0]} solves, {seen['cost'][1]} iterations, {seen['cost'][2]:.1f} s CPU; "
-          f"chain start + polish ({seen['chain_rounds']} rounds) {seen['chain_cost'][0]} solves, {seen['chain_cost'][1]} iterations, "
-          f"{seen['chain_cost'][2]:.1f} s CPU")
-    print("cadence steps/min | metabolic objective: band | polished | chain-polished | chain/polished - 1")
+          f"chain start + polish ({seen['chain_rounds']} rounds) {seen['chain_cost'][0]} solves, "
+          f"{seen['chain_cost'][1]} iterations, {seen['chain_cost'][2]:.1f} s CPU")
+    print("cadence steps/min | metabolic objective (flag): band | polished | chain-polished | chain/polished - 1")
     for cad, b, a, ch in [(None, before.free, after.free, chain.free),
                           *zip(before.cadences, before.strides, after.strides, chain.strides)]:
+        moved = ch.objective_value / a.objective_value - 1
         print(f"{'free ' + format(a.cadence_spm, '.1f') if cad is None else format(cad, '.1f')} | "
-              f"{b.objective_value:.5g} | {a.objective_value:.5g} | {ch.objective_value:.5g} | "
-              f"{ch.objective_value / a.objective_value - 1:+.2%}"
-              + ("" if abs(ch.objective_value / a.objective_value - 1) <= STABLE else " (not one optimum)") + ("" if a.success and ch.success else " (failed)"))
+              + " | ".join(f"{s.objective_value:.5g}{mark(s)}" for s in (b, a, ch))
+              + f" | {moved:+.2%}" + ("" if abs(moved) <= STABLE else " (not one optimum)"))
     print("envelope gap: band {} | polished {} | chain-polished {}".format(
         *(f"{g:+.2%}" if (g := cv.envelope_gap) is not None else "-" for cv in (before, after, chain))))
     nominal = section.curves[0]
@@ -149,6 +149,11 @@ def report(runner: str, section, seen: dict, cpu: float) -> None:
         print(f"{w.cadence_change_pct:+.0f} | {w.mechanical_power_change_W:+.1f} | " + " | ".join(
             f"{x.low_W:+.1f}..{x.high_W:+.1f}, {dict(x.parts).get('objective', 0):.1f}, {x.words()}"
             for x in (r[k] for r in rows.values())))
+
+
+def mark(stride) -> str:
+    """A stride's flag in the tables: failed (did not converge), invalid (a check failed), else none."""
+    return " failed" if not stride.success else "" if stride.valid else " invalid"
 
 
 if __name__ == "__main__":
