@@ -43,38 +43,40 @@ def solve(scene, source, cadence):
 
 
 def polish(scene, curve, first: list):
-    """The curve with its strides polished from `first` (strides in curve.cadences' order) and its
-    free optimum re-solved (module doc); (curve, rounds run)."""
-    nlp, cad = scene.nlp(), curve.cadences
+    """The curve with its strides polished from `first` (strides in curve.cadences' order), its
+    free optimum re-solved (module doc) and, where that slides and the strides stick, their own
+    sticking free optimum (compare_stride.sticking_free, as the nominal's: the polish's source in
+    the free optimum's place, its primal values being another NLP's); (curve, rounds run)."""
+    nlp, cad, speed = scene.nlp(), curve.cadences, scene.speed
     order = sorted(range(len(cad)), key=lambda k: cad[k])
     kept, free = list(first), curve.free
-    rounds = 0
+    own, rounds = compare_stride.sticking_free(scene, speed, replace(curve, strides=kept)), 0
     while rounds < ROUNDS:
         rounds, changed = rounds + 1, False
+        envelope = own if own is not None and own.success else free
         for i, k in enumerate(order):
-            sources = [kept[order[j]] for j in (i - 1, i + 1) if 0 <= j < len(order)] + [free]
+            sources = [kept[order[j]] for j in (i - 1, i + 1) if 0 <= j < len(order)] + [envelope]
             for source in (s for s in sources if s.success):
                 got = solve(scene, source, cad[k])
                 if stride_map.better(got, kept[k]):
                     kept[k], changed = got, True
-        again = stride_map._better_free(stride_map.CadenceCurve(free, kept), nlp, scene.speed, scene.slope,
+        again = stride_map._better_free(stride_map.CadenceCurve(free, kept), nlp, speed, scene.slope,
                                         scene.friction).free
         changed, free = changed or again is not free, again
+        own = compare_stride.sticking_free(scene, speed, replace(curve, free=free, strides=kept))
         if not changed:
             break
-    return replace(curve, free=free, strides=kept), rounds
+    return replace(curve, free=free, strides=kept, own_free=own), rounds
 
 
-def chained(scene, curve) -> list:
-    """`chain`'s first starts: outward from the free optimum's cadence, each cadence warm from
-    the one before it (the free optimum first), in curve.cadences' order."""
-    cad, c0 = curve.cadences, curve.free.cadence_spm
+def chained(scene, curve, start) -> list:
+    """First starts chained outward from `start`'s cadence (a free optimum), each cadence warm
+    from the one before it (`start` first), in curve.cadences' order."""
+    cad, c0 = curve.cadences, start.cadence_spm
     out = {}
-    for side in (sorted(k for k in range(len(cad)) if cad[k] >= c0),
-                 sorted((k for k in range(len(cad)) if cad[k] < c0), key=lambda k: -cad[k])):
-        side = sorted(side, key=lambda k: abs(cad[k] - c0))
-        source = curve.free
-        for k in side:
+    for side in ([k for k in range(len(cad)) if cad[k] >= c0], [k for k in range(len(cad)) if cad[k] < c0]):
+        source = start
+        for k in sorted(side, key=lambda k: abs(cad[k] - c0)):
             out[k] = solve(scene, source, cad[k])
             source = out[k] if out[k].success else source
     return [out[k] for k in range(len(cad))]
@@ -113,8 +115,10 @@ def main():
         if not curves[k].ok:
             return curves
         (seen["chain"], seen["chain_rounds"]), *seen["chain_cost"] = measured(
-            lambda: polish(v.scene, curves[k], chained(v.scene, curves[k])))
+            lambda: polish(v.scene, curves[k], chained(v.scene, curves[k], curves[k].free)))
         (curves[k], seen["rounds"]), *seen["cost"] = measured(polish, v.scene, curves[k], curves[k].strides)
+        (seen["family"], seen["family_rounds"]), *seen["family_cost"] = measured(
+            lambda: polish(v.scene, curves[k], chained(v.scene, curves[k], curves[k].envelope_free)))
         return curves
     compare_stride.band_curves = polished
     c = compare_speed.comparison(args.runner)
@@ -125,30 +129,33 @@ def main():
 
 def report(runner: str, section, seen: dict, cpu: float) -> None:
     """The tables of the module doc."""
-    before, after, chain = seen["before"], next(cv for cv in section.curves if cv.name == "metabolic"), seen["chain"]
-    print(f"{runner}: section {cpu:.1f} s CPU (this process and its pool's); polish {seen['rounds']} rounds, "
-          f"{seen['cost'][0]} solves, {seen['cost'][1]} iterations, {seen['cost'][2]:.1f} s CPU; "
-          f"chain start + polish ({seen['chain_rounds']} rounds) {seen['chain_cost'][0]} solves, "
-          f"{seen['chain_cost'][1]} iterations, {seen['chain_cost'][2]:.1f} s CPU")
-    print("cadence steps/min | metabolic objective (flag): band | polished | chain-polished | chain/polished - 1")
-    for cad, b, a, ch in [(None, before.free, after.free, chain.free),
-                          *zip(before.cadences, before.strides, after.strides, chain.strides)]:
-        moved = ch.objective_value / a.objective_value - 1
-        print(f"{'free ' + format(a.cadence_spm, '.1f') if cad is None else format(cad, '.1f')} | "
-              + " | ".join(f"{s.objective_value:.5g}{mark(s)}" for s in (b, a, ch))
-              + f" | {moved:+.2%}" + ("" if abs(moved) <= STABLE else " (not one optimum)"))
-    print("envelope gap: band {} | polished {} | chain-polished {}".format(
-        *(f"{g:+.2%}" if (g := cv.envelope_gap) is not None else "-" for cv in (before, after, chain))))
+    after = next(cv for cv in section.curves if cv.name == "metabolic")
+    curves = {"band": seen["before"], "polished": after, "chain": seen["chain"], "family": seen["family"]}
+    print(f"{runner}: section {cpu:.1f} s CPU (this process and its pool's); " + "; ".join(
+        f"{name} {seen[key + 'rounds']} rounds, {n} solves, {its} iterations, {s:.1f} s CPU"
+        for name, key in (("polish", ""), ("chain + polish", "chain_"), ("family + polish", "family_"))
+        for n, its, s in [seen[key + "cost"]]))
+    print("cadence steps/min | metabolic objective (flag): " + " | ".join(curves)
+          + " | chain, family / polished - 1")
+    for k in range(len(after.cadences) + 1):
+        got = [cv.free if k == 0 else cv.strides[k - 1] for cv in curves.values()]
+        moved = [s.objective_value / got[1].objective_value - 1 for s in got[2:]]
+        print(f"{'free ' + format(got[1].cadence_spm, '.1f') if k == 0 else format(after.cadences[k - 1], '.1f')} | "
+              + " | ".join(f"{s.objective_value:.5g}{mark(s)}" for s in got) + " | "
+              + ", ".join(f"{m:+.2%}" for m in moved) + ("" if max(map(abs, moved)) <= STABLE else " (not one)"))
+    print("envelope gap (the free's touchdown; the sticking strides' own free): " + " | ".join(
+        f"{name} {'-' if (g := cv.envelope_gap) is None else format(g, '+.2%')} "
+        f"({compare_stride.touchdown_mode(cv.free)}; "
+        f"{'-' if cv.own_free is None else format(cv.own_free.objective_value, '.5g') + mark(cv.own_free)})"
+        for name, cv in curves.items()))
     nominal = section.curves[0]
     others = [cv for cv in section.curves[1:] if cv.name != "metabolic"]
-    rows = {"band": compare_stride.what_ifs([nominal, *others, before], nominal.cadences),
-            "polished": section.what_if,
-            "chain": compare_stride.what_ifs([nominal, *others, chain], nominal.cadences)}
-    print("what-if % | W nominal | band low..high W, objective part W, words: band | polished | chain-polished")
+    rows = [compare_stride.what_ifs([nominal, *others, cv], nominal.cadences) for cv in curves.values()]
+    print("what-if % | W nominal | band low..high W, objective part W, words: " + " | ".join(curves))
     for k, w in enumerate(section.what_if):
         print(f"{w.cadence_change_pct:+.0f} | {w.mechanical_power_change_W:+.1f} | " + " | ".join(
             f"{x.low_W:+.1f}..{x.high_W:+.1f}, {dict(x.parts).get('objective', 0):.1f}, {x.words()}"
-            for x in (r[k] for r in rows.values())))
+            for x in (r[k] for r in rows)))
 
 
 def mark(stride) -> str:
