@@ -15,6 +15,47 @@ within STABLE say the polished answer does not hang on the start. Prints per cad
 objective (band / polished / chain-polished), its envelope gap (Curve.envelope_gap) before/after,
 the what-ifs (W: nominal change, band, the objective part's width, words) before/after, and the
 polish's solves, IPOPT iterations and CPU s (this process: `--workers 1` puts the whole section here).
+
+Measured 2026-11-27 (`--workers 1`, the machine otherwise idle; objective per distance, flag
+`i`: invalid, a check failed; `family`: a third start, chained from the polished envelope's free
+optimum, then polished; T25 with `--rounds 8`, its polish ending in 6):
+
+    cadence | T35: band, polished, chain, family | T25: band, polished, chain, family | RIC: band, polished, chain
+    free    | .1840 .1581sl .1840 .1581sl     | .1776i .0744 .1589i .0742    | .1979 .1979 .1979
+    -10 %   | .1843 .1843 .2311 .1845        | .0868 .0747 .1722i .0743     | .2548i .2702 .2711
+    -5 %    | .1723 .1723 .1985 .1723        | .0882i .0770 .1733i .0779    | .2549 .2404 .2404
+    runner  | .1684 .1683 .1848 .1683        | .1870 .0850 .1792i .0891     | .2283 .2213 .2212
+    +5 %    | .1930 .1687 .1900 .1687        | .1021 .0974 .1911 .1034      | .2079 .2061 .2061
+    +10 %   | .2030 .1786 .2046 .1786        | .1160 .1130 .2014 .1163      | .2000 .1987 .1987
+    envelope gap | +8.5 % -0.4 % -0.4 % -0.4 % | +51 % -0.5 % +0.1 % -0.2 %  | -1.0 % -0.4 % -0.4 %
+    (T35's polished free slides, .1581; the gap is its strides' own sticking free's, .1677.
+    RIC's family column equals its chain's.)
+
+    what-if | W nominal | band low..high W (objective part W) verdict: band -> polished
+    T35 -10 | -25.4 | -44.9..+9.1 (34.5) none -> -44.9..+9.8 (35.2) none   [chain 47.3, none]
+    T35 -5  | -13.1 | -19.4..+3.1 (16.3) none -> -19.4..+3.8 (16.9) none
+    T35 +5  | +17.1 | +16.0..+19.9 (0.6) costs -> +0.4..+19.9 (16.7) costs
+    T35 +10 | +40.9 | +23.2..+45.0 (17.7) costs -> +4.5..+45.0 (36.4) costs [chain 28.1]
+    T25 -10 | -18.7 | -26.8..-16.3 (8.1) saves -> -21.3..-2.2 (16.6) saves  [3 rounds: +2.8 (21.5) none]
+    T25 -5  | -4.7  | -26.5..-2.9 (21.8) saves -> -6.1..-2.3 (2.4) saves
+    T25 +5  | +5.4  | -23.0..+6.5 (28.4) none -> +3.1..+6.5 (2.3) costs
+    T25 +10 | +15.1 | -19.4..+15.7 (34.5) none -> +8.7..+15.7 (6.4) costs
+    RIC -10 | -14.9 | -35.2..-0.4 (1.1) saves -> -35.2..+25.9 (40.8) none (the band's -10 % was invalid)
+    RIC -5  | -23.0 | -32.4..+3.8 (26.8) none -> -32.4..+8.1 (31.2) none
+    RIC +5  | +13.6 | -15.3..+17.2 (28.9) none -> -4.2..+17.2 (17.8) none
+    RIC +10 | +41.1 | -20.0..+43.6 (61.1) none -> -7.0..+43.6 (48.2) none
+
+    cost of the polish (this process, CPU s) | T35 | T25 (3 rounds; 8) | RIC
+    section without the polish and the two checks | 32.7 | 25.7 | 27.7
+    polish: rounds, solves, IPOPT iterations, CPU s | 3, 44, 1982, 19.3 | 3, 43, 2891, 33.0; 6, 82, 4841, 50.9 | 2, 26, 1670, 18.6
+
+Stability: RIC's three starts land on the same optima (within 0.02 %, but -10 %: 0.34 %); T35's
+polish and the family start agree within 0.11 %, the chain from the band's free optimum stays on a
+family 10-25 % costlier (its sticking free optimum, .1840, never seeds the sliding one); T25's
+polish and family start differ by -14 % to +6 % after 3 rounds and -0.6 % to +6 % after 6, the
+chain stays 2-fold costlier (mostly invalid). A local polish makes the metabolic variant's strides
+cheaper (T25 up to 2-fold, T35 up to 12 %) and its envelope consistent (gap within 0.5 %), but the
+answer still depends on the start: no per-cadence optimum within 0.1 % on T35 or T25.
 """
 
 from __future__ import annotations
