@@ -1,6 +1,6 @@
 """What polishing the band's metabolic variant like the nominal would cost and change, formopt unchanged.
 
-    python benchmarks/variant_polish.py T35 [--workers 1]
+    python benchmarks/variant_polish.py T35|T25|20160226 [--workers 1] [--rounds 3]
 
 compare's stride section (studies.compare_stride.answer, a runner of problems/compare/runners.toml
 as benchmarks/compare_speed.py --stride reads it) with its `band_curves` wrapped: after the band,
@@ -8,13 +8,17 @@ the metabolic variant's strides polished (`polish`): each cadence re-solved warm
 with multipliers, the same NLP) from each neighbouring cadence's metabolic stride and from the
 metabolic free optimum, the least costly kept (stride_map.better), then the free optimum re-solved
 from the least costly imposed stride (stride_map._better_free), in rounds until one changes nothing
-(at most ROUNDS). Twice, from two first starts: `nominal`, the band's strides (each warm from the
-nominal's at its cadence), and `chain`, the strides chained outward along the cadences from the
-band's metabolic free optimum (each warm from its polished neighbour): the same per-cadence optima
-within STABLE say the polished answer does not hang on the start. Prints per cadence the metabolic
-objective (band / polished / chain-polished), its envelope gap (Curve.envelope_gap) before/after,
-the what-ifs (W: nominal change, band, the objective part's width, words) before/after, and the
-polish's solves, IPOPT iterations and CPU s (this process: `--workers 1` puts the whole section here).
+(at most ROUNDS; the sticking strides' own free optimum in the free one's place where that slides).
+From three first starts: `polished`, the band's strides (each warm from the nominal's at its
+cadence); `chain`, strides chained outward along the cadences from the band's metabolic free
+optimum (each warm from the one before); `family`, chained likewise from the polished curve's
+envelope free optimum (Curve.envelope_free); each then polished. The same per-cadence optima
+within STABLE (0.1 %) would say the polished answer does not hang on its start. Prints the
+polishes' rounds, solves, IPOPT iterations and CPU s (this process: `--workers 1` puts the whole
+section here); per cadence the metabolic objective (band and the three); the envelope gap
+(Curve.envelope_gap) with the free optimum's touchdown; the what-ifs (W: the nominal's change,
+the band, its objective part's width, the words) with each metabolic curve in the band (the
+section's own is the polished one).
 
 Measured 2026-11-27 (`--workers 1`, the machine otherwise idle; objective per distance, flag
 `i`: invalid, a check failed; `family`: a third start, chained from the polished envelope's free
