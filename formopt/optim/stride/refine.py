@@ -147,16 +147,10 @@ def continued(nlp: StrideNLP, guess: dict, parameters: dict, direct: Solved, sim
     where it converged (else from `guess`); both tries' iterations and status in its
     checks["continuation"].
 
-    Measured (problems/muscle_mesh.py, --direct against the default, 2026-11-27;
-    docs/concepts/muscles.md, "The refinement's continuation"): the forefoot stride at 3.5 m/s,
-    graded, 80 -> 160 nodes, stalled directly (IPOPT's restorations from iteration 55, a
-    cost of 102 after 435 s of CPU); its direct try stops at 56 iterations and the continuation
-    converges (265 + 101 iterations, 107 s in all: 179.2 steps/min, valid); at 4.5 m/s alike
-    (direct: a cost of 14.2 after 430 s; the rule 164 + 187 + 166 iterations, 114 s). Where the direct
-    solve converged (heel 3.5 m/s 40 -> 80 -> 160, forefoot graded 40 -> 80, stride_muscles'
-    mesh check) it met no restoration; continuing there too gave the same strides to every
-    printed digit at 1.3-2.0 times the CPU, its unsmoothed solve's iterations erratic (93 or
-    506 from 80-node strides alike to 5 digits): so the continuation only after a restoration."""
+    Why (docs/concepts/muscles.md, "The refinement's continuation", has the table and commands):
+    the forefoot's graded 160-node solves stall directly and converge so in 107-114 s of CPU;
+    where the direct solve converges it meets no restoration, and continuing there too gave the
+    same strides at 1.3-2.0 times the CPU: so the continuation only after a restoration."""
     p = parameters
     first = nlp.variant(activation_rate_smoothing=0.0).solve(guess, p["speed"], p["slope"], p["mu"], p["cadence"])
     fine = optimum(nlp, p["speed"], p["slope"], p["mu"], p["cadence"],
