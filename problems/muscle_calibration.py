@@ -4,14 +4,16 @@ cadence lands within --tolerance of the runner's.
 
     python problems/muscle_calibration.py [--speed 3.5] [--target 171.4] [--weights 16 32 64 80]
                                           [--steps 4] [--tolerance 2] [--nodes 24] [--mass 62]
-                                          [--power 1]
+                                          [--power 1] [--transcription hermite-simpson]
 
 The --weights are solved first (the first from the generic start, local.optimum's; each next
 from the solution of the nearest weight solved, its blocks as the guess); then, while a lower
 and a higher weight bracket the target, the geometric mean of the bracket, warm started from
 the nearer of the two (at most --steps solves). Prints per solve: weight, cadence (steps/min),
 stance (s), peak vertical force (N/kg), the muscles' energy (J/kg/m), reserves (N m/kg, their
-largest 10 ms mean), the objective, validity, iterations and CPU seconds (time.process_time).
+largest 10 ms mean), the objective, validity, iterations, CPU seconds (time.process_time) and the
+phases on a duration bound (bounds.on_bounds: low or high). With `--transcription
+hermite-simpson`, --nodes are its intervals.
 """
 
 from __future__ import annotations
@@ -27,7 +29,7 @@ from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import GRAVITY
 from formopt.optim.stride.collocation import build
 from formopt.optim.stride.local import optimum
-from formopt.optim.stride.problem import FORCE_RATE_POWERS, RESERVE_WEIGHT, StrideSettings
+from formopt.optim.stride.problem import FORCE_RATE_POWERS, RESERVE_WEIGHT, TRANSCRIPTIONS, StrideSettings
 
 
 def log_weight(weight: float) -> float:
@@ -43,7 +45,8 @@ def solve(body, base: StrideSettings, weight: float, speed: float, guess):
     energy = stride.muscles["metabolic_J"] / (nlp.mass * stride.step_length_m)
     print(f"{weight:8.3f} {stride.cadence_spm:7.1f} {stride.stance_s:6.3f} {stride.peak_vertical_grf_bw * GRAVITY:6.1f}"
           f" {energy:6.2f} {stride.muscles['reserve_nm_per_kg']:5.2f} {stride.objective_value:7.4f}"
-          f" {'yes' if stride.valid else 'NO':>5s} {stride.iterations:5d} {time.process_time() - clock:6.1f}", flush=True)
+          f" {'yes' if stride.valid else 'NO':>5s} {stride.iterations:5d} {time.process_time() - clock:6.1f}"
+          f" {' '.join(b['phase'] + ' ' + b['side'] for b in stride.on_bound)}", flush=True)
     return stride
 
 
@@ -58,14 +61,17 @@ def main(argv=None) -> int:
     parser.add_argument("--mass", type=float, default=62.0)
     parser.add_argument("--reserve-weight", type=float, default=RESERVE_WEIGHT)
     parser.add_argument("--power", type=int, default=2, choices=FORCE_RATE_POWERS, help="the force-rate term's power")
+    parser.add_argument("--transcription", default="trapezoid", choices=TRANSCRIPTIONS)
     args = parser.parse_args(argv)
     body = scaled_body(args.mass, 1.81)
     base = StrideSettings(strike="heel", nodes=args.nodes, objective="metabolic", muscles=body_muscles(body),
-                          reserve_weight=args.reserve_weight, force_rate_power=args.power)
-    print(f"{args.mass:g} kg, 1.81 m, heel, {args.nodes} nodes, {args.speed} m/s, target {args.target} steps/min, "
+                          reserve_weight=args.reserve_weight, force_rate_power=args.power,
+                          transcription=args.transcription)
+    print(f"{args.mass:g} kg, 1.81 m, heel, {args.nodes} {'intervals ' if args.transcription != 'trapezoid' else 'nodes'}"
+          f"{args.transcription if args.transcription != 'trapezoid' else ''}, {args.speed} m/s, target {args.target} steps/min, "
           f"reserve weight {args.reserve_weight:g}, force-rate power {args.power}")
     print(f"{'weight':>8s} {'spm':>7s} {'stance':>6s} {'GRF':>6s} {'J/kg/m':>6s} {'res':>5s} {'J':>7s} {'valid':>5s}"
-          f" {'iter':>5s} {'cpu s':>6s}", flush=True)
+          f" {'iter':>5s} {'cpu s':>6s} on a bound", flush=True)
     solved: dict[float, object] = {}
 
     def nearest(weight):

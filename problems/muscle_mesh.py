@@ -15,6 +15,8 @@ finer mesh, guess.fitted), so every mesh solves the same stride.
                                    a phase's duration held, ms: --nodes 160:0@flat=59.5-60.1)
                                    [--replay-cost] [--power 1] [--goals] [--angles] [--mass 75]
                                    [--activation-smoothing 0 10 [--chained]] [--direct] [--ipopt max_cpu_time=600 ...]
+                                   [--transcription hermite-simpson (a mesh's own: --nodes 160/trapezoid)]
+                                   [--weight 14]
 
 Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
 durations (ms; one on its duration bound marked low or high), validity and the failed checks,
@@ -61,7 +63,11 @@ mesh solved directly to its end (the chain before 2026-11-27 evening, for the me
 docs/concepts/muscles.md, "The refinement's continuation"). `--ipopt KEY=VALUE...`:
 IPOPT options over the finer meshes' solves (e.g. max_cpu_time=600, output_file=ipopt.log
 file_print_level=5: a slow solve's iterations), each of a continuation's three solves getting them
-(max_cpu_time=S: up to 3 S a mesh).
+(max_cpu_time=S: up to 3 S a mesh). `--transcription hermite-simpson`: every mesh on Hermite-Simpson
+(--nodes its intervals), or one mesh's own with "/": `--nodes 20 40 80/trapezoid` continues the
+40-interval stride on the 80-node trapezoid (guess.fitted reads it at its own columns' times);
+`--weight W`: StrideSettings.force_rate_weight on every mesh (default the power's calibrated one;
+docs/concepts/muscles.md, "On Hermite-Simpson").
 """
 
 from __future__ import annotations
@@ -91,8 +97,11 @@ from formopt.optim.stride.search import global_optimum
 from formopt.studies.stride import measured_cycle, predicted_cycle
 
 
-def report(nodes: int, stride, seconds: float, grading: float = 0.0) -> str:
-    """One mesh's stride as the module docstring lists (its mesh's grading where not 0)."""
+def report(settings, stride, seconds: float) -> str:
+    """One mesh's stride as the module docstring lists (`settings`: its mesh's StrideSettings, whose
+    grading where not 0 and Hermite-Simpson's intervals it names)."""
+    grading = settings.grading
+    mesh = "intervals Hermite-Simpson" if settings.transcription == "hermite-simpson" else "nodes"
     bound = {b["phase"]: b["side"] for b in stride.on_bound}
     phases = " ".join(f"{name} {d * 1e3:.1f}" + (f" ({bound[name]})" if name in bound else "")
                       for name, d in stride.phases)
@@ -101,7 +110,7 @@ def report(nodes: int, stride, seconds: float, grading: float = 0.0) -> str:
     tried = stride.checks.get("continuation")  # refine.continued's tries
     tries = (f"{tried['direct_iterations']} direct ({tried['direct_status']}) + {tried['unsmoothed_iterations']} "
              f"unsmoothed ({tried['unsmoothed_status']}) + ") if tried else ""
-    return (f"{nodes:4d} nodes{f' graded {grading:g}' if grading else ''}: {stride.cadence_spm:.1f} steps/min, objective {stride.objective_value:.5f}, "
+    return (f"{settings.nodes:4d} {mesh}{f' graded {grading:g}' if grading else ''}: {stride.cadence_spm:.1f} steps/min, objective {stride.objective_value:.5f}, "
             f"stance {stride.stance_s:.3f} s; phases ms: {phases}; valid "
             f"{'yes' if stride.valid else 'NO: ' + '; '.join(stride.failed_checks)}; forward rad per phase [{forward}]; drift "
             f"{stride.checks['drift_m'] * 1e3:.3f} mm, balance {stride.checks['balance_relative'] * 100:.2e} %, "
@@ -207,7 +216,7 @@ def finer(nlp, speed: float, before, mu_inits: list[float], ipopt: dict, continu
     for mu in mu_inits:
         clock = time.process_time()
         stride = refined(nlp.variant({"mu_init": mu, **ipopt}), before[0], before[2], continuation=continuation)
-        print(report(nlp.settings.nodes, stride, time.process_time() - clock, nlp.settings.grading)
+        print(report(nlp.settings, stride, time.process_time() - clock)
               + f" (mu_init {mu:g})", flush=True)
         parts = phase_costs(nlp, stride.solved, speed)
         print(costs_table(parts) + "\n" + end_columns(nlp, stride.solved, speed) + "\n  "
@@ -219,14 +228,15 @@ def finer(nlp, speed: float, before, mu_inits: list[float], ipopt: dict, continu
 
 
 def mesh(body, args, nodes: int, consistency_rows: str, grading: float, held: dict | None = None,
-         smoothing: float = ACTIVATION_RATE_SMOOTHING):
+         smoothing: float = ACTIVATION_RATE_SMOOTHING, scheme: str | None = None):
     """The muscles' stride NLP on `nodes` nodes at the command line's strike and `grading`;
     `held`: phase -> (low, high) duration bounds (s) over StrideSettings' defaults; `smoothing`:
-    StrideSettings.activation_rate_smoothing."""
+    StrideSettings.activation_rate_smoothing; `scheme`: the transcription (default --transcription's)."""
     duration = {**StrideSettings().duration, **(held or {})}
     settings = StrideSettings(strike=args.strike, nodes=nodes, muscles=body_muscles(body), objective="metabolic",
                               consistency_rows=consistency_rows, grading=grading, duration=duration,
-                              force_rate_power=args.power, activation_rate_smoothing=smoothing)
+                              force_rate_power=args.power, activation_rate_smoothing=smoothing,
+                              transcription=scheme or args.transcription, force_rate_weight=args.weight)
     return build(body, settings)
 
 
@@ -235,7 +245,7 @@ def start(nlp, args):
     with its `phase_costs` and NLP."""
     clock = time.process_time()
     stride = global_optimum(nlp, args.speed, spend=args.spend) if args.start == "search" else optimum(nlp, args.speed)
-    print(report(nlp.settings.nodes, stride, time.process_time() - clock, nlp.settings.grading), flush=True)
+    print(report(nlp.settings, stride, time.process_time() - clock), flush=True)
     if stride.search:
         print(search_record(stride.search), flush=True)
     parts = phase_costs(nlp, stride.solved, args.speed)
@@ -310,8 +320,12 @@ def push_off(stride, measured: dict) -> str:
 
 
 def node_token(text: str) -> tuple[int, float | None, dict]:
-    """A mesh "nodes[:grading][@phase=low-high]" as (nodes, grading or None: --first-grading's or
-    --grading's, {phase: (low, high) s}: a phase's duration held between low and high ms)."""
+    """A mesh "nodes[:grading][@phase=low-high][/transcription]" as (nodes, grading or None:
+    --first-grading's or --grading's, {phase: (low, high) s}: a phase's duration held between low
+    and high ms, transcription or None: --transcription's)."""
+    text, _, scheme = text.partition("/")
+    if scheme and scheme not in problem.TRANSCRIPTIONS:
+        raise argparse.ArgumentTypeError(f"{scheme!r}: expected a transcription of {', '.join(problem.TRANSCRIPTIONS)}")
     mesh, _, held = text.partition("@")
     nodes, _, grading = mesh.partition(":")
     bounds = {}
@@ -322,7 +336,7 @@ def node_token(text: str) -> tuple[int, float | None, dict]:
             bounds[phase] = (float(low) * 1e-3, float(high) * 1e-3)
         except ValueError:
             raise argparse.ArgumentTypeError(f"{text!r}: expected nodes[:grading][@phase=low-high] in ms") from None
-    return int(nodes), float(grading) if grading else None, bounds
+    return int(nodes), float(grading) if grading else None, bounds, scheme or None
 
 
 def arguments(argv):
@@ -330,7 +344,7 @@ def arguments(argv):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--strike", default="heel", choices=problem.STRIKES)
-    parser.add_argument("--nodes", type=node_token, nargs="+", default=[(40, None, {}), (80, None, {})],
+    parser.add_argument("--nodes", type=node_token, nargs="+", default=[(40, None, {}, None), (80, None, {}, None)],
                         help="nodes[:grading][@phase=low-high] per mesh, e.g. 160:1 or 160:0@flat=59.5-60.1 "
                              "(default grading --grading's; a phase's duration held in ms)")
     parser.add_argument("--start", default="search", choices=("search", "path"))
@@ -343,6 +357,10 @@ def arguments(argv):
                         default="exact", help="StrideSettings.consistency_rows \"off\" on every mesh")
     parser.add_argument("--grading", type=float, default=0.0,
                         help="StrideSettings.grading on every mesh: each phase's mesh graded toward its ends")
+    parser.add_argument("--weight", type=float, default=None,
+                        help="StrideSettings.force_rate_weight (default the power's calibrated one)")
+    parser.add_argument("--transcription", default="trapezoid", choices=problem.TRANSCRIPTIONS,
+                        help="StrideSettings.transcription on every mesh (Hermite-Simpson: --nodes are intervals)")
     parser.add_argument("--first-grading", type=float, default=None,
                         help="the first mesh's grading (default --grading's), the finer meshes' --grading")
     parser.add_argument("--rows-first", action="store_true",
@@ -379,13 +397,15 @@ def main(argv=None) -> int:
           f"{'' if args.consistency_rows == 'exact' else ', without the consistency rows'}"
           f"{f', grading {args.grading:g}' if args.grading else ''}"
           f"{f' (the first mesh {args.first_grading:g})' if args.first_grading is not None else ''}"
-          f"{f', force-rate power {args.power}' if args.power != 2 else ''}",
+          f"{f', force-rate power {args.power}' if args.power != 2 else ''}"
+          f"{f', force-rate weight {args.weight:g}' if args.weight is not None else ''}"
+          f"{f', {args.transcription}' if args.transcription != 'trapezoid' else ''}",
           flush=True)
     strides = []
     first_grading = args.grading if args.first_grading is None else args.first_grading
-    for nodes, own, held in args.nodes:
+    for nodes, own, held, scheme in args.nodes:
         grading = own if own is not None else first_grading if not strides else args.grading
-        nlp = mesh(body, args, nodes, args.consistency_rows, grading, held)
+        nlp = mesh(body, args, nodes, args.consistency_rows, grading, held, scheme=scheme)
         if strides and args.activation_smoothing and nodes == args.nodes[-1][0]:
             strides.append(smoothings(body, args, nodes, grading, held, strides[-1]))
             continue

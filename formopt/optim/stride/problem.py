@@ -134,6 +134,13 @@ SMOOTHING = 1e-6
 # 2.5 / 3.5 / 4.5 m/s, all valid (problems/stride_ladder.py --nodes 24 --rungs muscles,
 # 2026-11-27; docs/concepts/muscles.md, "In the stride"); with Riener & Edrich's moments added to
 # the muscles' own passive fibres 166.0 / 202.1 / 218.7: their passive elasticity counted twice.
+# Solved on Hermite-Simpson, whose cadence moves about 1 % from 40 to 80 intervals, this weight
+# gives 136.7 steps/min at 3.5 m/s on the forefoot phase's ceiling (MUSCLE_HERMITE below): the
+# 24-node trapezoid's phase-end layers were part of what it fitted. Calibrated there instead
+# (problems/muscle_calibration.py --transcription hermite-simpson --nodes 40, 2026-11-27) it is
+# 11.9 (170.9 steps/min), and held out at 2.5 and 4.5 m/s (12, the global search on 40 intervals)
+# it gives 202.6 and 151.1: a cadence that falls with speed. Neither weight is a runner's across
+# speeds; this one stays until the cost is.
 FORCE_RATE_WEIGHT = 80.0
 # The force-rate term's power (StrideSettings.force_rate_power): 2, the squared rates above, or 1,
 # their absolute values (mechanics.muscles.force_rate_cost: Kram & Taylor 1990's cost of force
@@ -251,6 +258,21 @@ MESH_FINE = {"hermite-simpson": (40, "under 0.3 % in cadence and 0.2 % in cost f
 # nodes 0.1-0.7 % and 1.2-2.2 %).
 MUSCLE_MESH_SHIFT = ("0.7-3.8 % in cadence and 9-11 % in cost from 40 to 80 nodes on RBDS001's body "
                      "(a mesh graded toward the phases' ends, grading 1: 0.4-1.9 % and 2-7 %)")
+# The same cost on Hermite-Simpson (RBDS001, heel, the default path's stride on 20 intervals
+# continued on 40 and 80; problems/muscle_mesh.py --transcription hermite-simpson --start path
+# --nodes 20 40 80; docs/concepts/muscles.md, "On Hermite-Simpson", 2026-11-27): at 3.5 m/s
+# 142.0 / 136.7 / 135.7 steps/min, cost -1.66 / -1.10 %, the forefoot phase on its 0.25 s ceiling on
+# every mesh (the global search at 40 intervals answers 136.7, the trapezoid's 180 steps/min 10 %
+# dearer on its grid); at 4.5 m/s 141.0 / 137.4 / 135.9, cost -7.7 / -3.0 %, the flat phase on its
+# 30 ms floor. The force rates replayed forward along the excitations (no mesh's quadrature) price
+# such a stride (131.2 steps/min) 24-34 % below the trapezoid's (176.2 and 177.7 at 80 and 40 nodes)
+# per metre: the trapezoid's cadence is its phase-end layers', and FORCE_RATE_WEIGHT was calibrated
+# on them.
+MUSCLE_HERMITE = ("on Hermite-Simpson this cost's optimum is 131-137 steps/min at 3.5 and 4.5 m/s, a phase "
+                  "on its duration bound")
+MUSCLE_HERMITE_SHIFT = ("0.7-1.1 % in cadence and 1.1-3.0 % in cost from 40 to 80 intervals on RBDS001's body "
+                        "(3.5 and 4.5 m/s), at 131-137 steps/min with a phase on its duration bound: the cost's "
+                        "weight was calibrated on the 24-node trapezoid, whose phase-end layers it fitted")
 
 
 def other_leg(point: str) -> str:
@@ -443,13 +465,14 @@ def metabolic(positive, negative):
 def mesh_note(settings: StrideSettings) -> str:
     """How sure a stride's optimum is of its mesh, in words (MESH_SHIFT, MESH_FINE: measured on
     the torque+springs rung on uniform meshes; MUSCLE_MESH_SHIFT on the muscles' trapezoid, uniform
-    and graded)."""
+    and graded, with what Hermite-Simpson finds, MUSCLE_HERMITE; MUSCLE_HERMITE_SHIFT on it)."""
     if settings.muscles is not None:
         if settings.transcription != "trapezoid":
-            return (f"{settings.transcription} at {settings.nodes} intervals: the muscles' optimum is not "
-                    "measured on this transcription (docs/concepts/muscles.md, 'The mesh: N against 2N')")
+            return (f"{settings.transcription} at {settings.nodes} intervals: the muscles' optimum moved "
+                    f"{MUSCLE_HERMITE_SHIFT} (docs/concepts/muscles.md, 'On Hermite-Simpson')")
         return (f"trapezoid at {settings.nodes} intervals is not mesh-converged: the muscles' optimum moved "
-                f"{MUSCLE_MESH_SHIFT} (docs/concepts/muscles.md, 'The mesh: N against 2N')")
+                f"{MUSCLE_MESH_SHIFT}, and {MUSCLE_HERMITE}: this cadence is the trapezoid's more than the "
+                "cost's (docs/concepts/muscles.md, 'The mesh: N against 2N', 'On Hermite-Simpson')")
     if settings.grading:
         return (f"{settings.transcription} at {settings.nodes} intervals graded {settings.grading:g}: on the "
                 "torque rungs a graded mesh was measured costlier, converging elsewhere (docs/concepts/"

@@ -16,6 +16,8 @@ from formopt.optim.stride.layout import Rows
 from formopt.optim.stride.problem import (
     FORCE_RATE_WEIGHT,
     FORCE_RATE_WEIGHTS,
+    MUSCLE_HERMITE,
+    MUSCLE_HERMITE_SHIFT,
     MUSCLE_MESH_SHIFT,
     StrideSettings,
     mesh_note,
@@ -186,13 +188,14 @@ def test_reserve_weight_must_be_finite_and_positive(weight):
 
 def test_the_mesh_note_gives_the_muscles_their_own_figures():
     """problem.MESH_FINE was measured on the torque+springs rung: the muscles' note never claims
-    its figure; on the trapezoid it gives the muscles' own (MUSCLE_MESH_SHIFT), elsewhere says
-    the muscles were not measured."""
+    its figure; on the trapezoid it gives the muscles' own (MUSCLE_MESH_SHIFT) and what
+    Hermite-Simpson finds (MUSCLE_HERMITE), on Hermite-Simpson its own (MUSCLE_HERMITE_SHIFT)."""
     torque = StrideSettings(nodes=40, transcription="hermite-simpson")
     muscles = body_muscles(paper_body())
     hermite = StrideSettings(nodes=40, transcription="hermite-simpson", objective="metabolic", muscles=muscles)
     trapezoid = StrideSettings(nodes=40, objective="metabolic", muscles=muscles)
     assert "0.2 % in cost" in mesh_note(torque) and "not measured" not in mesh_note(torque)
-    assert "not measured" in mesh_note(hermite) and "0.2 % in cost" not in mesh_note(hermite)
-    assert MUSCLE_MESH_SHIFT in mesh_note(trapezoid) and "effort" not in mesh_note(trapezoid)
+    assert MUSCLE_HERMITE_SHIFT in mesh_note(hermite) and "0.2 % in cost" not in mesh_note(hermite)
+    assert MUSCLE_MESH_SHIFT in mesh_note(trapezoid) and MUSCLE_HERMITE in mesh_note(trapezoid)
+    assert "effort" not in mesh_note(trapezoid)
     assert "graded mesh was measured costlier" in mesh_note(StrideSettings(grading=1.0))
