@@ -97,11 +97,14 @@ from formopt.optim.stride.search import global_optimum
 from formopt.studies.stride import measured_cycle, predicted_cycle
 
 
-def report(settings, stride, seconds: float) -> str:
-    """One mesh's stride as the module docstring lists (`settings`: its mesh's StrideSettings, whose
-    grading where not 0 and Hermite-Simpson's intervals it names)."""
-    grading = settings.grading
+def label(settings) -> str:
+    """A mesh's name: "80 nodes", "40 intervals Hermite-Simpson", with its grading where not 0."""
     mesh = "intervals Hermite-Simpson" if settings.transcription == "hermite-simpson" else "nodes"
+    return f"{settings.nodes} {mesh}" + (f" graded {settings.grading:g}" if settings.grading else "")
+
+
+def report(settings, stride, seconds: float) -> str:
+    """One mesh's stride as the module docstring lists (`settings`: its mesh's StrideSettings)."""
     bound = {b["phase"]: b["side"] for b in stride.on_bound}
     phases = " ".join(f"{name} {d * 1e3:.1f}" + (f" ({bound[name]})" if name in bound else "")
                       for name, d in stride.phases)
@@ -110,9 +113,9 @@ def report(settings, stride, seconds: float) -> str:
     tried = stride.checks.get("continuation")  # refine.continued's tries
     tries = (f"{tried['direct_iterations']} direct ({tried['direct_status']}) + {tried['unsmoothed_iterations']} "
              f"unsmoothed ({tried['unsmoothed_status']}) + ") if tried else ""
-    return (f"{settings.nodes:4d} {mesh}{f' graded {grading:g}' if grading else ''}: {stride.cadence_spm:.1f} steps/min, objective {stride.objective_value:.5f}, "
+    return (f"  {label(settings)}: {stride.cadence_spm:.1f} steps/min, objective {stride.objective_value:.5f}, "
             f"stance {stride.stance_s:.3f} s; phases ms: {phases}; valid "
-            f"{'yes' if stride.valid else 'NO: ' + '; '.join(stride.failed_checks)}; forward rad per phase [{forward}]; drift "
+            f"{'yes' if stride.valid else 'NO: ' + ('; '.join(stride.failed_checks) or stride.status)}; forward rad per phase [{forward}]; drift "
             f"{stride.checks['drift_m'] * 1e3:.3f} mm, balance {stride.checks['balance_relative'] * 100:.2e} %, "
             f"reserves {stride.checks['reserve_nm_per_kg']:.3f} N m/kg over 10 ms ({stride.checks['reserve_peak_nm_per_kg']:.3f} at a node); {tries}{stride.iterations}{total} iterations ({stride.status}), "
             f"{seconds:.1f} s CPU")
@@ -254,14 +257,14 @@ def start(nlp, args):
     return stride, parts, nlp
 
 
-def smoothings(body, args, nodes: int, grading: float, held: dict, before):
+def smoothings(body, args, nodes: int, grading: float, held: dict, before, scheme: str | None = None):
     """The last mesh solved at each of `--activation-smoothing`'s scales (StrideSettings.
     activation_rate_smoothing) from `before` (`finer`'s), or with `--chained` from the scale
     before's stride; returns the last scale's."""
     last = before
     for scale in args.activation_smoothing:
         print(f"the activations' rates' smoothing scale {scale:g}:", flush=True)
-        last = finer(mesh(body, args, nodes, args.consistency_rows, grading, held, scale),
+        last = finer(mesh(body, args, nodes, args.consistency_rows, grading, held, scale, scheme),
                      args.speed, last if args.chained else before, args.mu_init, args.ipopt, continuation=False)
     return last
 
@@ -293,7 +296,7 @@ def replayed_force_rate(nlp, stride) -> str:
         values = volume @ rates[n:2 * n] ** 2 + volume @ rates[3 * n:] ** 2  # z' = [a'_R, F'_R, a'_L, F'_L]
         replayed.append(float(np.trapezoid(values, T * fine)))
     parts = "; ".join(f"{p.name} {q:.4f} / {r:.4f}" for p, q, r in zip(nlp.phases, quadrature, replayed))
-    return (f"{nlp.settings.nodes:4d} nodes: force-rate integral, quadrature / replayed: {parts}; "
+    return (f"  {label(nlp.settings)}: force-rate integral, quadrature / replayed: {parts}; "
             f"all {sum(quadrature):.4f} / {sum(replayed):.4f}")
 
 
@@ -301,8 +304,7 @@ def goals(strides, speed: float) -> str:
     """Each mesh's stride in problems/stride_ladder.py's columns (its `row`: issue 33's goals)
     against RBDS001's processed mean cycle and measured cadence at `speed`."""
     measured = measured_cycle(RBDS, speed)
-    rows = [row(f"{nlp.settings.nodes} nodes" + (f" graded {nlp.settings.grading:g}" if nlp.settings.grading else ""),
-                speed, stride, measured) for stride, _, nlp in strides]
+    rows = [row(label(nlp.settings), speed, stride, measured) for stride, _, nlp in strides]
     return "\n".join(["issue 33's goals (problems/stride_ladder.py's columns):", header("mesh objective"), *rows])
 
 
@@ -319,12 +321,12 @@ def push_off(stride, measured: dict) -> str:
     return "ankle push-off: " + "; ".join(parts)
 
 
-def node_token(text: str) -> tuple[int, float | None, dict]:
+def node_token(text: str) -> tuple[int, float | None, dict, str | None]:
     """A mesh "nodes[:grading][@phase=low-high][/transcription]" as (nodes, grading or None:
     --first-grading's or --grading's, {phase: (low, high) s}: a phase's duration held between low
     and high ms, transcription or None: --transcription's)."""
-    text, _, scheme = text.partition("/")
-    if scheme and scheme not in problem.TRANSCRIPTIONS:
+    text, slash, scheme = text.partition("/")
+    if slash and scheme not in problem.TRANSCRIPTIONS:
         raise argparse.ArgumentTypeError(f"{scheme!r}: expected a transcription of {', '.join(problem.TRANSCRIPTIONS)}")
     mesh, _, held = text.partition("@")
     nodes, _, grading = mesh.partition(":")
@@ -335,7 +337,8 @@ def node_token(text: str) -> tuple[int, float | None, dict]:
         try:
             bounds[phase] = (float(low) * 1e-3, float(high) * 1e-3)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"{text!r}: expected nodes[:grading][@phase=low-high] in ms") from None
+            raise argparse.ArgumentTypeError(f"{text!r}: expected nodes[:grading][@phase=low-high][/transcription], "
+                                             "the phase's duration in ms") from None
     return int(nodes), float(grading) if grading else None, bounds, scheme or None
 
 
@@ -345,7 +348,8 @@ def arguments(argv):
     parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--strike", default="heel", choices=problem.STRIKES)
     parser.add_argument("--nodes", type=node_token, nargs="+", default=[(40, None, {}, None), (80, None, {}, None)],
-                        help="nodes[:grading][@phase=low-high] per mesh, e.g. 160:1 or 160:0@flat=59.5-60.1 "
+                        help="nodes[:grading][@phase=low-high][/transcription] per mesh, e.g. 160:1, 160:0@flat=59.5-60.1 "
+                             "or 80/trapezoid "
                              "(default grading --grading's; a phase's duration held in ms)")
     parser.add_argument("--start", default="search", choices=("search", "path"))
     parser.add_argument("--spend", type=int, default=1)
@@ -407,15 +411,15 @@ def main(argv=None) -> int:
         grading = own if own is not None else first_grading if not strides else args.grading
         nlp = mesh(body, args, nodes, args.consistency_rows, grading, held, scheme=scheme)
         if strides and args.activation_smoothing and nodes == args.nodes[-1][0]:
-            strides.append(smoothings(body, args, nodes, grading, held, strides[-1]))
+            strides.append(smoothings(body, args, nodes, grading, held, strides[-1], scheme))
             continue
         if strides:
             strides.append(finer(nlp, args.speed, strides[-1], args.mu_init, args.ipopt, not args.direct))
             continue
-        first = start(mesh(body, args, nodes, "exact", grading, held) if args.rows_first else nlp, args)
+        first = start(mesh(body, args, nodes, "exact", grading, held, scheme=scheme) if args.rows_first else nlp, args)
         strides.append(finer(nlp, args.speed, first, args.mu_init, args.ipopt, not args.direct)
                        if args.rows_first else first)
-    if len(strides) > 2:
+    if len(strides) > 2 and len({nlp.settings.transcription for *_, nlp in strides}) == 1:  # one scheme's order
         print("mesh convergence:")
         for name, values in (("objective", [s.objective_value for s, *_ in strides]),
                              ("cadence", [s.cadence_spm for s, *_ in strides])):
@@ -427,7 +431,7 @@ def main(argv=None) -> int:
     if args.angles:
         measured = measured_cycle(RBDS, args.speed)
         segments = measured_segments(args.speed) if args.speed in TRIALS else None
-        table(f"{args.nodes[-1][0]} nodes", strides[-1][0], measured, segments)
+        table(label(strides[-1][2].settings), strides[-1][0], measured, segments)
         print(push_off(strides[-1][0], measured), flush=True)
     return 0
 

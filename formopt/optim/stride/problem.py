@@ -135,8 +135,8 @@ SMOOTHING = 1e-6
 # 2026-11-27; docs/concepts/muscles.md, "In the stride"); with Riener & Edrich's moments added to
 # the muscles' own passive fibres 166.0 / 202.1 / 218.7: their passive elasticity counted twice.
 # Solved on Hermite-Simpson, whose cadence moves about 1 % from 40 to 80 intervals, this weight
-# gives 136.7 steps/min at 3.5 m/s on the forefoot phase's ceiling (MUSCLE_HERMITE below): the
-# 24-node trapezoid's phase-end layers were part of what it fitted. Calibrated there instead
+# gives 136.7 steps/min at 3.5 m/s on the forefoot phase's ceiling (MUSCLE_HERMITE below): what
+# it fitted on the 24-node trapezoid may be that mesh's phase-end layers. Calibrated there instead
 # (problems/muscle_calibration.py --transcription hermite-simpson --nodes 40, 2026-11-27) it is
 # 11.9 (170.9 steps/min), and held out at 2.5 and 4.5 m/s (12, the global search on 40 intervals)
 # it gives 202.6 and 151.1: a cadence that falls with speed. Neither weight is a runner's across
@@ -262,17 +262,18 @@ MUSCLE_MESH_SHIFT = ("0.7-3.8 % in cadence and 9-11 % in cost from 40 to 80 node
 # continued on 40 and 80; problems/muscle_mesh.py --transcription hermite-simpson --start path
 # --nodes 20 40 80; docs/concepts/muscles.md, "On Hermite-Simpson", 2026-11-27): at 3.5 m/s
 # 142.0 / 136.7 / 135.7 steps/min, cost -1.66 / -1.10 %, the forefoot phase on its 0.25 s ceiling on
-# every mesh (the global search at 40 intervals answers 136.7, the trapezoid's 180 steps/min 10 %
-# dearer on its grid); at 4.5 m/s 141.0 / 137.4 / 135.9, cost -7.7 / -3.0 %, the flat phase on its
-# 30 ms floor. The force rates replayed forward along the excitations (no mesh's quadrature) price
-# such a stride (131.2 steps/min) 24-34 % below the trapezoid's (176.2 and 177.7 at 80 and 40 nodes)
-# per metre: the trapezoid's cadence is its phase-end layers', and FORCE_RATE_WEIGHT was calibrated
-# on them.
-MUSCLE_HERMITE = ("on Hermite-Simpson this cost's optimum is 131-137 steps/min at 3.5 and 4.5 m/s, a phase "
+# every mesh (the global search at 40 intervals answers 136.7; on its grid 180 steps/min, next to
+# the trapezoid's cadence, costs 11 % more); at 4.5 m/s 141.0 / 137.4 / 135.9, cost -7.7 / -3.0 %,
+# the flat phase on its 30 ms floor. The force rates replayed forward along the excitations (no
+# mesh's quadrature) put such a stride's (131.2 steps/min) force-rate term 24-34 % below the
+# trapezoid's strides' (176.2 and 177.7 at 80 and 40 nodes) per metre, its muscles' energy 18 %
+# above: consistent with the trapezoid's phase-end layers holding its cadence up, and
+# FORCE_RATE_WEIGHT was calibrated on the trapezoid. Measured with that weight and power 2 only.
+MUSCLE_HERMITE = ("on Hermite-Simpson this cost's optimum is 136-137 steps/min at 3.5 and 4.5 m/s, a phase "
                   "on its duration bound")
-MUSCLE_HERMITE_SHIFT = ("0.7-1.1 % in cadence and 1.1-3.0 % in cost from 40 to 80 intervals on RBDS001's body "
-                        "(3.5 and 4.5 m/s), at 131-137 steps/min with a phase on its duration bound: the cost's "
-                        "weight was calibrated on the 24-node trapezoid, whose phase-end layers it fitted")
+MUSCLE_HERMITE_SHIFT = ("0.7-1.2 % in cadence and 1.1-3.0 % in cost from 40 to 80 intervals on RBDS001's body "
+                        "(3.5 and 4.5 m/s), at 136-137 steps/min with a phase on its duration bound; the cost's "
+                        "weight was calibrated on the 24-node trapezoid")
 
 
 def other_leg(point: str) -> str:
@@ -467,12 +468,19 @@ def mesh_note(settings: StrideSettings) -> str:
     the torque+springs rung on uniform meshes; MUSCLE_MESH_SHIFT on the muscles' trapezoid, uniform
     and graded, with what Hermite-Simpson finds, MUSCLE_HERMITE; MUSCLE_HERMITE_SHIFT on it)."""
     if settings.muscles is not None:
+        calibrated = settings.force_rate_power == 2 and settings.force_rate_weight in (None, FORCE_RATE_WEIGHT)
         if settings.transcription != "trapezoid":
-            return (f"{settings.transcription} at {settings.nodes} intervals: the muscles' optimum moved "
-                    f"{MUSCLE_HERMITE_SHIFT} (docs/concepts/muscles.md, 'On Hermite-Simpson')")
-        return (f"trapezoid at {settings.nodes} intervals is not mesh-converged: the muscles' optimum moved "
-                f"{MUSCLE_MESH_SHIFT}, and {MUSCLE_HERMITE}: this cadence is the trapezoid's more than the "
-                "cost's (docs/concepts/muscles.md, 'The mesh: N against 2N', 'On Hermite-Simpson')")
+            if calibrated and settings.nodes >= 40:
+                return (f"{settings.transcription} at {settings.nodes} intervals: the muscles' optimum moved "
+                        f"{MUSCLE_HERMITE_SHIFT} (docs/concepts/muscles.md, 'On Hermite-Simpson')")
+            return (f"{settings.transcription} at {settings.nodes} intervals: the muscles' optimum is measured on "
+                    "it from 40 intervals with the calibrated cost only (docs/concepts/muscles.md, "
+                    "'On Hermite-Simpson')")
+        hermite = (f", and {MUSCLE_HERMITE}: this cadence may be the trapezoid's more than the cost's"
+                   if calibrated else "")
+        return (f"trapezoid at {settings.nodes} nodes is not mesh-converged: the muscles' optimum moved "
+                f"{MUSCLE_MESH_SHIFT}{hermite} (docs/concepts/muscles.md, 'The mesh: N against 2N', "
+                "'On Hermite-Simpson')")
     if settings.grading:
         return (f"{settings.transcription} at {settings.nodes} intervals graded {settings.grading:g}: on the "
                 "torque rungs a graded mesh was measured costlier, converging elsewhere (docs/concepts/"
