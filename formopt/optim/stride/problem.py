@@ -151,7 +151,10 @@ FORCE_RATE_WEIGHT = 80.0
 # 170.8 steps/min against the runner's 171.4; bracketed warm from weight 120's stride (`--load
 # --free`): 8 / 15 / 30 / 60 / 120 gave 179.9 / 168.2 / 164.1 / 161.6 / 159.4 (at 24 nodes the
 # cadence stays above 175 at any weight: `python problems/muscle_calibration.py --power 1 --weights
-# 30 60 120 240`, 187.5 / 180.0 / 175.7 from 60 up, so that mesh cannot calibrate it).
+# 30 60 120 240`, 187.5 / 180.0 / 175.7 from 60 up, so that mesh cannot calibrate it). On
+# Hermite-Simpson 40 intervals 12 gives 156.9; calibrated there 6.9 (170.2), held out 202.4 and
+# 168.1 steps/min at 2.5 and 4.5 m/s: a cadence falling with speed, as the square's (2026-11-27,
+# docs/concepts/muscles.md, "On Hermite-Simpson").
 FORCE_RATE_POWERS = (1, 2)
 FORCE_RATE_WEIGHTS = {2: FORCE_RATE_WEIGHT, 1: 12.0}
 
