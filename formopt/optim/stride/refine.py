@@ -55,6 +55,7 @@ class MeshCheck:
     cpu_s: float  # s of CPU (time.process_time): the 2N-node NLP's build, solve and checks
     coarse_valid: bool = True  # the N-node stride's own (Stride.valid): invalid, it is no answer to converge
     continued: bool = False  # a muscle stride's direct try stopped at a restoration: solved by `continued`
+    mesh: str = "nodes"  # what `nodes` counts, in words: "nodes" (trapezoid) or "intervals" (Hermite-Simpson)
 
     @property
     def cadence_change_pct(self) -> float:
@@ -82,17 +83,18 @@ class MeshCheck:
     def text(self) -> str:
         """What was measured, in one sentence (the stride table's mesh note)."""
         n, fine = self.nodes
+        unit = self.mesh.removesuffix("s")  # "40-node stride", "40-interval stride"
+        solved = f"{fine} {self.mesh}, solved from this {n}-{unit} stride,"
         if not self.success:
-            return (f"{fine} nodes, solved from this {n}-node stride, did not converge (IPOPT: {self.status}): "
-                    "nothing measured")
-        moved = (f"{fine} nodes, solved from this {n}-node stride, move the cadence {self.cadence_change_pct:+.2f} % "
+            return f"{solved} did not converge (IPOPT: {self.status}): nothing measured"
+        moved = (f"{solved} move the cadence {self.cadence_change_pct:+.2f} % "
                  f"and the cost {self.objective_change_pct:+.2f} %")
         verdict = (f"converged within {MESH_TOLERANCE_PCT:g} %" if self.converged else
-                   f"the {n}-node stride itself is invalid" if not self.coarse_valid else
-                   f"the {fine}-node stride is invalid ({'; '.join(self.failed_checks)})" if not self.valid else
+                   f"the {n}-{unit} stride itself is invalid" if not self.coarse_valid else
+                   f"the {fine}-{unit} stride is invalid ({'; '.join(self.failed_checks)})" if not self.valid else
                    f"not converged at {MESH_TOLERANCE_PCT:g} %")
         a, b = ({"stick": "sticking", "slide": "sliding"}[mode] for mode in self.touchdown)
-        modes = "" if a == b else f"; the touchdown {a} on {n} nodes, {b} on {fine}"
+        modes = "" if a == b else f"; the touchdown {a} on {n} {self.mesh}, {b} on {fine}"
         path = "; solved by continuation (unsmoothed first: the direct solve met a restoration)" if self.continued else ""
         return f"{moved}: {verdict}{modes}{path}"
 
@@ -184,5 +186,6 @@ def mesh_check(nlp: StrideNLP, stride: Stride, simulate: bool = True) -> MeshChe
                      valid=fine.valid, failed_checks=tuple(fine.failed_checks), success=fine.success,
                      status=fine.status, iterations=fine.iterations + _tries(fine),
                      cpu_s=time.process_time() - clock,
-                     coarse_valid=stride.valid, continued="continuation" in fine.checks)
+                     coarse_valid=stride.valid, continued="continuation" in fine.checks,
+                     mesh="intervals" if nlp.settings.transcription == "hermite-simpson" else "nodes")
 

@@ -87,6 +87,8 @@ def test_converged_needs_both_changes_under_the_tolerance_and_a_valid_fine_strid
         "within 1 %; the touchdown sliding on 40 nodes, sticking on 80"
     assert replace(record((170.0, 170.0), (2.0, 2.0)), continued=True).text().endswith(
         "; solved by continuation (unsmoothed first: the direct solve met a restoration)")
+    assert replace(record((170.0, 170.0), (2.0, 2.0)), mesh="intervals", coarse_valid=False).text().startswith(
+        "80 intervals, solved from this 40-interval stride,")  # Hermite-Simpson's mesh, in its words
 
 
 def test_the_fine_solve_starts_from_the_stride(coarse):
