@@ -189,6 +189,7 @@ def stride_table(study: StrideStudy) -> str:
     lines += [f"NOTE search: {study.search}"] if study.search else []
     checked = [f"NOTE mesh {s.strike}: {s.mesh_check.text()}" for s in study.strides if s.mesh_check is not None]
     lines += checked or ([f"NOTE mesh: {study.mesh}; --mesh-check measures this stride"] if study.mesh else [])
+    lines += [f"NOTE transcription: {study.transcription}"] if study.transcription else []
     return "\n".join(lines)
 
 

@@ -17,7 +17,7 @@ import numpy as np
 from ..io.stride_scene import StrideScene
 from ..mechanics.errors import InputError
 from ..optim.stride import Stride, global_optimum, optimum, ranges, rank
-from ..optim.stride.problem import STRIKES, mesh_note
+from ..optim.stride.problem import STRIKES, mesh_note, transcription_note
 from ..optim.stride.refine import fine_nodes, mesh_check
 from ..optim.stride.search import solves_planned
 
@@ -37,6 +37,8 @@ class StrideStudy:
     mesh: str = ""
     # how the optima were found where no global search says it (its record does): the local starts
     search: str = ""
+    # what the other transcription finds for the scene's cost (optim.stride.problem.transcription_note)
+    transcription: str = ""
 
     @property
     def best(self) -> Stride:
@@ -51,7 +53,7 @@ class StrideStudy:
                  "mesh_check": None if s.mesh_check is None else s.mesh_check.to_dict()}
                 for s in self.strides]
         return {"scene": self.scene, **self.best.to_dict(), "strides": rows, "mesh": self.mesh,
-                "search_note": self.search}
+                "search_note": self.search, "transcription_note": self.transcription}
 
 
 def run(scene: StrideScene, speed: float | None = None, strike: str | None = None,
@@ -90,7 +92,7 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
         f"the best of {scene.starts} start{'s' if scene.starts > 1 else ''} per strike: a local optimum, the cadences "
         "not searched ([stride] search = \"global\" searches them: docs/concepts/stride.md, 'One answer')")
     return StrideStudy(scene.name, strides, mesh_text(strides) if scene.mesh_check else mesh_note(scene.settings),
-                       local)
+                       local, transcription_note(scene.settings))
 
 
 def mesh_text(strides: list[Stride]) -> str:

@@ -466,24 +466,36 @@ def metabolic(positive, negative):
     return positive / EFFICIENCY_POSITIVE + negative / EFFICIENCY_NEGATIVE
 
 
+def _calibrated(settings: StrideSettings) -> bool:
+    """The muscles' cost as calibrated (power 2 at FORCE_RATE_WEIGHT): what MUSCLE_HERMITE and
+    MUSCLE_HERMITE_SHIFT were measured with."""
+    return settings.force_rate_power == 2 and settings.force_rate_weight in (None, FORCE_RATE_WEIGHT)
+
+
+def transcription_note(settings: StrideSettings) -> str:
+    """What the other transcription finds for this stride's cost, where it was measured to differ
+    (MUSCLE_HERMITE: the muscles' calibrated cost on the trapezoid), else ""; said whether or not
+    the stride's own mesh is checked."""
+    if settings.muscles is None or settings.transcription != "trapezoid" or not _calibrated(settings):
+        return ""
+    return (f"{MUSCLE_HERMITE}: this cadence may be the trapezoid's more than the cost's "
+            "(docs/concepts/muscles.md, 'On Hermite-Simpson')")
+
+
 def mesh_note(settings: StrideSettings) -> str:
     """How sure a stride's optimum is of its mesh, in words (MESH_SHIFT, MESH_FINE: measured on
     the torque+springs rung on uniform meshes; MUSCLE_MESH_SHIFT on the muscles' trapezoid, uniform
-    and graded, with what Hermite-Simpson finds, MUSCLE_HERMITE; MUSCLE_HERMITE_SHIFT on it)."""
+    and graded; MUSCLE_HERMITE_SHIFT on Hermite-Simpson: what it finds, `transcription_note`)."""
     if settings.muscles is not None:
-        calibrated = settings.force_rate_power == 2 and settings.force_rate_weight in (None, FORCE_RATE_WEIGHT)
         if settings.transcription != "trapezoid":
-            if calibrated and settings.nodes >= 40:
+            if _calibrated(settings) and settings.nodes >= 40:
                 return (f"{settings.transcription} at {settings.nodes} intervals: the muscles' optimum moved "
                         f"{MUSCLE_HERMITE_SHIFT} (docs/concepts/muscles.md, 'On Hermite-Simpson')")
             return (f"{settings.transcription} at {settings.nodes} intervals: the muscles' optimum is measured on "
                     "it from 40 intervals with the calibrated cost only (docs/concepts/muscles.md, "
                     "'On Hermite-Simpson')")
-        hermite = (f", and {MUSCLE_HERMITE}: this cadence may be the trapezoid's more than the cost's"
-                   if calibrated else "")
         return (f"trapezoid at {settings.nodes} nodes is not mesh-converged: the muscles' optimum moved "
-                f"{MUSCLE_MESH_SHIFT}{hermite} (docs/concepts/muscles.md, 'The mesh: N against 2N', "
-                "'On Hermite-Simpson')")
+                f"{MUSCLE_MESH_SHIFT} (docs/concepts/muscles.md, 'The mesh: N against 2N')")
     if settings.grading:
         return (f"{settings.transcription} at {settings.nodes} intervals graded {settings.grading:g}: on the "
                 "torque rungs a graded mesh was measured costlier, converging elsewhere (docs/concepts/"

@@ -107,6 +107,9 @@ def test_the_table_says_what_was_measured(coarse, checked):
     table = stride_table(StrideStudy("small", strides, mesh_text(strides))).splitlines()
     assert [line for line in table if line.startswith("NOTE mesh")] == [f"NOTE mesh heel: {checked.text()}"]
     assert mesh_text(strides) == f"heel: {checked.text()}"
+    assert not any(line.startswith("NOTE transcription") for line in table)
+    noted = stride_table(StrideStudy("small", strides, mesh_text(strides), transcription="what it finds"))
+    assert "NOTE transcription: what it finds" in noted.splitlines()  # beside a checked mesh too
 
 
 @pytest.mark.parametrize("edit, message", [({"mesh_check": "yes"}, "true or false"),

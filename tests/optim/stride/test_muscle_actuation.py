@@ -21,6 +21,7 @@ from formopt.optim.stride.problem import (
     MUSCLE_MESH_SHIFT,
     StrideSettings,
     mesh_note,
+    transcription_note,
 )
 
 BODY = scaled_body(62.0, 1.81)
@@ -188,22 +189,24 @@ def test_reserve_weight_must_be_finite_and_positive(weight):
 
 def test_the_mesh_note_gives_the_muscles_their_own_figures():
     """problem.MESH_FINE was measured on the torque+springs rung: the muscles' note never claims
-    its figure; on the trapezoid it gives the muscles' own (MUSCLE_MESH_SHIFT) and what
-    Hermite-Simpson finds (MUSCLE_HERMITE), on Hermite-Simpson from 40 intervals its own
-    (MUSCLE_HERMITE_SHIFT); both measured with the calibrated cost, claimed for it only."""
+    its figure; on the trapezoid it gives the muscles' own (MUSCLE_MESH_SHIFT), on Hermite-Simpson
+    from 40 intervals its own (MUSCLE_HERMITE_SHIFT), measured with the calibrated cost and claimed
+    for it only. What Hermite-Simpson finds for a trapezoid stride (MUSCLE_HERMITE) is the
+    transcription note's, for the calibrated cost only."""
     torque = StrideSettings(nodes=40, transcription="hermite-simpson")
     muscles = body_muscles(paper_body())
     hermite = StrideSettings(nodes=40, transcription="hermite-simpson", objective="metabolic", muscles=muscles)
     trapezoid = StrideSettings(nodes=40, objective="metabolic", muscles=muscles)
     assert "0.2 % in cost" in mesh_note(torque) and "not measured" not in mesh_note(torque)
     assert MUSCLE_HERMITE_SHIFT in mesh_note(hermite) and "0.2 % in cost" not in mesh_note(hermite)
-    assert MUSCLE_MESH_SHIFT in mesh_note(trapezoid) and MUSCLE_HERMITE in mesh_note(trapezoid)
-    assert "effort" not in mesh_note(trapezoid)
+    assert MUSCLE_MESH_SHIFT in mesh_note(trapezoid) and "effort" not in mesh_note(trapezoid)
+    assert MUSCLE_HERMITE in transcription_note(trapezoid) and MUSCLE_HERMITE not in mesh_note(trapezoid)
     coarse = StrideSettings(nodes=20, transcription="hermite-simpson", objective="metabolic", muscles=muscles)
     reweighted = StrideSettings(nodes=40, transcription="hermite-simpson", objective="metabolic", muscles=muscles,
                                 force_rate_weight=12.0)
     for other in (coarse, reweighted):
         assert MUSCLE_HERMITE_SHIFT not in mesh_note(other) and "calibrated cost only" in mesh_note(other)
     absolute = StrideSettings(nodes=40, objective="metabolic", muscles=muscles, force_rate_power=1)
-    assert MUSCLE_MESH_SHIFT in mesh_note(absolute) and MUSCLE_HERMITE not in mesh_note(absolute)
+    assert MUSCLE_MESH_SHIFT in mesh_note(absolute)
+    assert not any(transcription_note(s) for s in (absolute, hermite, reweighted, torque))
     assert "graded mesh was measured costlier" in mesh_note(StrideSettings(grading=1.0))
