@@ -37,7 +37,8 @@ class StrideStudy:
     mesh: str = ""
     # how the optima were found where no global search says it (its record does): the local starts
     search: str = ""
-    # what the other transcription finds for the scene's cost (optim.stride.problem.transcription_note)
+    # what the other transcription finds for the scene's cost at free cadence
+    # (optim.stride.problem.transcription_note; "" with the cadence imposed)
     transcription: str = ""
 
     @property
@@ -92,7 +93,7 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
         f"the best of {scene.starts} start{'s' if scene.starts > 1 else ''} per strike: a local optimum, the cadences "
         "not searched ([stride] search = \"global\" searches them: docs/concepts/stride.md, 'One answer')")
     return StrideStudy(scene.name, strides, mesh_text(strides) if scene.mesh_check else mesh_note(scene.settings),
-                       local, transcription_note(scene.settings))
+                       local, transcription_note(scene.settings) if scene.cadence is None else "")
 
 
 def mesh_text(strides: list[Stride]) -> str:

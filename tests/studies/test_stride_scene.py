@@ -69,6 +69,7 @@ def test_stride_command_writes_its_report(tmp_path, capsys):
     assert report["speed_mps"] == 3.3 and report["strike"] == "forefoot"
     assert report["swing_clearance_m"] >= 0.01 - 1e-6  # contact.CLEARANCE, the default
     assert report["mesh"].startswith("trapezoid at 24 intervals is not mesh-converged")  # said beside the numbers
+    assert report["transcription_note"] == ""  # measured to differ for the muscles' cost only
     row = report["strides"][0]
     assert row["swing_clearance_m"] == report["swing_clearance_m"] and row["search"] is None  # the local search
     assert set(report["budget"]) >= {"positive_work_J", "negative_work_J", "impacts_J",

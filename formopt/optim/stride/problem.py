@@ -152,9 +152,9 @@ FORCE_RATE_WEIGHT = 80.0
 # --free`): 8 / 15 / 30 / 60 / 120 gave 179.9 / 168.2 / 164.1 / 161.6 / 159.4 (at 24 nodes the
 # cadence stays above 175 at any weight: `python problems/muscle_calibration.py --power 1 --weights
 # 30 60 120 240`, 187.5 / 180.0 / 175.7 from 60 up, so that mesh cannot calibrate it). On
-# Hermite-Simpson 40 intervals 12 gives 156.9; calibrated there 6.9 (170.2), held out 202.4 and
-# 168.1 steps/min at 2.5 and 4.5 m/s: a cadence falling with speed, as the square's (2026-11-27,
-# docs/concepts/muscles.md, "On Hermite-Simpson").
+# Hermite-Simpson 40 intervals 12 gives 156.9; calibrated there 6.9 (170.2), held out (one start
+# each) 202.4 and 168.1 steps/min at 2.5 and 4.5 m/s: falling from 2.5 to 3.5 m/s, then about flat
+# (2026-11-27, docs/concepts/muscles.md, "On Hermite-Simpson").
 FORCE_RATE_POWERS = (1, 2)
 FORCE_RATE_WEIGHTS = {2: FORCE_RATE_WEIGHT, 1: 12.0}
 
@@ -272,11 +272,12 @@ MUSCLE_MESH_SHIFT = ("0.7-3.8 % in cadence and 9-11 % in cost from 40 to 80 node
 # trapezoid's strides' (176.2 and 177.7 at 80 and 40 nodes) per metre, its muscles' energy 18 %
 # above: consistent with the trapezoid's phase-end layers holding its cadence up, and
 # FORCE_RATE_WEIGHT was calibrated on the trapezoid. Measured with that weight and power 2 only.
-MUSCLE_HERMITE = ("on Hermite-Simpson this cost's optimum is 136-137 steps/min at 3.5 and 4.5 m/s, a phase "
-                  "on its duration bound")
-MUSCLE_HERMITE_SHIFT = ("0.7-1.2 % in cadence and 1.1-3.0 % in cost from 40 to 80 intervals on RBDS001's body "
-                        "(3.5 and 4.5 m/s), at 136-137 steps/min with a phase on its duration bound; the cost's "
-                        "weight was calibrated on the 24-node trapezoid")
+MUSCLE_HERMITE = ("a more accurate transcription (Hermite-Simpson) puts this cost's best stride near 131-137 "
+                  "steps/min, its forefoot phase (heel-off to toe-off) or flat phase held at a duration limit "
+                  "(RBDS001, heel, 3.5 and 4.5 m/s; another lab's runner at 3.37 m/s)")
+MUSCLE_HERMITE_SHIFT = ("0.7-1.7 % in cadence and 1.1-3.0 % in cost from 40 to 80 intervals on RBDS001's body "
+                        "(heel, 3.5 and 4.5 m/s), at 129-137 steps/min with a phase on its duration bound; the "
+                        "cost's weight was calibrated on the 24-node trapezoid")
 
 
 def other_leg(point: str) -> str:
@@ -478,7 +479,7 @@ def transcription_note(settings: StrideSettings) -> str:
     the stride's own mesh is checked."""
     if settings.muscles is None or settings.transcription != "trapezoid" or not _calibrated(settings):
         return ""
-    return (f"{MUSCLE_HERMITE}: this cadence may be the trapezoid's more than the cost's "
+    return (f"{MUSCLE_HERMITE}: this cadence may come from the mesh more than from the cost "
             "(docs/concepts/muscles.md, 'On Hermite-Simpson')")
 
 
