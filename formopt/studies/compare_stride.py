@@ -42,7 +42,8 @@ import numpy as np
 
 from ..mechanics.body import scaled_body
 from ..optim.stride import Stride, rank, summarise
-from ..optim.stride.problem import STRIKES, mesh_note
+from ..optim.stride.notes import mesh_note
+from ..optim.stride.problem import STRIKES
 from .compare_band import (
     BAND_PARTS,
     WORKERS,

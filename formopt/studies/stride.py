@@ -17,7 +17,8 @@ import numpy as np
 from ..io.stride_scene import StrideScene
 from ..mechanics.errors import InputError
 from ..optim.stride import Stride, global_optimum, optimum, ranges, rank
-from ..optim.stride.problem import STRIKES, mesh_note, transcription_note
+from ..optim.stride.notes import mesh_note, transcription_note
+from ..optim.stride.problem import STRIKES
 from ..optim.stride.refine import fine_nodes, mesh_check
 from ..optim.stride.search import solves_planned
 
@@ -33,12 +34,12 @@ class StrideStudy:
     scene: str
     strides: list = field(default_factory=list)
     # how sure the optima are of their mesh: each stride's mesh check (optim.stride.refine), or
-    # what was measured on RBDS001 (optim.stride.problem.mesh_note)
+    # what was measured on RBDS001 (optim.stride.notes.mesh_note)
     mesh: str = ""
     # how the optima were found where no global search says it (its record does): the local starts
     search: str = ""
     # what the other transcription finds for the scene's cost at free cadence
-    # (optim.stride.problem.transcription_note; "" with the cadence imposed)
+    # (optim.stride.notes.transcription_note; "" with the cadence imposed)
     transcription: str = ""
 
     @property

@@ -101,7 +101,7 @@ def test_the_fine_solve_starts_from_the_stride(coarse):
 
 
 def test_the_table_says_what_was_measured(coarse, checked):
-    """The mesh note of a checked stride is its record's, not the canned figures (problem.mesh_note)."""
+    """The mesh note of a checked stride is its record's, not the canned figures (notes.mesh_note)."""
     _, _, stride = coarse
     strides = [replace(stride, mesh_check=checked)]
     table = stride_table(StrideStudy("small", strides, mesh_text(strides))).splitlines()

@@ -13,15 +13,17 @@ from formopt.mechanics.errors import InputError
 from formopt.optim.stride.actuation import ACTIVATION_RATE_SMOOTHING, MuscleDriven, Torques, actuation
 from formopt.optim.stride.costs import terms
 from formopt.optim.stride.layout import Rows
-from formopt.optim.stride.problem import (
-    FORCE_RATE_WEIGHT,
-    FORCE_RATE_WEIGHTS,
+from formopt.optim.stride.notes import (
     MUSCLE_HERMITE,
     MUSCLE_HERMITE_SHIFT,
     MUSCLE_MESH_SHIFT,
-    StrideSettings,
     mesh_note,
     transcription_note,
+)
+from formopt.optim.stride.problem import (
+    FORCE_RATE_WEIGHT,
+    FORCE_RATE_WEIGHTS,
+    StrideSettings,
 )
 
 BODY = scaled_body(62.0, 1.81)
@@ -188,7 +190,7 @@ def test_reserve_weight_must_be_finite_and_positive(weight):
 
 
 def test_the_mesh_note_gives_the_muscles_their_own_figures():
-    """problem.MESH_FINE was measured on the torque+springs rung: the muscles' note never claims
+    """notes.MESH_FINE was measured on the torque+springs rung: the muscles' note never claims
     its figure; on the trapezoid it gives the muscles' own (MUSCLE_MESH_SHIFT), on Hermite-Simpson
     from 40 intervals its own (MUSCLE_HERMITE_SHIFT), measured with the calibrated cost and claimed
     for it only. What Hermite-Simpson finds for a trapezoid stride (MUSCLE_HERMITE) is the

@@ -1,0 +1,101 @@
+"""How sure a stride's optimum is of its mesh and its transcription, in words: figures measured
+once on RBDS001 (docs/concepts/stride.md, "One answer"; docs/concepts/muscles.md, "The mesh: N
+against 2N" and "On Hermite-Simpson"), said beside every stride whose own mesh is not checked
+(`mesh_note`) and, where the other transcription was measured to find another stride for the
+same cost, beside it too (`transcription_note`)."""
+
+from __future__ import annotations
+
+from .problem import FORCE_RATE_WEIGHT, StrideSettings
+
+# How far a stride's optimum moved with its mesh, N to 2N intervals (docs/concepts/stride.md,
+# "One answer"): every stride says it beside its numbers (`mesh_note`). Measured with Riener &
+# Edrich's passive moments on RBDS001's body, heel, torque+springs, effort, free cadence, each
+# mesh warm from the one before (python problems/stride_mesh.py --cadence 0 --speed 2.5 / 3.5 /
+# 4.5 --meshes trapezoid:40 trapezoid:80 hermite-simpson:40 hermite-simpson:80, 2026-11-27):
+# the trapezoid 156.0 -> 153.1, 169.5 -> 167.0 and 180.3 -> 178.3 steps/min, its cost 4.4, 16.2
+# and 13.9 % lower; Hermite-Simpson (without its release's force row) 124.8 -> 124.8 (an invalid,
+# grazing touchdown), 155.8 -> 155.4 and 163.3 -> 162.8, its cost 4.0, 0.01 and 0.17 % lower,
+# and 20 -> 40 intervals at 3.5 m/s 158.1 -> 155.8 (cost -1.9 %). Hermite-Simpson converges but
+# its torque sources end the stance pushing 1.3 body weights, and its global optimum at 3.5 m/s
+# (problems/stride_search.py --transcription hermite-simpson) is 139.2 steps/min with the forefoot
+# phase on its 0.25 s ceiling: a converged answer held by a bound, so the scenes stay trapezoid.
+MESH_SHIFT = {"trapezoid": "1-2 % in cadence but 4-16 % in cost from 40 to 80 nodes, and at 3.5 m/s "
+                            "finer meshes find cheaper strides near 140-144 steps/min, which the rows at the "
+                            "phase ends hold off only on coarse meshes",
+              "hermite-simpson": "under 2 % in cadence and 1-6 % in cost from 20 to 40 intervals"}
+MESH_FINE = {"hermite-simpson": (40, "under 0.3 % in cadence and 0.2 % in cost from 40 to 80 intervals on "
+                                     "RBDS001's body at 3.5 and 4.5 m/s from the generic start, but 2.5 % in cost "
+                                     "for the cheaper 139 steps/min stride held on the forefoot phase's duration "
+                                     "bound, and its torque sources end the stance pushing 1.3 body weights: "
+                                     "`--mesh-check` measures your stride")}
+
+
+# The muscles' trapezoid from 40 to 80 nodes (RBDS001, heel and forefoot, 2.5 / 3.5 / 4.5 m/s,
+# problems/muscle_mesh.py; docs/concepts/muscles.md, "The mesh: N against 2N", 2026-11-27): the
+# uniform mesh's cadence 0.7-3.8 % and cost 8.6-11.4 %; graded (StrideSettings.grading 1, the
+# search's strides, heel 2.5-4.5 and forefoot 3.5-4.5 m/s) 0.4-1.9 % and 2.3-6.6 % (from 80 to 160
+# nodes 0.1-0.7 % and 1.2-2.2 %).
+MUSCLE_MESH_SHIFT = ("0.7-3.8 % in cadence and 9-11 % in cost from 40 to 80 nodes on RBDS001's body "
+                     "(a mesh graded toward the phases' ends, grading 1: 0.4-1.9 % and 2-7 %)")
+# The same cost on Hermite-Simpson (RBDS001, heel, the default path's stride on 20 intervals
+# continued on 40 and 80; problems/muscle_mesh.py --transcription hermite-simpson --start path
+# --nodes 20 40 80; docs/concepts/muscles.md, "On Hermite-Simpson", 2026-11-27): at 3.5 m/s
+# 142.0 / 136.7 / 135.7 steps/min, cost -1.66 / -1.10 %, the forefoot phase on its 0.25 s ceiling on
+# every mesh (the global search at 40 intervals answers 136.7; on its grid 180 steps/min, next to
+# the trapezoid's cadence, costs 11 % more); at 4.5 m/s 141.0 / 137.4 / 135.9, cost -7.7 / -3.0 %,
+# the flat phase on its 30 ms floor. The force rates replayed forward along the excitations (no
+# mesh's quadrature) put such a stride's (131.2 steps/min) force-rate term 24-34 % below the
+# trapezoid's strides' (176.2 and 177.7 at 80 and 40 nodes) per metre, its muscles' energy 18 %
+# above: consistent with the trapezoid's phase-end layers holding its cadence up, and
+# FORCE_RATE_WEIGHT was calibrated on the trapezoid. Measured with that weight and power 2 only.
+MUSCLE_HERMITE = ("a more accurate transcription (Hermite-Simpson) puts this cost's best stride near 131-137 "
+                  "steps/min, its forefoot phase (heel-off to toe-off) or flat phase held at a duration limit "
+                  "(RBDS001, heel, 3.5 and 4.5 m/s; another lab's runner at 3.37 m/s)")
+MUSCLE_HERMITE_SHIFT = ("0.7-1.7 % in cadence and 1.1-3.0 % in cost from 40 to 80 intervals on RBDS001's body "
+                        "(heel, 3.5 and 4.5 m/s), at 129-137 steps/min with a phase on its duration bound; the "
+                        "cost's weight was calibrated on the 24-node trapezoid")
+
+
+def _calibrated(settings: StrideSettings) -> bool:
+    """The muscles' cost as calibrated (power 2 at FORCE_RATE_WEIGHT): what MUSCLE_HERMITE and
+    MUSCLE_HERMITE_SHIFT were measured with."""
+    return settings.force_rate_power == 2 and settings.force_rate_weight in (None, FORCE_RATE_WEIGHT)
+
+
+def transcription_note(settings: StrideSettings) -> str:
+    """What the other transcription finds for this stride's cost, where it was measured to differ
+    (MUSCLE_HERMITE: the muscles' calibrated cost on the trapezoid), else ""; said whether or not
+    the stride's own mesh is checked."""
+    if settings.muscles is None or settings.transcription != "trapezoid" or not _calibrated(settings):
+        return ""
+    return (f"{MUSCLE_HERMITE}: this cadence may come from the mesh more than from the cost "
+            "(docs/concepts/muscles.md, 'On Hermite-Simpson')")
+
+
+def mesh_note(settings: StrideSettings) -> str:
+    """How sure a stride's optimum is of its mesh, in words (MESH_SHIFT, MESH_FINE: measured on
+    the torque+springs rung on uniform meshes; MUSCLE_MESH_SHIFT on the muscles' trapezoid, uniform
+    and graded; MUSCLE_HERMITE_SHIFT on Hermite-Simpson: what it finds, `transcription_note`)."""
+    if settings.muscles is not None:
+        if settings.transcription != "trapezoid":
+            if _calibrated(settings) and settings.nodes >= 40:
+                return (f"{settings.transcription} at {settings.nodes} intervals: the muscles' optimum moved "
+                        f"{MUSCLE_HERMITE_SHIFT} (docs/concepts/muscles.md, 'On Hermite-Simpson')")
+            return (f"{settings.transcription} at {settings.nodes} intervals: the muscles' optimum is measured on "
+                    "it from 40 intervals with the calibrated cost only (docs/concepts/muscles.md, "
+                    "'On Hermite-Simpson')")
+        return (f"trapezoid at {settings.nodes} nodes is not mesh-converged: the muscles' optimum moved "
+                f"{MUSCLE_MESH_SHIFT} (docs/concepts/muscles.md, 'The mesh: N against 2N')")
+    if settings.grading:
+        return (f"{settings.transcription} at {settings.nodes} intervals graded {settings.grading:g}: on the "
+                "torque rungs a graded mesh was measured costlier, converging elsewhere (docs/concepts/"
+                "stride.md, 'A mesh graded toward the phases' ends')")
+    least, shift = MESH_FINE.get(settings.transcription, (None, ""))
+    if least is not None and settings.nodes >= least:
+        return (f"{settings.transcription} at {settings.nodes} intervals: the effort optimum moved {shift} "
+                "(docs/concepts/stride.md, 'One answer')")
+    finer = "; ".join(f"{t} moves less from {n} intervals, with limits of its own" for t, (n, _) in MESH_FINE.items())
+    return (f"{settings.transcription} at {settings.nodes} intervals is not mesh-converged: on RBDS001's body "
+            f"the effort optimum moved {MESH_SHIFT[settings.transcription]} ({finer}: "
+            "docs/concepts/stride.md, 'One answer')")
