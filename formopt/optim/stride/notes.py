@@ -44,17 +44,21 @@ MUSCLE_MESH_SHIFT = ("0.7-3.8 % in cadence and 9-11 % in cost from 40 to 80 node
 # 142.0 / 136.7 / 135.7 steps/min, cost -1.66 / -1.10 %, the forefoot phase on its 0.25 s ceiling on
 # every mesh (the global search at 40 intervals answers 136.7; on its grid 180 steps/min, next to
 # the trapezoid's cadence, costs 11 % more); at 4.5 m/s 141.0 / 137.4 / 135.9, cost -7.7 / -3.0 %,
-# the flat phase on its 30 ms floor. The force rates replayed forward along the excitations (no
+# the flat phase on its 30 ms floor; at 2.5 m/s 199.1 / 198.0 / 197.8, cost -3.2 / -0.8 %, the heel
+# and flat phases on their floors; the forefoot strike at 3.5 m/s 135.1 / 134.3 / 134.0, -1.2 /
+# -1.3 %. The force rates replayed forward along the excitations (no
 # mesh's quadrature) put such a stride's (131.2 steps/min) force-rate term 24-34 % below the
 # trapezoid's strides' (176.2 and 177.7 at 80 and 40 nodes) per metre, its muscles' energy 18 %
 # above: consistent with the trapezoid's phase-end layers holding its cadence up, and
 # FORCE_RATE_WEIGHT was calibrated on the trapezoid. Measured with that weight and power 2 only.
 MUSCLE_HERMITE = ("a more accurate transcription (Hermite-Simpson) puts this cost's best stride near 131-137 "
-                  "steps/min, its forefoot phase (heel-off to toe-off) or flat phase held at a duration limit "
-                  "(RBDS001, heel, 3.5 and 4.5 m/s; another lab's runner at 3.37 m/s)")
-MUSCLE_HERMITE_SHIFT = ("0.7-1.7 % in cadence and 1.1-3.0 % in cost from 40 to 80 intervals on RBDS001's body "
-                        "(heel, 3.5 and 4.5 m/s), at 129-137 steps/min with a phase on its duration bound; the "
-                        "cost's weight was calibrated on the 24-node trapezoid")
+                  "steps/min at 3.4-4.5 m/s and 198 at 2.5 m/s, a cadence falling with speed, each with a "
+                  "stance phase held at a duration limit (at 3.5 m/s the forefoot phase, heel-off to toe-off, at "
+                  "250 ms; RBDS001's body, heel and forefoot strikes; another lab's runner at 3.37 m/s)")
+MUSCLE_HERMITE_SHIFT = ("0.1-1.7 % in cadence and 0.8-3.0 % in cost from 40 to 80 intervals on RBDS001's body "
+                        "(heel 2.5-4.5 m/s, forefoot 3.5 m/s), at 198 steps/min at 2.5 m/s and 129-137 above, "
+                        "each with a phase on its duration bound; the cost's weight was calibrated on the "
+                        "24-node trapezoid")
 
 
 def _calibrated(settings: StrideSettings) -> bool:
