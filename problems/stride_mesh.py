@@ -29,9 +29,14 @@ guess.fitted), so every mesh solves the same stride.
                                    [--smooth-ends (each phase's end columns' controls on the line through
                                     their two neighbours: no one-column layer)]
                                    [--ipopt print_level=5 mu_strategy=monotone]
+                                   [--strike heel|forefoot|flat] [--body 79 1.77 (kg, m: scaled_body's)]
+                                   [--stance-knee-max 55 (deg: the stance knee's flexion bound in the
+                                    phases with a contact, for this run)]
+                                   [--tendons knee=0 (N m/rad per kg: a stance joint's spring over
+                                    problem.RUNNER_TENDONS; 0 drops it)]
                                    [--figure mesh.png]
 
-Prints per mesh (transcription:intervals): the objective, the smoothing term (problem.SMOOTHING, or
+Prints per mesh (transcription:intervals): the objective, the stance knee's deepest flexion, the smoothing term (problem.SMOOTHING, or
 --smoothing's weight: it replaces costs.SMOOTHING for the run; with --smoothing-order q, times
 (N / N_first)^q at N intervals: q = 2 keeps the trapezoid's term, w h sum |A_k+1 - A_k|^2 ~ w h^2 int |A'|^2 dt,
 one continuous penalty on every mesh),
@@ -75,6 +80,7 @@ from formopt.optim.stride.problem import (
     CONSISTENCY_ROWS,
     RUNNER_TENDONS,
     SMOOTHING,
+    TENDON_JOINTS,
     TRANSCRIPTIONS,
     StrideSettings,
 )
@@ -244,6 +250,15 @@ def phase_duration(text: str) -> tuple[str, float]:
     return phase, float(value)
 
 
+def tendon(text: str) -> tuple[str, float]:
+    """A stance joint's spring "joint=N m/rad per kg" (problem.TENDON_JOINTS) as (joint, k);
+    k = 0 drops that joint's spring."""
+    joint, _, value = text.partition("=")
+    if joint not in TENDON_JOINTS:
+        raise argparse.ArgumentTypeError(f"{text}: expected joint=k, a joint of {', '.join(TENDON_JOINTS)}")
+    return joint, float(value)
+
+
 def ipopt_option(text: str) -> tuple[str, int | float | str]:
     """An IPOPT option "key=value" as (key, value): an integer, a number or a string."""
     key, equals, value = text.partition("=")
@@ -346,14 +361,28 @@ def mesh_token(text: str, grading: float) -> tuple[str, int, float]:
     return parts[0], int(parts[1]), float(parts[2]) if len(parts) > 2 else grading
 
 
+def runner_options(parser: argparse.ArgumentParser) -> None:
+    """The runner's options: the speed, the strike, the body, the friction, the stance knee's
+    bound and the springs."""
+    parser.add_argument("--speed", type=float, default=3.5)
+    parser.add_argument("--mu", type=float, default=0.8, help="the friction coefficient")
+    parser.add_argument("--strike", default="heel", choices=("heel", "forefoot", "flat"))
+    parser.add_argument("--body", nargs=2, type=float, default=[62.0, 1.81], metavar=("KG", "M"),
+                        help="the body's mass and height (mechanics.body.scaled_body); RBDS001's by default")
+    parser.add_argument("--stance-knee-max", type=float, default=0.0,
+                        help="deg: the stance knee's flexion bound while its foot holds the ground")
+    parser.add_argument("--tendons", nargs="*", default=[], type=tendon,
+                        help="knee=0 ankle=4 (N m/rad per kg, over problem.RUNNER_TENDONS; 0 drops one)")
+
+
 def parse(argv) -> argparse.Namespace:
     """The command line (module docstring)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--cadence", type=float, default=130.0, help="steps/min; 0: free")
     parser.add_argument("--meshes", nargs="+", default=[f"hermite-simpson:{n}" for n in (20, 40, 80)],
                         help="transcription:intervals[:grading], e.g. trapezoid:40 or trapezoid:80:0.9")
     parser.add_argument("--figure", default="")
+    runner_options(parser)
     parser.add_argument("--moment-time", type=float, default=0.0,
                         help="StrideSettings.moment_time (s): > 0, the moments as states (moment dynamics)")
     parser.add_argument("--approach-speed", type=float, default=0.0,
@@ -376,7 +405,6 @@ def parse(argv) -> argparse.Namespace:
                         help="no height row for the free points of the leg that holds the ground")
     parser.add_argument("--no-energy-rows", action="store_true",
                         help="no rows on the held contacts' work and the energy budget (collocation, with springs)")
-    parser.add_argument("--mu", type=float, default=0.8, help="the friction coefficient")
     parser.add_argument("--fix-durations", action="store_true",
                         help="the finer meshes' phase durations (and cadence) held at the first mesh's optimum's")
     parser.add_argument("--durations", nargs="*", default=[], type=phase_duration,
@@ -438,7 +466,7 @@ def report(label: str, nlp, stride, seconds: float, speed: float) -> None:
           f"{sum(e.sum() for e in effort.values()):.5f}, smoothing {smooth:.5f}, moment rates "
           f"{rate_term(nlp, stride.solved, speed):.5f}; converged {stride.success} "
           f"in {stride.iterations} iterations, {seconds:.1f} s CPU; valid {stride.valid} "
-          f"{' '.join(stride.failed_checks)}; forward rad per phase "
+          f"{' '.join(stride.failed_checks)}; stance knee {stride.stance_knee_deg:.1f} deg; forward rad per phase "
           f"{' '.join(f'{e:.3f}' for e in stride.checks['forward_per_phase'])}", flush=True)
     for phase, e in effort.items():
         first, last = layers(b[f"U_{phase}"])
@@ -455,12 +483,24 @@ def report(label: str, nlp, stride, seconds: float, speed: float) -> None:
 
 def study_nlp(args, body, settings: StrideSettings) -> StrideNLP:
     """The NLP of `settings` with the command line's IPOPT options and study options (the
-    heights relaxed, the energy rows freed)."""
+    heights relaxed, the energy rows freed, the stance knee bounded)."""
     nlp = StrideNLP(JointSpace(body), settings, dict(args.ipopt)) if args.ipopt else build(body, settings)
     relax_heights(nlp, args.no_release_height, args.no_stance_heights)
     if args.no_energy_rows and settings.consistency_rows != "off":  # "off" has none
         free_energy_rows(nlp)
+    if args.stance_knee_max:
+        bound_stance_knee(nlp, math.radians(args.stance_knee_max))
     return nlp
+
+
+def bound_stance_knee(nlp, high: float) -> None:
+    """The stance knee's flexion (knee_R) at most `high` (rad) at every column of the phases with
+    a contact: its states' upper bound, before the NLP's first solve."""
+    b = nlp.blocks
+    for k, name in enumerate(b.names):
+        if name.startswith("X_") and any(p.rows for p in nlp.phases if name == f"X_{p.name}"):
+            b.upper[k] = b.upper[k].copy()
+            b.upper[k][THETA.index("knee_R")::b.shapes[name][0]] = high
 
 
 def cross(args, body, settings, stride, label: str) -> None:
@@ -476,12 +516,12 @@ def cross(args, body, settings, stride, label: str) -> None:
 def main(argv=None) -> int:
     args = parse(argv)
     study_overrides(args)
-    body, stride, solved, objectives, cadences = scaled_body(62.0, 1.81), None, [], [], []
+    body, stride, solved, objectives, cadences = scaled_body(*args.body), None, [], [], []
     durations = {**StrideSettings().duration, **{k: (v - PIN, v + PIN) for k, v in args.durations}}
     for transcription, nodes, grading in args.meshes:
         # costs.terms reads it when each NLP is built
         costs.SMOOTHING = args.smoothing * (nodes / args.meshes[0][1]) ** args.smoothing_order
-        settings = StrideSettings(strike="heel", nodes=nodes, tendons=dict(RUNNER_TENDONS),
+        settings = StrideSettings(strike=args.strike, nodes=nodes, tendons={**RUNNER_TENDONS, **dict(args.tendons)},
                                   transcription=transcription, moment_time=args.moment_time,
                                   approach_speed=args.approach_speed, duration=durations,
                                   consistency_rows=args.consistency_rows, grading=grading)

@@ -24,7 +24,7 @@ from ..optim.stride.search import solves_planned
 
 ROW_KEYS = ("strike", "success", "objective_value", "cadence_spm", "step_length_m", "stance_s",
             "flight_s", "duty_factor", "peak_vertical_grf_bw", "cost_of_transport",
-            "mechanical_power_W", "swing_clearance_m", "iterations", "solve_s", "search")
+            "mechanical_power_W", "swing_clearance_m", "stance_knee_deg", "iterations", "solve_s", "search")
 
 
 @dataclass

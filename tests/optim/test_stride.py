@@ -37,6 +37,10 @@ def test_solves_from_the_generic_guess(solved):
     assert 0 < stride.duty_factor < 0.5  # running: a flight phase
     assert stride.flight_s > 0.01
     assert stride.peak_vertical_grf_bw > 1.0
+    # the stance knee's deepest flexion, from the nodes of the contact phases
+    stance = [th[4] for name, th in zip(stride.phase, stride.theta) if name != "flight"]
+    assert stride.stance_knee_deg == pytest.approx(np.degrees(max(stance)), rel=1e-12)
+    assert 0 < stride.stance_knee_deg < 90
 
 
 def test_each_impact_equals_formopt_impact_map(solved):

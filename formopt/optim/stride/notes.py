@@ -54,7 +54,8 @@ MUSCLE_MESH_SHIFT = ("0.7-3.8 % in cadence and 9-11 % in cost from 40 to 80 node
 MUSCLE_HERMITE = ("a more accurate transcription (Hermite-Simpson) puts this cost's best stride near 131-137 "
                   "steps/min at 3.4-4.5 m/s and 198 at 2.5 m/s, a cadence falling with speed, each with a "
                   "stance phase held at a duration limit (at 3.5 m/s the forefoot phase, heel-off to toe-off, at "
-                  "250 ms; RBDS001's body, heel and forefoot strikes; another lab's runner at 3.37 m/s)")
+                  "250 ms; RBDS001's body, heel and forefoot strikes; another lab's runner at 3.37 m/s), "
+                  "and at 3.5 and 4.5 m/s a crouched stance (the stance knee to 85-90 deg; a runner's 37-44)")
 MUSCLE_HERMITE_SHIFT = ("0.1-1.7 % in cadence and 0.8-3.0 % in cost from 40 to 80 intervals on RBDS001's body "
                         "(heel 2.5-4.5 m/s, forefoot 3.5 m/s), at 198 steps/min at 2.5 m/s and 129-137 above, "
                         "each with a phase on its duration bound; the cost's weight was calibrated on the "

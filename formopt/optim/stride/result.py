@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...mechanics import muscles as hill
-from ...mechanics.joint_space import GRAVITY, JOINTS
+from ...mechanics.joint_space import GRAVITY, JOINTS, THETA
 from .actuation import MuscleDriven
 from .bounds import held_by_bounds, held_text, on_bounds
 from .checks import drift, forward, half_period, impact_check, swing_clearance
@@ -80,6 +80,14 @@ CONE_EDGE = 1e-4
 # strike and its Hermite-Simpson heel strike at 80 nodes, 2026-11-25), which a strict sign test
 # called invalid.
 GRAZING_MPS = 1e-6
+# A runner's stance knee flexes to about 40 deg at its deepest: RBDS001 42.2 / 42.2 / 43.6 deg at
+# 2.5 / 3.5 / 4.5 m/s (the data set's own processing, data/rbds/RBDS001processed.txt), 39.0 deg
+# at 3.5 m/s and RIC's runner 36.5 deg (formopt's measure, the mean cycles of RBDS001runT35.c3d and
+# 20160226T120637_run.c3d; problems/stance_knee.py prints them). A stride whose stance knee
+# flexes beyond CROUCH_DEG (half again a runner's) is a crouched run no runner runs, whatever
+# its cost says (`Stride.remarks`): the torque+springs rung's knee spring on Hermite-Simpson
+# crouches to 103 deg at 3.5 m/s (docs/concepts/stride.md, "The crouch").
+CROUCH_DEG = 60.0
 
 
 @dataclass
@@ -133,6 +141,9 @@ class Stride:
     # m: the swing foot's least height while the other foot holds the ground (checks.swing_clearance;
     # the NLP holds it at or above StrideSettings.clearance)
     swing_clearance_m: float = float("nan")
+    # deg: the stance knee's deepest flexion over the phases with a contact (`stance_knee`;
+    # beyond CROUCH_DEG the remarks call the stride crouched)
+    stance_knee_deg: float = float("nan")
     # the global search that found it (search.global_optimum: its spend, what it spent, the
     # optima it met and their spread); None: solved from the given starts (`optimum`)
     search: dict | None = None
@@ -154,6 +165,9 @@ class Stride:
         no-slip condition is |p_t| <= mu p_n, and Coulomb's sticking mode ends there; but it
         uses all the friction, so the friction sets the optimum there)."""
         out = [self.bound_text()] if self.on_bound else []
+        out += [f"a crouched stance: the stance knee flexes to {self.stance_knee_deg:.0f} deg (a runner's "
+                "37-44 deg at 2.5-4.5 m/s, RBDS001 and RIC's runner): no runner runs this stride"] \
+            if self.stance_knee_deg > CROUCH_DEG else []
         out += [held_text(self.held)] if self.held else []
         out += [f"{i['point']} impact of leg {i['leg']} solved sliding under {i['law']}: it slides "
                 f"{i['slide_s'] * 1e3:.0f} ms and {abs(i['slide_m']) * 100:.1f} cm"
@@ -374,7 +388,15 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
         mechanical_power_W=positive / T, checks=checks, phases=durations, mass_kg=m,
         t=t, phase=names, theta=theta, thetad=thetad, tau=tau, force=force, solved=solved,
         tau_spring=tau_spring, muscles=muscle_outputs(nlp, solved, checks, t),
-        on_bound=on_bounds(durations, nlp.settings.duration), held=held_by_bounds(nlp, b), swing_clearance_m=swing_clearance(nlp, b, slope))
+        on_bound=on_bounds(durations, nlp.settings.duration), held=held_by_bounds(nlp, b), swing_clearance_m=swing_clearance(nlp, b, slope),
+        stance_knee_deg=stance_knee(nlp, names, theta))
+
+
+def stance_knee(nlp: StrideNLP, names: list, theta: np.ndarray) -> float:
+    """The stance knee's deepest flexion (deg) over the nodes of the phases with a contact
+    (`names`: the phase of each node; theta (n, 9), THETA's rows)."""
+    held = {p.name for p in nlp.phases if p.rows}
+    return float(np.degrees(max(th[THETA.index("knee_R")] for name, th in zip(names, theta) if name in held)))
 
 
 def forward_checks(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from formopt.optim.stride.problem import StrideSettings
-from formopt.optim.stride.result import RESERVE_WINDOW_S, TOLERANCES, Stride, rank, reserve_mean
+from formopt.optim.stride.result import CROUCH_DEG, RESERVE_WINDOW_S, TOLERANCES, Stride, rank, reserve_mean
 
 
 def _stride(valid, success, objective):
@@ -70,6 +70,20 @@ def test_a_sliding_touchdown_says_how_far_it_slid():
     s = _checked({}, [slide])
     s.on_bound, s.friction = [], 0.8
     assert s.remarks == ["forefoot impact of leg L solved sliding under coulomb: it slides 45 ms and 18.0 cm"]
+
+
+def test_a_crouched_stance_is_remarked():
+    """Beyond CROUCH_DEG (a runner's stance knee at its deepest, 37-44 deg, half again) the stride
+    says it is crouched; a runner's knee, or none computed (NaN), says nothing."""
+    s = _checked({})
+    s.on_bound, s.friction = [], 0.8
+    assert s.remarks == []  # NaN: not computed
+    s.stance_knee_deg = 44.0
+    assert s.remarks == []
+    s.stance_knee_deg = CROUCH_DEG + 25.0
+    assert s.remarks == [f"a crouched stance: the stance knee flexes to {CROUCH_DEG + 25:.0f} deg (a runner's "
+                         "37-44 deg at 2.5-4.5 m/s, RBDS001 and RIC's runner): no runner runs this stride"]
+    assert s.valid  # a remark, not a check: the model's stride, not a runner's
 
 
 def test_the_reserves_mean_over_their_window():
