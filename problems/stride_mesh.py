@@ -33,7 +33,7 @@ guess.fitted), so every mesh solves the same stride.
                                    [--stance-knee-max 55 (deg: the stance knee's flexion bound in the
                                     phases with a contact, for this run)]
                                    [--tendons knee=0 (N m/rad per kg: a stance joint's spring over
-                                    problem.RUNNER_TENDONS; 0 drops it)]
+                                    problem.RUNNER_TENDONS; 0 drops it)] [--impact-weight 1 (1/m)]
                                    [--figure mesh.png]
 
 Prints per mesh (transcription:intervals): the objective, the stance knee's deepest flexion, the smoothing term (problem.SMOOTHING, or
@@ -361,9 +361,9 @@ def mesh_token(text: str, grading: float) -> tuple[str, int, float]:
     return parts[0], int(parts[1]), float(parts[2]) if len(parts) > 2 else grading
 
 
-def runner_options(parser: argparse.ArgumentParser) -> None:
-    """The runner's options: the speed, the strike, the body, the friction, the stance knee's
-    bound and the springs."""
+def model_options(parser: argparse.ArgumentParser) -> None:
+    """The runner's and the model's options: the speed, the strike, the body, the friction, the
+    stance knee's bound, the springs and the impacts' weight."""
     parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--mu", type=float, default=0.8, help="the friction coefficient")
     parser.add_argument("--strike", default="heel", choices=("heel", "forefoot", "flat"))
@@ -373,6 +373,8 @@ def runner_options(parser: argparse.ArgumentParser) -> None:
                         help="deg: the stance knee's flexion bound while its foot holds the ground")
     parser.add_argument("--tendons", nargs="*", default=[], type=tendon,
                         help="knee=0 ankle=4 (N m/rad per kg, over problem.RUNNER_TENDONS; 0 drops one)")
+    parser.add_argument("--impact-weight", type=float, default=0.0,
+                        help="StrideSettings.impact_weight (1/m): the impacts' T_c in the objective")
 
 
 def parse(argv) -> argparse.Namespace:
@@ -382,7 +384,7 @@ def parse(argv) -> argparse.Namespace:
     parser.add_argument("--meshes", nargs="+", default=[f"hermite-simpson:{n}" for n in (20, 40, 80)],
                         help="transcription:intervals[:grading], e.g. trapezoid:40 or trapezoid:80:0.9")
     parser.add_argument("--figure", default="")
-    runner_options(parser)
+    model_options(parser)
     parser.add_argument("--moment-time", type=float, default=0.0,
                         help="StrideSettings.moment_time (s): > 0, the moments as states (moment dynamics)")
     parser.add_argument("--approach-speed", type=float, default=0.0,
@@ -521,7 +523,8 @@ def main(argv=None) -> int:
     for transcription, nodes, grading in args.meshes:
         # costs.terms reads it when each NLP is built
         costs.SMOOTHING = args.smoothing * (nodes / args.meshes[0][1]) ** args.smoothing_order
-        settings = StrideSettings(strike=args.strike, nodes=nodes, tendons={**RUNNER_TENDONS, **dict(args.tendons)},
+        settings = StrideSettings(strike=args.strike, nodes=nodes, impact_weight=args.impact_weight,
+                                  tendons={**RUNNER_TENDONS, **dict(args.tendons)},
                                   transcription=transcription, moment_time=args.moment_time,
                                   approach_speed=args.approach_speed, duration=durations,
                                   consistency_rows=args.consistency_rows, grading=grading)

@@ -8,13 +8,14 @@ optim.stride.search at each speed, spend and node count.
                                      [--strike heel] [--transcription trapezoid] [--starts 1 4]
                                      [--clearance 0.01] [--actuation torque+springs|muscles]
                                      [--tendons knee=0 (stride_mesh.py's: over RUNNER_TENDONS)]
+                                     [--impact-weight 1 (1/m: StrideSettings.impact_weight)]
 
 One row per speed, node count and spend (the spends innermost, then the node counts): cost
 (the objective, per distance), cadence (steps/min), their change (%) from the row before at the
 same speed (doubling the spend, or the nodes when --nodes gives two counts), solves, IPOPT
 iterations and seconds spent, the distinct local optima met (cadence:objective; an invalid one
 with its failed checks) and their spread (%), validity, the held contact points' drift (mm) and
-the energy budget's balance (% of W+), the stance knee's deepest flexion (deg), the forward simulation's largest error per phase (rad,
+the energy budget's balance (% of W+), the stance knee's deepest flexion (deg), the impacts' T_c (J), the forward simulation's largest error per phase (rad,
 each phase from the NLP's state at its start), any phase on its duration bound and the grid's
 least objective per cadence (cadence=objective), each forward-checked (an invalid one with its
 failed checks). `--starts` adds, first, the local search's optimum with each
@@ -59,7 +60,7 @@ def row(label: str, speed: float, nodes: int, stride, before, spent: dict | None
     drift, balance = stride.checks["drift_m"] * 1e3, stride.checks["balance_relative"] * 100
     return (f"{speed:4.1f} {nodes:5d} {label:>6s} {stride.objective_value:8.4f} {stride.cadence_spm:7.1f} {change}"
             f"{s['solves']:6d} {s['iterations']:6d} {s['seconds']:7.1f} {s['spread_pct']:7.2f}  "
-            f"{'yes' if stride.valid else 'NO':>5s} {drift:8.3f} {balance:9.2e} {stride.stance_knee_deg:5.1f}  [{phases}]  {bound}  "
+            f"{'yes' if stride.valid else 'NO':>5s} {drift:8.3f} {balance:9.2e} {stride.stance_knee_deg:5.1f} {stride.budget['impacts_J']:6.2f}  [{phases}]  {bound}  "
             f"{{{optima}}}  grid {profile or '-'}")
 
 
@@ -73,25 +74,27 @@ def main(argv=None) -> int:
     parser.add_argument("--starts", type=int, nargs="*", default=[])
     parser.add_argument("--clearance", type=float, default=StrideSettings.clearance)
     parser.add_argument("--tendons", nargs="*", default=[], type=tendon)
+    parser.add_argument("--impact-weight", type=float, default=0.0, help="StrideSettings.impact_weight (1/m)")
     parser.add_argument("--actuation", default="torque+springs", choices=("torque+springs", "muscles"))
     args = parser.parse_args(argv)
     body = scaled_body(62.0, 1.81)
     actuation = ({"muscles": body_muscles(body), "objective": "metabolic"} if args.actuation == "muscles"
                  else {"tendons": {**RUNNER_TENDONS, **dict(args.tendons)}})
-    rung = "muscles, metabolic" if args.actuation == "muscles" else f"torque+springs {actuation['tendons']}, effort"
+    rung = ("muscles, metabolic" if args.actuation == "muscles" else
+            f"torque+springs {actuation['tendons']}, effort, impact weight {args.impact_weight:g}")
     print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, "
           f"{rung}, {args.transcription}, "
           f"swing clearance {args.clearance:g} m",
           flush=True)
     print(f"{'v':>4s} {'nodes':>5s} {'spend':>6s} {'cost':>8s} {'spm':>7s} {'dcost%':>7s} {'dspm%':>7s}  "
-          f"{'solves':>6s} {'iter':>6s} {'s':>7s} {'spread%':>7s}  {'valid':>5s} {'drift mm':>8s} {'balance%':>9s} {'knee':>5s}  "
+          f"{'solves':>6s} {'iter':>6s} {'s':>7s} {'spread%':>7s}  {'valid':>5s} {'drift mm':>8s} {'balance%':>9s} {'knee':>5s} {'T_c J':>6s}  "
           "[forward rad per phase]  "
           "on bound  {optima cadence:cost}  grid cadence=cost  cpu s", flush=True)
     for speed in args.speeds:
         before = None
         for nodes in args.nodes:
             settings = StrideSettings(strike=args.strike, nodes=nodes, transcription=args.transcription,
-                                      clearance=args.clearance, **actuation)
+                                      clearance=args.clearance, impact_weight=args.impact_weight, **actuation)
             nlp = build(body, settings)
             for starts in args.starts:
                 clock, cpu = time.perf_counter(), time.process_time()
