@@ -1,8 +1,9 @@
 """A runner's stance knee at its deepest (result.CROUCH_DEG's source): RBDS001 at 2.5, 3.5 and 4.5
 m/s from the data set's own processing (RBDS001processed.txt: Visual3D, knee flexion, the mean
 cycle's stance: the vertical force above 0.5 N/kg), and RBDS001 at 3.5 m/s and RIC's runner
-from formopt's measure (the mean cycle of the right leg, knee flexion as thigh less shank
-angle; stance: its first 40 %, a runner's duty factor 0.30-0.37 of the cycle).
+from formopt's measure (the mean cycle of the right leg from its touchdown, knee flexion as
+thigh less shank angle; the stance's peak: the cycle's first local maximum, printed with its
+place in the cycle, before toe-off at a runner's 30-37 %).
 
     python problems/stance_knee.py
 """
@@ -36,7 +37,9 @@ def measured() -> None:
     for name, (run, static, height) in TRIALS.items():
         angles, cycles = mean_cycle(measure(read_c3d(DATA / run), read_c3d(DATA / static), height))
         knee = np.degrees(angles["thigh"] - angles["shank"])
-        print(f"{name}, formopt's measure ({cycles} cycles): stance knee at its deepest {knee[:40].max():.1f} deg")
+        peak = next(k for k in range(1, knee.size - 1) if knee[k - 1] <= knee[k] > knee[k + 1])
+        print(f"{name}, formopt's measure ({cycles} cycles): stance knee at its deepest {knee[peak]:.1f} deg "
+              f"at {peak} % of the cycle")
 
 
 if __name__ == "__main__":

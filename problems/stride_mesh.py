@@ -36,7 +36,8 @@ guess.fitted), so every mesh solves the same stride.
                                     problem.RUNNER_TENDONS; 0 drops it)] [--impact-weight 1 (1/m)]
                                    [--figure mesh.png]
 
-Prints per mesh (transcription:intervals): the objective, the stance knee's deepest flexion, the smoothing term (problem.SMOOTHING, or
+Prints a line of the run's model options, then per mesh (transcription:intervals): the objective,
+the stance knee's deepest flexion and the impacts' T_c, the smoothing term (problem.SMOOTHING, or
 --smoothing's weight: it replaces costs.SMOOTHING for the run; with --smoothing-order q, times
 (N / N_first)^q at N intervals: q = 2 keeps the trapezoid's term, w h sum |A_k+1 - A_k|^2 ~ w h^2 int |A'|^2 dt,
 one continuous penalty on every mesh),
@@ -468,7 +469,8 @@ def report(label: str, nlp, stride, seconds: float, speed: float) -> None:
           f"{sum(e.sum() for e in effort.values()):.5f}, smoothing {smooth:.5f}, moment rates "
           f"{rate_term(nlp, stride.solved, speed):.5f}; converged {stride.success} "
           f"in {stride.iterations} iterations, {seconds:.1f} s CPU; valid {stride.valid} "
-          f"{' '.join(stride.failed_checks)}; stance knee {stride.stance_knee_deg:.1f} deg; forward rad per phase "
+          f"{' '.join(stride.failed_checks)}; stance knee {stride.stance_knee_deg:.1f} deg, impacts "
+          f"{stride.budget['impacts_J']:.2f} J; forward rad per phase "
           f"{' '.join(f'{e:.3f}' for e in stride.checks['forward_per_phase'])}", flush=True)
     for phase, e in effort.items():
         first, last = layers(b[f"U_{phase}"])
@@ -497,12 +499,13 @@ def study_nlp(args, body, settings: StrideSettings) -> StrideNLP:
 
 def bound_stance_knee(nlp, high: float) -> None:
     """The stance knee's flexion (knee_R) at most `high` (rad) at every column of the phases with
-    a contact: its states' upper bound, before the NLP's first solve."""
+    a contact: its states' upper bound (never loosened), before the NLP's first solve."""
     b = nlp.blocks
     for k, name in enumerate(b.names):
         if name.startswith("X_") and any(p.rows for p in nlp.phases if name == f"X_{p.name}"):
             b.upper[k] = b.upper[k].copy()
-            b.upper[k][THETA.index("knee_R")::b.shapes[name][0]] = high
+            rows = slice(THETA.index("knee_R"), None, b.shapes[name][0])
+            b.upper[k][rows] = np.minimum(b.upper[k][rows], high)
 
 
 def cross(args, body, settings, stride, label: str) -> None:
@@ -519,6 +522,9 @@ def main(argv=None) -> int:
     args = parse(argv)
     study_overrides(args)
     body, stride, solved, objectives, cadences = scaled_body(*args.body), None, [], [], []
+    print(f"body {args.body[0]:g} kg, {args.body[1]:g} m; {args.strike} strike, {args.speed:g} m/s, cadence "
+          f"{args.cadence or 'free'}; springs {({**RUNNER_TENDONS, **dict(args.tendons)})}, impact weight "
+          f"{args.impact_weight:g}, stance knee bound {args.stance_knee_max or '-'} deg, mu {args.mu:g}", flush=True)
     durations = {**StrideSettings().duration, **{k: (v - PIN, v + PIN) for k, v in args.durations}}
     for transcription, nodes, grading in args.meshes:
         # costs.terms reads it when each NLP is built

@@ -77,11 +77,15 @@ def main(argv=None) -> int:
     parser.add_argument("--impact-weight", type=float, default=0.0, help="StrideSettings.impact_weight (1/m)")
     parser.add_argument("--actuation", default="torque+springs", choices=("torque+springs", "muscles"))
     args = parser.parse_args(argv)
+    if args.tendons and args.actuation == "muscles":
+        parser.error("--tendons: springs in parallel are the torque rung's; the muscles' tendons are in series")
     body = scaled_body(62.0, 1.81)
     actuation = ({"muscles": body_muscles(body), "objective": "metabolic"} if args.actuation == "muscles"
                  else {"tendons": {**RUNNER_TENDONS, **dict(args.tendons)}})
+    model = StrideSettings(impact_weight=args.impact_weight, **actuation)
     rung = ("muscles, metabolic" if args.actuation == "muscles" else
-            f"torque+springs {actuation['tendons']}, effort, impact weight {args.impact_weight:g}")
+            f"{model.actuation} {({j: k for j, k in model.tendons.items() if k})}, effort, "
+            f"impact weight {args.impact_weight:g}")
     print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, "
           f"{rung}, {args.transcription}, "
           f"swing clearance {args.clearance:g} m",

@@ -160,7 +160,7 @@ def stride_table(study: StrideStudy) -> str:
     lines = [f"{study.scene}: solved at {study.best.speed_mps:g} m/s",
              f"{'strike':9s} {'valid':>5s} {'cadence':>8s} {'step m':>7s} {'stance s':>9s} "
              f"{'flight s':>9s} {'duty':>5s} {'GRF BW':>7s} {'T_c J':>7s} {'CoT':>6s} {'W':>6s} "
-             f"{'swing cm':>8s} {'knee deg':>8s} {'balance J':>10s} {'iter':>5s} {'s':>6s}"]
+             f"{'swing cm':>8s} {'knee max':>8s} {'balance J':>10s} {'iter':>5s} {'s':>6s}"]
     for s in study.strides:
         lines.append(f"{s.strike:9s} {'yes' if s.valid else 'NO':>5s} {s.cadence_spm:8.1f} "
                      f"{s.step_length_m:7.3f} {s.stance_s:9.3f} {s.flight_s:9.3f} {s.duty_factor:5.2f} "

@@ -84,8 +84,8 @@ GRAZING_MPS = 1e-6
 # 2.5 / 3.5 / 4.5 m/s (the data set's own processing, data/rbds/RBDS001processed.txt), 39.0 deg
 # at 3.5 m/s and RIC's runner 36.5 deg (formopt's measure, the mean cycles of RBDS001runT35.c3d and
 # 20160226T120637_run.c3d; problems/stance_knee.py prints them). A stride whose stance knee
-# flexes beyond CROUCH_DEG (half again a runner's) is a crouched run no runner runs, whatever
-# its cost says (`Stride.remarks`): the torque+springs rung's knee spring on Hermite-Simpson
+# flexes beyond CROUCH_DEG (half again a runner's) is a crouched run, far from a runner's,
+# whatever its cost says (`Stride.remarks`): the torque+springs rung's knee spring on Hermite-Simpson
 # crouches to 103 deg at 3.5 m/s (docs/concepts/stride.md, "The crouch").
 CROUCH_DEG = 60.0
 
@@ -141,7 +141,7 @@ class Stride:
     # m: the swing foot's least height while the other foot holds the ground (checks.swing_clearance;
     # the NLP holds it at or above StrideSettings.clearance)
     swing_clearance_m: float = float("nan")
-    # deg: the stance knee's deepest flexion over the phases with a contact (`stance_knee`;
+    # deg: the stance knee's deepest flexion over the phases with a contact (`deepest_stance_knee`;
     # beyond CROUCH_DEG the remarks call the stride crouched)
     stance_knee_deg: float = float("nan")
     # the global search that found it (search.global_optimum: its spend, what it spent, the
@@ -165,8 +165,8 @@ class Stride:
         no-slip condition is |p_t| <= mu p_n, and Coulomb's sticking mode ends there; but it
         uses all the friction, so the friction sets the optimum there)."""
         out = [self.bound_text()] if self.on_bound else []
-        out += [f"a crouched stance: the stance knee flexes to {self.stance_knee_deg:.0f} deg (a runner's "
-                "37-44 deg at 2.5-4.5 m/s, RBDS001 and RIC's runner): no runner runs this stride"] \
+        out += [f"a crouched stance: the stance knee flexes to {self.stance_knee_deg:.0f} deg, far beyond a "
+                "runner's 37-44 deg at 2.5-4.5 m/s (RBDS001 and RIC's runner)"] \
             if self.stance_knee_deg > CROUCH_DEG else []
         out += [held_text(self.held)] if self.held else []
         out += [f"{i['point']} impact of leg {i['leg']} solved sliding under {i['law']}: it slides "
@@ -389,14 +389,15 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
         t=t, phase=names, theta=theta, thetad=thetad, tau=tau, force=force, solved=solved,
         tau_spring=tau_spring, muscles=muscle_outputs(nlp, solved, checks, t),
         on_bound=on_bounds(durations, nlp.settings.duration), held=held_by_bounds(nlp, b), swing_clearance_m=swing_clearance(nlp, b, slope),
-        stance_knee_deg=stance_knee(nlp, names, theta))
+        stance_knee_deg=deepest_stance_knee(nlp, names, theta))
 
 
-def stance_knee(nlp: StrideNLP, names: list, theta: np.ndarray) -> float:
+def deepest_stance_knee(nlp: StrideNLP, names: list, theta: np.ndarray) -> float:
     """The stance knee's deepest flexion (deg) over the nodes of the phases with a contact
-    (`names`: the phase of each node; theta (n, 9), THETA's rows)."""
+    (`names`: the phase of each node; theta (n, 9), a column per THETA); NaN without such nodes."""
     held = {p.name for p in nlp.phases if p.rows}
-    return float(np.degrees(max(th[THETA.index("knee_R")] for name, th in zip(names, theta) if name in held)))
+    knee = np.array([th[THETA.index("knee_R")] for name, th in zip(names, theta) if name in held])
+    return float(np.degrees(knee.max())) if knee.size else float("nan")
 
 
 def forward_checks(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:

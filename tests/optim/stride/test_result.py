@@ -81,8 +81,8 @@ def test_a_crouched_stance_is_remarked():
     s.stance_knee_deg = 44.0
     assert s.remarks == []
     s.stance_knee_deg = CROUCH_DEG + 25.0
-    assert s.remarks == [f"a crouched stance: the stance knee flexes to {CROUCH_DEG + 25:.0f} deg (a runner's "
-                         "37-44 deg at 2.5-4.5 m/s, RBDS001 and RIC's runner): no runner runs this stride"]
+    assert s.remarks == [f"a crouched stance: the stance knee flexes to {CROUCH_DEG + 25:.0f} deg, far beyond a "
+                         "runner's 37-44 deg at 2.5-4.5 m/s (RBDS001 and RIC's runner)"]
     assert s.valid  # a remark, not a check: the model's stride, not a runner's
 
 
