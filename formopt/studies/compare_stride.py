@@ -386,7 +386,7 @@ def sticking_note(free: Stride, own: Stride, start: Stride | None) -> str:
     """The free optimum slides and the imposed strides stick: their own free optimum `own`, or
     that it did not converge (IPOPT's status) and that the family and the band start from
     `start` (Curve.envelope_free: the least costly imposed stride) instead."""
-    said = f"the free optimum's touchdown slides ({'; '.join(free.remarks)}); the imposed cadences are solved sticking"
+    said = f"the free optimum's touchdown slides ({'; '.join(free.slides)}); the imposed cadences are solved sticking"
     if own.success:
         return (said + f": their own free optimum is at {own.cadence_spm:.0f} steps/min, "
                 f"{own.mechanical_power_W:.0f} W, and the envelope and what-ifs are theirs")

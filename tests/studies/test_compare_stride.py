@@ -128,7 +128,7 @@ def test_a_failed_sticking_free_optimum_is_no_reference(monkeypatch):
     variants start from the least costly imposed stride (review8)."""
     nominal = _curve("nominal", [100, 110, 104, 98, 97], objective=[1.0, 1.2, 1.1, 0.95, 0.97])
     nominal.free = SimpleNamespace(objective_value=0.8, cadence_spm=143.0, success=True, valid=True, held=[],
-                                   remarks=["forefoot impact of leg L solved sliding under coulomb"])
+                                   slides=["forefoot impact of leg L solved sliding under coulomb"])
     nominal.own_free = _failed_own_free()
     least = nominal.strides[3]  # 178.5 steps/min, objective 0.95
     assert nominal.envelope_free is least and nominal.envelope_gap is None

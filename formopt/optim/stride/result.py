@@ -169,12 +169,17 @@ class Stride:
                 "runner's 37-44 deg at 2.5-4.5 m/s (RBDS001 and RIC's runner)"] \
             if self.stance_knee_deg > CROUCH_DEG else []
         out += [held_text(self.held)] if self.held else []
-        out += [f"{i['point']} impact of leg {i['leg']} solved sliding under {i['law']}: it slides "
-                f"{i['slide_s'] * 1e3:.0f} ms and {abs(i['slide_m']) * 100:.1f} cm"
-                for i in self.impacts if i["mode"] == "slide"]
+        out += self.slides
         return out + [f"{i['point']} impact of leg {i['leg']} on the friction cone's edge (mu_c "
                       f"{i['mu_c']:.4f}, mu {self.friction:g}), solved sticking: valid under {i['law']}, "
                       "but it uses all the friction" for i in self.impacts if i["on_cone_edge"]]
+
+    @property
+    def slides(self) -> list[str]:
+        """Each sliding touchdown in words: how long and how far it slides."""
+        return [f"{i['point']} impact of leg {i['leg']} solved sliding under {i['law']}: it slides "
+                f"{i['slide_s'] * 1e3:.0f} ms and {abs(i['slide_m']) * 100:.1f} cm"
+                for i in self.impacts if i["mode"] == "slide"]
 
     @property
     def failed_checks(self) -> list[str]:
