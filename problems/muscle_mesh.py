@@ -114,7 +114,7 @@ def report(settings, stride, seconds: float) -> str:
     tries = (f"{tried['direct_iterations']} direct ({tried['direct_status']}) + {tried['unsmoothed_iterations']} "
              f"unsmoothed ({tried['unsmoothed_status']}) + ") if tried else ""
     return (f"  {label(settings)}: {stride.cadence_spm:.1f} steps/min, objective {stride.objective_value:.5f}, "
-            f"stance {stride.stance_s:.3f} s; phases ms: {phases}; valid "
+            f"stance {stride.stance_s:.3f} s, knee {stride.stance_knee_deg:.1f} deg at most; phases ms: {phases}; valid "
             f"{'yes' if stride.valid else 'NO: ' + ('; '.join(stride.failed_checks) or stride.status)}; forward rad per phase [{forward}]; drift "
             f"{stride.checks['drift_m'] * 1e3:.3f} mm, balance {stride.checks['balance_relative'] * 100:.2e} %, "
             f"reserves {stride.checks['reserve_nm_per_kg']:.3f} N m/kg over 10 ms ({stride.checks['reserve_peak_nm_per_kg']:.3f} at a node); {tries}{stride.iterations}{total} iterations ({stride.status}), "
