@@ -16,10 +16,11 @@ finer mesh, guess.fitted), so every mesh solves the same stride.
                                    [--replay-cost] [--power 1] [--goals] [--angles] [--mass 75]
                                    [--activation-smoothing 0 10 [--chained]] [--direct] [--ipopt max_cpu_time=600 ...]
                                    [--transcription hermite-simpson (a mesh's own: --nodes 160/trapezoid)]
-                                   [--weight 14]
+                                   [--weight 14] [--stance-knee-max 50 (deg; with --direct: refine's
+                                    continuation solves variants without it)]
 
-Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the phases'
-durations (ms; one on its duration bound marked low or high), validity and the failed checks,
+Prints per mesh: cadence (steps/min), objective (per distance), stance (s), the stance knee's
+deepest flexion (deg), the phases' durations (ms; one on its duration bound marked low or high), validity and the failed checks,
 the forward check's worst deviation per phase (rad: the excitations replayed, each phase
 from the NLP's state at its start), the held points' contact drift (mm), the energy budget's
 balance (% of W+), the reserves' largest mean over 10 ms and largest node value (N m/kg), IPOPT's iterations (the kept
@@ -74,6 +75,7 @@ from __future__ import annotations
 
 import argparse
 import itertools
+import math
 import sys
 import time
 
@@ -81,7 +83,7 @@ import casadi as ca
 import numpy as np
 from stride_angles import TRIALS, measured_segments, table  # problems/, this script's directory
 from stride_ladder import RBDS, header, row
-from stride_mesh import convergence, ipopt_option
+from stride_mesh import bound_stance_knee, convergence, ipopt_option
 
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
@@ -218,7 +220,9 @@ def finer(nlp, speed: float, before, mu_inits: list[float], ipopt: dict, continu
     out = []
     for mu in mu_inits:
         clock = time.process_time()
-        stride = refined(nlp.variant({"mu_init": mu, **ipopt}), before[0], before[2], continuation=continuation)
+        solver = nlp.variant({"mu_init": mu, **ipopt})
+        solver.blocks.upper = [u.copy() for u in nlp.blocks.upper]  # the study's bounds (--stance-knee-max)
+        stride = refined(solver, before[0], before[2], continuation=continuation)
         print(report(nlp.settings, stride, time.process_time() - clock)
               + f" (mu_init {mu:g})", flush=True)
         parts = phase_costs(nlp, stride.solved, speed)
@@ -240,7 +244,10 @@ def mesh(body, args, nodes: int, consistency_rows: str, grading: float, held: di
                               consistency_rows=consistency_rows, grading=grading, duration=duration,
                               force_rate_power=args.power, activation_rate_smoothing=smoothing,
                               transcription=scheme or args.transcription, force_rate_weight=args.weight)
-    return build(body, settings)
+    nlp = build(body, settings)
+    if args.stance_knee_max:
+        bound_stance_knee(nlp, math.radians(args.stance_knee_max))
+    return nlp
 
 
 def start(nlp, args):
@@ -361,6 +368,8 @@ def arguments(argv):
                         default="exact", help="StrideSettings.consistency_rows \"off\" on every mesh")
     parser.add_argument("--grading", type=float, default=0.0,
                         help="StrideSettings.grading on every mesh: each phase's mesh graded toward its ends")
+    parser.add_argument("--stance-knee-max", type=float, default=0.0,
+                        help="deg: the stance knee's flexion bound (stride_mesh.py's), on every mesh")
     parser.add_argument("--weight", type=float, default=None,
                         help="StrideSettings.force_rate_weight (default the power's calibrated one)")
     parser.add_argument("--transcription", default="trapezoid", choices=problem.TRANSCRIPTIONS,
