@@ -26,7 +26,7 @@ import numpy as np
 
 from ...mechanics import contact
 from ...mechanics.impact import projection
-from ...mechanics.joint_space import POINTS, JointSpace
+from ...mechanics.joint_space import POINTS, THETA, JointSpace
 from .actuation import MuscleDriven
 from .collocation import NU, NX, StrideNLP
 from .contact import height, rows_kinematics
@@ -331,3 +331,11 @@ def swing_clearance(nlp: StrideNLP, blocks: dict, slope: float) -> float:
     return min(float(height(nlp.js, point, X[:NX, k], slope))
                for model in nlp.ocp.models for X in [blocks[f"X_{model.phase.name}"]]
                for point in model.contact.swing for k in range(X.shape[1]))
+
+
+def deepest_stance_knee(nlp: StrideNLP, names: list, theta: np.ndarray) -> float:
+    """The stance knee's deepest flexion (deg) over the nodes of the phases with a contact
+    (`names`: the phase of each node; theta (n, 9), a column per THETA); NaN without such nodes."""
+    held = {p.name for p in nlp.phases if p.rows}
+    knee = np.array([th[THETA.index("knee_R")] for name, th in zip(names, theta) if name in held])
+    return float(np.degrees(knee.max())) if knee.size else float("nan")

@@ -26,10 +26,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...mechanics import muscles as hill
-from ...mechanics.joint_space import GRAVITY, JOINTS, THETA
+from ...mechanics.joint_space import GRAVITY, JOINTS
 from .actuation import MuscleDriven
 from .bounds import held_by_bounds, held_text, on_bounds
-from .checks import drift, forward, half_period, impact_check, swing_clearance
+from .checks import deepest_stance_knee, drift, forward, half_period, impact_check, swing_clearance
 from .collocation import NX, StrideNLP
 from .layout import Solved
 from .ocp import INTEGRANDS, Impact, periodicity, step_length
@@ -395,14 +395,6 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
         tau_spring=tau_spring, muscles=muscle_outputs(nlp, solved, checks, t),
         on_bound=on_bounds(durations, nlp.settings.duration), held=held_by_bounds(nlp, b), swing_clearance_m=swing_clearance(nlp, b, slope),
         stance_knee_deg=deepest_stance_knee(nlp, names, theta))
-
-
-def deepest_stance_knee(nlp: StrideNLP, names: list, theta: np.ndarray) -> float:
-    """The stance knee's deepest flexion (deg) over the nodes of the phases with a contact
-    (`names`: the phase of each node; theta (n, 9), a column per THETA); NaN without such nodes."""
-    held = {p.name for p in nlp.phases if p.rows}
-    knee = np.array([th[THETA.index("knee_R")] for name, th in zip(names, theta) if name in held])
-    return float(np.degrees(knee.max())) if knee.size else float("nan")
 
 
 def forward_checks(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
