@@ -30,7 +30,7 @@ that do not wait for each other run on one pool of worker processes (studies.poo
 the other strikes' free optima beside the nominal curve, the curve's first sweep
 (stride_map.first_sweep), the band's free optima beside the family and its strides after it
 (compare_band; benchmarks/compare_speed.py --stride times each stage and process,
-docs/reference/performance.md).
+docs/reference/performance.md). What the section says beside its numbers: compare_notes.
 """
 
 from __future__ import annotations
@@ -42,7 +42,6 @@ import numpy as np
 
 from ..mechanics.body import scaled_body
 from ..optim.stride import Stride, rank, summarise
-from ..optim.stride.notes import mesh_note
 from ..optim.stride.problem import STRIKES
 from .compare_band import (
     BAND_PARTS,
@@ -55,20 +54,13 @@ from .compare_band import (
     start_band,
     strike_tasks,
 )
+from .compare_notes import ENVELOPE, section_notes
 from .pool import Background
 from .stride_form import NODES, joint_work, placement_m, stride_scene
 from .stride_map import better, cadence_curve, warm
 
 WHAT_IF_PCT = (-10.0, -5.0, 5.0, 10.0)  # cadence changes asked (% of the runner's cadence)
-# a free optimum this far from the runner's cadence (fraction) is beyond the cadences runners
-# choose around their own (de Ruiter 2020: optimal 171 +- 8 against preferred 165 +- 8)
-FAR = 0.2
-# other starts' optima this much costlier (fraction) than the one kept are named in the notes
-SPREAD_NOTE = 0.01
 STRIDE_LAWS = ("no-slip", "coulomb")  # the stride's impact laws; compare's others map to coulomb
-# the envelope: the free optimum's objective at most this (relative) above the least imposed
-# stride's; IPOPT's optima are exact to about 1e-6, so a larger gap is another local optimum
-ENVELOPE = 1e-3
 ROUNDS = 2  # the curve solved again from a better free optimum found on it, at most
 # one family: a continuation that reaches a curve's stride within this (relative objective)
 FAMILY = 1e-3
@@ -351,52 +343,6 @@ def family(scene, speed: float, curve: Curve) -> None:
     curve.family_gap = gaps
 
 
-def optima_notes(curve: Curve) -> list[str]:
-    """Where other starts ended in costlier local optima, and a free optimum found again from
-    an imposed cadence's stride, in words."""
-    notes = [f"at {c:.0f} steps/min other starts reached local optima up to {f * 100:.0f} % costlier "
-             "(the least costly is used)" for c, f in zip(curve.cadences, curve.spread) if f > SPREAD_NOTE]
-    if curve.free_from != "free":
-        notes.append(f"the free optimum was found again from the stride at {curve.free_from} steps/min "
-                     "(the generic guess's was a costlier local optimum)")
-    if curve.own_free is not None and curve.free is not None:
-        notes.append(sticking_note(curve.free, curve.own_free, curve.envelope_free))
-    gap = curve.envelope_gap
-    if gap is not None and gap > ENVELOPE:
-        notes.append(f"the free optimum lies {gap * 100:.1f} % above the least costly imposed "
-                     f"stride (tolerance {ENVELOPE * 100:g} %): it is a local optimum, not the curve's least")
-    others = [f"{c:.0f}" for c, same in zip(curve.cadences, curve.same_family) if not same]
-    if curve.family_gap and others:
-        notes.append(f"at {', '.join(others)} steps/min the least costly stride found is of another family than "
-                     "the free optimum's (continued from it, the stride is costlier or does not converge): "
-                     "a what-if between two families says so")
-    free = [s for s in (curve.free, curve.own_free) if s is not None]
-    invalid = [s for s in free + curve.strides if s.success and not s.valid]
-    notes += [f"the stride at {s.cadence_spm:.0f} steps/min is INVALID ({'; '.join(s.failed_checks)}): "
-              "read what it says as the model's, not a runner's" for s in invalid]
-    notes += [f"the stride at {s.cadence_spm:.0f} steps/min: {s.bound_text()}" for s in curve.strides if s.on_bound]
-    held = [s for s in curve.strides if s.held]
-    if held:
-        notes.append(f"the solve's bounds hold the strides at {', '.join(f'{s.cadence_spm:.0f}' for s in held)} "
-                     "steps/min (each stride's `held` in the JSON; the optimum's are printed under it)")
-    return notes
-
-
-def sticking_note(free: Stride, own: Stride, start: Stride | None) -> str:
-    """The free optimum slides and the imposed strides stick: their own free optimum `own`, or
-    that it did not converge (IPOPT's status) and that the family and the band start from
-    `start` (Curve.envelope_free: the least costly imposed stride) instead."""
-    said = f"the free optimum's touchdown slides ({'; '.join(free.slides)}); the imposed cadences are solved sticking"
-    if own.success:
-        return (said + f": their own free optimum is at {own.cadence_spm:.0f} steps/min, "
-                f"{own.mechanical_power_W:.0f} W, and the envelope and what-ifs are theirs")
-    where = "" if start is None else f" ({start.cadence_spm:.0f} steps/min, {start.mechanical_power_W:.0f} W)"
-    return (said + f", and their own free optimum, solved warm from the least costly of them, did not converge "
-            f"(IPOPT: {own.status}): no sticking optimum and no envelope; the family and the band's variants "
-            f"start from that least costly stride{where}, which is no optimum, and the what-ifs are between "
-            "the sticking strides")
-
-
 def what_ifs(curves: list[Curve], cadences: list[float],
              changes: tuple[float, ...] = WHAT_IF_PCT) -> list[WhatIf]:
     """Each cadence change (`changes`, % of the runner's cadence cadences[0]; their cadences
@@ -455,7 +401,7 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
         best.update(zip(others, beside.results(strikes, say)))
         say(f"stride: {len(variants)} variants warm from the nominal on {min(workers, len(variants)) or 1} processes")
         curves += band_curves(curves[0], variants, beside, say, frees)
-    notes += _notes(curves, best, runner, nominal)
+    notes += section_notes(curves, best, runner, nominal)
     return StrideAnswer(speed, law, measured, curves, best,
                         what_ifs(curves, cadences, changes) if curves[0].ok else [], notes,
                         time.perf_counter() - start, nominal.settings.nodes)
@@ -497,36 +443,3 @@ def band_points(nominal: Curve) -> list[tuple]:
     which `family` may replace), its strides' once their family is."""
     return [((nominal.free, nominal.envelope_free), None),
             *(((s,), c) for s, c in zip(nominal.strides, nominal.cadences))]
-
-
-def variant_envelope_note(name: str, gap: float) -> str:
-    """A band variant (`name`) whose free optimum lies `gap` (relative, Curve.envelope_gap) above
-    one of its imposed strides, more than ENVELOPE: each of its strides is one solve warm from
-    the nominal's (variant_curve), so a local optimum, and its part of the band measures which
-    one as much as the variant. (The
-    metabolic variant on RBDS001 T35 and T25: +8.5 % and +51 %, its objectives moving up to
-    2-fold under other IPOPT barriers from the same starts: benchmarks/primal_start_options.py,
-    2026-11-27.)"""
-    return (f"{name}: its free optimum lies {gap * 100:.1f} % above its least costly "
-            f"imposed stride (tolerance {ENVELOPE * 100:g} %): its strides, each one solve warm from the "
-            "nominal's, are local optima, and its part of the band measures which ones as much as the variant")
-
-
-def _notes(curves: list[Curve], best: dict, runner: float, nominal) -> list[str]:
-    """The section's notes on the mesh, the nominal's optima, the band's left-out variants and
-    those off their envelope, a free optimum far from the runner and the strikes' validity."""
-    notes = [mesh_note(nominal.settings), *optima_notes(curves[0])]
-    if not curves[0].ok:
-        notes.append(f"the nominal stride did not converge ({curves[0].why_not}): no what-if")
-    notes += [f"{cv.name} left out of the band: {cv.why_not}" for cv in curves[1:] if not cv.ok]
-    notes += [variant_envelope_note(cv.name, gap) for cv in curves[1:]
-              if cv.ok and (gap := cv.envelope_gap) is not None and gap > ENVELOPE]
-    if curves[0].free is not None and abs(curves[0].free.cadence_spm / runner - 1) > FAR:
-        notes.append(f"the model's free optimum ({curves[0].free.cadence_spm:.0f} steps/min) is "
-                     f"{(curves[0].free.cadence_spm / runner - 1) * 100:+.0f} % from the runner's cadence: "
-                     "read the what-if as the slope of the cost at the runner's cadence, not as a target")
-    solved = [s for s in best.values() if s is not None]
-    if solved and not any(s.valid for s in solved):
-        notes.append("no strike's free optimum is valid (" + "; ".join(
-            f"{s.strike}: {', '.join(s.failed_checks) or s.status}" for s in solved) + "): no best strike")
-    return notes

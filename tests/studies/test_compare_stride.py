@@ -15,8 +15,8 @@ from formopt.report.figures import stride_cadence_figure
 from formopt.report.tables import stride_lines
 from formopt.studies import compare_band, compare_stride
 from formopt.studies.compare_band import Variant, stage_count, stage_shares
+from formopt.studies.compare_notes import ENVELOPE, optima_notes, section_notes
 from formopt.studies.compare_stride import (
-    ENVELOPE,
     WHAT_IF_PCT,
     Curve,
     WhatIf,
@@ -24,7 +24,6 @@ from formopt.studies.compare_stride import (
     band_curves,
     band_points,
     family,
-    optima_notes,
     what_ifs,
 )
 from formopt.studies.pool import Background
@@ -107,12 +106,12 @@ def test_a_variant_off_its_envelope_is_said():
     nominal.free = SimpleNamespace(objective_value=97.0, cadence_spm=187.0, success=True, valid=True, held=[])
     metabolic.free = SimpleNamespace(objective_value=0.18, success=True)
     scene = stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", nodes=24)
-    said = [n for n in compare_stride._notes([nominal, metabolic], {}, 170.0, scene) if n.startswith("metabolic")]
+    said = [n for n in section_notes([nominal, metabolic], {}, 170.0, scene) if n.startswith("metabolic")]
     assert said == ["metabolic: its free optimum lies 16.7 % above its least costly imposed stride (tolerance 0.1 %): "
                     "its strides, each one solve warm from the nominal's, are local optima, and its part of the band "
                     "measures which ones as much as the variant"]
     metabolic.free.objective_value = 0.15  # on its envelope: nothing said
-    assert not [n for n in compare_stride._notes([nominal, metabolic], {}, 170.0, scene) if n.startswith("metabolic")]
+    assert not [n for n in section_notes([nominal, metabolic], {}, 170.0, scene) if n.startswith("metabolic")]
 
 
 def _failed_own_free():
@@ -204,7 +203,7 @@ def test_the_band_starts_its_free_optima_beside_the_family_only_when_their_start
     checked: list = []  # the strides handed to the forward check: the converged free optima only
     monkeypatch.setattr(compare_stride, "check_tasks",
                         lambda scene, strides: checked.append(strides) or [(lambda s: s, s, "") for s in strides])
-    monkeypatch.setattr(compare_stride, "_notes", lambda *a: [])
+    monkeypatch.setattr(compare_stride, "section_notes", lambda *a: [])
     monkeypatch.setattr(compare_stride, "what_ifs", lambda *a: [])
     cheaper = SimpleNamespace(objective_value=0.9, success=True, valid=True, cadence_spm=178.5)
 

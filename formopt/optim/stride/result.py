@@ -393,8 +393,8 @@ def summarise(nlp: StrideNLP, solved: Solved, simulate: bool = True) -> Stride:
         mechanical_power_W=positive / T, checks=checks, phases=durations, mass_kg=m,
         t=t, phase=names, theta=theta, thetad=thetad, tau=tau, force=force, solved=solved,
         tau_spring=tau_spring, muscles=muscle_outputs(nlp, solved, checks, t),
-        on_bound=on_bounds(durations, nlp.settings.duration), held=held_by_bounds(nlp, b), swing_clearance_m=swing_clearance(nlp, b, slope),
-        stance_knee_deg=deepest_stance_knee(nlp, names, theta))
+        on_bound=on_bounds(durations, nlp.settings.duration), held=held_by_bounds(nlp, b),
+        swing_clearance_m=swing_clearance(nlp, b, slope), stance_knee_deg=deepest_stance_knee(nlp, names, theta))
 
 
 def forward_checks(nlp: StrideNLP, blocks: dict, parameters: dict) -> dict:
