@@ -1,9 +1,8 @@
 """A runner's stance knee at its deepest (result.CROUCH_DEG's source): RBDS001 at 2.5, 3.5 and 4.5
 m/s from the data set's own processing (RBDS001processed.txt: Visual3D, knee flexion, the mean
 cycle's stance: the vertical force above 0.5 N/kg), and RBDS001 at 3.5 m/s and RIC's runner
-from formopt's measure (the mean cycle of the right leg from its touchdown, knee flexion as
-thigh less shank angle; the stance's peak: the cycle's first local maximum, printed with its
-place in the cycle, before toe-off at a runner's 30-37 %).
+from formopt's measure (measure.stance_knee_deg: the right leg's mean cycle, the first local
+maximum of its knee flexion, printed with its place in the cycle).
 
     python problems/stance_knee.py
 """
@@ -15,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from formopt.io.mocap import read_c3d
-from formopt.measure.pipeline import mean_cycle, measure
+from formopt.measure.pipeline import measure, stance_knee_deg
 
 DATA = Path(__file__).resolve().parent.parent / "data"
 
@@ -35,10 +34,8 @@ def processed() -> None:
 def measured() -> None:
     """formopt's measure of the two trials' mean cycles: the stance knee's deepest flexion (deg)."""
     for name, (run, static, height) in TRIALS.items():
-        angles, cycles = mean_cycle(measure(read_c3d(DATA / run), read_c3d(DATA / static), height))
-        knee = np.degrees(angles["thigh"] - angles["shank"])
-        peak = next(k for k in range(1, knee.size - 1) if knee[k - 1] <= knee[k] > knee[k + 1])
-        print(f"{name}, formopt's measure ({cycles} cycles): stance knee at its deepest {knee[peak]:.1f} deg "
+        knee, peak = stance_knee_deg(measure(read_c3d(DATA / run), read_c3d(DATA / static), height))
+        print(f"{name}, formopt's measure: stance knee at its deepest {knee:.1f} deg "
               f"at {peak} % of the cycle")
 
 

@@ -79,6 +79,7 @@ from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS
 from formopt.optim.stride.problem import (
     CONSISTENCY_ROWS,
+    OBJECTIVES,
     RUNNER_TENDONS,
     SMOOTHING,
     TENDON_JOINTS,
@@ -175,12 +176,13 @@ def on_bounds(nlp, solved) -> tuple[list[str], list[str]]:
 
 def node_row_names(model) -> list[str]:
     """A torque rung's node rows by name, in ocp.NodeModel's order: the free points' heights,
-    the held rows (J a + dJ v), the friction cones, the equations of motion."""
+    the held rows (J a + dJ v), the friction cones, the equations of motion, the power split."""
     contact = model.contact
     sticking = [p for p, a in contact.rows if a == "t" and p != contact.sliding]
     return ([f"height {p}" for p in contact.free] + [f"held {contact.rows[k][0]} {contact.rows[k][1]}"
                                                       for k in contact.held]
-            + [f"cone {p} {side}" for p in sticking for side in "+-"] + [f"motion {t}" for t in THETA])
+            + [f"cone {p} {side}" for p in sticking for side in "+-"] + [f"motion {t}" for t in THETA]
+            + ([f"split {j}" for j in JOINTS] if model.split else []))
 
 
 def release_forces(nlp, b) -> list[str]:
@@ -376,6 +378,8 @@ def model_options(parser: argparse.ArgumentParser) -> None:
                         help="knee=0 ankle=4 (N m/rad per kg, over problem.RUNNER_TENDONS; 0 drops one)")
     parser.add_argument("--impact-weight", type=float, default=0.0,
                         help="StrideSettings.impact_weight (1/m): the impacts' T_c in the objective")
+    parser.add_argument("--objective", default="effort", choices=OBJECTIVES[:-1],
+                        help="StrideSettings.objective (the torque rungs')")
 
 
 def parse(argv) -> argparse.Namespace:
@@ -524,12 +528,13 @@ def main(argv=None) -> int:
     body, stride, solved, objectives, cadences = scaled_body(*args.body), None, [], [], []
     print(f"body {args.body[0]:g} kg, {args.body[1]:g} m; {args.strike} strike, {args.speed:g} m/s, cadence "
           f"{args.cadence or 'free'}; springs {({**RUNNER_TENDONS, **dict(args.tendons)})}, impact weight "
-          f"{args.impact_weight:g}, stance knee bound {args.stance_knee_max or '-'} deg, mu {args.mu:g}", flush=True)
+          f"{args.impact_weight:g}, objective {args.objective}, stance knee bound {args.stance_knee_max or '-'} deg, mu {args.mu:g}", flush=True)
     durations = {**StrideSettings().duration, **{k: (v - PIN, v + PIN) for k, v in args.durations}}
     for transcription, nodes, grading in args.meshes:
         # costs.terms reads it when each NLP is built
         costs.SMOOTHING = args.smoothing * (nodes / args.meshes[0][1]) ** args.smoothing_order
         settings = StrideSettings(strike=args.strike, nodes=nodes, impact_weight=args.impact_weight,
+                                  objective=args.objective,
                                   tendons={**RUNNER_TENDONS, **dict(args.tendons)},
                                   transcription=transcription, moment_time=args.moment_time,
                                   approach_speed=args.approach_speed, duration=durations,

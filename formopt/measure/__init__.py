@@ -19,7 +19,7 @@ file's lab frame until `axes` names forward, left and up; angles in rad and rate
 (design.md section 2); labels are the marker map's (io.markerset), sides "R" and "L".
 """
 
-from .pipeline import Measurement, Options, mean_cycle, measure
+from .pipeline import Measurement, Options, mean_cycle, measure, stance_knee_deg
 from .touchdowns import Steps, Touchdown
 
-__all__ = ["Measurement", "Options", "Steps", "Touchdown", "mean_cycle", "measure"]
+__all__ = ["Measurement", "Options", "Steps", "Touchdown", "mean_cycle", "measure", "stance_knee_deg"]

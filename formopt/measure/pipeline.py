@@ -76,3 +76,14 @@ def mean_cycle(m: Measurement, side: str = "R", points: int = 101) -> tuple[dict
     names = {"thigh": f"{side}.thigh", "shank": f"{side}.shank", "foot": f"{side}.foot", "trunk": "trunk"}
     return {k: np.mean([np.interp(np.linspace(t0, t1, points), kin.t, kin.angles[name]) for t0, t1 in cycles], axis=0)
             for k, name in names.items()}, len(cycles)
+
+
+def stance_knee_deg(m: Measurement, side: str = "R") -> tuple[float, int]:
+    """The stance knee at its deepest: the mean cycle's (`mean_cycle`) knee flexion, thigh less
+    shank angle (deg), at its first local maximum after touchdown, and that maximum's place
+    (% of the cycle; a runner's falls at 10-20 %, before toe-off at 30-37 %). NaN and -1
+    without a cycle or a maximum."""
+    angles, cycles = mean_cycle(m, side)
+    knee = np.degrees(angles["thigh"] - angles["shank"]) if cycles else np.array([])
+    peak = next((k for k in range(1, knee.size - 1) if knee[k - 1] <= knee[k] > knee[k + 1]), -1)
+    return (float(knee[peak]) if peak > 0 else float("nan")), peak

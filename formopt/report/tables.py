@@ -287,6 +287,11 @@ def comparison_table(c: Comparison, rep: dict) -> str:
     return "\n".join(lines)
 
 
+def knee_text(deg: float | None) -> str:
+    """", stance knee N deg" (the deepest stance flexion), or "" where it is unknown."""
+    return "" if deg is None or math.isnan(deg) else f", stance knee {deg:.0f} deg"
+
+
 def stride_lines(s: dict) -> list[str]:
     """compare's stride section (compare_stride.StrideAnswer.to_dict) in words: the runner
     against the stride optimum, then each what-if cadence with its band; a change whose band
@@ -295,13 +300,14 @@ def stride_lines(s: dict) -> list[str]:
                  f"({s['nodes']} nodes, {s['law']} impacts, objective effort)",
              f"    the runner:  cadence {s['measured_cadence_spm']:6.1f} steps/min, step "
              f"{s['measured_step_length_m']:.3f} m, strike point {s['measured_placement_m']:.3f} m "
-             f"ahead of the hip, {s['measured_strike']} strike"]
+             f"ahead of the hip, {s['measured_strike']} strike{knee_text(s.get('measured_stance_knee_deg'))}"]
     if s["optimum_cadence_spm"] is None:
         return lines + [f"    no stride optimum: {'; '.join(s['notes'])}"]
     mark = "" if s.get("optimum_valid", True) else " INVALID (see the notes)"
     lines.append(f"    the optimum{mark}: cadence {s['optimum_cadence_spm']:6.1f} steps/min, step "
                  f"{s['optimum_step_length_m']:.3f} m, strike point {s['optimum_placement_m']:.3f} m "
-                 f"ahead of the hip, {s['measured_strike']} strike; mechanical power "
+                 f"ahead of the hip, {s['measured_strike']} strike{knee_text(s.get('optimum_stance_knee_deg'))}; "
+                 f"mechanical power "
                  f"{s['optimum_mechanical_power_W']:.0f} W, impact loss {s['optimum_impact_loss_W']:.0f} W")
     lines += [f"      ({remark})" for remark in s.get("optimum_remarks", [])]
     if s.get("sticking_optimum_cadence_spm") is not None:

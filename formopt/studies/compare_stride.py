@@ -40,6 +40,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..measure import stance_knee_deg
 from ..mechanics.body import scaled_body
 from ..optim.stride import Stride, rank, summarise
 from ..optim.stride.problem import STRIKES
@@ -194,7 +195,7 @@ class StrideAnswer:
 
     speed_mps: float
     law: str
-    measured: dict  # cadence_spm, step_length_m, placement_m (ahead of the hip), strike
+    measured: dict  # cadence_spm, step_length_m, placement_m (ahead of the hip), strike, stance_knee_deg
     curves: list[Curve]  # the nominal first
     best: dict[str, Stride | None]  # the free optimum per strike (nominal variant)
     what_if: list[WhatIf]
@@ -226,10 +227,12 @@ class StrideAnswer:
                 "measured_step_length_m": self.measured["step_length_m"],
                 "measured_placement_m": self.measured["placement_m"],
                 "measured_strike": self.measured["strike"],
+                "measured_stance_knee_deg": self.measured["stance_knee_deg"],
                 "optimum_cadence_spm": own.cadence_spm if own else None,
                 "optimum_valid": own.valid if own else None,
                 "optimum_step_length_m": own.step_length_m if own else None,
                 "optimum_placement_m": placement_m(own) if own else None,
+                "optimum_stance_knee_deg": own.stance_knee_deg if own else None,
                 "optimum_mechanical_power_W": own.mechanical_power_W if own else None,
                 "optimum_impact_loss_W": own.budget["impacts_J"] / own.half_period_s if own else None,
                 "optimum_joint_work_J": joint_work(own) if own else None,
@@ -255,12 +258,15 @@ def measured_form(c) -> dict:
     """The runner's cadence (steps/min), step length (m), placement of the striking point
     ahead of the hip (m: the mean over the main side's steps of the hip's forward distance from
     the point the stride strikes with, the forefoot for a forefoot strike, else the heel, as
-    optim.stride) and strike (the main side's impact point)."""
+    optim.stride), strike (the main side's impact point) and stance knee at its deepest (deg, the
+    main side's mean cycle: measure.stance_knee_deg; None without one)."""
     st, side = c.steps, c.main_side
     point = "forefoot" if side.point == "forefoot" else "heel"
     ahead = [-st.touchdowns[k].hip_from_point[point][0] for k in side.steps]
+    knee, _ = stance_knee_deg(c.measurement, side.side)
     return {"cadence_spm": st.cadence_spm, "step_length_m": st.speed * 60.0 / st.cadence_spm,
-            "placement_m": float(np.mean(ahead)), "strike": side.point}
+            "placement_m": float(np.mean(ahead)), "strike": side.point,
+            "stance_knee_deg": None if np.isnan(knee) else knee}
 
 
 def run_curve(name: str, scene, speed: float, cadences: list[float], beside: Background | None = None) -> Curve:

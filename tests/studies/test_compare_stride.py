@@ -266,12 +266,23 @@ def section():
     """The section for a runner like RBDS001 at 3.5 m/s (heel), nominal variant, 18 nodes,
     no-slip impacts (Coulomb's sliding variant has tests of its own, optim/test_stride_slide.py;
     here it would only add a second NLP: 7.8 s against 13.7 s)."""
-    side = SimpleNamespace(point="heel", steps=[0, 1])
+    side = SimpleNamespace(side="R", point="heel", steps=[0, 1])
     tds = [SimpleNamespace(hip_from_point={"heel": (x, 0.9), "forefoot": (x - 0.2, 0.9)}) for x in (-0.16, -0.18)]
     c = SimpleNamespace(steps=SimpleNamespace(speed=3.5, cadence_spm=171.4, touchdowns=tds), main_side=side,
                         settings={"body": {"mass_kg": 62.0, "height_m": 1.81, "sex": "male"},
-                                  "friction": 0.8}, law="no-slip")
+                                  "friction": 0.8}, law="no-slip", measurement=knee_flexing(171.4))
     return answer(c, nodes=18, band=False, changes=CHANGES)
+
+
+def knee_flexing(cadence: float):
+    """A measurement's stand-in whose right knee flexes to 40 deg at 14 % of each of 3 cycles
+    (measure.stance_knee_deg reads its kinematics and touchdowns)."""
+    cycle = 120.0 / cadence
+    t = np.linspace(0.0, 3 * cycle, 601)
+    knee = np.radians(25.0 + 15.0 * np.sin(2 * np.pi * (t % cycle) / cycle / 0.56))
+    steps = SimpleNamespace(cadence_spm=cadence, valid=[SimpleNamespace(side="R", time=k * cycle) for k in range(4)])
+    angles = {"R.thigh": knee, "R.shank": 0 * t, "R.foot": 0 * t, "trunk": 0 * t}
+    return SimpleNamespace(steps=steps, kinematics=SimpleNamespace(t=t, angles=angles))
 
 
 def test_the_section_against_its_own_strides(section):
@@ -324,6 +335,8 @@ def test_the_section_json_and_words(section):
     assert d["measured_cadence_spm"] == 171.4 and d["measured_strike"] == "heel"
     assert d["measured_placement_m"] == pytest.approx(0.17)
     assert d["measured_step_length_m"] == pytest.approx(3.5 * 60 / 171.4)
+    assert d["measured_stance_knee_deg"] == pytest.approx(40.0, abs=0.1)  # knee_flexing's
+    assert d["optimum_stance_knee_deg"] == section.nominal.free.stance_knee_deg
     assert d["optimum_cadence_spm"] == pytest.approx(section.nominal.free.cadence_spm)
     assert [w["cadence_change_pct"] for w in d["what_if"]] == list(CHANGES)
     for w in d["what_if"]:
@@ -332,7 +345,8 @@ def test_the_section_json_and_words(section):
         assert np.isfinite([w["low_W"], w["high_W"]]).all()
     assert d["best_strike"] == "heel" and d["strikes"]["forefoot"] is None  # band=False: one strike
     text = "\n".join(stride_lines(d))
-    assert "the runner:  cadence  171.4" in text
+    assert "the runner:  cadence  171.4" in text and "heel strike, stance knee 40 deg" in text
+    assert f"stance knee {d['optimum_stance_knee_deg']:.0f} deg; mechanical power" in text
     assert all(f"{p:+5.0f} %" in text for p in CHANGES)
 
 
