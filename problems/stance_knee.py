@@ -1,4 +1,4 @@
-"""A runner's stance knee at its deepest (result.CROUCH_DEG's source): RBDS001 at 2.5, 3.5 and 4.5
+"""A runner's stance knee at its deepest (checks.CROUCH_DEG's source): RBDS001 at 2.5, 3.5 and 4.5
 m/s from the data set's own processing (RBDS001processed.txt: Visual3D, knee flexion, the mean
 cycle's stance: the vertical force above 0.5 N/kg), and RBDS001 at 3.5 m/s and RIC's runner
 from formopt's measure (measure.stance_knee_deg: the right leg's mean cycle, the first local

@@ -9,6 +9,8 @@ optim.stride.search at each speed, spend and node count.
                                      [--clearance 0.01] [--actuation torque+springs|muscles]
                                      [--tendons knee=0 (stride_mesh.py's: over RUNNER_TENDONS)]
                                      [--impact-weight 1 (1/m: StrideSettings.impact_weight)]
+                                     [--approach-speed 0.05 (m/s: StrideSettings.approach_speed)]
+                                     [--moment-time 0.012 (s: StrideSettings.moment_time)]
 
 One row per speed, node count and spend (the spends innermost, then the node counts): cost
 (the objective, per distance), cadence (steps/min), their change (%) from the row before at the
@@ -75,6 +77,8 @@ def main(argv=None) -> int:
     parser.add_argument("--clearance", type=float, default=StrideSettings.clearance)
     parser.add_argument("--tendons", nargs="*", default=[], type=tendon)
     parser.add_argument("--impact-weight", type=float, default=0.0, help="StrideSettings.impact_weight (1/m)")
+    parser.add_argument("--approach-speed", type=float, default=0.0, help="StrideSettings.approach_speed (m/s)")
+    parser.add_argument("--moment-time", type=float, default=0.0, help="StrideSettings.moment_time (s)")
     parser.add_argument("--actuation", default="torque+springs", choices=("torque+springs", "muscles"))
     args = parser.parse_args(argv)
     if args.tendons and args.actuation == "muscles":
@@ -82,10 +86,12 @@ def main(argv=None) -> int:
     body = scaled_body(62.0, 1.81)
     actuation = ({"muscles": body_muscles(body), "objective": "metabolic"} if args.actuation == "muscles"
                  else {"tendons": {**RUNNER_TENDONS, **dict(args.tendons)}})
-    model = StrideSettings(impact_weight=args.impact_weight, **actuation)
+    model = StrideSettings(impact_weight=args.impact_weight, approach_speed=args.approach_speed,
+                           moment_time=args.moment_time, **actuation)
     rung = ("muscles, metabolic" if args.actuation == "muscles" else
             f"{model.actuation} {({j: k for j, k in model.tendons.items() if k})}, effort, "
-            f"impact weight {args.impact_weight:g}")
+            f"impact weight {args.impact_weight:g}, approach speed {args.approach_speed:g} m/s, "
+            f"moment time {args.moment_time:g} s")
     print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, "
           f"{rung}, {args.transcription}, "
           f"swing clearance {args.clearance:g} m",
@@ -98,7 +104,9 @@ def main(argv=None) -> int:
         before = None
         for nodes in args.nodes:
             settings = StrideSettings(strike=args.strike, nodes=nodes, transcription=args.transcription,
-                                      clearance=args.clearance, impact_weight=args.impact_weight, **actuation)
+                                      clearance=args.clearance, impact_weight=args.impact_weight,
+                                      approach_speed=args.approach_speed, moment_time=args.moment_time,
+                                      **actuation)
             nlp = build(body, settings)
             for starts in args.starts:
                 clock, cpu = time.perf_counter(), time.process_time()

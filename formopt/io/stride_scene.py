@@ -21,7 +21,10 @@
               optim.stride.contact.CLEARANCE), mesh_check (true: each strike's stride solved
               again on twice its nodes from itself and what that moved reported,
               optim.stride.refine; default false), force_rate_power (with muscles and
-              "metabolic": 2, the default, or 1: optim.stride.problem.FORCE_RATE_POWERS)
+              "metabolic": 2, the default, or 1: optim.stride.problem.FORCE_RATE_POWERS),
+              approach_speed_mps (each impact's points reach the ground at least this fast, m/s;
+              default 0: optim.stride.problem.APPROACH_SPEED), moment_time_s (the torque rungs'
+              moment dynamics' time, s; default 0, moments that jump: optim.stride.problem.MOMENT_TIME)
 
 Every error names its key (SceneError, one line); degrees at this edge, SI inside.
 """
@@ -58,7 +61,7 @@ STRIDE_LAWS = ("no-slip", "coulomb")
 STRIDE_KEYS = {"speed_mps", "strike", "objective", "nodes", "impact_weight",
                "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts", "tendons",
                "transcription", "actuation", "clearance_m", "search", "spend", "grading", "mesh_check",
-               "force_rate_power"}
+               "force_rate_power", "approach_speed_mps", "moment_time_s"}
 
 
 @dataclass(frozen=True)
@@ -110,6 +113,9 @@ def _actuation(stride: dict, actuation: str, body: Body) -> tuple[dict, Muscles 
         if "torque_limit_nm_per_kg" in stride:
             raise SceneError("stride.torque_limit_nm_per_kg", "the muscles' strength is their own "
                                                               "(io/data/gait2d_muscles.csv): remove the key")
+        if "moment_time_s" in stride:
+            raise SceneError("stride.moment_time_s", "the torque rungs' moment dynamics: the muscles' moments "
+                                                     "rise with their activations: remove the key")
         return {}, body_muscles(body)
     if actuation == "torque":
         return {}, None
@@ -139,6 +145,8 @@ def parse(data: dict, path: str = "") -> StrideScene:
     nodes = val.integer(stride, "nodes", "stride", 40, *_whole("nodes"))
     grading = val.number(stride, "grading", "stride", default=0.0, limit=RANGES["grading"])
     weight = val.number(stride, "impact_weight", "stride", default=0.0, limit=RANGES["impact_weight"])
+    approach = val.number(stride, "approach_speed_mps", "stride", default=0.0, limit=RANGES["approach_speed_mps"])
+    moment_time = val.number(stride, "moment_time_s", "stride", default=0.0, limit=RANGES["moment_time_s"])
     torque = val.number(stride, "torque_limit_nm_per_kg", "stride", default=4.0,
                          limit=RANGES["torque_limit_nm_per_kg"])
     cadence = val.number(stride, "cadence_spm", "stride", limit=RANGES["cadence_spm"]) \
@@ -167,7 +175,8 @@ def parse(data: dict, path: str = "") -> StrideScene:
                                   nodes=nodes, law=law, impact_weight=weight, torque_limit=torque,
                                   duration=duration, max_iter=max_iter, tendons=tendons,
                                   transcription=transcription, muscles=muscles, clearance=clearance,
-                                  grading=grading, force_rate_power=_force_rate_power(stride, objective, muscles))
+                                  grading=grading, force_rate_power=_force_rate_power(stride, objective, muscles),
+                                  approach_speed=approach, moment_time=moment_time)
     except InputError as err:  # what only the settings check (e.g. a strike's least nodes)
         raise SceneError("stride", str(err)) from None
     return StrideScene(name, body, speed, math.radians(slope), friction, strike, settings,

@@ -68,7 +68,7 @@ def test_stride_command_writes_its_report(tmp_path, capsys):
     assert all(k in report for k in JSON_KEYS)
     assert report["speed_mps"] == 3.3 and report["strike"] == "forefoot"
     assert report["swing_clearance_m"] >= 0.01 - 1e-6  # contact.CLEARANCE, the default
-    assert report["mesh"].startswith("trapezoid at 24 intervals is not mesh-converged")  # said beside the numbers
+    assert report["mesh"].startswith("hermite-simpson at 24 intervals is not mesh-converged")  # said beside the numbers
     assert report["transcription_note"] == ""  # measured to differ for the muscles' cost only
     row = report["strides"][0]
     assert row["swing_clearance_m"] == report["swing_clearance_m"] and row["search"] is None  # the local search
@@ -87,10 +87,26 @@ def test_the_swing_clearance_is_a_key_with_a_default():
     assert parse(data).settings.clearance == 0.0  # the ground alone, as before 2026-11-25
 
 
+def test_the_torque_scenes_solve_the_runner_stride():
+    """The shipped torque scenes hold problem.RUNNER_ANKLE's stride (Hermite-Simpson, the ankle's
+    tendon, the impacts charged, moment dynamics, the approach floor), whose mesh note
+    (notes.RUNNER_MESH) says what it was measured to move."""
+    from formopt.optim.stride.notes import RUNNER_MESH, mesh_note
+    from formopt.optim.stride.problem import APPROACH_SPEED, MOMENT_TIME, RUNNER_ANKLE, RUNNER_IMPACT_WEIGHT
+
+    for name in ("stride.toml", "stride_rbds001.toml"):
+        settings = load(SHIPPED / name).settings
+        assert (settings.transcription, settings.nodes, settings.tendons) == ("hermite-simpson", 40, RUNNER_ANKLE)
+        assert (settings.impact_weight, settings.moment_time, settings.approach_speed) == \
+            (RUNNER_IMPACT_WEIGHT, MOMENT_TIME, APPROACH_SPEED)
+        assert RUNNER_MESH in mesh_note(settings)
+
+
 def test_the_actuation_ladder_is_one_key():
     data = tomllib.loads(STRIDE_SCENES[0].read_text())  # the paper body's scene, its tendons taken out
     data["stride"].pop("tendons")
     data["stride"].pop("objective")
+    data["stride"].pop("moment_time_s")  # the torque rungs' (refused with muscles: below)
     rungs = {}
     for rung in ("torque", "torque+springs", "muscles"):
         data["stride"]["actuation"] = rung
@@ -112,11 +128,13 @@ def test_the_actuation_ladder_is_one_key():
                                         "stride.torque_limit_nm_per_kg"),
                                        ({"actuation": "muscles", "objective": "effort"}, "stride"),
                                        ({"actuation": "muscles", "force_rate_power": 3}, "stride.force_rate_power"),
+                                       ({"actuation": "muscles", "moment_time_s": 0.012}, "stride.moment_time_s"),
                                        ({"actuation": "torque", "force_rate_power": 1}, "stride.force_rate_power"),
                                        ({"objective": "activation"}, "stride")])
 def test_bad_actuation_is_named(edit, key):
     data = tomllib.loads(STRIDE_SCENES[0].read_text())
     data["stride"].pop("tendons")
+    data["stride"].pop("moment_time_s")  # the torque rungs' (its own case above)
     data["stride"].update(edit)
     with pytest.raises(SceneError, match=key.replace(".", r"\.")):
         parse(data)

@@ -25,12 +25,15 @@ PARAMS = [("speed_mps", np.array([3.0, 3.5])), ("cadence_spm", np.array([165.0, 
 
 @pytest.fixture(scope="module")
 def scene():
-    """The shipped stride scene without its tendons: with them, a chain's warm start can stay in
-    a costlier local optimum than the generic guess reaches (0.493 against 0.397 at 3.0 m/s and
-    185 steps/min, 24 nodes, 2026-11-23), so "no worse than a fresh solve" holds only for the
-    rigid-leg landscape; the rows say how each was started (`start`)."""
+    """The shipped stride scene on the trapezoid without its tendons, its impacts' charge and its
+    moment dynamics (the scene before 2026-11-28, less its tendons): with tendons, a chain's warm
+    start can stay in a costlier local optimum than the generic guess reaches (0.493 against 0.397
+    at 3.0 m/s and 185 steps/min, 24 nodes, 2026-11-23), so "no worse than a fresh solve" holds
+    only for the rigid-leg landscape; the rows say how each was started (`start`)."""
     shipped = stride_map.for_nodes(load(SHIPPED / "stride.toml"), 24, starts=1)
-    return dataclasses.replace(shipped, settings=dataclasses.replace(shipped.settings, tendons={}))
+    rigid = dataclasses.replace(shipped.settings, tendons={}, transcription="trapezoid", impact_weight=0.0,
+                                approach_speed=0.0, moment_time=0.0)
+    return dataclasses.replace(shipped, settings=rigid)
 
 
 @pytest.fixture(scope="module")

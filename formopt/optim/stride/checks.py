@@ -333,6 +333,34 @@ def swing_clearance(nlp: StrideNLP, blocks: dict, slope: float) -> float:
                for point in model.contact.swing for k in range(X.shape[1]))
 
 
+# A runner's stance knee flexes to about 40 deg at its deepest: RBDS001 42.2 / 42.2 / 43.6 deg at
+# 2.5 / 3.5 / 4.5 m/s (the data set's own processing, data/rbds/RBDS001processed.txt), 39.0 deg
+# at 3.5 m/s and RIC's runner 36.5 deg (formopt's measure, the mean cycles of RBDS001runT35.c3d and
+# 20160226T120637_run.c3d; problems/stance_knee.py prints them). A stride whose stance knee
+# flexes beyond CROUCH_DEG (half again a runner's) is a crouched run, far from a runner's,
+# whatever its cost says (`unlike_a_runner`): the torque+springs rung's knee spring on Hermite-Simpson
+# crouches to 103 deg at 3.5 m/s (docs/concepts/stride.md, "The crouch").
+CROUCH_DEG = 60.0
+# A runner's touchdown absorbs 0.5-1.0 J (RBDS001 at 2.5 and 3.5 m/s, forefoot steps) to 2.3-2.7 J
+# (RIC's runner, heel steps): formopt compare's measured T_c on problems/compare/runners.toml; the
+# torque scenes' heel and forefoot strides take 2-6 J a step over both their impacts (the landing
+# and the rest of the foot set down). A stride whose impacts take more than STIFF_LANDING_J lands
+# stiff, far from a runner's (`unlike_a_runner`): the flat strike whose second point arrives with
+# the first and stops the whole foot at once, 8-28 J at 2.5-4.5 m/s on the torque scenes
+# (docs/concepts/stride.md, "The torque scenes: one answer").
+STIFF_LANDING_J = 10.0
+
+
+def unlike_a_runner(stance_knee_deg: float, impacts_J: float) -> list[str]:
+    """A stride's remarks where it is far from a runner's: its stance knee beyond CROUCH_DEG (deg),
+    its impacts' summed T_c beyond STIFF_LANDING_J (J a step)."""
+    out = [f"a crouched stance: the stance knee flexes to {stance_knee_deg:.0f} deg, far beyond a runner's "
+           "37-44 deg at 2.5-4.5 m/s (RBDS001 and RIC's runner)"] if stance_knee_deg > CROUCH_DEG else []
+    return out + ([f"a stiff landing: the impacts take {impacts_J:.0f} J a step, where a runner's touchdown "
+                   "absorbs 0.5-2.7 J (formopt compare on RBDS001 and RIC's runner)"]
+                  if impacts_J > STIFF_LANDING_J else [])
+
+
 def deepest_stance_knee(nlp: StrideNLP, names: list, theta: np.ndarray) -> float:
     """The stance knee's deepest flexion (deg) over the nodes of the phases with a contact
     (`names`: the phase of each node; theta (n, 9), a column per THETA); NaN without such nodes."""

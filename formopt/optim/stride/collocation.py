@@ -66,6 +66,17 @@ IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive",
 # no faster on their 3,027 rows (docs/reference/performance.md), and its round-off moved RBDS001's
 # torque optimum at 3.5 m/s to another local one (217.2 -> 188.7 steps/min).
 MUSCLE_IPOPT = {"mu_strategy": "monotone", "mu_init": 1e-2, "mumps_pivot_order": 5}
+# The torque rungs on Hermite-Simpson with the constraints' block of IPOPT's KKT matrix perturbed
+# at every iteration (perturb_always_cd; by default only where IPOPT finds the matrix singular,
+# which MUMPS's pivoting may not report: IPOPT then raised the Hessian's perturbation up to 1e11-
+# 1e14 at most iterations, a factorisation for each try). RBDS001 (62 kg, 1.81 m, 3.5 m/s, the
+# torque scenes' stride: problem.RUNNER_ANKLE), 40 intervals, the multi-start's 4 starts per
+# strike: without it one flat-strike start took 367 iterations and 430 s of CPU (the others 2-22 s),
+# with it every start 2.4-18 s and the same optima within 1e-5; with moment dynamics (12 ms) the
+# heel strike from the generic start in 97 iterations and 4.9 s instead of 342 and 19.7 s, and on
+# 40 intervals from that stride 41 iterations and 2.5 s instead of 619 and 63 s, to a 0.09 %
+# lower optimum (2026-11-28; docs/concepts/stride.md, "The torque scenes: one answer").
+TORQUE_HERMITE_IPOPT = {"perturb_always_cd": "yes"}
 # The muscles' start's solves at a lower reserve weight (local.muscle_start) from a barrier of 1e-3:
 # from the torque+springs optimum at weight 100, RBDS001 (heel, 40 nodes) at 2.5 / 3.5 / 4.5 m/s,
 # 325 / 191 / 370 iterations instead of 369 / 299 / 448, the same optima (2.24417, 3.99212,
@@ -174,7 +185,9 @@ class StrideNLP:
         self.problem = {"x": x, "p": self.p, "f": f,
                         "g": ca.vertcat(*self.node_rows.expr, g)}  # the NLP's expressions
         self.settings_key = hashlib.sha256(pickle.dumps(settings)).hexdigest()  # `layout`'s
-        self.options = {**IPOPT_DEFAULTS, **(MUSCLE_IPOPT if settings.muscles is not None else {}),
+        own = MUSCLE_IPOPT if settings.muscles is not None else \
+            TORQUE_HERMITE_IPOPT if settings.transcription == "hermite-simpson" else {}
+        self.options = {**IPOPT_DEFAULTS, **own,
                         "max_iter": settings.max_iter, "tol": settings.tolerance, **(ipopt or {})}
         self._solver: ca.Function | None = None
         self._warm_solver: ca.Function | None = None

@@ -37,7 +37,7 @@ from ...mechanics.errors import InputError
 from ...mechanics.muscles import Muscles
 from .actuation import ACTIVATION_RATE_SMOOTHING
 from .contact import CLEARANCE
-from .ranges import check
+from .ranges import RANGES, check
 
 
 @dataclass(frozen=True)
@@ -192,7 +192,7 @@ RESERVE_CONTINUATION = (100.0,)
 # phase's ceiling at 2.5 m/s or landing the forefoot grazing on the friction cone's edge (invalid),
 # and not converged in 1000 iterations at 40 intervals.
 MOMENT_TIME = 0.012
-MOMENT_TIME_MAX = 0.2
+MOMENT_TIME_MAX = RANGES["moment_time_s"].high
 # A least approach speed at every impact (StrideSettings.approach_speed, m/s), against the
 # grazing touchdowns of Hermite-Simpson's optima: a point that reaches the ground at v_n- = 0
 # takes a zero impulse, so p_n >= 0 and both cone rows mu p_n -+ p_t >= 0 hold with equality at
@@ -229,6 +229,25 @@ TENDON_JOINTS = ("hip", "knee", "ankle")
 # 171.4, 0.245 s and 23.5 N/kg, and rigid impacts of 1-8 J against 40-110 J without tendons.
 # Chosen among two settings on one runner, not fitted: docs/concepts/stride.md.
 RUNNER_TENDONS = {"knee": 2.5, "ankle": 4.0}
+# The torque scenes' stride (formopt/scenes/stride.toml and stride_rbds001.toml; docs/concepts/
+# stride.md, "The torque scenes: one answer", 2026-11-28): Hermite-Simpson at 40 intervals, the
+# ankle's spring alone (RUNNER_ANKLE), the impacts' T_c charged at the metabolic price of the
+# positive work that replaces it (RUNNER_IMPACT_WEIGHT = 1 / EFFICIENCY_POSITIVE, on the cost of
+# transport's scale 1 / (m g d) that the metabolic objective uses: costs.py), moment dynamics
+# (MOMENT_TIME) and every impact approaching at least at APPROACH_SPEED. Why each part:
+# - RUNNER_TENDONS' knee spring, engaged at touchdown and paid by no muscle, made Hermite-
+#   Simpson's strides crouch (the stance knee to 79-103 deg, the spring's 3.9 N m/kg at 103 deg
+#   against RBDS001's peak knee moment of 2.6-3.1; a runner's knee flexes to 37-44 deg);
+# - without it and with the impacts free the strides land stiff (35-42 J a step); charged at
+#   weight 1 a flat strike still lands with 35 J and is the least costly (its effort 40 % lower);
+# - moments that jump let Hermite-Simpson's stance end with the forefoot pushing 0.9-1.5 body
+#   weights (a runner's force falls to zero): with moment dynamics the release holds it at zero
+#   (ocp.Release), and IPOPT converges in tens of iterations (collocation.TORQUE_HERMITE_IPOPT);
+# - without the approach floor the forefoot strike's heel comes down grazing (7.6 mm/s), where
+#   the impulse and its cone's rows vanish together.
+# What it gives, 40 -> 80 intervals, is optim.stride.notes.RUNNER_MESH's.
+RUNNER_ANKLE = {"ankle": 4.0}
+RUNNER_IMPACT_WEIGHT = 1.0 / EFFICIENCY_POSITIVE
 
 
 def other_leg(point: str) -> str:

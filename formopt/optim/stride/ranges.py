@@ -53,6 +53,9 @@ RANGES = {
     # an impact's least approach speed (StrideSettings.approach_speed): 0 (grazing allowed) to
     # 1 m/s (a heel reaches the ground at about 0.5-1 m/s in running)
     "approach_speed_mps": Range(0.0, 1.0, "m/s"),
+    # moment dynamics' time (StrideSettings.moment_time; problem.MOMENT_TIME's 12 ms a muscle's):
+    # 0 (torque sources that jump) to problem.MOMENT_TIME_MAX
+    "moment_time_s": Range(0.0, 0.2, "s"),
     # each phase's mesh graded toward its ends (StrideSettings.grading, transcription.fractions):
     # 0 uniform to 1, the cosine map (the end intervals O(1/n^2) of the phase's duration)
     "grading": Range(0.0, 1.0),

@@ -29,7 +29,7 @@ from ...mechanics import muscles as hill
 from ...mechanics.joint_space import GRAVITY, JOINTS
 from .actuation import MuscleDriven
 from .bounds import held_by_bounds, held_text, on_bounds
-from .checks import deepest_stance_knee, drift, forward, half_period, impact_check, swing_clearance
+from .checks import deepest_stance_knee, drift, forward, half_period, impact_check, swing_clearance, unlike_a_runner
 from .collocation import NX, StrideNLP
 from .layout import Solved
 from .ocp import INTEGRANDS, Impact, periodicity, step_length
@@ -80,14 +80,6 @@ CONE_EDGE = 1e-4
 # strike and its Hermite-Simpson heel strike at 80 nodes, 2026-11-25), which a strict sign test
 # called invalid.
 GRAZING_MPS = 1e-6
-# A runner's stance knee flexes to about 40 deg at its deepest: RBDS001 42.2 / 42.2 / 43.6 deg at
-# 2.5 / 3.5 / 4.5 m/s (the data set's own processing, data/rbds/RBDS001processed.txt), 39.0 deg
-# at 3.5 m/s and RIC's runner 36.5 deg (formopt's measure, the mean cycles of RBDS001runT35.c3d and
-# 20160226T120637_run.c3d; problems/stance_knee.py prints them). A stride whose stance knee
-# flexes beyond CROUCH_DEG (half again a runner's) is a crouched run, far from a runner's,
-# whatever its cost says (`Stride.remarks`): the torque+springs rung's knee spring on Hermite-Simpson
-# crouches to 103 deg at 3.5 m/s (docs/concepts/stride.md, "The crouch").
-CROUCH_DEG = 60.0
 
 
 @dataclass
@@ -160,14 +152,13 @@ class Stride:
     @property
     def remarks(self) -> list[str]:
         """What a valid stride's headline must say besides its numbers: each phase held by a
-        duration bound, the other bounds of the solve it sits on (bounds.held_text), each
+        duration bound, a crouch or a stiff landing (checks.unlike_a_runner), the other bounds
+        of the solve it sits on (bounds.held_text), each
         sliding touchdown, and each sticking impact on the friction cone's edge (valid: the
         no-slip condition is |p_t| <= mu p_n, and Coulomb's sticking mode ends there; but it
         uses all the friction, so the friction sets the optimum there)."""
         out = [self.bound_text()] if self.on_bound else []
-        out += [f"a crouched stance: the stance knee flexes to {self.stance_knee_deg:.0f} deg, far beyond a "
-                "runner's 37-44 deg at 2.5-4.5 m/s (RBDS001 and RIC's runner)"] \
-            if self.stance_knee_deg > CROUCH_DEG else []
+        out += unlike_a_runner(self.stance_knee_deg, self.budget.get("impacts_J", 0.0))
         out += [held_text(self.held)] if self.held else []
         out += self.slides
         return out + [f"{i['point']} impact of leg {i['leg']} on the friction cone's edge (mu_c "

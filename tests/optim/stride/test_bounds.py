@@ -23,7 +23,7 @@ def test_a_phase_on_its_duration_bound_is_named_in_the_remarks():
     found = on_bounds(durations, bounds)
     assert [(b["phase"], b["side"]) for b in found] == [("heel", "low"), ("forefoot", "high")]
     s = Stride.__new__(Stride)
-    s.on_bound, s.held, s.impacts, s.friction = found, [], [], 0.8
+    s.on_bound, s.held, s.impacts, s.friction, s.budget = found, [], [], 0.8, {}
     assert s.remarks[0].startswith("heel phase 10.0 ms on its low bound (10 ms)")
     assert not on_bounds([("heel", low + 2 * ON_BOUND_S)], bounds)
 

@@ -17,6 +17,7 @@ from formopt.optim.stride import StrideNLP, StrideSettings, optimum
 from formopt.optim.stride.collocation import NX
 from formopt.optim.stride.contact import CLEARANCE, height
 from formopt.optim.stride.ocp import Release, StrideProblem
+from formopt.optim.stride.problem import MOMENT_TIME, RUNNER_ANKLE
 from formopt.optim.stride.transcription import HermiteSimpson, Trapezoid
 
 NODES, SPEED, G = 18, 3.5, 9.81
@@ -143,6 +144,24 @@ def test_the_muscles_release_with_no_force():
     problem = StrideProblem(JointSpace(paper_body()), settings)
     releases = [t for t in problem.transitions if isinstance(t, Release)]
     assert len(releases) == 2 and all(t.dropped for t in releases)
+
+
+def test_moment_dynamics_release_with_no_force_on_hermite_simpson():
+    """With moment dynamics (the torque scenes' stride, problem.MOMENT_TIME) the moments are
+    states, so the dropped points' normal forces reach zero at their phase's end on
+    Hermite-Simpson too: the stance does not end pushing (0.9-1.5 body weights with moments that
+    jump)."""
+    settings = StrideSettings(strike="forefoot", nodes=NODES, transcription="hermite-simpson",
+                              moment_time=MOMENT_TIME, tendons=RUNNER_ANKLE)
+    releases = [t for t in StrideProblem(JointSpace(paper_body()), settings).transitions if isinstance(t, Release)]
+    assert len(releases) == 2 and all(t.dropped for t in releases)
+
+
+def test_hermite_simpsons_torque_rungs_perturb_the_constraints_at_every_iteration(hermite, uphill):
+    """collocation.TORQUE_HERMITE_IPOPT on Hermite-Simpson's torque rungs only (the trapezoid's
+    and the muscles' options unchanged)."""
+    assert hermite[0].options["perturb_always_cd"] == "yes"
+    assert "perturb_always_cd" not in uphill[0].options
 
 
 def test_the_period_moves_the_hip_one_step_along_the_slope(uphill):

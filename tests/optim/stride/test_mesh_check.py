@@ -1,8 +1,8 @@
 """optim.stride.refine: a stride solved again on twice its nodes from itself, and what that moved
-(MeshCheck; issue 34 item 2). The shipped stride scene (paper body, heel, torque+springs) at 24
-nodes, one start, checked on 48 once for the module; the record's fields and changes, `converged`
-against the tolerance on constructed records, the finer solve's start, the scene key's errors and
-`formopt stride --mesh-check` end to end. No new expression IPOPT sees: nothing for
+(MeshCheck; issue 34 item 2). The shipped stride scene (paper body, heel, torque+springs,
+Hermite-Simpson) at 24 intervals, one start, checked on 48 once for the module; the record's
+fields and changes, `converged` against the tolerance on constructed records, the finer solve's
+start, the scene key's errors and `formopt stride --mesh-check` end to end. No new expression IPOPT sees: nothing for
 test_derivatives.py."""
 
 import json
@@ -153,7 +153,8 @@ def test_the_command_reports_the_check(coarse, checked, tmp_path, capsys, monkey
     assert check["nodes"] == [NODES, 2 * NODES] and report["strides"][0]["mesh_check"] == check
     assert check["cadence_spm"][0] == pytest.approx(stride.cadence_spm)  # the reported stride: the N-node one
     assert report["cadence_spm"] == check["cadence_spm"][0]
-    assert report["mesh"].startswith(f"heel: 48 nodes, solved from this {NODES}-node stride, move the cadence")
+    assert report["mesh"].startswith(f"heel: 48 intervals, solved from this {NODES}-interval stride, move the "
+                                     "cadence")  # the scene's Hermite-Simpson
 
 
 def test_the_fine_stride_is_judged_as_the_stride(coarse, monkeypatch):

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from formopt.optim.stride.problem import StrideSettings
-from formopt.optim.stride.result import CROUCH_DEG, RESERVE_WINDOW_S, TOLERANCES, Stride, rank, reserve_mean
+from formopt.optim.stride.checks import CROUCH_DEG, STIFF_LANDING_J
+from formopt.optim.stride.result import RESERVE_WINDOW_S, TOLERANCES, Stride, rank, reserve_mean
 
 
 def _stride(valid, success, objective):
@@ -26,7 +27,7 @@ def test_valid_before_invalid_converged_before_not_then_the_cost():
 def _checked(checks, impacts=(), success=True):
     """A Stride's validity from its checks alone (the other fields are not read)."""
     s = Stride.__new__(Stride)
-    s.checks, s.impacts, s.success, s.held = checks, list(impacts), success, []
+    s.checks, s.impacts, s.success, s.held, s.budget = checks, list(impacts), success, [], {}
     return s
 
 
@@ -84,6 +85,18 @@ def test_a_crouched_stance_is_remarked():
     assert s.remarks == [f"a crouched stance: the stance knee flexes to {CROUCH_DEG + 25:.0f} deg, far beyond a "
                          "runner's 37-44 deg at 2.5-4.5 m/s (RBDS001 and RIC's runner)"]
     assert s.valid  # a remark, not a check: the model's stride, not a runner's
+
+
+def test_a_stiff_landing_is_remarked():
+    """Impacts beyond STIFF_LANDING_J a step (a runner's touchdown absorbs 0.5-2.7 J) are said; the
+    torque scenes' heel and forefoot strides' 2-6 J are not."""
+    s = _checked({})
+    s.on_bound, s.friction = [], 0.8
+    s.budget = {"impacts_J": 5.5}
+    assert s.remarks == []
+    s.budget = {"impacts_J": STIFF_LANDING_J + 18.1}
+    assert s.remarks == ["a stiff landing: the impacts take 28 J a step, where a runner's touchdown absorbs "
+                         "0.5-2.7 J (formopt compare on RBDS001 and RIC's runner)"] and s.valid
 
 
 def test_the_reserves_mean_over_their_window():
