@@ -3,8 +3,10 @@
     python problems/stride_angles.py [--speed 3.5] [--rungs torque+springs muscles]
                                      [--strikes heel] [--figure out/angles.png] [--markers]
 
-Each rung is the shipped scene stride_rbds001.toml (torque+springs, effort, 40 nodes), the
-muscles with its [stride.tendons] and objective dropped and actuation = "muscles" (metabolic).
+Each rung is the shipped scene stride_rbds001.toml (torque+springs, effort, Hermite-Simpson at 40
+intervals since 2026-11-28), the muscles with its torque rung's keys dropped (tendons, objective,
+transcription, impact weight, approach floor, moment dynamics: the muscles' trapezoid at 40 nodes)
+and actuation = "muscles" (metabolic).
 Per joint the RMS of d = predicted - measured (studies.stride.compare_cycle) taken apart as a
 biomechanist reads it: the mean offset (a definition or a posture), the best circular time shift
 of the offset-removed curve (within +-SHIFT_MAX % of the cycle; positive: the prediction late)
@@ -50,8 +52,8 @@ def solve(rung: str, strike: str, speed: float):
     """The best stride of the shipped RBDS001 scene on `rung` ("torque+springs" or "muscles")."""
     data = tomllib.loads(SCENE.read_text())
     if rung == "muscles":
-        for key in ("tendons", "objective"):
-            data["stride"].pop(key)
+        for key in ("tendons", "objective", "transcription", "impact_weight", "approach_speed_mps", "moment_time_s"):
+            data["stride"].pop(key, None)
         data["stride"]["actuation"] = "muscles"
     return api.stride(parse(data, str(SCENE)), speed, strike).best
 

@@ -78,12 +78,19 @@ def mean_cycle(m: Measurement, side: str = "R", points: int = 101) -> tuple[dict
             for k, name in names.items()}, len(cycles)
 
 
+# The share of a gait cycle from touchdown that holds a runner's stance knee peak (10-20 %) and
+# ends before the knee's swing flexion (after 40 %; toe-off at 30-37 %): `stance_knee_deg`'s window.
+STANCE_SHARE = 0.35
+
+
 def stance_knee_deg(m: Measurement, side: str = "R") -> tuple[float, int]:
     """The stance knee at its deepest: the mean cycle's (`mean_cycle`) knee flexion, thigh less
-    shank angle (deg), at its first local maximum after touchdown, and that maximum's place
-    (% of the cycle; a runner's falls at 10-20 %, before toe-off at 30-37 %). NaN and -1
-    without a cycle or a maximum."""
+    shank angle (deg), at its largest over the cycle's first STANCE_SHARE (a runner's peak falls
+    at 10-20 %, toe-off at 30-37 %, the knee's swing flexion after 40 %), and that maximum's place
+    (% of the cycle). NaN and -1 without a cycle."""
     angles, cycles = mean_cycle(m, side)
-    knee = np.degrees(angles["thigh"] - angles["shank"]) if cycles else np.array([])
-    peak = next((k for k in range(1, knee.size - 1) if knee[k - 1] <= knee[k] > knee[k + 1]), -1)
-    return (float(knee[peak]) if peak > 0 else float("nan")), peak
+    if not cycles:
+        return float("nan"), -1
+    knee = np.degrees(angles["thigh"] - angles["shank"])[:round(STANCE_SHARE * 100) + 1]
+    peak = int(np.argmax(knee))
+    return float(knee[peak]), peak

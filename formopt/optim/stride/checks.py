@@ -342,12 +342,13 @@ def swing_clearance(nlp: StrideNLP, blocks: dict, slope: float) -> float:
 # crouches to 103 deg at 3.5 m/s (docs/concepts/stride.md, "The crouch").
 CROUCH_DEG = 60.0
 # A runner's touchdown absorbs 0.5-1.0 J (RBDS001 at 2.5 and 3.5 m/s, forefoot steps) to 2.3-2.7 J
-# (RIC's runner, heel steps): formopt compare's measured T_c on problems/compare/runners.toml; the
-# torque scenes' heel and forefoot strides take 2-6 J a step over both their impacts (the landing
-# and the rest of the foot set down). A stride whose impacts take more than STIFF_LANDING_J lands
-# stiff, far from a runner's (`unlike_a_runner`): the flat strike whose second point arrives with
-# the first and stops the whole foot at once, 8-28 J at 2.5-4.5 m/s on the torque scenes
-# (docs/concepts/stride.md, "The torque scenes: one answer").
+# (RIC's runner, heel steps) under Coulomb's law, which holds them all, and 2.3-5.1 J held by
+# no-slip (one impact each: formopt compare's measured T_c on problems/compare/runners.toml, three
+# trials of two runners); the torque scenes' heel and forefoot strides take 1.2-5.4 J a step over
+# both their impacts (the landing and the rest of the foot set down). A stride whose impacts take
+# more than STIFF_LANDING_J a step lands stiff, far from a runner's (`unlike_a_runner`): the flat
+# strike whose second point arrives with the first and stops the whole foot at once, 15-28 J at
+# 3.5-4.5 m/s on the torque scenes, 8 J at 2.5 m/s (docs/concepts/stride.md, "The torque scenes").
 STIFF_LANDING_J = 10.0
 
 
@@ -357,7 +358,7 @@ def unlike_a_runner(stance_knee_deg: float, impacts_J: float) -> list[str]:
     out = [f"a crouched stance: the stance knee flexes to {stance_knee_deg:.0f} deg, far beyond a runner's "
            "37-44 deg at 2.5-4.5 m/s (RBDS001 and RIC's runner)"] if stance_knee_deg > CROUCH_DEG else []
     return out + ([f"a stiff landing: the impacts take {impacts_J:.0f} J a step, where a runner's touchdown "
-                   "absorbs 0.5-2.7 J (formopt compare on RBDS001 and RIC's runner)"]
+                   "absorbs 0.5-5 J (formopt compare on RBDS001 and RIC's runner, Coulomb or no-slip)"]
                   if impacts_J > STIFF_LANDING_J else [])
 
 

@@ -70,12 +70,13 @@ MUSCLE_IPOPT = {"mu_strategy": "monotone", "mu_init": 1e-2, "mumps_pivot_order":
 # at every iteration (perturb_always_cd; by default only where IPOPT finds the matrix singular,
 # which MUMPS's pivoting may not report: IPOPT then raised the Hessian's perturbation up to 1e11-
 # 1e14 at most iterations, a factorisation for each try). RBDS001 (62 kg, 1.81 m, 3.5 m/s, the
-# torque scenes' stride: problem.RUNNER_ANKLE), 40 intervals, the multi-start's 4 starts per
-# strike: without it one flat-strike start took 367 iterations and 430 s of CPU (the others 2-22 s),
-# with it every start 2.4-18 s and the same optima within 1e-5; with moment dynamics (12 ms) the
+# torque scenes' stride without moment dynamics: problem.RUNNER_ANKLE), 40 intervals, the
+# multi-start's 4 starts per strike: without it one flat-strike start took 367 iterations and 430 s
+# of CPU (the others 2-22 s), with it every start 2.4-18 s and the same optima within 1e-5; with
+# moment dynamics (12 ms) the
 # heel strike from the generic start in 97 iterations and 4.9 s instead of 342 and 19.7 s, and on
 # 40 intervals from that stride 41 iterations and 2.5 s instead of 619 and 63 s, to a 0.09 %
-# lower optimum (2026-11-28; docs/concepts/stride.md, "The torque scenes: one answer").
+# lower optimum (2026-11-28; docs/concepts/stride.md, "The torque scenes on Hermite-Simpson").
 TORQUE_HERMITE_IPOPT = {"perturb_always_cd": "yes"}
 # The muscles' start's solves at a lower reserve weight (local.muscle_start) from a barrier of 1e-3:
 # from the torque+springs optimum at weight 100, RBDS001 (heel, 40 nodes) at 2.5 / 3.5 / 4.5 m/s,

@@ -6,7 +6,14 @@ same cost, beside it too (`transcription_note`)."""
 
 from __future__ import annotations
 
-from .problem import FORCE_RATE_WEIGHT, MOMENT_TIME, RUNNER_ANKLE, RUNNER_IMPACT_WEIGHT, StrideSettings
+from .problem import (
+    APPROACH_SPEED,
+    FORCE_RATE_WEIGHT,
+    MOMENT_TIME,
+    RUNNER_ANKLE,
+    RUNNER_IMPACT_WEIGHT,
+    StrideSettings,
+)
 
 # How far a stride's optimum moved with its mesh, N to 2N intervals (docs/concepts/stride.md,
 # "One answer"): every stride says it beside its numbers (`mesh_note`). Measured with Riener &
@@ -32,26 +39,30 @@ MESH_FINE = {"hermite-simpson": (40, "under 0.3 % in cadence and 0.2 % in cost f
                                      "`--mesh-check` measures your stride")}
 
 # The torque scenes' stride (problem.RUNNER_ANKLE: Hermite-Simpson, the ankle's spring, the impacts
-# charged, moment dynamics; docs/concepts/stride.md, "The torque scenes: one answer"), 40 -> 80
+# charged, moment dynamics; docs/concepts/stride.md, "The torque scenes on Hermite-Simpson"), 40 -> 80
 # intervals from the generic start (python problems/stride_mesh.py --cadence 0 --tendons knee=0
 # --impact-weight 4 --approach-speed 0.05 --moment-time 0.012 --strike S --speed V; the solver's
 # options of collocation.TORQUE_HERMITE_IPOPT, 2026-11-28): RBDS001's body, heel 171.9 / 178.5 /
 # 184.0 steps/min at 2.5 / 3.5 / 4.5 m/s, cadence -0.17 / -0.02 / +0.09 %, cost -0.29 / -0.08 /
 # -0.14 %; forefoot 181.5 and 179.0 at 3.5 and 4.5 m/s, +0.04 / +0.08 % and -0.22 / -0.23 %;
 # another lab's runner (79 kg, 1.77 m, 3.37 m/s) heel 177.1, +0.01 / -0.10 %, forefoot 178.8,
-# +0.03 / -0.19 %. The 80-interval solves of the flat strike (2.5-4.5 m/s) and of the forefoot at
-# 2.5 m/s stopped at IPOPT's 1000 iterations, their cost 0.19-1.07 % below the 40-interval one's.
+# +0.03 / -0.19 %. The 80-interval solves of the flat strike (2.5 and 4.5 m/s: 1000 iterations;
+# 3.5 m/s: stopped after 720) and of the forefoot at 2.5 m/s (1000) did not converge, their cost
+# 0.19-1.07 % below the 40-interval one's; the forefoot strides' flat phase sits on its 30 ms floor.
 RUNNER_MESH = ("under 0.2 % in cadence and 0.3 % in cost from 40 to 80 intervals on RBDS001's body (heel at "
-               "2.5-4.5 m/s, forefoot at 3.5 and 4.5) and another lab's runner (3.37 m/s), but the flat strike's "
-               "80-interval solves stopped at IPOPT's iteration limit, 0.2-1.1 % cheaper")
+               "2.5-4.5 m/s, forefoot at 3.5 and 4.5) and another lab's runner (heel and forefoot, 3.37 m/s); "
+               "the 80-interval solves of the flat strike (2.5-4.5 m/s) and of the forefoot at 2.5 m/s did not "
+               "converge, 0.2-1.1 % cheaper")
 
 
 def _runner(settings: StrideSettings) -> bool:
-    """The torque scenes' stride (problem.RUNNER_ANKLE, RUNNER_IMPACT_WEIGHT, MOMENT_TIME on
-    Hermite-Simpson): what RUNNER_MESH was measured with."""
+    """The torque scenes' stride (the effort objective with problem.RUNNER_ANKLE,
+    RUNNER_IMPACT_WEIGHT, MOMENT_TIME and APPROACH_SPEED on Hermite-Simpson): what RUNNER_MESH
+    was measured with."""
     springs = {joint: k for joint, k in settings.tendons.items() if k}
-    return (settings.muscles is None and settings.transcription == "hermite-simpson" and springs == RUNNER_ANKLE
-            and settings.impact_weight == RUNNER_IMPACT_WEIGHT and settings.moment_time == MOMENT_TIME)
+    return (settings.muscles is None and settings.objective == "effort" and settings.transcription == "hermite-simpson"
+            and springs == RUNNER_ANKLE and settings.impact_weight == RUNNER_IMPACT_WEIGHT
+            and settings.moment_time == MOMENT_TIME and settings.approach_speed == APPROACH_SPEED)
 
 
 # The muscles' trapezoid from 40 to 80 nodes (RBDS001, heel and forefoot, 2.5 / 3.5 / 4.5 m/s,
@@ -121,7 +132,7 @@ def mesh_note(settings: StrideSettings) -> str:
                 "stride.md, 'A mesh graded toward the phases' ends')")
     if _runner(settings) and settings.nodes >= 40 and not settings.grading:
         return (f"hermite-simpson at {settings.nodes} intervals: the torque scenes' effort optimum moved "
-                f"{RUNNER_MESH} (docs/concepts/stride.md, 'The torque scenes: one answer')")
+                f"{RUNNER_MESH} (docs/concepts/stride.md, 'The torque scenes on Hermite-Simpson')")
     least, shift = MESH_FINE.get(settings.transcription, (None, ""))
     if least is not None and settings.nodes >= least:
         return (f"{settings.transcription} at {settings.nodes} intervals: the effort optimum moved {shift} "
@@ -129,4 +140,4 @@ def mesh_note(settings: StrideSettings) -> str:
     return (f"{settings.transcription} at {settings.nodes} intervals is not mesh-converged: on RBDS001's body "
             f"the effort optimum moved {MESH_SHIFT[settings.transcription]} (the torque scenes' stride, on "
             "hermite-simpson from 40 intervals with moment dynamics, moved under 0.3 %: docs/concepts/stride.md, "
-            "'The torque scenes: one answer')")
+            "'The torque scenes on Hermite-Simpson')")

@@ -230,17 +230,18 @@ TENDON_JOINTS = ("hip", "knee", "ankle")
 # Chosen among two settings on one runner, not fitted: docs/concepts/stride.md.
 RUNNER_TENDONS = {"knee": 2.5, "ankle": 4.0}
 # The torque scenes' stride (formopt/scenes/stride.toml and stride_rbds001.toml; docs/concepts/
-# stride.md, "The torque scenes: one answer", 2026-11-28): Hermite-Simpson at 40 intervals, the
+# stride.md, "The torque scenes on Hermite-Simpson", 2026-11-28): Hermite-Simpson at 40 intervals, the
 # ankle's spring alone (RUNNER_ANKLE), the impacts' T_c charged at the metabolic price of the
 # positive work that replaces it (RUNNER_IMPACT_WEIGHT = 1 / EFFICIENCY_POSITIVE, on the cost of
-# transport's scale 1 / (m g d) that the metabolic objective uses: costs.py), moment dynamics
+# transport's scale 1 / (m g d) that the metabolic objective uses: costs.py; the effort objective
+# has no metabolic units, so the weight is borrowed from that scale, a choice), moment dynamics
 # (MOMENT_TIME) and every impact approaching at least at APPROACH_SPEED. Why each part:
 # - RUNNER_TENDONS' knee spring, engaged at touchdown and paid by no muscle, made Hermite-
 #   Simpson's strides crouch (the stance knee to 79-103 deg, the spring's 3.9 N m/kg at 103 deg
 #   against RBDS001's peak knee moment of 2.6-3.1; a runner's knee flexes to 37-44 deg);
 # - without it and with the impacts free the strides land stiff (35-42 J a step); charged at
 #   weight 1 a flat strike still lands with 35 J and is the least costly (its effort 40 % lower);
-# - moments that jump let Hermite-Simpson's stance end with the forefoot pushing 0.9-1.5 body
+# - moments that jump let Hermite-Simpson's stance end with the forefoot pushing 0.4-2.1 body
 #   weights (a runner's force falls to zero): with moment dynamics the release holds it at zero
 #   (ocp.Release), and IPOPT converges in tens of iterations (collocation.TORQUE_HERMITE_IPOPT);
 # - without the approach floor the forefoot strike's heel comes down grazing (7.6 mm/s), where

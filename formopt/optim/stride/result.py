@@ -29,7 +29,15 @@ from ...mechanics import muscles as hill
 from ...mechanics.joint_space import GRAVITY, JOINTS
 from .actuation import MuscleDriven
 from .bounds import held_by_bounds, held_text, on_bounds
-from .checks import deepest_stance_knee, drift, forward, half_period, impact_check, swing_clearance, unlike_a_runner
+from .checks import (
+    deepest_stance_knee,
+    drift,
+    forward,
+    half_period,
+    impact_check,
+    swing_clearance,
+    unlike_a_runner,
+)
 from .collocation import NX, StrideNLP
 from .layout import Solved
 from .ocp import INTEGRANDS, Impact, periodicity, step_length

@@ -149,12 +149,15 @@ def test_the_muscles_release_with_no_force():
 def test_moment_dynamics_release_with_no_force_on_hermite_simpson():
     """With moment dynamics (the torque scenes' stride, problem.MOMENT_TIME) the moments are
     states, so the dropped points' normal forces reach zero at their phase's end on
-    Hermite-Simpson too: the stance does not end pushing (0.9-1.5 body weights with moments that
-    jump)."""
-    settings = StrideSettings(strike="forefoot", nodes=NODES, transcription="hermite-simpson",
-                              moment_time=MOMENT_TIME, tendons=RUNNER_ANKLE)
-    releases = [t for t in StrideProblem(JointSpace(paper_body()), settings).transitions if isinstance(t, Release)]
-    assert len(releases) == 2 and all(t.dropped for t in releases)
+    Hermite-Simpson too: the stance does not end pushing (0.4-2.1 body weights with moments that
+    jump, which hold no such row)."""
+    def releases(moment_time):
+        settings = StrideSettings(strike="forefoot", nodes=NODES, transcription="hermite-simpson",
+                                  moment_time=moment_time, tendons=dict(RUNNER_ANKLE))
+        problem = StrideProblem(JointSpace(paper_body()), settings)
+        return [t for t in problem.transitions if isinstance(t, Release)]
+    assert len(releases(MOMENT_TIME)) == 2 and all(t.dropped for t in releases(MOMENT_TIME))
+    assert not any(t.dropped for t in releases(0.0))
 
 
 def test_hermite_simpsons_torque_rungs_perturb_the_constraints_at_every_iteration(hermite, uphill):
@@ -162,6 +165,9 @@ def test_hermite_simpsons_torque_rungs_perturb_the_constraints_at_every_iteratio
     and the muscles' options unchanged)."""
     assert hermite[0].options["perturb_always_cd"] == "yes"
     assert "perturb_always_cd" not in uphill[0].options
+    muscles = StrideSettings(strike="heel", nodes=NODES, muscles=body_muscles(scaled_body(62.0, 1.81)),
+                             objective="metabolic", transcription="hermite-simpson")
+    assert "perturb_always_cd" not in StrideNLP(JointSpace(paper_body()), muscles).options
 
 
 def test_the_period_moves_the_hip_one_step_along_the_slope(uphill):
