@@ -9,8 +9,8 @@ solve at the setting's reserve weight from that (cold) and 0.1 m/s faster from i
 (StrideNLP.resolve, warm). Per stage: user and system CPU s (the process's threads), minor page
 faults, IPOPT's iterations, the objective and the cadence, so that an option's effect on the
 speed is seen apart from its effect on the optimum. `--ipopt` IPOPT options over collocation's
-for every muscle solve, `--continuation` over collocation.CONTINUATION_IPOPT for the
-continuation's, `--warm` over collocation.MUSCLE_WARM_START for the warm start (a what-if:
+for every muscle solve, `--continuation` over ipopt_options.CONTINUATION_IPOPT for the
+continuation's, `--warm` over ipopt_options.MUSCLE_WARM_START for the warm start (a what-if:
 the module's dict updated). Measure only.
 """
 
@@ -24,7 +24,7 @@ from stride_muscles import rung_settings
 
 from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import JointSpace
-from formopt.optim.stride import StrideNLP, collocation
+from formopt.optim.stride import StrideNLP, ipopt_options
 from formopt.optim.stride.checks import half_period
 from formopt.optim.stride.guess import ballistic, from_torques
 from formopt.optim.stride.local import torque_start
@@ -51,7 +51,7 @@ def main():
     parser.add_argument("--continuation", type=json.loads, default={}, help="over CONTINUATION_IPOPT (JSON)")
     parser.add_argument("--warm", type=json.loads, default={}, help="over MUSCLE_WARM_START (JSON)")
     args = parser.parse_args()
-    collocation.MUSCLE_WARM_START.update(args.warm)
+    ipopt_options.MUSCLE_WARM_START.update(args.warm)
     body, v = scaled_body(62.0, 1.81), args.speed
     nlp = StrideNLP(JointSpace(body), rung_settings("muscles", body, args.nodes), args.ipopt, False)
     print(f"RBDS001's body, heel, {args.nodes} nodes, {v:g} m/s, interpreted; CPU s")
@@ -59,7 +59,7 @@ def main():
     torques = stage("torque+springs", base, lambda: base.solve(ballistic(base, v), v))
     start = from_torques(nlp, base, torques)
     for weight in (w for w in RESERVE_CONTINUATION if w < nlp.settings.reserve_weight):
-        step = nlp.variant({**collocation.CONTINUATION_IPOPT, **args.continuation}, reserve_weight=weight)
+        step = nlp.variant({**ipopt_options.CONTINUATION_IPOPT, **args.continuation}, reserve_weight=weight)
         start = stage(f"reserves {weight:g}", step, lambda: step.solve(start, v)).blocks  # noqa: B023
     cold = stage(f"reserves {nlp.settings.reserve_weight:g}", nlp, lambda: nlp.solve(start, v))
     stage(f"warm {v + 0.1:g} m/s", nlp, lambda: nlp.resolve(cold, v + 0.1))

@@ -34,7 +34,7 @@ change with its share of the objective's (where the cost's drift sits), and at t
 order and Richardson's limit (problems/stride_mesh.py's `convergence`). `--mu-init`: each finer
 mesh solved from the interpolated stride with IPOPT's barrier starting at each value, each
 reported; the first value's stride is the one the next mesh starts from. The default is the
-muscles' warm start's (collocation.MUSCLE_WARM_START, 3e-4), which keeps the iterate near the
+muscles' warm start's (ipopt_options.MUSCLE_WARM_START, 3e-4), which keeps the iterate near the
 stride it starts from; their cold solves' 1e-2 (MUSCLE_IPOPT) can leave it: at 2.5 m/s (heel)
 the search's 152.9 steps/min at 40 nodes went to 148.0 at 80 from 3e-4, to 170.2 (another
 optimum, 6 % costlier) from 1e-2. `--no-consistency-rows`: every mesh, the first one's too, with
@@ -90,7 +90,8 @@ from formopt.mechanics.body import scaled_body
 from formopt.mechanics.joint_space import JOINTS
 from formopt.optim.stride import checks, problem, ranges
 from formopt.optim.stride.actuation import ACTIVATION_RATE_SMOOTHING
-from formopt.optim.stride.collocation import MUSCLE_WARM_START, NX, build
+from formopt.optim.stride.collocation import NX, build
+from formopt.optim.stride.ipopt_options import MUSCLE_WARM_START
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.ocp import INTEGRANDS, step_length
 from formopt.optim.stride.problem import StrideSettings

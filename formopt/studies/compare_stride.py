@@ -425,7 +425,7 @@ def band_curves(nominal: Curve, variants: list[Variant], beside: Background, say
     RBDS001's four took 29/114/56/84 IPOPT iterations from the sliding one's primal values,
     7/8/8/8 from it on T25 (T35 84/52/55/68 -> 8/10/8/8, RIC 71/67/97/64 -> 16/9/9/10), the same
     optima (objective 3e-6-2.1e-5 higher: the warm start's stop above the optimum; 2026-11-27,
-    measured with IPOPT's complementarity tolerance 1e-4, before collocation.WARM_START's 1e-8,
+    measured with IPOPT's complementarity tolerance 1e-4, before ipopt_options.WARM_START's 1e-8,
     which ends it within 3e-7 for a few iterations more). Another objective's starts from the
     sliding one's primal values, as before: the metabolic's from the sticking one's was cheaper
     on T25 (objective 0.1776 -> 0.0748) and costlier on T35 (0.1840 -> 0.2089), its landscape's

@@ -10,8 +10,9 @@ import numpy as np
 
 from .actuation import ACTIVATION_RATE_SMOOTHING
 from .checks import impact_check
-from .collocation import CONTINUATION_IPOPT, NX, StrideNLP
+from .collocation import NX, StrideNLP
 from .guess import ballistic, fitted, from_torques, perturbed, slide_guess
+from .ipopt_options import CONTINUATION_IPOPT
 from .layout import Solved
 from .problem import RESERVE_CONTINUATION, RUNNER_TENDONS, SLIDING_PHASES
 from .result import Stride, rank, summarise
@@ -84,7 +85,7 @@ def muscle_start(nlp: StrideNLP, speed: float, slope: float, mu: float, cadence:
     trapezoid) of the same strike and mesh from the generic guess, its net moments split among
     the muscles (guess.from_torques), then the muscles' optimum at each reserve weight of
     problem.RESERVE_CONTINUATION below the setting's, each from the one before (IPOPT's barrier
-    from collocation.CONTINUATION_IPOPT's unless the NLP's own options set it; a cold solve at
+    from ipopt_options.CONTINUATION_IPOPT's unless the NLP's own options set it; a cold solve at
     the default 10000 ends in a costlier optimum: problem.RESERVE_WEIGHT). From the generic
     guess itself the muscle NLP did not converge in 600 iterations (RBDS001, heel, 40 nodes,
     3.5 m/s, 2026-11-25)."""

@@ -42,7 +42,7 @@ MESH_FINE = {"hermite-simpson": (40, "under 0.3 % in cadence and 0.2 % in cost f
 # charged, moment dynamics; docs/concepts/stride.md, "The torque scenes on Hermite-Simpson"), 40 -> 80
 # intervals from the generic start (python problems/stride_mesh.py --cadence 0 --tendons knee=0
 # --impact-weight 4 --approach-speed 0.05 --moment-time 0.012 --strike S --speed V; the solver's
-# options of collocation.TORQUE_HERMITE_IPOPT, 2026-11-28): RBDS001's body, heel 171.9 / 178.5 /
+# options of ipopt_options.TORQUE_HERMITE_IPOPT, 2026-11-28): RBDS001's body, heel 171.9 / 178.5 /
 # 184.0 steps/min at 2.5 / 3.5 / 4.5 m/s, cadence -0.17 / -0.02 / +0.09 %, cost -0.29 / -0.08 /
 # -0.14 %; forefoot 181.5 and 179.0 at 3.5 and 4.5 m/s, +0.04 / +0.08 % and -0.22 / -0.23 %;
 # another lab's runner (79 kg, 1.77 m, 3.37 m/s) heel 177.1, +0.01 / -0.10 %, forefoot 178.8,

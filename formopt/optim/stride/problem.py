@@ -243,7 +243,7 @@ RUNNER_TENDONS = {"knee": 2.5, "ankle": 4.0}
 #   weight 1 a flat strike still lands with 35 J and is the least costly (its effort 40 % lower);
 # - moments that jump let Hermite-Simpson's stance end with the forefoot pushing 0.4-2.1 body
 #   weights (a runner's force falls to zero): with moment dynamics the release holds it at zero
-#   (ocp.Release), and IPOPT converges in tens of iterations (collocation.TORQUE_HERMITE_IPOPT);
+#   (ocp.Release), and IPOPT converges in tens of iterations (ipopt_options.TORQUE_HERMITE_IPOPT);
 # - without the approach floor the forefoot strike's heel comes down grazing (7.6 mm/s), where
 #   the impulse and its cone's rows vanish together.
 # What it gives, 40 -> 80 intervals, is optim.stride.notes.RUNNER_MESH's.

@@ -4,7 +4,7 @@ the record of what that moved (`MeshCheck`).
 `refined`: the stride's node histories interpolated onto the other mesh at both meshes' node
 times (guess.fitted), solved there from them (local.optimum, its touchdown mode decided again
 under Coulomb) at the stride's own speed, slope, friction and imposed cadence. The muscles from
-IPOPT's barrier at collocation.MUSCLE_WARM_START (3e-4), which keeps the iterate near the stride
+IPOPT's barrier at ipopt_options.MUSCLE_WARM_START (3e-4), which keeps the iterate near the stride
 it starts from: from their cold solves' 1e-2 the heel stride at 2.5 m/s went from 152.9
 steps/min at 40 nodes to another optimum at 80 (170.2, 6 % costlier; from 3e-4: 148.0,
 problems/muscle_mesh.py). The torque rungs with the NLP's own options, as problems/stride_mesh.py
@@ -21,8 +21,9 @@ import time
 from dataclasses import asdict, dataclass
 
 from ...mechanics.errors import InputError
-from .collocation import MUSCLE_WARM_START, StrideNLP
+from .collocation import StrideNLP
 from .guess import fitted
+from .ipopt_options import MUSCLE_WARM_START
 from .layout import Solved
 from .local import best_of, optimum
 from .ranges import RANGES

@@ -161,7 +161,7 @@ def test_moment_dynamics_release_with_no_force_on_hermite_simpson():
 
 
 def test_hermite_simpsons_torque_rungs_perturb_the_constraints_at_every_iteration(hermite, uphill):
-    """collocation.TORQUE_HERMITE_IPOPT on Hermite-Simpson's torque rungs only (the trapezoid's
+    """ipopt_options.TORQUE_HERMITE_IPOPT on Hermite-Simpson's torque rungs only (the trapezoid's
     and the muscles' options unchanged)."""
     assert hermite[0].options["perturb_always_cd"] == "yes"
     assert "perturb_always_cd" not in uphill[0].options
