@@ -49,7 +49,8 @@ MESH_FINE = {"hermite-simpson": (40, "under 0.3 % in cadence and 0.2 % in cost f
 # +0.03 / -0.19 %. The 80-interval solves of the flat strike (2.5 and 4.5 m/s: 1000 iterations;
 # 3.5 m/s: stopped after 720) and of the forefoot at 2.5 m/s (1000) did not converge, their cost
 # 0.19-1.07 % below the 40-interval one's; the forefoot strides' flat phase sits on its 30 ms floor.
-RUNNER_MESH = ("under 0.2 % in cadence and 0.3 % in cost from 40 to 80 intervals on RBDS001's body (heel at "
+RUNNER_SHIFT = "under 0.2 % in cadence and 0.3 % in cost from 40 to 80 intervals"
+RUNNER_MESH = (f"{RUNNER_SHIFT} on RBDS001's body (heel at "
                "2.5-4.5 m/s, forefoot at 3.5 and 4.5) and another lab's runner (heel and forefoot, 3.37 m/s); "
                "the 80-interval solves of the flat strike (2.5-4.5 m/s) and of the forefoot at 2.5 m/s did not "
                "converge, 0.2-1.1 % cheaper")
@@ -139,5 +140,5 @@ def mesh_note(settings: StrideSettings) -> str:
                 "(docs/concepts/stride.md, 'One answer')")
     return (f"{settings.transcription} at {settings.nodes} intervals is not mesh-converged: on RBDS001's body "
             f"the effort optimum moved {MESH_SHIFT[settings.transcription]} (the torque scenes' stride, on "
-            "hermite-simpson from 40 intervals with moment dynamics, moved under 0.3 %: docs/concepts/stride.md, "
+            f"hermite-simpson with moment dynamics, moved {RUNNER_SHIFT}: docs/concepts/stride.md, "
             "'The torque scenes on Hermite-Simpson')")
