@@ -17,7 +17,7 @@ import numpy as np
 from ..io.stride_scene import StrideScene
 from ..mechanics.errors import InputError
 from ..optim.stride import Stride, global_optimum, optimum, ranges, rank
-from ..optim.stride.notes import mesh_note, transcription_note
+from ..optim.stride.notes import mesh_cost_pct, mesh_note, transcription_note
 from ..optim.stride.problem import STRIKES
 from ..optim.stride.refine import fine_nodes, mesh_check
 from ..optim.stride.search import solves_planned
@@ -41,6 +41,8 @@ class StrideStudy:
     # what the other transcription finds for the scene's cost at free cadence
     # (optim.stride.notes.transcription_note; "" with the cadence imposed)
     transcription: str = ""
+    # the strikes the model cannot order: costs apart by less than their mesh moves them (`tie_note`)
+    tie: str = ""
 
     @property
     def best(self) -> Stride:
@@ -55,7 +57,7 @@ class StrideStudy:
                  "mesh_check": None if s.mesh_check is None else s.mesh_check.to_dict()}
                 for s in self.strides]
         return {"scene": self.scene, **self.best.to_dict(), "strides": rows, "mesh": self.mesh,
-                "search_note": self.search, "transcription_note": self.transcription}
+                "search_note": self.search, "transcription_note": self.transcription, "tie_note": self.tie}
 
 
 def run(scene: StrideScene, speed: float | None = None, strike: str | None = None,
@@ -94,7 +96,35 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
         f"the best of {scene.starts} start{'s' if scene.starts > 1 else ''} per strike: a local optimum, the cadences "
         "not searched ([stride] search = \"global\" searches them: docs/concepts/stride.md, 'One answer')")
     return StrideStudy(scene.name, strides, mesh_text(strides) if scene.mesh_check else mesh_note(scene.settings),
-                       local, transcription_note(scene.settings) if scene.cadence is None else "")
+                       local, transcription_note(scene.settings) if scene.cadence is None else "",
+                       tie_note(strides, mesh_cost_pct(scene.settings)))
+
+
+def tie_note(strides: list[Stride], measured_pct: float | None) -> str:
+    """The strikes whose cost lies within the mesh's uncertainty of the best's, in words ("" when
+    none): valid, converged strides (ranked, the best first) whose objective is above the best's
+    by less than 100 (J - J_best) / |J_best| < u %, u the larger of the two strides' own mesh
+    checks' cost changes, or `measured_pct` (optim.stride.notes.mesh_cost_pct) for a stride not
+    checked; nothing is said where neither is known."""
+    sound = [s for s in strides if s.valid and s.success]
+    if len(sound) < 2:
+        return ""
+
+    def moved(s: Stride) -> float | None:
+        return measured_pct if s.mesh_check is None else abs(s.mesh_check.objective_change_pct)
+
+    best, tied = sound[0], []
+    for s in sound[1:]:
+        bounds = [u for u in (moved(best), moved(s)) if u is not None]
+        gap = 100.0 * (s.objective_value - best.objective_value) / abs(best.objective_value)
+        if bounds and gap < max(bounds):
+            tied.append((s, gap, max(bounds)))
+    if not tied:
+        return ""
+    others = "; ".join(f"{s.strike} ({s.cadence_spm:.1f} steps/min) {gap:.2f} % costlier, where the mesh "
+                       f"moves the cost by up to {u:.2f} %" for s, gap, u in tied)
+    return (f"the {best.strike} strike ({best.cadence_spm:.1f} steps/min) is the least costly, but {others}: "
+            "the model cannot tell these strikes apart, and either is its answer")
 
 
 def mesh_text(strides: list[Stride]) -> str:

@@ -159,3 +159,25 @@ def test_the_grading_key_reaches_the_settings():
     data = tomllib.loads(STRIDE_SCENES[0].read_text())
     data["stride"]["grading"] = 1.0
     assert parse(data).settings.grading == 1.0 and load(STRIDE_SCENES[0]).settings.grading == 0.0
+
+
+def test_strikes_within_the_mesh_uncertainty_are_said_to_tie():
+    """A scene's strikes whose costs differ by less than their mesh moves them are one answer
+    (studies.stride.tie_note): the mesh check's own change, else the measured figure."""
+    from types import SimpleNamespace
+
+    from formopt.studies.stride import tie_note
+
+    def stride(strike, objective, moved=None, valid=True):
+        check = None if moved is None else SimpleNamespace(objective_change_pct=moved)
+        return SimpleNamespace(strike=strike, objective_value=objective, cadence_spm=180.0, valid=valid,
+                               success=True, mesh_check=check)
+
+    forefoot, heel, flat = stride("forefoot", 1.0), stride("heel", 1.0004), stride("flat", 1.05)
+    said = tie_note([forefoot, heel, flat], 0.3)
+    assert "heel (180.0 steps/min) 0.04 % costlier" in said and "flat" not in said
+    assert tie_note([forefoot, heel, flat], None) == ""  # no figure known: nothing claimed
+    checked = [stride("forefoot", 1.0, -0.22), stride("heel", 1.0004, -0.08)]
+    assert "up to 0.22 %" in tie_note(checked, None)
+    assert tie_note([stride("forefoot", 1.0, 0.01), stride("heel", 1.0004, 0.02)], 0.3) == ""
+    assert tie_note([forefoot, stride("heel", 1.0004, valid=False)], 0.3) == ""  # an invalid stride is no answer
