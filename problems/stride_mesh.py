@@ -6,6 +6,7 @@ guess.fitted), so every mesh solves the same stride.
     python problems/stride_mesh.py [--speed 3.5] [--cadence 130 (0: free)]
                                    [--meshes hermite-simpson:20 hermite-simpson:40 hermite-simpson:80]
                                    [--moment-time 0.012 (s; moment dynamics)] [--approach-speed 0.05 (m/s)]
+                                   [--torque-velocity (the torque limit falls with the joint's rate)]
                                    [--smoothing 1e-5 (problem.SMOOTHING's weight, for this run)]
                                    [--smoothing-order 2 (that weight times (N / N_first)^2 at N)]
                                    [--no-release-row (no f_n = 0 row at a release)]
@@ -49,7 +50,8 @@ contact.FORCE_LIMIT, X at the joint ranges or STATE_RATE, U at the torque limit,
 bound), per phase its held rows' multipliers summed (a smooth optimum's fall as h: a sum that
 grows with the mesh is a row the transcription fights), its node rows on a bound (heights and
 clearance, friction cones) with their columns and multipliers and the three with the largest
-multipliers, and the other rows' inequalities on a bound (transitions, impacts); IPOPT's iterations and CPU seconds; at the end, per
+multipliers, and the other rows' inequalities on a bound (transitions, impacts), each joint's fastest
+rate (rad/s) over the half stride; IPOPT's iterations and CPU seconds; at the end, per
 quantity, the change from each mesh to the next and (three meshes, each twice the one before)
 the observed order and Richardson's limit (`convergence`). `--fix-durations`: each phase's duration
 on the finer meshes held at the first mesh's optimum's (within PIN), and so the cadence: whether the
@@ -175,12 +177,15 @@ def on_bounds(nlp, solved) -> tuple[list[str], list[str]]:
 
 
 def node_row_names(model) -> list[str]:
-    """A torque rung's node rows by name, in ocp.NodeModel's order: the free points' heights,
-    the held rows (J a + dJ v), the friction cones, the equations of motion, the power split."""
+    """A torque rung's node rows by name, in ocp.NodeModel's order: the torque-velocity limit's
+    (StrideSettings.torque_velocity), the free points' heights, the held rows (J a + dJ v), the
+    friction cones, the equations of motion, the power split."""
     contact = model.contact
     sticking = [p for p, a in contact.rows if a == "t" and p != contact.sliding]
-    return ([f"height {p}" for p in contact.free] + [f"held {contact.rows[k][0]} {contact.rows[k][1]}"
-                                                      for k in contact.held]
+    limit = [f"torque-velocity {j} {side}" for side in ("extensor", "flexor") for j in JOINTS] \
+        if getattr(model.actuation, "velocity", False) else []
+    return (limit + [f"height {p}" for p in contact.free]
+            + [f"held {contact.rows[k][0]} {contact.rows[k][1]}" for k in contact.held]
             + [f"cone {p} {side}" for p in sticking for side in "+-"] + [f"motion {t}" for t in THETA]
             + ([f"split {j}" for j in JOINTS] if model.split else []))
 
@@ -366,7 +371,8 @@ def mesh_token(text: str, grading: float) -> tuple[str, int, float]:
 
 def model_options(parser: argparse.ArgumentParser) -> None:
     """The runner's and the model's options: the speed, the strike, the body, the friction, the
-    stance knee's bound, the springs and the impacts' weight."""
+    stance knee's bound, the springs, the impacts' weight, the objective, moment dynamics, the
+    approach floor and the torque-velocity limit."""
     parser.add_argument("--speed", type=float, default=3.5)
     parser.add_argument("--mu", type=float, default=0.8, help="the friction coefficient")
     parser.add_argument("--strike", default="heel", choices=("heel", "forefoot", "flat"))
@@ -380,6 +386,12 @@ def model_options(parser: argparse.ArgumentParser) -> None:
                         help="StrideSettings.impact_weight (1/m): the impacts' T_c in the objective")
     parser.add_argument("--objective", default="effort", choices=OBJECTIVES[:-1],
                         help="StrideSettings.objective (the torque rungs')")
+    parser.add_argument("--moment-time", type=float, default=0.0,
+                        help="StrideSettings.moment_time (s): > 0, the moments as states (moment dynamics)")
+    parser.add_argument("--approach-speed", type=float, default=0.0,
+                        help="StrideSettings.approach_speed (m/s): each impact's least approach speed")
+    parser.add_argument("--torque-velocity", action="store_true",
+                        help="StrideSettings.torque_velocity: the torque limit falls with the joint's rate")
 
 
 def parse(argv) -> argparse.Namespace:
@@ -390,10 +402,6 @@ def parse(argv) -> argparse.Namespace:
                         help="transcription:intervals[:grading], e.g. trapezoid:40 or trapezoid:80:0.9")
     parser.add_argument("--figure", default="")
     model_options(parser)
-    parser.add_argument("--moment-time", type=float, default=0.0,
-                        help="StrideSettings.moment_time (s): > 0, the moments as states (moment dynamics)")
-    parser.add_argument("--approach-speed", type=float, default=0.0,
-                        help="StrideSettings.approach_speed (m/s): each impact's least approach speed")
     parser.add_argument("--smoothing", type=float, default=SMOOTHING,
                         help="the smoothing term's weight (problem.SMOOTHING) for this run")
     parser.add_argument("--smoothing-order", type=float, default=0.0,
@@ -487,6 +495,8 @@ def report(label: str, nlp, stride, seconds: float, speed: float) -> None:
     print(consistency_values(nlp, stride.solved))
     print("  variables on a bound: " + ("; ".join(blocks) or "-"))
     print("\n".join(f"  node rows, {r}" for r in rows), flush=True)
+    peaks = np.abs(np.asarray(stride.thetad, float)[:, 3:]).max(axis=0)
+    print("  fastest joint rates (rad/s): " + " ".join(f"{j} {v:.1f}" for j, v in zip(JOINTS, peaks)), flush=True)
 
 
 def study_nlp(args, body, settings: StrideSettings) -> StrideNLP:
@@ -528,7 +538,9 @@ def main(argv=None) -> int:
     body, stride, solved, objectives, cadences = scaled_body(*args.body), None, [], [], []
     print(f"body {args.body[0]:g} kg, {args.body[1]:g} m; {args.strike} strike, {args.speed:g} m/s, cadence "
           f"{args.cadence or 'free'}; springs {({**RUNNER_TENDONS, **dict(args.tendons)})}, impact weight "
-          f"{args.impact_weight:g}, objective {args.objective}, stance knee bound {args.stance_knee_max or '-'} deg, mu {args.mu:g}", flush=True)
+          f"{args.impact_weight:g}, objective {args.objective}, torque-velocity {args.torque_velocity}, rate bound "
+          f"{args.state_rate:g}, acceleration bound {args.acceleration:g}, stance knee bound "
+          f"{args.stance_knee_max or '-'} deg, mu {args.mu:g}", flush=True)
     durations = {**StrideSettings().duration, **{k: (v - PIN, v + PIN) for k, v in args.durations}}
     for transcription, nodes, grading in args.meshes:
         # costs.terms reads it when each NLP is built
@@ -538,7 +550,8 @@ def main(argv=None) -> int:
                                   tendons={**RUNNER_TENDONS, **dict(args.tendons)},
                                   transcription=transcription, moment_time=args.moment_time,
                                   approach_speed=args.approach_speed, duration=durations,
-                                  consistency_rows=args.consistency_rows, grading=grading)
+                                  consistency_rows=args.consistency_rows, grading=grading,
+                                  torque_velocity=args.torque_velocity)
         nlp = study_nlp(args, body, settings)
         clock = time.process_time()
         stride = refined(nlp, stride, solved[-1][1]) if solved else \

@@ -11,6 +11,9 @@ optim.stride.search at each speed, spend and node count.
                                      [--impact-weight 1 (1/m: StrideSettings.impact_weight)]
                                      [--approach-speed 0.05 (m/s: StrideSettings.approach_speed)]
                                      [--moment-time 0.012 (s: StrideSettings.moment_time)]
+                                     [--torque-velocity (StrideSettings.torque_velocity)]
+                                     [--state-rate 30 --acceleration 3000 (rad/s, rad/s^2:
+                                      collocation.STATE_RATE and ACCELERATION, for this run)]
 
 One row per speed, node count and spend (the spends innermost, then the node counts): cost
 (the objective, per distance), cadence (steps/min), their change (%) from the row before at the
@@ -37,7 +40,7 @@ from stride_mesh import tendon
 
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.body import scaled_body
-from formopt.optim.stride import problem
+from formopt.optim.stride import collocation, problem
 from formopt.optim.stride.collocation import build
 from formopt.optim.stride.local import optimum
 from formopt.optim.stride.problem import RUNNER_TENDONS, StrideSettings
@@ -66,7 +69,8 @@ def row(label: str, speed: float, nodes: int, stride, before, spent: dict | None
             f"{{{optima}}}  grid {profile or '-'}")
 
 
-def main(argv=None) -> int:
+def parse(argv) -> argparse.Namespace:
+    """The command line (module docstring); the rates' and accelerations' bounds set for the run."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--speeds", type=float, nargs="+", default=[2.5, 3.5, 4.5])
     parser.add_argument("--nodes", type=int, nargs="+", default=[40])
@@ -79,19 +83,31 @@ def main(argv=None) -> int:
     parser.add_argument("--impact-weight", type=float, default=0.0, help="StrideSettings.impact_weight (1/m)")
     parser.add_argument("--approach-speed", type=float, default=0.0, help="StrideSettings.approach_speed (m/s)")
     parser.add_argument("--moment-time", type=float, default=0.0, help="StrideSettings.moment_time (s)")
+    parser.add_argument("--torque-velocity", action="store_true", help="StrideSettings.torque_velocity")
+    parser.add_argument("--state-rate", type=float, default=collocation.STATE_RATE,
+                        help="the rates' bound (rad/s, collocation.STATE_RATE) for this run")
+    parser.add_argument("--acceleration", type=float, default=collocation.ACCELERATION,
+                        help="the accelerations' bound (rad/s^2, collocation.ACCELERATION) for this run")
     parser.add_argument("--actuation", default="torque+springs", choices=("torque+springs", "muscles"))
     args = parser.parse_args(argv)
+    collocation.STATE_RATE, collocation.ACCELERATION = args.state_rate, args.acceleration
     if args.tendons and args.actuation == "muscles":
         parser.error("--tendons: springs in parallel are the torque rung's; the muscles' tendons are in series")
+    return args
+
+
+def main(argv=None) -> int:
+    args = parse(argv)
     body = scaled_body(62.0, 1.81)
     actuation = ({"muscles": body_muscles(body), "objective": "metabolic"} if args.actuation == "muscles"
                  else {"tendons": {**RUNNER_TENDONS, **dict(args.tendons)}})
     model = StrideSettings(impact_weight=args.impact_weight, approach_speed=args.approach_speed,
-                           moment_time=args.moment_time, **actuation)
+                           moment_time=args.moment_time, torque_velocity=args.torque_velocity, **actuation)
     rung = ("muscles, metabolic" if args.actuation == "muscles" else
             f"{model.actuation} {({j: k for j, k in model.tendons.items() if k})}, effort, "
             f"impact weight {args.impact_weight:g}, approach speed {args.approach_speed:g} m/s, "
-            f"moment time {args.moment_time:g} s")
+            f"moment time {args.moment_time:g} s, torque-velocity {args.torque_velocity}, rate bound "
+            f"{args.state_rate:g} rad/s, acceleration bound {args.acceleration:g} rad/s^2")
     print(f"RBDS001's body (62 kg, 1.81 m), {args.strike} strike, "
           f"{rung}, {args.transcription}, "
           f"swing clearance {args.clearance:g} m",
@@ -106,6 +122,7 @@ def main(argv=None) -> int:
             settings = StrideSettings(strike=args.strike, nodes=nodes, transcription=args.transcription,
                                       clearance=args.clearance, impact_weight=args.impact_weight,
                                       approach_speed=args.approach_speed, moment_time=args.moment_time,
+                                      torque_velocity=args.torque_velocity,
                                       **actuation)
             nlp = build(body, settings)
             for starts in args.starts:

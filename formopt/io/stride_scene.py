@@ -24,7 +24,9 @@
               "metabolic": 2, the default, or 1: optim.stride.problem.FORCE_RATE_POWERS),
               approach_speed_mps (each impact's points reach the ground at least this fast, m/s;
               default 0: optim.stride.problem.APPROACH_SPEED), moment_time_s (the torque rungs'
-              moment dynamics' time, s; default 0, moments that jump: optim.stride.problem.MOMENT_TIME)
+              moment dynamics' time, s; default 0, moments that jump: optim.stride.problem.MOMENT_TIME),
+              torque_velocity (true: the torque rungs' limit falls with the joint's rate as its
+              muscles' force does, optim.stride.actuation.Torques.rows; default false)
 
 Every error names its key (SceneError, one line); degrees at this edge, SI inside.
 """
@@ -61,7 +63,7 @@ STRIDE_LAWS = ("no-slip", "coulomb")
 STRIDE_KEYS = {"speed_mps", "strike", "objective", "nodes", "impact_weight",
                "torque_limit_nm_per_kg", "cadence_spm", "max_iterations", "duration_s", "starts", "tendons",
                "transcription", "actuation", "clearance_m", "search", "spend", "grading", "mesh_check",
-               "force_rate_power", "approach_speed_mps", "moment_time_s"}
+               "force_rate_power", "approach_speed_mps", "moment_time_s", "torque_velocity"}
 
 
 @dataclass(frozen=True)
@@ -116,6 +118,9 @@ def _actuation(stride: dict, actuation: str, body: Body) -> tuple[dict, Muscles 
         if "moment_time_s" in stride:
             raise SceneError("stride.moment_time_s", "the torque rungs' moment dynamics: the muscles' moments "
                                                      "rise with their activations: remove the key")
+        if "torque_velocity" in stride:
+            raise SceneError("stride.torque_velocity", "the torque rungs' torque-velocity limit: the muscles' "
+                                                       "force-velocity is their own: remove the key")
         return {}, body_muscles(body)
     if actuation == "torque":
         return {}, None
@@ -147,6 +152,7 @@ def parse(data: dict, path: str = "") -> StrideScene:
     weight = val.number(stride, "impact_weight", "stride", default=0.0, limit=RANGES["impact_weight"])
     approach = val.number(stride, "approach_speed_mps", "stride", default=0.0, limit=RANGES["approach_speed_mps"])
     moment_time = val.number(stride, "moment_time_s", "stride", default=0.0, limit=RANGES["moment_time_s"])
+    velocity = val.flag(stride, "torque_velocity", "stride", default=False)
     torque = val.number(stride, "torque_limit_nm_per_kg", "stride", default=4.0,
                          limit=RANGES["torque_limit_nm_per_kg"])
     cadence = val.number(stride, "cadence_spm", "stride", limit=RANGES["cadence_spm"]) \
@@ -176,7 +182,7 @@ def parse(data: dict, path: str = "") -> StrideScene:
                                   duration=duration, max_iter=max_iter, tendons=tendons,
                                   transcription=transcription, muscles=muscles, clearance=clearance,
                                   grading=grading, force_rate_power=_force_rate_power(stride, objective, muscles),
-                                  approach_speed=approach, moment_time=moment_time)
+                                  approach_speed=approach, moment_time=moment_time, torque_velocity=velocity)
     except InputError as err:  # what only the settings check (e.g. a strike's least nodes)
         raise SceneError("stride", str(err)) from None
     return StrideScene(name, body, speed, math.radians(slope), friction, strike, settings,

@@ -43,6 +43,15 @@ OWN_INTEGRANDS = ("activation", "muscle_metabolic", "force_rate", "force_rate_ab
 # N m/kg/s (0 to 3 N m/kg in 3 ms), a numerical box the rate's cost keeps the optimum off.
 MOMENT_RATE_SCALE = 100.0  # N m/kg/s per unit control
 MOMENT_RATE_LIMIT = 10.0
+# omega_max per joint (rad/s): gait2d's muscles crossing it (io/data/gait2d_muscles.csv,
+# mechanics.muscles with v_max = 10 l_opt/s), sum F_max v_max / sum F_max |r|: their greatest
+# power over their greatest moment (a rigid tendon's view). Lengths scale with height and forces
+# cancel (mechanics.muscles.from_gait2d), so it is the same for every body; tests check it
+# against the table. A model's value, not a measured joint's: RBDS001's mean cycle (the data
+# set's processing) peaks at 11.2 / 10.8 rad/s at the knee / ankle at 3.5 m/s, 13.2 / 13.4 at 4.5.
+# The torque rungs' torque-velocity limit (StrideSettings.torque_velocity, `Torques.rows`) and the
+# joint-level metabolic cost (costs.joint_metabolic_rate) read it.
+JOINT_MAX_RATE = {"hip": 22.4, "knee": 23.7, "ankle": 12.7}
 # The transcription's smoothing (problem.SMOOTHING) charges the activations' rates a' (1/s) times
 # this scale (1/s, so in 1/s^2 as the accelerations' rad/s^2) beside the accelerations, their
 # changes between nodes alike (MuscleDriven.smoothed): a' is a control tied to the
@@ -67,10 +76,11 @@ class Torques:
     """Joint torque sources: tau = m u, u (N m/kg, one per joint) within +-`limit`; with
     `dynamic`, moment dynamics: tau = m z, z (N m/kg) a state within +-`limit`, z' =
     MOMENT_RATE_SCALE u, u within +-MOMENT_RATE_LIMIT, its integrand `moment_rates` |tau'|^2
-    ((N m/s)^2; costs.py weighs it)."""
+    ((N m/s)^2; costs.py weighs it); with `velocity`, the limit falls with the joint's rate as a
+    muscle's force does (`rows`)."""
 
-    def __init__(self, mass: float, limit: float, dynamic: bool = False):
-        self.mass, self.limit, self.dynamic = mass, limit, dynamic
+    def __init__(self, mass: float, limit: float, dynamic: bool = False, velocity: bool = False):
+        self.mass, self.limit, self.dynamic, self.velocity = mass, limit, dynamic, velocity
 
     @property
     def controls(self) -> int:
@@ -96,7 +106,21 @@ class Torques:
         return MOMENT_RATE_SCALE * U if self.dynamic else U[:0, :]
 
     def rows(self, rows, theta, thetad, z, u) -> None:
-        """The actuation's algebraic rows at a node: none."""
+        """With `velocity`, the torque-velocity limit at a node: each joint's extensor and flexor
+        moments (per kg) within what the muscles on that side can make at their velocity,
+
+            tau_j / limit <= f_V(theta'_j / w_j),   -tau_j / limit <= f_V(-theta'_j / w_j),
+
+        f_V mechanics.muscles.force_velocity (lengthening positive: flexion lengthens the
+        extensors), w_j = JOINT_MAX_RATE: 1 at rest, 0 shortening at w_j, 1.8 lengthening at w_j;
+        smooth (no |.|), two rows per joint <= 0. Else none."""
+        if not self.velocity:
+            return
+        tau = z if self.dynamic else u
+        w = ca.DM([JOINT_MAX_RATE[j[:-2]] for j in JOINTS])
+        rate = thetad[3:] / w
+        rows.add(ca.vertcat(tau / self.limit - hill.force_velocity(rate),
+                            -tau / self.limit - hill.force_velocity(-rate)), -np.inf, 0.0)
 
     def smoothed(self, U):
         """The rates the transcription's smoothing closes beside the accelerations (a column per
@@ -139,8 +163,8 @@ class TorquesWithSprings(Torques):
     touchdown and released at toe-off: what it still holds then is lost (budget's `spring_J`).
     """
 
-    def __init__(self, mass: float, limit: float, stiffness: dict, dynamic: bool = False):
-        super().__init__(mass, limit, dynamic)
+    def __init__(self, mass: float, limit: float, stiffness: dict, dynamic: bool = False, velocity: bool = False):
+        super().__init__(mass, limit, dynamic, velocity)
         self.stiffness = {f"{joint}_R": k for joint, k in stiffness.items() if k}
 
     def passive(self, theta, theta_td, stance: bool):
@@ -289,10 +313,13 @@ class MuscleDriven(Torques):
 
 
 def actuation(mass: float, limit: float, tendons: dict, muscles: hill.Muscles | None = None,
-              dynamic: bool = False, rate_smoothing: float = ACTIVATION_RATE_SMOOTHING) -> Torques:
+              dynamic: bool = False, rate_smoothing: float = ACTIVATION_RATE_SMOOTHING,
+              velocity: bool = False) -> Torques:
     """The actuation model of a stride's settings: muscles where given (their activation rates'
-    smoothing scale `rate_smoothing`, 1/s), else torques (moment dynamics with `dynamic`), with
-    springs where tendons are set."""
+    smoothing scale `rate_smoothing`, 1/s), else torques (moment dynamics with `dynamic`, the
+    torque-velocity limit with `velocity`), with springs where tendons are set."""
     if muscles is not None:
         return MuscleDriven(mass, muscles, rate_smoothing)
-    return TorquesWithSprings(mass, limit, tendons, dynamic) if any(tendons.values()) else Torques(mass, limit, dynamic)
+    if any(tendons.values()):
+        return TorquesWithSprings(mass, limit, tendons, dynamic, velocity)
+    return Torques(mass, limit, dynamic, velocity)

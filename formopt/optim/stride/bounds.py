@@ -95,9 +95,17 @@ def _rows(nlp, key: str) -> list[tuple[str, str]] | None:
     return None
 
 
+# Said after the bounds when a rate or an acceleration is among them: those boxes are the solver's
+# (collocation.STATE_RATE, ACCELERATION), and lifted they moved the torque scenes' optima.
+BOXES_NOTE = ("The rates' and accelerations' bounds are boxes for the solver, not a runner's limits: "
+              "lifted, the torque scenes' strides moved (docs/concepts/stride.md, 'What holds the torque "
+              "scenes' stride')")
+
+
 def held_text(held: list[dict]) -> str:
     """The bounds a stride sits on, in words ("" when none): "held by the solve's bounds, not
-    the mechanics: knee_R rate 15 rad/s (heel: 1 node); ..." (angles in deg)."""
+    the mechanics: knee_R rate 15 rad/s (heel: 1 node); ..." (angles in deg), and BOXES_NOTE
+    where a rate or an acceleration is held."""
     if not held:
         return ""
     parts = []
@@ -107,4 +115,5 @@ def held_text(held: list[dict]) -> str:
             value, unit = math.degrees(value), "deg"
         nodes = f"{h['nodes']} node{'s' if h['nodes'] > 1 else ''}"
         parts.append(f"{h['variable']} {value:.4g} {unit} ({', '.join(h['phases'])}: {nodes})")
-    return "held by the solve's bounds, not the mechanics: " + "; ".join(parts)
+    boxes = any(h["unit"] in ("rad/s", "m/s", "rad/s^2", "m/s^2") for h in held)
+    return "held by the solve's bounds, not the mechanics: " + "; ".join(parts) + (f". {BOXES_NOTE}" if boxes else "")

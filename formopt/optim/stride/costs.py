@@ -52,6 +52,7 @@ import casadi as ca
 
 from ...mechanics.joint_space import GRAVITY, JOINTS
 from ...mechanics.muscles import force_velocity
+from .actuation import JOINT_MAX_RATE
 from .problem import (
     EFFICIENCY_NEGATIVE,
     EFFICIENCY_POSITIVE,
@@ -87,12 +88,6 @@ MUSCLE_RATE_REGULARISATION = 1e-4
 # search could not confirm. The denominator stays above 0.97 for every v <= 1.2.
 MINETTI_NUMERATOR = (0.054, 0.506, 2.46)  # 1, v, v^2
 MINETTI_DENOMINATOR = (1.0, -1.13, 12.8, -1.64)  # 1, v, v^2, v^3
-# omega_max per joint (rad/s): gait2d's muscles crossing it (io/data/gait2d_muscles.csv,
-# mechanics.muscles with v_max = 10 l_opt/s), sum F_max v_max / sum F_max |r|: their greatest
-# power over their greatest moment (a rigid tendon's view). Lengths scale with height and forces
-# cancel (mechanics.muscles.from_gait2d), so it is the same for every body; tests check it
-# against the table. A model's value, not a measured joint's.
-JOINT_MAX_RATE = {"hip": 22.4, "knee": 23.7, "ankle": 12.7}
 # |tau| as sqrt(tau^2 + eps^2) - eps (zero at zero, within eps of |tau|; the velocity v divides
 # by sqrt(tau^2 + eps^2)), eps = this (N m/kg) times the body's mass: 5 % of the torque limit,
 # 8 % of a stance ankle's 2.5 N m/kg; it undercharges a moment by up to eps (a third of a swing

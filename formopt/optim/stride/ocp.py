@@ -147,7 +147,7 @@ class StrideProblem:
         self.js, self.settings, self.mass = js, settings, js.mass_total
         self.phases = settings.phases
         act = actuation(self.mass, settings.torque_limit, settings.tendons, settings.muscles,
-                        settings.moment_time > 0, settings.activation_rate_smoothing)
+                        settings.moment_time > 0, settings.activation_rate_smoothing, settings.torque_velocity)
         split = costs.needs_power_split(settings)
         joint_metabolic = settings.objective == "joint-metabolic"
         self.models = [NodeModel(ph, act, RigidContact(js, ph.rows, ph.sliding, settings.slip, settings.clearance),

@@ -305,6 +305,9 @@ class StrideSettings:
     # s, > 0: the torque rungs' moments as states, their squared rates weighed by its square
     # (actuation.Torques, costs.py: the time below which a change costs more than its moment)
     moment_time: float = 0.0
+    # the torque rungs' limit falling with the joint's rate as its muscles' force does
+    # (actuation.Torques.rows, JOINT_MAX_RATE)
+    torque_velocity: bool = False
     clearance: float = CLEARANCE  # m: the swing foot's least height while the other holds the ground
     # m/s, >= 0: each impact's points reach the ground at least this fast (v_n- <= -approach_speed;
     # 0, the default, allows a grazing touchdown, where the impulse and its friction cone's rows
@@ -360,6 +363,8 @@ class StrideSettings:
         if not 0.0 <= self.moment_time <= MOMENT_TIME_MAX or (self.moment_time and self.muscles is not None):
             raise InputError(f"moment_time = {self.moment_time}: expected 0 to {MOMENT_TIME_MAX} s, "
                              "0 with muscles (their moments are their tendons' forces)")
+        if self.torque_velocity and self.muscles is not None:
+            raise InputError("torque_velocity: the torque rungs' limit; the muscles have their own force-velocity")
         check("grading", self.grading)
         if self.consistency_rows not in CONSISTENCY_ROWS:
             raise InputError(f"consistency_rows = {self.consistency_rows!r}: expected {', '.join(CONSISTENCY_ROWS)}")

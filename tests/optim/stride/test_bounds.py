@@ -7,7 +7,7 @@ import pytest
 
 from formopt.io.muscle_table import body_muscles
 from formopt.mechanics.joint_space import THETA, JointSpace
-from formopt.optim.stride.bounds import ON_BOUND_S, held_by_bounds, held_text, on_bounds
+from formopt.optim.stride.bounds import BOXES_NOTE, ON_BOUND_S, held_by_bounds, held_text, on_bounds
 from formopt.optim.stride.collocation import ACCELERATION, STATE_RATE, StrideNLP
 from formopt.optim.stride.contact import FORCE_LIMIT, FRICTION_FORCE
 from formopt.optim.stride.problem import StrideSettings
@@ -64,6 +64,7 @@ def test_the_solves_bounds_are_found_and_grouped_by_variable(nlp):
     text = held_text(list(held.values()))
     assert text.startswith("held by the solve's bounds, not the mechanics: knee_R rate 15 rad/s (heel: 1 node)")
     assert "ankle_L acceleration -1000 rad/s^2 (flat, flight: 3 nodes)" in text
+    assert text.endswith(f". {BOXES_NOTE}")  # a rate and an acceleration among them: the solver's boxes
 
 
 def test_angles_are_said_in_degrees(nlp):

@@ -27,7 +27,8 @@ CASES = [{"strike": "heel", "tendons": RUNNER_TENDONS},
          {"strike": "heel", "objective": "metabolic", "muscles": "gait2d", "nodes": 18},  # an impact mid-stance
          FORCE_RATE,
          {"strike": "flat", "objective": "joint-metabolic", "nodes": 14},
-         {"strike": "heel", "transcription": "hermite-simpson", "tendons": RUNNER_TENDONS, "moment_time": 0.012}]
+         {"strike": "heel", "transcription": "hermite-simpson", "tendons": RUNNER_TENDONS, "moment_time": 0.012,
+          "torque_velocity": True}]  # with the torque-velocity rows
 
 
 @pytest.fixture(scope="module", params=CASES)
