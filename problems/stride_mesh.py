@@ -183,7 +183,7 @@ def node_row_names(model) -> list[str]:
     contact = model.contact
     sticking = [p for p, a in contact.rows if a == "t" and p != contact.sliding]
     limit = [f"torque-velocity {j} {side}" for side in ("extensor", "flexor") for j in JOINTS] \
-        if getattr(model.actuation, "velocity", False) else []
+        if model.actuation.velocity else []
     return (limit + [f"height {p}" for p in contact.free]
             + [f"held {contact.rows[k][0]} {contact.rows[k][1]}" for k in contact.held]
             + [f"cone {p} {side}" for p in sticking for side in "+-"] + [f"motion {t}" for t in THETA]

@@ -93,6 +93,8 @@ def parse(argv) -> argparse.Namespace:
     collocation.STATE_RATE, collocation.ACCELERATION = args.state_rate, args.acceleration
     if args.tendons and args.actuation == "muscles":
         parser.error("--tendons: springs in parallel are the torque rung's; the muscles' tendons are in series")
+    if args.torque_velocity and args.actuation == "muscles":
+        parser.error("--torque-velocity: the torque rung's limit; the muscles' force-velocity is their own")
     return args
 
 

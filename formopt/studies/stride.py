@@ -102,29 +102,34 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
 
 def tie_note(strides: list[Stride], measured_pct: float | None) -> str:
     """The strikes whose cost lies within the mesh's uncertainty of the best's, in words ("" when
-    none): valid, converged strides (ranked, the best first) whose objective is above the best's
-    by less than 100 (J - J_best) / |J_best| < u %, u the larger of the two strides' own mesh
-    checks' cost changes, or `measured_pct` (optim.stride.notes.mesh_cost_pct) for a stride not
-    checked; nothing is said where neither is known."""
+    none): valid, converged strides (ranked, the best first) whose objective J is above the
+    best's by 100 (J - J_best) / |J_best| < u_best + u_J %, each u a stride's own mesh check's
+    cost change (where the check converged by IPOPT on valid strides) or else `measured_pct`
+    (optim.stride.notes.mesh_cost_pct); nothing is said for a stride whose u is unknown."""
     sound = [s for s in strides if s.valid and s.success]
-    if len(sound) < 2:
-        return ""
 
     def moved(s: Stride) -> float | None:
-        return measured_pct if s.mesh_check is None else abs(s.mesh_check.objective_change_pct)
+        c = s.mesh_check
+        if c is not None and c.success and c.valid and c.coarse_valid:
+            return abs(c.objective_change_pct)
+        return measured_pct
 
+    first = moved(sound[0]) if len(sound) > 1 else None
+    if first is None:
+        return ""
     best, tied = sound[0], []
     for s in sound[1:]:
-        bounds = [u for u in (moved(best), moved(s)) if u is not None]
-        gap = 100.0 * (s.objective_value - best.objective_value) / abs(best.objective_value)
-        if bounds and gap < max(bounds):
-            tied.append((s, gap, max(bounds)))
+        other = moved(s)
+        if other is None:
+            continue
+        gap = 100.0 * (s.objective_value - best.objective_value) / max(abs(best.objective_value), 1e-12)
+        if gap < first + other:
+            tied.append(f"{s.strike} ({s.cadence_spm:.1f} steps/min) {gap:.2f} % costlier, less than the mesh may "
+                        f"move the difference ({first + other:.2f} %: each cost up to {first:.2f} and {other:.2f} %)")
     if not tied:
         return ""
-    others = "; ".join(f"{s.strike} ({s.cadence_spm:.1f} steps/min) {gap:.2f} % costlier, where the mesh "
-                       f"moves the cost by up to {u:.2f} %" for s, gap, u in tied)
-    return (f"the {best.strike} strike ({best.cadence_spm:.1f} steps/min) is the least costly, but {others}: "
-            "the model cannot tell these strikes apart, and either is its answer")
+    return (f"the {best.strike} strike ({best.cadence_spm:.1f} steps/min) is the least costly, but {'; '.join(tied)}: "
+            f"the model cannot tell these strikes apart, and {'either' if len(tied) == 1 else 'any'} is its answer")
 
 
 def mesh_text(strides: list[Stride]) -> str:

@@ -1,7 +1,8 @@
 """Actuation models of the stride: what moves the joints at a node (problem.ACTUATIONS, the ladder).
 
 An actuation model has `controls` u and `states` z (per node, with bounds; z' = rates(z, u),
-linear in u, collocated like the body's states; rows(...) = 0 its algebraic rows at a node) and
+linear in u, collocated like the body's states; rows(...) its algebraic rows at a node, each with
+its bounds: = 0, or <= 0 for the torque-velocity limit) and
 gives the joint moments (N m, JOINTS order, extensor positive) that enter the equations of motion,
 
     tau = tau_active(z, u) + tau_passive(theta, theta_td),
@@ -52,6 +53,15 @@ MOMENT_RATE_LIMIT = 10.0
 # The torque rungs' torque-velocity limit (StrideSettings.torque_velocity, `Torques.rows`) and the
 # joint-level metabolic cost (costs.joint_metabolic_rate) read it.
 JOINT_MAX_RATE = {"hip": 22.4, "knee": 23.7, "ankle": 12.7}
+# De Groote's f_V falls below zero past v_max (-0.07 to -0.17 at 1.3-1.7 w at the ankle): a muscle
+# shortening that fast makes no force, it does not pull the other way, so the torque-velocity limit
+# floors it smoothly at zero, (f + sqrt(f^2 + eps^2)) / 2 with this eps (within eps / 2 of max(f, 0)).
+VELOCITY_FLOOR = 0.01
+
+
+def max_rates() -> ca.DM:
+    """JOINT_MAX_RATE in JOINTS order (rad/s, 6)."""
+    return ca.DM([JOINT_MAX_RATE[j[:-2]] for j in JOINTS])
 # The transcription's smoothing (problem.SMOOTHING) charges the activations' rates a' (1/s) times
 # this scale (1/s, so in 1/s^2 as the accelerations' rad/s^2) beside the accelerations, their
 # changes between nodes alike (MuscleDriven.smoothed): a' is a control tied to the
@@ -109,18 +119,22 @@ class Torques:
         """With `velocity`, the torque-velocity limit at a node: each joint's extensor and flexor
         moments (per kg) within what the muscles on that side can make at their velocity,
 
-            tau_j / limit <= f_V(theta'_j / w_j),   -tau_j / limit <= f_V(-theta'_j / w_j),
+            tau_j / limit <= g(theta'_j / w_j),   -tau_j / limit <= g(-theta'_j / w_j),
 
-        f_V mechanics.muscles.force_velocity (lengthening positive: flexion lengthens the
-        extensors), w_j = JOINT_MAX_RATE: 1 at rest, 0 shortening at w_j, 1.8 lengthening at w_j;
-        smooth (no |.|), two rows per joint <= 0. Else none."""
+        g = f_V floored smoothly at zero (VELOCITY_FLOOR), f_V mechanics.muscles.force_velocity
+        (lengthening positive: flexion lengthens the extensors), w_j = JOINT_MAX_RATE: 1 at rest,
+        about 0 shortening at w_j and beyond; lengthening, f_V's 1.8 at w_j is capped by the
+        moments' own box (+-limit). Smooth (no |.|), two rows per joint <= 0. Else none."""
         if not self.velocity:
             return
         tau = z if self.dynamic else u
-        w = ca.DM([JOINT_MAX_RATE[j[:-2]] for j in JOINTS])
-        rate = thetad[3:] / w
-        rows.add(ca.vertcat(tau / self.limit - hill.force_velocity(rate),
-                            -tau / self.limit - hill.force_velocity(-rate)), -np.inf, 0.0)
+        rate = thetad[3:] / max_rates()
+
+        def g(v):
+            f = hill.force_velocity(v)
+            return 0.5 * (f + ca.sqrt(f ** 2 + VELOCITY_FLOOR ** 2))
+
+        rows.add(ca.vertcat(tau / self.limit - g(rate), -tau / self.limit - g(-rate)), -np.inf, 0.0)
 
     def smoothed(self, U):
         """The rates the transcription's smoothing closes beside the accelerations (a column per

@@ -50,9 +50,9 @@ from dataclasses import dataclass
 
 import casadi as ca
 
-from ...mechanics.joint_space import GRAVITY, JOINTS
+from ...mechanics.joint_space import GRAVITY
 from ...mechanics.muscles import force_velocity
-from .actuation import JOINT_MAX_RATE
+from .actuation import max_rates
 from .problem import (
     EFFICIENCY_NEGATIVE,
     EFFICIENCY_POSITIVE,
@@ -120,7 +120,7 @@ def joint_metabolic_rate(tau, rate, mass: float):
     f_V mechanics.muscles.force_velocity (De Groote et al. 2016; lengthening positive there).
     Without f_V, work at v > 0.2 would cost less than the work itself."""
     eps = JOINT_METABOLIC_SMOOTHING * mass
-    w = ca.DM([JOINT_MAX_RATE[j[:-2]] for j in JOINTS])
+    w = max_rates()
     size = ca.sqrt(tau ** 2 + eps ** 2)
     v = -tau * rate / (w * size)
     v = v - CAP_WIDTH * ca.log1p(ca.exp((v - VELOCITY_CAP) / CAP_WIDTH))

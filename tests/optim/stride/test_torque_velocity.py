@@ -17,7 +17,7 @@ from formopt.mechanics.errors import InputError
 from formopt.mechanics.joint_space import JOINTS, JointSpace
 from formopt.mechanics.muscles import FORCE_VELOCITY
 from formopt.optim.stride import StrideNLP, StrideSettings
-from formopt.optim.stride.actuation import JOINT_MAX_RATE, Torques
+from formopt.optim.stride.actuation import JOINT_MAX_RATE, VELOCITY_FLOOR, Torques
 from formopt.optim.stride.layout import Rows
 
 
@@ -27,11 +27,16 @@ def f_v(v: float) -> float:
     return d1 * math.log(d2 * v + d3 + math.sqrt((d2 * v + d3) ** 2 + 1)) + d4
 
 
+def g(v: float) -> float:
+    """f_V floored smoothly at zero (past v_max a muscle makes no force; it does not pull back)."""
+    return 0.5 * (f_v(v) + math.sqrt(f_v(v) ** 2 + VELOCITY_FLOOR ** 2))
+
+
 @pytest.mark.parametrize("dynamic", [False, True])
 def test_the_limit_is_the_written_formula(dynamic):
-    """Rows tau/limit - f_V(theta'/w) and -tau/limit - f_V(-theta'/w), both <= 0: at rest the
-    limit itself; extending a joint at its w the extensors cannot push (f_V(-1) = 0.01) and the
-    flexors brake up to 1.8 limits."""
+    """Rows tau/limit - g(theta'/w) and -tau/limit - g(-theta'/w), both <= 0 (g: f_V floored at
+    zero): at rest the limit itself; extending a joint at its w the extensors cannot push
+    (g(-1) = 0.01), nor faster; lengthening, g reaches 1.8 at w (the moments' box caps it)."""
     limit, rng = 4.0, np.random.default_rng(7)
     tau, rate = rng.uniform(-3.0, 3.0, 6), rng.uniform(-20.0, 20.0, 9)
     rows = Rows()
@@ -40,11 +45,12 @@ def test_the_limit_is_the_written_formula(dynamic):
                                                       zero if dynamic else ca.DM(tau))
     (expr,), (lower,), (upper,) = rows.expr, rows.lower, rows.upper
     w = np.array([JOINT_MAX_RATE[j[:-2]] for j in JOINTS])
-    expected = np.r_[[t / limit - f_v(r / s) for t, r, s in zip(tau, rate[3:], w)],
-                     [-t / limit - f_v(-r / s) for t, r, s in zip(tau, rate[3:], w)]]
+    expected = np.r_[[t / limit - g(r / s) for t, r, s in zip(tau, rate[3:], w)],
+                     [-t / limit - g(-r / s) for t, r, s in zip(tau, rate[3:], w)]]
     np.testing.assert_allclose(np.asarray(ca.evalf(expr)).ravel(), expected, rtol=1e-12, atol=1e-12)
     assert (lower == -np.inf).all() and (upper == 0.0).all()
-    assert f_v(0.0) == pytest.approx(1.0, abs=0.005) and abs(f_v(-1.0)) < 0.02 and f_v(1.0) == pytest.approx(1.8, abs=0.05)
+    assert g(0.0) == pytest.approx(1.0, abs=0.005) and abs(g(-1.0)) < 0.02 and g(1.0) == pytest.approx(1.8, abs=0.05)
+    assert f_v(-1.5) < -0.05 and 0.0 < g(-1.5) < VELOCITY_FLOOR  # past w: no force, not a pull back
 
 
 def test_without_the_setting_there_are_no_rows():
