@@ -12,7 +12,7 @@ start; the cadence and cost move with the mesh (the scene's 40 nodes are what `f
 reports), so read it for its shape, not its numbers. On the command line, with the scene's own
 nodes and a progress bar: ``formopt sweep stride --param speed_mps=3:4:3 --param cadence_spm=160:180:3``.
 
-    python examples/stride_map.py [OUT] [--quick]    (about 7 s of CPU; ``--quick``, the tests' run:
+    python examples/stride_map.py [OUT] [--quick]    (about 20 s of CPU; ``--quick``, the tests' run:
                                                       3.5 m/s alone, about half)
 """
 

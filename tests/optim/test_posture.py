@@ -202,7 +202,10 @@ LANDING = SHIPPED / "landing_optimum.toml"
 
 @pytest.fixture(scope="module")
 def landing_optimum():
+    """The shipped landing objective's optimum from two of its four starts: all four reach the
+    same optimum (0.41726 J, 2026-11-28), and each start costs about 1.2 s of CPU."""
     scene = load(LANDING)
+    scene = replace(scene, problem=replace(scene.problem, starts=2))
     return scene, solve(scene)
 
 

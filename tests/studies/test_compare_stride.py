@@ -1,5 +1,5 @@
 """compare's stride section (studies.compare_stride, issue 27 item 3): the band's words, the
-what-if arithmetic, and one cheap run (22 nodes, the nominal variant only) checked against
+what-if arithmetic, and one cheap run (18 nodes, the nominal variant only) checked against
 independent readings: the imposed cadence against 60 / half-period, per-joint work against the
 budget's W+ and W-, the JSON and the table's words."""
 
