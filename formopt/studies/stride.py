@@ -10,6 +10,7 @@ friction and imposed cadence; a neighbouring solve is warm-started from the last
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -97,22 +98,20 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
         "not searched ([stride] search = \"global\" searches them: docs/concepts/stride.md, 'One answer')")
     return StrideStudy(scene.name, strides, mesh_text(strides) if scene.mesh_check else mesh_note(scene.settings),
                        local, transcription_note(scene.settings) if scene.cadence is None else "",
-                       tie_note(strides, mesh_cost_pct(scene.settings)))
+                       tie_note(strides, lambda s: mesh_cost_pct(scene.for_strike(s.strike), s.speed_mps)))
 
 
-def tie_note(strides: list[Stride], measured_pct: float | None) -> str:
+def tie_note(strides: list[Stride], measured_pct: Callable[[Stride], float | None]) -> str:
     """The strikes whose cost lies within the mesh's uncertainty of the best's, in words ("" when
     none): valid, converged strides (ranked, the best first) whose objective J is above the
     best's by 100 (J - J_best) / |J_best| < u_best + u_J %, each u a stride's own mesh check's
-    cost change (where the check converged by IPOPT on valid strides) or else `measured_pct`
+    cost change (where it measured: MeshCheck.measured) or else `measured_pct(stride)`
     (optim.stride.notes.mesh_cost_pct); nothing is said for a stride whose u is unknown."""
     sound = [s for s in strides if s.valid and s.success]
 
     def moved(s: Stride) -> float | None:
         c = s.mesh_check
-        if c is not None and c.success and c.valid and c.coarse_valid:
-            return abs(c.objective_change_pct)
-        return measured_pct
+        return abs(c.objective_change_pct) if c is not None and c.measured else measured_pct(s)
 
     first = moved(sound[0]) if len(sound) > 1 else None
     if first is None:

@@ -164,28 +164,47 @@ def test_the_grading_key_reaches_the_settings():
 
 def test_strikes_within_the_mesh_uncertainty_are_said_to_tie():
     """A scene's strikes whose costs differ by less than their mesh may move the difference are one
-    answer (studies.stride.tie_note): each stride's converged mesh check, else the measured figure."""
+    answer (studies.stride.tie_note): each stride's own mesh check where it measured (IPOPT
+    converged on 2N nodes, both strides valid), else the figure measured on its settings."""
     from types import SimpleNamespace
 
     from formopt.studies.stride import tie_note
 
     def stride(strike, objective, moved=None, valid=True, checked=True):
-        check = None if moved is None else SimpleNamespace(objective_change_pct=moved, success=checked, valid=True,
-                                                           coarse_valid=True)
+        check = None if moved is None else SimpleNamespace(objective_change_pct=moved, measured=checked)
         return SimpleNamespace(strike=strike, objective_value=objective, cadence_spm=180.0, valid=valid,
                                success=True, mesh_check=check)
 
+    def figure(pct):
+        return lambda s: pct
+
     forefoot, heel, flat = stride("forefoot", 1.0), stride("heel", 1.0004), stride("flat", 1.05)
-    said = tie_note([forefoot, heel, flat], 0.3)
+    said = tie_note([forefoot, heel, flat], figure(0.3))
     assert "heel (180.0 steps/min) 0.04 % costlier" in said and "(0.60 %" in said and "flat" not in said
     assert said.endswith("either is its answer")
-    assert tie_note([forefoot, heel, flat], None) == ""  # no figure known: nothing claimed
+    assert tie_note([forefoot, heel, flat], figure(None)) == ""  # no figure known: nothing claimed
     checked = [stride("forefoot", 1.0, -0.22), stride("heel", 1.0004, -0.08)]
-    assert "(0.30 %: each cost up to 0.22 and 0.08 %)" in tie_note(checked, None)
-    assert tie_note([stride("forefoot", 1.0, 0.01), stride("heel", 1.0004, 0.02)], 0.3) == ""
+    assert "(0.30 %: each cost up to 0.22 and 0.08 %)" in tie_note(checked, figure(None))
+    assert tie_note([stride("forefoot", 1.0, 0.01), stride("heel", 1.0004, 0.02)], figure(0.3)) == ""
     stopped = [stride("forefoot", 1.0, 0.01), stride("heel", 1.0004, 0.02, checked=False)]  # a stopped 2N solve
-    assert "(0.31 %: each cost up to 0.01 and 0.30 %)" in tie_note(stopped, 0.3)  # its own change is no measure
-    assert tie_note([forefoot, stride("heel", 1.0004, valid=False)], 0.3) == ""  # an invalid stride is no answer
-    negative = tie_note([stride("forefoot", -1.0), stride("heel", -0.999)], 0.3)  # a work objective below zero
+    assert "(0.31 %: each cost up to 0.01 and 0.30 %)" in tie_note(stopped, figure(0.3))  # its change no measure
+    assert tie_note([forefoot, stride("heel", 1.0004, valid=False)], figure(0.3)) == ""  # an invalid stride: no answer
+    negative = tie_note([stride("forefoot", -1.0), stride("heel", -0.999)], figure(0.3))  # a work objective below 0
     assert "heel (180.0 steps/min) 0.10 % costlier" in negative
-    assert tie_note([forefoot, stride("heel", 1.001), stride("flat", 1.002)], 0.3).endswith("any is its answer")
+    assert tie_note([forefoot, stride("heel", 1.001), stride("flat", 1.002)], figure(0.3)).endswith("any is its answer")
+
+
+def test_the_measured_mesh_figure_is_the_strides_own():
+    """notes.mesh_cost_pct: the torque scenes' stride 0.3 %, its flat strike and its forefoot below
+    3.5 m/s (whose 80-interval solves did not converge) 1.1 %, other settings none."""
+    from dataclasses import replace
+
+    from formopt.optim.stride.notes import RUNNER_COST_PCT, RUNNER_UNCONVERGED_PCT, mesh_cost_pct
+
+    runner = load(SHIPPED / "stride_rbds001.toml").settings
+    assert mesh_cost_pct(replace(runner, strike="heel"), 2.5) == RUNNER_COST_PCT == 0.3
+    assert mesh_cost_pct(replace(runner, strike="forefoot"), 3.5) == RUNNER_COST_PCT
+    assert mesh_cost_pct(replace(runner, strike="forefoot"), 2.5) == RUNNER_UNCONVERGED_PCT == 1.1
+    assert mesh_cost_pct(replace(runner, strike="flat"), 4.5) == RUNNER_UNCONVERGED_PCT
+    assert mesh_cost_pct(replace(runner, torque_velocity=True), 3.5) is None
+    assert mesh_cost_pct(replace(runner, nodes=20), 3.5) is None

@@ -57,11 +57,6 @@ JOINT_MAX_RATE = {"hip": 22.4, "knee": 23.7, "ankle": 12.7}
 # shortening that fast makes no force, it does not pull the other way, so the torque-velocity limit
 # floors it smoothly at zero, (f + sqrt(f^2 + eps^2)) / 2 with this eps (within eps / 2 of max(f, 0)).
 VELOCITY_FLOOR = 0.01
-
-
-def max_rates() -> ca.DM:
-    """JOINT_MAX_RATE in JOINTS order (rad/s, 6)."""
-    return ca.DM([JOINT_MAX_RATE[j[:-2]] for j in JOINTS])
 # The transcription's smoothing (problem.SMOOTHING) charges the activations' rates a' (1/s) times
 # this scale (1/s, so in 1/s^2 as the accelerations' rad/s^2) beside the accelerations, their
 # changes between nodes alike (MuscleDriven.smoothed): a' is a control tied to the
@@ -80,6 +75,11 @@ def max_rates() -> ca.DM:
 # StrideSettings.activation_rate_smoothing, which sets it (0: the first step of a stalled
 # refinement's continuation, refine.continued).
 ACTIVATION_RATE_SMOOTHING = 10.0
+
+
+def max_rates() -> ca.DM:
+    """JOINT_MAX_RATE in JOINTS order (rad/s, 6)."""
+    return ca.DM([JOINT_MAX_RATE[j[:-2]] for j in JOINTS])
 
 
 class Torques:

@@ -97,9 +97,9 @@ def _rows(nlp, key: str) -> list[tuple[str, str]] | None:
 
 # Said after the bounds when a rate or an acceleration is among them: those boxes are the solver's
 # (collocation.STATE_RATE, ACCELERATION), and lifted they moved the torque scenes' optima.
-BOXES_NOTE = ("The rates' and accelerations' bounds are boxes for the solver, not a runner's limits: "
-              "lifted, the torque scenes' strides moved (docs/concepts/stride.md, 'What holds the torque "
-              "scenes' stride')")
+BOXES_NOTE = ("The rates' and accelerations' bounds are boxes for the solver, not a runner's limits: a stride "
+              "on them is set by the box (lifted, the torque scenes' strides moved 7-50 % in cost: "
+              "docs/concepts/stride.md, 'What holds the torque scenes' stride')")
 
 
 def held_text(held: list[dict]) -> str:

@@ -50,6 +50,9 @@ MESH_FINE = {"hermite-simpson": (40, "under 0.3 % in cadence and 0.2 % in cost f
 # 3.5 m/s: stopped after 720) and of the forefoot at 2.5 m/s (1000) did not converge, their cost
 # 0.19-1.07 % below the 40-interval one's; the forefoot strides' flat phase sits on its 30 ms floor.
 RUNNER_CADENCE_PCT, RUNNER_COST_PCT = 0.2, 0.3  # the largest moves, 40 -> 80 intervals (%, rounded up)
+# the largest cost move of the strides whose 80-interval solve did not converge (the flat strike,
+# the forefoot at 2.5 m/s): their 80-interval cost was up to 1.1 % below the 40-interval one
+RUNNER_UNCONVERGED_PCT = 1.1
 RUNNER_SHIFT = f"under {RUNNER_CADENCE_PCT} % in cadence and {RUNNER_COST_PCT} % in cost from 40 to 80 intervals"
 RUNNER_MESH = (f"{RUNNER_SHIFT} on RBDS001's body (heel at "
                "2.5-4.5 m/s, forefoot at 3.5 and 4.5) and another lab's runner (heel and forefoot, 3.37 m/s); "
@@ -68,11 +71,15 @@ VELOCITY_MESH = ("-0.11 % in cadence and -0.24 % in cost from 40 to 80 intervals
                  "3.5 m/s; the 80-interval solve stopped at 1000 iterations), still held by the joints' rate box")
 
 
-def mesh_cost_pct(settings: StrideSettings) -> float | None:
-    """How far (%) the mesh was measured to move the cost of a stride of these settings whose own
-    mesh is not checked: RUNNER_COST_PCT for the torque scenes' stride on 40 intervals or more;
-    None where no figure holds as a bound (mesh_note's words then)."""
-    return RUNNER_COST_PCT if _runner(settings) else None
+def mesh_cost_pct(settings: StrideSettings, speed: float) -> float | None:
+    """How far (%) the mesh was measured to move the cost of a stride of these settings (its
+    strike's) at `speed` (m/s) whose own mesh is not checked: for the torque scenes' stride on 40
+    intervals or more RUNNER_COST_PCT, or RUNNER_UNCONVERGED_PCT for the flat strike and the
+    forefoot below 3.5 m/s (RUNNER_MESH); None where no figure holds as a bound."""
+    if not _runner(settings):
+        return None
+    unconverged = settings.strike == "flat" or (settings.strike == "forefoot" and speed < 3.5)
+    return RUNNER_UNCONVERGED_PCT if unconverged else RUNNER_COST_PCT
 
 
 def _runner(settings: StrideSettings, velocity: bool = False) -> bool:
@@ -153,10 +160,11 @@ def mesh_note(settings: StrideSettings) -> str:
         return (f"{settings.transcription} at {settings.nodes} intervals graded {settings.grading:g}: on the "
                 "torque rungs a graded mesh was measured costlier, converging elsewhere (docs/concepts/"
                 "stride.md, 'A mesh graded toward the phases' ends')")
-    if _runner(settings, velocity=True) and settings.strike == "heel":
-        return (f"{settings.transcription} at {settings.nodes} intervals with the torque-velocity limit: the "
-                f"effort optimum moved {VELOCITY_MESH} (docs/concepts/stride.md, 'What holds the torque scenes' "
-                "stride')")
+    if settings.torque_velocity:
+        measured = (f"the heel stride of the torque scenes' settings moved {VELOCITY_MESH}, other strikes not "
+                    "measured" if _runner(settings, velocity=True) else "not measured on these settings")
+        return (f"{settings.transcription} at {settings.nodes} intervals with the torque-velocity limit: "
+                f"{measured} (docs/concepts/stride.md, 'What holds the torque scenes' stride')")
     if _runner(settings):
         return (f"hermite-simpson at {settings.nodes} intervals: the torque scenes' effort optimum moved "
                 f"{RUNNER_MESH} (docs/concepts/stride.md, 'The torque scenes on Hermite-Simpson')")
