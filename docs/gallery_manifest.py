@@ -1,5 +1,7 @@
 """The gallery's freshness: docs/gallery/MANIFEST.json records a digest of the code that draws
-the gallery's figures (examples/*.py, problems/paper.py, formopt/report/figures.py) when
+the gallery's figures (examples/*.py, problems/paper.py, formopt/report/figures.py) and of the
+shipped scenes they solve (formopt/scenes/*.toml: the stride figures were drawn by the trapezoid
+scenes for a day after the scenes moved to Hermite-Simpson, 2026-11-28) when
 `make gallery` redraws them. tests/test_docs.py recomputes it: a figure drawn by older code
 fails the test (digests, not file times, which a clone resets).
 
@@ -18,9 +20,9 @@ MANIFEST = GALLERY / "MANIFEST.json"
 
 
 def sources() -> list[Path]:
-    """The files whose code draws the gallery."""
-    return sorted(ROOT.glob("examples/*.py")) + [ROOT / "problems" / "paper.py",
-                                                 ROOT / "formopt" / "report" / "figures.py"]
+    """The files whose code draws the gallery, and the scenes it solves."""
+    return (sorted(ROOT.glob("examples/*.py")) + [ROOT / "problems" / "paper.py", ROOT / "formopt" / "report" / "figures.py"]
+            + sorted(ROOT.glob("formopt/scenes/*.toml")))
 
 
 def digest() -> dict[str, str]:
