@@ -186,6 +186,7 @@ def stride_table(study: StrideStudy) -> str:
             why = s.failed_checks if s.success else [f"IPOPT: {s.status}", *s.failed_checks]
             lines.append(f"INVALID {s.strike}: {'; '.join(why)}")
     lines += [f"NOTE strikes: {study.tie}"] if study.tie else []
+    lines += [f"NOTE best: {study.unlike}"] if study.unlike else []
     lines += [f"NOTE {s.strike}: {remark}" for s in study.strides for remark in s.remarks]
     lines += [f"NOTE search: {study.search}"] if study.search else []
     checked = [f"NOTE mesh {s.strike}: {s.mesh_check.text()}" for s in study.strides if s.mesh_check is not None]

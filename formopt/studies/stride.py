@@ -18,6 +18,7 @@ import numpy as np
 from ..io.stride_scene import StrideScene
 from ..mechanics.errors import InputError
 from ..optim.stride import Stride, global_optimum, optimum, ranges, rank
+from ..optim.stride.checks import unlike_a_runner
 from ..optim.stride.notes import mesh_cost_pct, mesh_note, transcription_note
 from ..optim.stride.problem import STRIKES
 from ..optim.stride.refine import fine_nodes, mesh_check
@@ -44,6 +45,8 @@ class StrideStudy:
     transcription: str = ""
     # the strikes the model cannot order: costs apart by less than their mesh moves them (`tie_note`)
     tie: str = ""
+    # where the least costly stride is unlike a runner's, the least costly one that is not (`unlike_note`)
+    unlike: str = ""
 
     @property
     def best(self) -> Stride:
@@ -58,7 +61,8 @@ class StrideStudy:
                  "mesh_check": None if s.mesh_check is None else s.mesh_check.to_dict()}
                 for s in self.strides]
         return {"scene": self.scene, **self.best.to_dict(), "strides": rows, "mesh": self.mesh,
-                "search_note": self.search, "transcription_note": self.transcription, "tie_note": self.tie}
+                "search_note": self.search, "transcription_note": self.transcription, "tie_note": self.tie,
+                "unlike_note": self.unlike}
 
 
 def run(scene: StrideScene, speed: float | None = None, strike: str | None = None,
@@ -98,7 +102,8 @@ def run(scene: StrideScene, speed: float | None = None, strike: str | None = Non
         "not searched ([stride] search = \"global\" searches them: docs/concepts/stride.md, 'One answer')")
     return StrideStudy(scene.name, strides, mesh_text(strides) if scene.mesh_check else mesh_note(scene.settings),
                        local, transcription_note(scene.settings) if scene.cadence is None else "",
-                       tie_note(strides, lambda s: mesh_cost_pct(scene.for_strike(s.strike), s.speed_mps)))
+                       tie_note(strides, lambda s: mesh_cost_pct(scene.for_strike(s.strike), s.speed_mps)),
+                       unlike_note(strides))
 
 
 def tie_note(strides: list[Stride], measured_pct: Callable[[Stride], float | None]) -> str:
@@ -129,6 +134,26 @@ def tie_note(strides: list[Stride], measured_pct: Callable[[Stride], float | Non
         return ""
     return (f"the {best.strike} strike ({best.cadence_spm:.1f} steps/min) is the least costly, but {'; '.join(tied)}: "
             f"the model cannot tell these strikes apart, and {'either' if len(tied) == 1 else 'any'} is its answer")
+
+
+def unlike_note(strides: list[Stride]) -> str:
+    """Where the least costly valid, converged stride (ranked first) is unlike a runner's
+    (optim.stride.checks.unlike_a_runner: a crouched stance, a stiff landing), the least costly
+    one that is not, with how much more it costs (%), in words ("" otherwise)."""
+    sound = [s for s in strides if s.valid and s.success]
+
+    def unlike(s: Stride) -> bool:
+        return bool(unlike_a_runner(s.stance_knee_deg, s.budget["impacts_J"]))
+
+    if not sound or not unlike(sound[0]):
+        return ""
+    best, alike = sound[0], next((s for s in sound[1:] if not unlike(s)), None)
+    said = f"the least costly stride, the {best.strike} strike, is unlike a runner's (its NOTE says how)"
+    if alike is None:
+        return said + ", and so is every other strike solved"
+    gap = 100.0 * (alike.objective_value - best.objective_value) / max(abs(best.objective_value), 1e-12)
+    return (f"{said}; the least costly stride without such a remark is the {alike.strike} strike "
+            f"({alike.cadence_spm:.1f} steps/min, {gap:.1f} % costlier)")
 
 
 def mesh_text(strides: list[Stride]) -> str:

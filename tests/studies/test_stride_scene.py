@@ -208,3 +208,24 @@ def test_the_measured_mesh_figure_is_the_strides_own():
     assert mesh_cost_pct(replace(runner, strike="flat"), 4.5) == RUNNER_UNCONVERGED_PCT
     assert mesh_cost_pct(replace(runner, torque_velocity=True), 3.5) is None
     assert mesh_cost_pct(replace(runner, nodes=20), 3.5) is None
+
+
+def test_a_least_costly_stride_unlike_a_runners_names_the_one_that_is_not():
+    """studies.stride.unlike_note: where the best stride lands stiff or crouches
+    (checks.unlike_a_runner), the least costly valid one that does not, and its extra cost."""
+    from types import SimpleNamespace
+
+    from formopt.studies.stride import unlike_note
+
+    def stride(strike, objective, impacts=3.0, knee=40.0, valid=True):
+        return SimpleNamespace(strike=strike, objective_value=objective, cadence_spm=179.0, valid=valid, success=True,
+                               stance_knee_deg=knee, budget={"impacts_J": impacts})
+
+    flat, forefoot, heel = stride("flat", 1.0, impacts=28.0), stride("forefoot", 1.02), stride("heel", 1.03)
+    said = unlike_note([flat, forefoot, heel])
+    assert said.startswith("the least costly stride, the flat strike, is unlike a runner's")
+    assert said.endswith("the forefoot strike (179.0 steps/min, 2.0 % costlier)")
+    assert unlike_note([forefoot, flat]) == ""  # the best is runner-like
+    assert unlike_note([flat, stride("heel", 1.1, knee=80.0)]).endswith("so is every other strike solved")
+    assert unlike_note([flat, stride("forefoot", 1.02, valid=False), heel]).endswith("heel strike (179.0 steps/min, "
+                                                                                      "3.0 % costlier)")
