@@ -137,15 +137,15 @@ def tie_note(strides: list[Stride], measured_pct: Callable[[Stride], float | Non
 
 
 def unlike_note(strides: list[Stride]) -> str:
-    """Where the least costly valid, converged stride (ranked first) is unlike a runner's
-    (optim.stride.checks.unlike_a_runner: a crouched stance, a stiff landing), the least costly
-    one that is not, with how much more it costs (%), in words ("" otherwise)."""
+    """Where the least costly of several valid, converged strides (ranked first) is unlike a
+    runner's (optim.stride.checks.unlike_a_runner: a crouched stance, a stiff landing), the least
+    costly one that is not, with how much more it costs (%), in words ("" otherwise)."""
     sound = [s for s in strides if s.valid and s.success]
 
     def unlike(s: Stride) -> bool:
         return bool(unlike_a_runner(s.stance_knee_deg, s.budget["impacts_J"]))
 
-    if not sound or not unlike(sound[0]):
+    if len(sound) < 2 or not unlike(sound[0]):  # one strike solved: its own NOTE says it
         return ""
     best, alike = sound[0], next((s for s in sound[1:] if not unlike(s)), None)
     said = f"the least costly stride, the {best.strike} strike, is unlike a runner's (its NOTE says how)"

@@ -226,6 +226,7 @@ def test_a_least_costly_stride_unlike_a_runners_names_the_one_that_is_not():
     assert said.startswith("the least costly stride, the flat strike, is unlike a runner's")
     assert said.endswith("the forefoot strike (179.0 steps/min, 2.0 % costlier)")
     assert unlike_note([forefoot, flat]) == ""  # the best is runner-like
+    assert unlike_note([flat]) == ""  # one strike solved: its own NOTE says it
     assert unlike_note([flat, stride("heel", 1.1, knee=80.0)]).endswith("so is every other strike solved")
     assert unlike_note([flat, stride("forefoot", 1.02, valid=False), heel]).endswith("heel strike (179.0 steps/min, "
                                                                                       "3.0 % costlier)")
