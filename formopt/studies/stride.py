@@ -18,7 +18,6 @@ import numpy as np
 from ..io.stride_scene import StrideScene
 from ..mechanics.errors import InputError
 from ..optim.stride import Stride, global_optimum, optimum, ranges, rank
-from ..optim.stride.checks import unlike_a_runner
 from ..optim.stride.notes import mesh_cost_pct, mesh_note, transcription_note
 from ..optim.stride.problem import STRIKES
 from ..optim.stride.refine import fine_nodes, mesh_check
@@ -138,16 +137,12 @@ def tie_note(strides: list[Stride], measured_pct: Callable[[Stride], float | Non
 
 def unlike_note(strides: list[Stride]) -> str:
     """Where the least costly of several valid, converged strides (ranked first) is unlike a
-    runner's (optim.stride.checks.unlike_a_runner: a crouched stance, a stiff landing), the least
+    runner's (Stride.unlike_a_runner: a crouched stance, a stiff landing), the least
     costly one that is not, with how much more it costs (%), in words ("" otherwise)."""
     sound = [s for s in strides if s.valid and s.success]
-
-    def unlike(s: Stride) -> bool:
-        return bool(unlike_a_runner(s.stance_knee_deg, s.budget["impacts_J"]))
-
-    if len(sound) < 2 or not unlike(sound[0]):  # one strike solved: its own NOTE says it
+    if len(sound) < 2 or not sound[0].unlike_a_runner:  # one strike solved: its own NOTE says it
         return ""
-    best, alike = sound[0], next((s for s in sound[1:] if not unlike(s)), None)
+    best, alike = sound[0], next((s for s in sound[1:] if not s.unlike_a_runner), None)
     said = f"the least costly stride, the {best.strike} strike, is unlike a runner's (its NOTE says how)"
     if alike is None:
         return said + ", and so is every other strike solved"

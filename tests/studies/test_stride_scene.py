@@ -212,14 +212,15 @@ def test_the_measured_mesh_figure_is_the_strides_own():
 
 def test_a_least_costly_stride_unlike_a_runners_names_the_one_that_is_not():
     """studies.stride.unlike_note: where the best stride lands stiff or crouches
-    (checks.unlike_a_runner), the least costly valid one that does not, and its extra cost."""
+    (Stride.unlike_a_runner, checks.unlike_a_runner's remarks), the least costly valid one that does not, and its extra cost."""
     from types import SimpleNamespace
 
+    from formopt.optim.stride.checks import unlike_a_runner
     from formopt.studies.stride import unlike_note
 
     def stride(strike, objective, impacts=3.0, knee=40.0, valid=True):
         return SimpleNamespace(strike=strike, objective_value=objective, cadence_spm=179.0, valid=valid, success=True,
-                               stance_knee_deg=knee, budget={"impacts_J": impacts})
+                               unlike_a_runner=unlike_a_runner(knee, impacts))
 
     flat, forefoot, heel = stride("flat", 1.0, impacts=28.0), stride("forefoot", 1.02), stride("heel", 1.03)
     said = unlike_note([flat, forefoot, heel])

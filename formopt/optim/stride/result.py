@@ -158,6 +158,11 @@ class Stride:
             (": set by the bound, not the mechanics" if self.on_bound else "")
 
     @property
+    def unlike_a_runner(self) -> list[str]:
+        """Where the stride is far from a runner's (checks.unlike_a_runner): a crouch, a stiff landing."""
+        return unlike_a_runner(self.stance_knee_deg, self.budget.get("impacts_J", 0.0))
+
+    @property
     def remarks(self) -> list[str]:
         """What a valid stride's headline must say besides its numbers: each phase held by a
         duration bound, a crouch or a stiff landing (checks.unlike_a_runner), the other bounds
@@ -166,7 +171,7 @@ class Stride:
         no-slip condition is |p_t| <= mu p_n, and Coulomb's sticking mode ends there; but it
         uses all the friction, so the friction sets the optimum there)."""
         out = [self.bound_text()] if self.on_bound else []
-        out += unlike_a_runner(self.stance_knee_deg, self.budget.get("impacts_J", 0.0))
+        out += self.unlike_a_runner
         out += [held_text(self.held)] if self.held else []
         out += self.slides
         return out + [f"{i['point']} impact of leg {i['leg']} on the friction cone's edge (mu_c "
