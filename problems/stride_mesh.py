@@ -495,8 +495,10 @@ def report(label: str, nlp, stride, seconds: float, speed: float) -> None:
     print(consistency_values(nlp, stride.solved))
     print("  variables on a bound: " + ("; ".join(blocks) or "-"))
     print("\n".join(f"  node rows, {r}" for r in rows), flush=True)
-    peaks = np.abs(np.asarray(stride.thetad, float)[:, 3:]).max(axis=0)
-    print("  fastest joint rates (rad/s): " + " ".join(f"{j} {v:.1f}" for j, v in zip(JOINTS, peaks)), flush=True)
+    rates = np.asarray(stride.thetad, float)[:, 3:]
+    at = np.abs(rates).argmax(axis=0)
+    print("  fastest joint rates (rad/s, flexion and dorsiflexion positive; the phase): " + " ".join(
+        f"{j} {rates[k, i]:+.1f} ({stride.phase[k]})" for i, (j, k) in enumerate(zip(JOINTS, at))), flush=True)
 
 
 def study_nlp(args, body, settings: StrideSettings) -> StrideNLP:

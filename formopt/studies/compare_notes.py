@@ -47,7 +47,11 @@ def optima_notes(curve: Curve) -> list[str]:
     invalid = [s for s in free + curve.strides if s.success and not s.valid]
     notes += [f"the stride at {s.cadence_spm:.0f} steps/min is INVALID ({'; '.join(s.failed_checks)}): "
               "read what it says as the model's, not a runner's" for s in invalid]
-    notes += [f"the stride at {s.cadence_spm:.0f} steps/min: {s.bound_text()}" for s in curve.strides if s.on_bound]
+    bound: dict[str, list[str]] = {}  # one note per bound text, its strides' cadences
+    for s in curve.strides:
+        if s.on_bound:
+            bound.setdefault(s.bound_text(), []).append(f"{s.cadence_spm:.0f}")
+    notes += [f"the stride{'s' if len(c) > 1 else ''} at {', '.join(c)} steps/min: {text}" for text, c in bound.items()]
     held = [s for s in curve.strides if s.held]
     if held:
         notes.append(f"the solve's bounds hold the strides at {', '.join(f'{s.cadence_spm:.0f}' for s in held)} "

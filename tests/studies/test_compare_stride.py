@@ -93,6 +93,8 @@ def test_a_what_if_between_two_families_and_a_free_optimum_off_the_envelope_are_
     assert nominal.envelope_gap == pytest.approx(0.05) and nominal.envelope_gap > ENVELOPE
     assert "the free optimum lies 5.0 % above the least costly imposed stride" in notes
     assert "the stride at 187 steps/min: flat phase 30.0 ms on its low bound" in notes
+    nominal.strides[1].on_bound, nominal.strides[1].bound_text = nominal.strides[4].on_bound, nominal.strides[4].bound_text
+    assert "the strides at 153, 187 steps/min: flat phase 30.0 ms on its low bound" in " ".join(optima_notes(nominal))
     nominal.strides[2].held = nominal.free.held
     assert optima_notes(nominal)[-1] == ("the solve's bounds hold the strides at 162 steps/min (each stride's "
                                          "`held` in the JSON; the optimum's are printed under it)")
