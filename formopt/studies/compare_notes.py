@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 
 from ..optim.stride import Stride
 from ..optim.stride.notes import mesh_note
+from .stride_form import NODES
 
 if TYPE_CHECKING:
     from .compare_stride import Curve
@@ -19,9 +20,27 @@ if TYPE_CHECKING:
 FAR = 0.2
 # other starts' optima this much costlier (fraction) than the one kept are named in the notes
 SPREAD_NOTE = 0.01
+# What the mesh did to the section's what-ifs (problems/compare_mesh.py on the three shipped runners,
+# each curve stride solved again on 60 nodes as the band's strides are, sticking: each change moved
+# 1-19 W and kept its sign, all but one inside their bands; docs/howto/compare.md, 2026-11-28)
+MESH_MOVE_W = 19.0  # W
 # the envelope: the free optimum's objective at most this (relative) above the least imposed
 # stride's; IPOPT's optima are exact to about 1e-6, so a larger gap is another local optimum
 ENVELOPE = 1e-3
+
+
+def mesh_what_if_note(curve: Curve) -> str:
+    """The nominal's what-ifs whose change of mechanical power lies within MESH_MOVE_W of zero,
+    which a finer mesh may turn (the band does not hold the mesh), in words ("" when none)."""
+    if not curve.ok:
+        return ""
+    power = curve.power()
+    near = [f"{c:.0f}" for c, p in zip(curve.cadences[1:], power[1:]) if abs(p - power[0]) < MESH_MOVE_W]
+    if not near:
+        return ""
+    return (f"the what-ifs at {', '.join(near)} steps/min change the power by less than {MESH_MOVE_W:g} W, as much "
+            "as 60 nodes moved the three shipped runners' changes from the section's 30, which the band does not "
+            "hold: their words may turn on a finer mesh (docs/howto/compare.md, 'The mesh under the what-ifs')")
 
 
 def optima_notes(curve: Curve) -> list[str]:
@@ -90,7 +109,9 @@ def variant_envelope_note(name: str, gap: float) -> str:
 def section_notes(curves: list[Curve], best: dict, runner: float, nominal) -> list[str]:
     """The section's notes on the mesh, the nominal's optima, the band's left-out variants and
     those off their envelope, a free optimum far from the runner and the strikes' validity."""
-    notes = [mesh_note(nominal.settings), *optima_notes(curves[0])]
+    measured = nominal.settings.nodes == NODES and nominal.settings.transcription == "trapezoid"
+    near = mesh_what_if_note(curves[0]) if measured else ""  # MESH_MOVE_W was measured on these settings
+    notes = [mesh_note(nominal.settings), *([near] if near else []), *optima_notes(curves[0])]
     if not curves[0].ok:
         notes.append(f"the nominal stride did not converge ({curves[0].why_not}): no what-if")
     notes += [f"{cv.name} left out of the band: {cv.why_not}" for cv in curves[1:] if not cv.ok]

@@ -15,7 +15,13 @@ from formopt.report.figures import stride_cadence_figure
 from formopt.report.tables import stride_lines
 from formopt.studies import compare_band, compare_stride
 from formopt.studies.compare_band import Variant, stage_count, stage_shares
-from formopt.studies.compare_notes import ENVELOPE, optima_notes, section_notes
+from formopt.studies.compare_notes import (
+    ENVELOPE,
+    MESH_MOVE_W,
+    mesh_what_if_note,
+    optima_notes,
+    section_notes,
+)
 from formopt.studies.compare_stride import (
     WHAT_IF_PCT,
     Curve,
@@ -61,6 +67,15 @@ def _curve(name, power, part="", objective=None):
                                objective_value=o, success=True, valid=True, on_bound=[], held=[], cadence_spm=c)
                for p, o, c in zip(power, objective or power, [170.0, 153.0, 161.5, 178.5, 187.0])]
     return Curve(name, [170.0, 153.0, 161.5, 178.5, 187.0], None, strides, part=part)
+
+
+def test_what_ifs_within_the_meshs_move_of_zero_are_named():
+    """The what-ifs whose change lies within MESH_MOVE_W of zero (what 60 nodes moved the shipped
+    runners' changes) are named: their words may turn on a finer mesh; none, no note."""
+    curve = _curve("nominal", [100, 100 - MESH_MOVE_W - 1, 104, 110, 100 + MESH_MOVE_W + 1])
+    assert mesh_what_if_note(curve).startswith("the what-ifs at 162, 178 steps/min change the power by less than 19 W")
+    assert mesh_what_if_note(_curve("nominal", [100, 50, 70, 130, 160])) == ""
+    assert mesh_what_if_note(Curve("nominal", curve.cadences, why_not="no convergence")) == ""
 
 
 def test_the_band_names_each_part_with_its_own_width():
