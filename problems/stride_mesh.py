@@ -497,7 +497,7 @@ def report(label: str, nlp, stride, seconds: float, speed: float) -> None:
     print("\n".join(f"  node rows, {r}" for r in rows), flush=True)
     rates = np.asarray(stride.thetad, float)[:, 3:]
     at = np.abs(rates).argmax(axis=0)
-    print("  fastest joint rates (rad/s, flexion and dorsiflexion positive; the phase): " + " ".join(
+    print("  fastest joint rates (rad/s, flexion and dorsiflexion positive; the phase of its first node): " + " ".join(
         f"{j} {rates[k, i]:+.1f} ({stride.phase[k]})" for i, (j, k) in enumerate(zip(JOINTS, at))), flush=True)
 
 

@@ -21,9 +21,10 @@ FAR = 0.2
 # other starts' optima this much costlier (fraction) than the one kept are named in the notes
 SPREAD_NOTE = 0.01
 # What the mesh did to the section's what-ifs (problems/compare_mesh.py on the three shipped runners,
-# each curve stride solved again on 60 nodes as the band's strides are, sticking: each change moved
-# 1-19 W and kept its sign, all but one inside their bands; docs/howto/compare.md, 2026-11-28)
-MESH_MOVE_W = 19.0  # W
+# Coulomb, each curve stride solved again on 60 nodes as the band's strides are, sticking: each
+# change moved 1.3-19.2 W and kept its sign, all but one inside their bands; docs/howto/compare.md,
+# 2026-11-28): a change within this of zero may turn on a finer mesh
+MESH_MOVE_W = 20.0  # W
 # the envelope: the free optimum's objective at most this (relative) above the least imposed
 # stride's; IPOPT's optima are exact to about 1e-6, so a larger gap is another local optimum
 ENVELOPE = 1e-3
@@ -31,21 +32,26 @@ ENVELOPE = 1e-3
 
 def mesh_what_if_note(curve: Curve) -> str:
     """The nominal's what-ifs whose change of mechanical power lies within MESH_MOVE_W of zero,
-    which a finer mesh may turn (the band does not hold the mesh), in words ("" when none)."""
+    whose verdict a finer mesh may turn (the band does not hold the mesh), in words ("" when
+    none or no curve)."""
     if not curve.ok:
         return ""
-    power = curve.power()
-    near = [f"{c:.0f}" for c, p in zip(curve.cadences[1:], power[1:]) if abs(p - power[0]) < MESH_MOVE_W]
+    power, runner = curve.power(), curve.cadences[0]
+    near = [f"{(c / runner - 1) * 100:+.0f} % ({c:.0f} steps/min)"
+            for c, p in zip(curve.cadences[1:], power[1:]) if abs(p - power[0]) < MESH_MOVE_W]
     if not near:
         return ""
-    return (f"the what-ifs at {', '.join(near)} steps/min change the power by less than {MESH_MOVE_W:g} W, as much "
-            "as 60 nodes moved the three shipped runners' changes from the section's 30, which the band does not "
-            "hold: their words may turn on a finer mesh (docs/howto/compare.md, 'The mesh under the what-ifs')")
+    return (f"the what-ifs at {', '.join(near)} change the model's power by less than {MESH_MOVE_W:g} W, about "
+            "what 60 nodes moved the three shipped runners' changes from the section's 30, and the band does not "
+            "hold the mesh: their verdicts may turn on a finer mesh (docs/howto/compare.md, 'The mesh under the "
+            "what-ifs')")
 
 
 def optima_notes(curve: Curve) -> list[str]:
-    """Where other starts ended in costlier local optima, and a free optimum found again from
-    an imposed cadence's stride, in words."""
+    """Where other starts ended in costlier local optima, a free optimum found again from an
+    imposed cadence's stride, a sliding free optimum, the envelope, the families, invalid
+    strides, and the strides on a phase's duration bound (one note per bound) or held by the
+    solve's bounds, in words."""
     notes = [f"at {c:.0f} steps/min other starts reached local optima up to {f * 100:.0f} % costlier "
              "(the least costly is used)" for c, f in zip(curve.cadences, curve.spread) if f > SPREAD_NOTE]
     if curve.free_from != "free":
@@ -66,16 +72,22 @@ def optima_notes(curve: Curve) -> list[str]:
     invalid = [s for s in free + curve.strides if s.success and not s.valid]
     notes += [f"the stride at {s.cadence_spm:.0f} steps/min is INVALID ({'; '.join(s.failed_checks)}): "
               "read what it says as the model's, not a runner's" for s in invalid]
-    bound: dict[str, list[str]] = {}  # one note per bound text, its strides' cadences
+    bound: dict[str, list[float]] = {}  # one note per bound text, its strides' cadences
     for s in curve.strides:
         if s.on_bound:
-            bound.setdefault(s.bound_text(), []).append(f"{s.cadence_spm:.0f}")
-    notes += [f"the stride{'s' if len(c) > 1 else ''} at {', '.join(c)} steps/min: {text}" for text, c in bound.items()]
-    held = [s for s in curve.strides if s.held]
+            bound.setdefault(s.bound_text(), []).append(s.cadence_spm)
+    notes += [f"{_strides(c)}: {text}" for text, c in bound.items()]
+    held = [s.cadence_spm for s in curve.strides if s.held]
     if held:
-        notes.append(f"the solve's bounds hold the strides at {', '.join(f'{s.cadence_spm:.0f}' for s in held)} "
-                     "steps/min (each stride's `held` in the JSON; the optimum's are printed under it)")
+        notes.append(f"the solve's bounds hold {_strides(held)} (each stride's `held` in the JSON; the "
+                     "optimum's are printed under it)")
     return notes
+
+
+def _strides(cadences: list[float]) -> str:
+    """"the stride at 171 steps/min", or "the strides at 154, 163 steps/min" (rising)."""
+    many = len(cadences) > 1
+    return f"the stride{'s' if many else ''} at {', '.join(f'{c:.0f}' for c in sorted(cadences))} steps/min"
 
 
 def sticking_note(free: Stride, own: Stride, start: Stride | None) -> str:
@@ -109,8 +121,9 @@ def variant_envelope_note(name: str, gap: float) -> str:
 def section_notes(curves: list[Curve], best: dict, runner: float, nominal) -> list[str]:
     """The section's notes on the mesh, the nominal's optima, the band's left-out variants and
     those off their envelope, a free optimum far from the runner and the strikes' validity."""
-    measured = nominal.settings.nodes == NODES and nominal.settings.transcription == "trapezoid"
-    near = mesh_what_if_note(curves[0]) if measured else ""  # MESH_MOVE_W was measured on these settings
+    # MESH_MOVE_W was measured on the section's nodes, under Coulomb, with its band
+    measured = nominal.settings.nodes == NODES and nominal.settings.law == "coulomb" and len(curves) > 1
+    near = mesh_what_if_note(curves[0]) if measured else ""
     notes = [mesh_note(nominal.settings), *([near] if near else []), *optima_notes(curves[0])]
     if not curves[0].ok:
         notes.append(f"the nominal stride did not converge ({curves[0].why_not}): no what-if")

@@ -73,9 +73,17 @@ def test_what_ifs_within_the_meshs_move_of_zero_are_named():
     """The what-ifs whose change lies within MESH_MOVE_W of zero (what 60 nodes moved the shipped
     runners' changes) are named: their words may turn on a finer mesh; none, no note."""
     curve = _curve("nominal", [100, 100 - MESH_MOVE_W - 1, 104, 110, 100 + MESH_MOVE_W + 1])
-    assert mesh_what_if_note(curve).startswith("the what-ifs at 162, 178 steps/min change the power by less than 19 W")
+    assert mesh_what_if_note(curve).startswith("the what-ifs at -5 % (162 steps/min), +5 % (178 steps/min) change "
+                                               "the model's power by less than 20 W")
     assert mesh_what_if_note(_curve("nominal", [100, 50, 70, 130, 160])) == ""
     assert mesh_what_if_note(Curve("nominal", curve.cadences, why_not="no convergence")) == ""
+    curve.free = SimpleNamespace(objective_value=80.0, cadence_spm=170.0, success=True, valid=True, held=[])
+    band = [curve, _curve("friction 1", [100, 110, 104, 98, 97], "friction")]
+    for nodes, law, curves, said in ((30, "coulomb", band, True), (30, "no-slip", band, False),
+                                     (24, "coulomb", band, False), (30, "coulomb", band[:1], False)):
+        scene = stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", law=law, nodes=nodes)
+        notes = section_notes(curves, {}, 170.0, scene)  # said only where MESH_MOVE_W was measured
+        assert any(n.startswith("the what-ifs at -5 %") for n in notes) is said
 
 
 def test_the_band_names_each_part_with_its_own_width():
@@ -110,8 +118,9 @@ def test_a_what_if_between_two_families_and_a_free_optimum_off_the_envelope_are_
     assert "the stride at 187 steps/min: flat phase 30.0 ms on its low bound" in notes
     nominal.strides[1].on_bound, nominal.strides[1].bound_text = nominal.strides[4].on_bound, nominal.strides[4].bound_text
     assert "the strides at 153, 187 steps/min: flat phase 30.0 ms on its low bound" in " ".join(optima_notes(nominal))
+    nominal.strides[1].on_bound = []
     nominal.strides[2].held = nominal.free.held
-    assert optima_notes(nominal)[-1] == ("the solve's bounds hold the strides at 162 steps/min (each stride's "
+    assert optima_notes(nominal)[-1] == ("the solve's bounds hold the stride at 162 steps/min (each stride's "
                                          "`held` in the JSON; the optimum's are printed under it)")
 
 
