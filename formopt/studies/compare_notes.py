@@ -42,7 +42,7 @@ def mesh_what_if_note(curve: Curve) -> str:
     if not near:
         return ""
     return (f"the what-ifs at {', '.join(near)} change the model's power by less than {MESH_MOVE_W:g} W, about "
-            "what 60 nodes moved the three shipped runners' changes from the section's 30, and the band does not "
+            f"what {2 * NODES} nodes moved the three shipped runners' changes from the section's {NODES}, and the band does not "
             "hold the mesh: their verdicts may turn on a finer mesh (docs/howto/compare.md, 'The mesh under the "
             "what-ifs')")
 
