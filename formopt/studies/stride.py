@@ -111,7 +111,7 @@ def tie_note(strides: list[Stride], measured_pct: Callable[[Stride], float | Non
     best's by 100 (J - J_best) / |J_best| < u_best + u_J %, each u a stride's own mesh check's
     cost change (where it measured: MeshCheck.measured) or else `measured_pct(stride)`
     (optim.stride.notes.mesh_cost_pct); nothing is said for a stride whose u is unknown."""
-    sound = [s for s in strides if s.valid and s.success]
+    sound = _sound(strides)
 
     def moved(s: Stride) -> float | None:
         c = s.mesh_check
@@ -125,7 +125,7 @@ def tie_note(strides: list[Stride], measured_pct: Callable[[Stride], float | Non
         other = moved(s)
         if other is None:
             continue
-        gap = 100.0 * (s.objective_value - best.objective_value) / max(abs(best.objective_value), 1e-12)
+        gap = _costlier_pct(s, best)
         if gap < first + other:
             tied.append(f"{s.strike} ({s.cadence_spm:.1f} steps/min) {gap:.2f} % costlier, less than the mesh may "
                         f"move the difference ({first + other:.2f} %: each cost up to {first:.2f} and {other:.2f} %)")
@@ -139,16 +139,25 @@ def unlike_note(strides: list[Stride]) -> str:
     """Where the least costly of several valid, converged strides (ranked first) is unlike a
     runner's (Stride.unlike_a_runner: a crouched stance, a stiff landing), the least
     costly one that is not, with how much more it costs (%), in words ("" otherwise)."""
-    sound = [s for s in strides if s.valid and s.success]
+    sound = _sound(strides)
     if len(sound) < 2 or not sound[0].unlike_a_runner:  # one strike solved: its own NOTE says it
         return ""
     best, alike = sound[0], next((s for s in sound[1:] if not s.unlike_a_runner), None)
     said = f"the least costly stride, the {best.strike} strike, is unlike a runner's (its NOTE says how)"
     if alike is None:
         return said + ", and so is every other strike solved"
-    gap = 100.0 * (alike.objective_value - best.objective_value) / max(abs(best.objective_value), 1e-12)
     return (f"{said}; the least costly stride without such a remark is the {alike.strike} strike "
-            f"({alike.cadence_spm:.1f} steps/min, {gap:.1f} % costlier)")
+            f"({alike.cadence_spm:.1f} steps/min, {_costlier_pct(alike, best):.1f} % costlier)")
+
+
+def _sound(strides: list[Stride]) -> list[Stride]:
+    """The valid, converged strides, in their (ranked) order: those `tie_note` and `unlike_note` compare."""
+    return [s for s in strides if s.valid and s.success]
+
+
+def _costlier_pct(stride: Stride, best: Stride) -> float:
+    """How much costlier (%) `stride` is than `best`: 100 (J - J_best) / |J_best| (guarded at J_best = 0)."""
+    return 100.0 * (stride.objective_value - best.objective_value) / max(abs(best.objective_value), 1e-12)
 
 
 def mesh_text(strides: list[Stride]) -> str:
