@@ -11,6 +11,7 @@ reference became one of its parameters: one PostureProblem (symbolic build and s
 step. No peer tool computes this (OpenSim and Visual3D give the angles, not an optimum).
 
     python benchmarks/compare_speed.py --stride T25 [--workers 1] [--json FILE] [--compiled true] [--solves]
+                                       [--nodes 24 --transcription hermite-simpson]
     python benchmarks/compare_speed.py --diff BEFORE.json AFTER.json
 
 `--stride`: compare's stride section (studies.compare_stride.answer) for one runner of
@@ -26,7 +27,8 @@ alone on 2 idle cores estimated from each process's CPU between this process's w
 pool (`two_cores`: on the shared machine the wall measures the other runs as much as this one);
 `--workers 1` puts every stage in this process; `--compiled true` compiles every NLP's node
 models (collocation.COMPILED; once, then from the disk cache: the section with every NLP
-compiled); `--solves`: every IPOPT run of every process (stage, NLP, solver: `stride_warm` the
+compiled); `--nodes`, `--transcription`: the strides' mesh (compare_stride.answer's; default the section's,
+studies.stride_form.NODES and TRANSCRIPTION); `--solves`: every IPOPT run of every process (stage, NLP, solver: `stride_warm` the
 warm start with multipliers, cadence, iterations, status, objective, CPU s, pid, its wall from
 the section's start to its end). `--diff`: the
 stride sections of two comparison.json files (or --json files), number by number: each
@@ -64,6 +66,8 @@ def main():
     parser.add_argument("--compiled", choices=("auto", "true", "false"), default="auto",
                         help="--stride: the stride NLPs' node models in C (collocation.COMPILED)")
     parser.add_argument("--solves", action="store_true", help="--stride: print every IPOPT run of this process")
+    parser.add_argument("--nodes", type=int, default=None, help="--stride: the strides' intervals")
+    parser.add_argument("--transcription", default=None, help="--stride: the strides' transcription")
     parser.add_argument("--diff", nargs=2, metavar=("BEFORE", "AFTER"))
     args = parser.parse_args()
     if args.diff:
@@ -71,7 +75,8 @@ def main():
     if args.stride:
         from formopt.optim.stride import collocation
         collocation.COMPILED = {"auto": "auto", "true": True, "false": False}[args.compiled]
-        return stride_stages(args.stride, args.workers, args.json, args.solves)
+        mesh = {k: v for k, v in (("nodes", args.nodes), ("transcription", args.transcription)) if v is not None}
+        return stride_stages(args.stride, args.workers, args.json, args.solves, mesh)
     exe = str(Path(sys.executable).with_name("formopt"))
     walls = []
     for _ in range(args.repeats):
@@ -145,7 +150,8 @@ def cpu_s() -> float:
     return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
 
 
-def stride_stages(runner: str, workers: int | None, out: str | None, each: bool = False) -> None:
+def stride_stages(runner: str, workers: int | None, out: str | None, each: bool = False,
+                  mesh: dict | None = None) -> None:
     """The stride section's time for one runner, and per stage of this process (module doc)."""
     from formopt.optim.stride import collocation
     from formopt.studies import compare_band, compare_stride
@@ -194,7 +200,7 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
     compare_band.forward_checked = cpu_of("forward checks", compare_band.forward_checked)
     timeline = Timeline()
     wall, cpu, told = time.perf_counter(), cpu_s(), []
-    stages = {"progress": lambda text: told.append((time.perf_counter() - wall, text))}
+    stages = {"progress": lambda text: told.append((time.perf_counter() - wall, text)), **(mesh or {})}
     answer = compare_stride.answer
     section = answer(c, workers=workers, **stages) if workers else answer(c, **stages)
     wall, cpu = time.perf_counter() - wall, cpu_s() - cpu

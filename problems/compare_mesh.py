@@ -13,11 +13,15 @@ model's mechanical power P = W+/T at the runner's cadence and each what-if's cha
 dP(c) = P(c) - P(c_runner) (W), beside the section's own figures and band from the JSON:
 
     python problems/compare_mesh.py out/runners/*/comparison.json [--nodes 30 60 120] [--refined]
+                                    [--transcription hermite-simpson (every mesh's, the section's
+                                     curve solved again on it)]
 
 From 30 to 60 nodes the changes moved by up to 19.2 W on the three shipped runners: the section
 names its what-ifs within compare_notes.MESH_MOVE_W (20 W) of zero, whose verdict a finer mesh
 may turn (docs/howto/compare.md, "The mesh under the what-ifs"). The section's "nodes" are the
-transcription's intervals (StrideSettings.nodes).
+transcription's intervals (StrideSettings.nodes). On Hermite-Simpson (`--transcription
+hermite-simpson --nodes 24 48`) they moved by 0.1-5.6 W and the objective by 0.1-1.5 %
+(docs/howto/compare.md, "Hermite-Simpson under the what-ifs").
 """
 
 from __future__ import annotations
@@ -27,10 +31,11 @@ import json
 import time
 
 from formopt.mechanics.body import scaled_body
+from formopt.optim.stride.problem import TRANSCRIPTIONS
 from formopt.optim.stride.refine import refined
 from formopt.studies.compare_band import stride_at
 from formopt.studies.compare_stride import WHAT_IF_PCT
-from formopt.studies.stride_form import stride_scene
+from formopt.studies.stride_form import TRANSCRIPTION, stride_scene
 from formopt.studies.stride_map import cadence_curve, for_nodes
 
 
@@ -38,7 +43,9 @@ def parse(argv=None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("comparisons", nargs="+", help="comparison.json files written by formopt compare")
     parser.add_argument("--nodes", nargs="+", type=int, default=[30, 60, 120],
-                        help="the meshes (trapezoid nodes, StrideSettings.nodes), the section's first")
+                        help="the meshes (the transcription's intervals, StrideSettings.nodes), the section's first")
+    parser.add_argument("--transcription", default=TRANSCRIPTION, choices=TRANSCRIPTIONS,
+                        help="every mesh's (the section's: studies.stride_form.TRANSCRIPTION)")
     parser.add_argument("--refined", action="store_true",
                         help="each finer stride solved by refine.refined (its touchdown's mode decided again "
                              "under Coulomb) instead of as the section solves its strides (sticking)")
@@ -53,7 +60,7 @@ def runner(path: str) -> dict:
     return {"name": path, "body": d["body"] if "mass_kg" in d["body"] else d["settings"]["body"],
             "friction": d["settings"]["friction"], "speed": s["speed_mps"], "law": s["law"],
             "cadence": s["measured_cadence_spm"], "strike": s["measured_strike"], "nodes": s["nodes"],
-            "what_if": s["what_if"]}
+            "what_if": s["what_if"], "transcription": s.get("transcription", "trapezoid")}
 
 
 def finer(scene, strides: list, nodes: int, refine: bool) -> list:
@@ -81,11 +88,13 @@ def main(argv=None) -> None:
     for path in args.comparisons:
         r = runner(path)
         print(f"{r['name']}: {r['speed']:.2f} m/s, {r['strike']}, runner {r['cadence']:.1f} steps/min, the section "
-              f"at {r['nodes']} nodes; the finer meshes solved {how}", flush=True)
-        if args.nodes[0] != r["nodes"]:
-            print(f"  NOTE: the first mesh ({args.nodes[0]} nodes) is not the section's ({r['nodes']})", flush=True)
+              f"on the {r['transcription']} at {r['nodes']} nodes; the finer meshes solved {how}", flush=True)
+        if (args.nodes[0], args.transcription) != (r["nodes"], r["transcription"]):
+            print(f"  NOTE: the first mesh ({args.transcription} at {args.nodes[0]} nodes) is not the section's "
+                  f"({r['transcription']} at {r['nodes']})", flush=True)
         body = scaled_body(r["body"]["mass_kg"], r["body"]["height_m"], r["body"]["sex"])
-        scene = stride_scene(body, r["speed"], r["strike"], "effort", r["friction"], r["law"], args.nodes[0])
+        scene = stride_scene(body, r["speed"], r["strike"], "effort", r["friction"], r["law"], args.nodes[0],
+                             transcription=args.transcription)
         clock = time.process_time()
         curve = cadence_curve(scene, r["speed"], [r["cadence"]] + [r["cadence"] * (1 + p / 100) for p in WHAT_IF_PCT])
         print(f"  the curve at {args.nodes[0]} nodes: {time.process_time() - clock:.0f} s of CPU", flush=True)

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 
 from ..optim.stride import Stride
 from ..optim.stride.notes import mesh_note
-from .stride_form import NODES
+from .stride_form import NODES, TRANSCRIPTION
 
 if TYPE_CHECKING:
     from .compare_stride import Curve
@@ -25,6 +25,14 @@ SPREAD_NOTE = 0.01
 # change moved 1.3-19.2 W and kept its sign, all but one inside their bands; docs/howto/compare.md,
 # 2026-11-28): a change within this of zero may turn on a finer mesh
 MESH_MOVE_W = 20.0  # W
+# What a mesh-converged transcription says of the same curves (problems/compare_mesh.py
+# --transcription hermite-simpson --nodes 24 48 on the three shipped runners: its objective moved
+# 0.1-1.5 % from 24 to 48 intervals, its changes 0.1-5.6 W; docs/howto/compare.md, "Hermite-Simpson
+# under the what-ifs", 2026-11-28)
+HERMITE_NOTE = ("on Hermite-Simpson at 24 intervals, mesh-converged within 1.5 %, the three shipped runners' "
+                "power at their cadence lay 0.7-33 W from the section's and one of their twelve what-ifs turned "
+                "its sign; the section stays on the trapezoid for its time (docs/howto/compare.md, "
+                "'Hermite-Simpson under the what-ifs')")
 # the envelope: the free optimum's objective at most this (relative) above the least imposed
 # stride's; IPOPT's optima are exact to about 1e-6, so a larger gap is another local optimum
 ENVELOPE = 1e-3
@@ -121,10 +129,12 @@ def variant_envelope_note(name: str, gap: float) -> str:
 def section_notes(curves: list[Curve], best: dict, runner: float, nominal) -> list[str]:
     """The section's notes on the mesh, the nominal's optima, the band's left-out variants and
     those off their envelope, a free optimum far from the runner and the strikes' validity."""
-    # MESH_MOVE_W was measured on the section's nodes, under Coulomb, with its band
-    measured = nominal.settings.nodes == NODES and nominal.settings.law == "coulomb" and len(curves) > 1
-    near = mesh_what_if_note(curves[0]) if measured else ""
-    notes = [mesh_note(nominal.settings), *([near] if near else []), *optima_notes(curves[0])]
+    # MESH_MOVE_W was measured on the section's mesh, under Coulomb, with its band
+    settings = nominal.settings
+    measured = (settings.nodes == NODES and settings.transcription == TRANSCRIPTION
+                and settings.law == "coulomb" and len(curves) > 1)
+    near = [mesh_what_if_note(curves[0]), HERMITE_NOTE] if measured else []
+    notes = [mesh_note(nominal.settings), *filter(None, near), *optima_notes(curves[0])]
     if not curves[0].ok:
         notes.append(f"the nominal stride did not converge ({curves[0].why_not}): no what-if")
     notes += [f"{cv.name} left out of the band: {cv.why_not}" for cv in curves[1:] if not cv.ok]

@@ -57,7 +57,7 @@ from .compare_band import (
 )
 from .compare_notes import ENVELOPE, section_notes
 from .pool import Background
-from .stride_form import NODES, joint_work, placement_m, stride_scene
+from .stride_form import NODES, TRANSCRIPTION, joint_work, placement_m, stride_scene
 from .stride_map import better, cadence_curve, warm
 
 WHAT_IF_PCT = (-10.0, -5.0, 5.0, 10.0)  # cadence changes asked (% of the runner's cadence)
@@ -202,6 +202,7 @@ class StrideAnswer:
     notes: list[str]
     seconds: float
     nominal_nodes: int  # collocation intervals of every stride solved
+    transcription: str = TRANSCRIPTION  # theirs (StrideSettings.transcription)
 
     @property
     def nominal(self) -> Curve:
@@ -222,7 +223,7 @@ class StrideAnswer:
         best = self.best_strike
         tried = self.nominal.own_free
         sticking = tried if tried is not None and tried.success else None
-        return {"speed_mps": self.speed_mps, "law": self.law, "nodes": self.nominal_nodes,
+        return {"speed_mps": self.speed_mps, "law": self.law, "nodes": self.nominal_nodes, "transcription": self.transcription,
                 "measured_cadence_spm": self.measured["cadence_spm"],
                 "measured_step_length_m": self.measured["step_length_m"],
                 "measured_placement_m": self.measured["placement_m"],
@@ -368,12 +369,14 @@ def what_ifs(curves: list[Curve], cadences: list[float],
 
 
 def answer(c, progress=None, nodes: int = NODES, band: bool = True,
-           changes: tuple[float, ...] = WHAT_IF_PCT, workers: int = WORKERS) -> StrideAnswer:
+           changes: tuple[float, ...] = WHAT_IF_PCT, workers: int = WORKERS,
+           transcription: str = TRANSCRIPTION) -> StrideAnswer:
     """compare's stride section for a Comparison `c` (its speed, main side, body settings,
     friction and law); `progress(text)` is told of each stage; `band` False: the nominal
     variant and strike only (every band then the nominal value, no other strike: a cheap check,
     not a report); `changes`: the what-ifs' cadence changes (% of the runner's); `workers`: the
-    processes of the section's pool (module docstring; band False: none, every solve here)."""
+    processes of the section's pool (module docstring; band False: none, every solve here);
+    `nodes` and `transcription` the strides' mesh (stride_form.NODES, TRANSCRIPTION)."""
     say = progress or (lambda text: None)
     start = time.perf_counter()
     measured = measured_form(c)
@@ -383,7 +386,8 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
     runner = measured["cadence_spm"]
     cadences = [runner] + [runner * (1 + p / 100) for p in changes]
     nominal = stride_scene(scaled_body(body["mass_kg"], body["height_m"], body["sex"]), speed,
-                           measured["strike"], "effort", c.settings["friction"], law, nodes)
+                           measured["strike"], "effort", c.settings["friction"], law, nodes,
+                           transcription=transcription)
     others = [s for s in STRIKES if s != measured["strike"]] if band else []
     variants = band_variants(nominal, body) if band else []
     _ = nominal.nlp().solver  # built before the pool forks: its workers inherit it (the first sweep's)
@@ -410,7 +414,7 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
     notes += section_notes(curves, best, runner, nominal)
     return StrideAnswer(speed, law, measured, curves, best,
                         what_ifs(curves, cadences, changes) if curves[0].ok else [], notes,
-                        time.perf_counter() - start, nominal.settings.nodes)
+                        time.perf_counter() - start, nominal.settings.nodes, transcription)
 
 
 def band_curves(nominal: Curve, variants: list[Variant], beside: Background, say,

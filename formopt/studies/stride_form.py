@@ -21,18 +21,28 @@ from ..optim.stride.problem import RUNNER_TENDONS
 # 142.5 at 3.58 (2 starts); at 30 it is 175.7 steps/min (objective 0.780, lower than both) with
 # 1 or 2 starts, 2-3 s of CPU (2026-11-23)
 NODES = 30
+# the transcription of compare's strides and the literature checks. Hermite-Simpson at 24
+# intervals is mesh-converged where the trapezoid at 30 is not (compare's three shipped runners,
+# each imposed stride solved again on twice the mesh: the objective moved 0.1-1.5 % against 10-18 %,
+# the what-ifs' changes 0.1-5.6 W against 1.3-19.2 W), but the section then takes 24-42 s a trial
+# instead of 15-18 (its warm starts take 25-50 IPOPT iterations of 12-14 ms against 9-16 of 7), and
+# with compare's knee spring RIC's free optimum crouches (stance knee 70 deg); the torque scenes'
+# model (no knee spring, impacts charged, moment dynamics) on it fails its forward check on RBDS001
+# T25 (0.31 rad). Kept: the trapezoid, its mesh said in the section's notes (docs/howto/compare.md,
+# "Hermite-Simpson under the what-ifs", 2026-11-28).
+TRANSCRIPTION = "trapezoid"
 MAX_ITER = 500  # IPOPT iterations: a converging stride takes 30-300 (2026-11-23, 24 nodes)
 
 
 def stride_scene(body: Body, speed: float, strike: str, objective: str = "effort",
                  friction: float = 0.8, law: str = "no-slip", nodes: int = NODES,
                  starts: int = 1, name: str = "stride",
-                 tendons: dict | None = None) -> StrideScene:
+                 tendons: dict | None = None, transcription: str = TRANSCRIPTION) -> StrideScene:
     """A level-ground stride scene of `body` at `speed` (m/s), one strike and objective, the
     cadence free (stride_map.cadence_curve imposes it); the stance leg's tendons
-    (problem.RUNNER_TENDONS unless given; {} for none)."""
+    (problem.RUNNER_TENDONS unless given; {} for none); `nodes` the transcription's intervals."""
     settings = StrideSettings(strike=strike, objective=objective, nodes=nodes, law=law,
-                              max_iter=MAX_ITER,
+                              transcription=transcription, max_iter=MAX_ITER,
                               tendons=dict(RUNNER_TENDONS if tendons is None else tendons))
     return StrideScene(name, body, speed, 0.0, friction, strike, settings, None, starts)
 

@@ -17,6 +17,7 @@ from formopt.studies import compare_band, compare_stride
 from formopt.studies.compare_band import Variant, stage_count, stage_shares
 from formopt.studies.compare_notes import (
     ENVELOPE,
+    HERMITE_NOTE,
     MESH_MOVE_W,
     mesh_what_if_note,
     optima_notes,
@@ -79,11 +80,15 @@ def test_what_ifs_within_the_meshs_move_of_zero_are_named():
     assert mesh_what_if_note(Curve("nominal", curve.cadences, why_not="no convergence")) == ""
     curve.free = SimpleNamespace(objective_value=80.0, cadence_spm=170.0, success=True, valid=True, held=[])
     band = [curve, _curve("friction 1", [100, 110, 104, 98, 97], "friction")]
-    for nodes, law, curves, said in ((30, "coulomb", band, True), (30, "no-slip", band, False),
-                                     (24, "coulomb", band, False), (30, "coulomb", band[:1], False)):
-        scene = stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", law=law, nodes=nodes)
+    for nodes, how, law, curves, said in ((30, "trapezoid", "coulomb", band, True),
+                                          (30, "trapezoid", "no-slip", band, False),
+                                          (24, "trapezoid", "coulomb", band, False),
+                                          (30, "hermite-simpson", "coulomb", band, False),
+                                          (30, "trapezoid", "coulomb", band[:1], False)):
+        scene = stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", law=law, nodes=nodes, transcription=how)
         notes = section_notes(curves, {}, 170.0, scene)  # said only where MESH_MOVE_W was measured
         assert any(n.startswith("the what-ifs at -5 %") for n in notes) is said
+        assert (HERMITE_NOTE in notes) is said
 
 
 def test_the_band_names_each_part_with_its_own_width():
@@ -222,7 +227,7 @@ def test_the_band_starts_its_free_optima_beside_the_family_only_when_their_start
     monkeypatch.setattr(compare_stride, "start_band", lambda *a: events.append("band") or start_band(*a))
     monkeypatch.setattr(compare_band, "stride_at", _solved)
     monkeypatch.setattr(compare_stride, "measured_form", lambda c: {"cadence_spm": 170.0, "strike": "heel"})
-    monkeypatch.setattr(compare_stride, "stride_scene", lambda *a: SimpleNamespace(
+    monkeypatch.setattr(compare_stride, "stride_scene", lambda *a, **k: SimpleNamespace(
         nlp=lambda: SimpleNamespace(solver=None), settings=SimpleNamespace(nodes=18)))
     monkeypatch.setattr(compare_stride, "band_variants", lambda scene, body: [Variant("friction 0.6", "friction", "mu")])
     monkeypatch.setattr(compare_stride, "strike_tasks", lambda scene, speed, strikes: [(type, s, "") for s in strikes])
@@ -372,6 +377,7 @@ def test_the_section_json_and_words(section):
     assert d["best_strike"] == "heel" and d["strikes"]["forefoot"] is None  # band=False: one strike
     text = "\n".join(stride_lines(d))
     assert "the runner:  cadence  171.4" in text and "heel strike, stance knee 40 deg" in text
+    assert "(trapezoid at 18 intervals, no-slip impacts" in text and d["transcription"] == "trapezoid"
     assert f"stance knee {d['optimum_stance_knee_deg']:.0f} deg; mechanical power" in text
     assert all(f"{p:+5.0f} %" in text for p in CHANGES)
 
