@@ -58,7 +58,7 @@ def fibre_function(muscles: hill.Muscles) -> ca.Function:
 
 def reserves(nlp, blocks: dict) -> None:
     """Print the nodes where a reserve exceeds the tolerance and the muscles that could help (a
-    node value: the tolerance judges the reserves' largest 10 ms mean, result.reserve_mean)."""
+    node value: the tolerance judges the reserves' largest 10 ms mean, muscle_readings.reserve_mean)."""
     act = nlp.ocp.models[0].actuation
     n, mus, fibres = act.n, act.muscles, fibre_function(act.muscles)
     limit, start = TOLERANCES["reserve_nm_per_kg"], 0.0

@@ -9,8 +9,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..mechanics.joint_space import JointSpace
+from ..optim.stride.muscle_readings import RESERVE_WINDOW_S
 from ..optim.stride.problem import FORCE_RATE_WEIGHTS
-from ..optim.stride.result import RESERVE_WINDOW_S
 from ..studies.stride import CYCLE_JOINTS, StrideStudy, predicted_cycle
 from .figures import new_figure
 

@@ -203,7 +203,7 @@ class MuscleDriven(Torques):
     The reserves (as OpenSim Moco's and PredSim's reserve actuators) keep the NLP feasible where
     the muscles cannot make a motion of the search (their cost, StrideSettings.reserve_weight,
     makes them a last resort); a stride reports their largest mean over 10 ms
-    (`Stride.checks["reserve_nm_per_kg"]`, result.reserve_mean) and is invalid beyond
+    (`Stride.checks["reserve_nm_per_kg"]`, muscle_readings.reserve_mean) and is invalid beyond
     TOLERANCES["reserve_nm_per_kg"]; their largest node value beside it ("reserve_peak_nm_per_kg").
 
     a' is a control tied to the activation dynamics by a row (the defects stay linear: the
