@@ -57,7 +57,7 @@ ARGS = ["compare", "--trial", str(DATA / "RBDS001runT35.c3d"), "--static", str(D
         "--mass", "62", "--height", "1.81", "--no-stride"]  # the stride section: --stride
 
 
-def main():
+def parse() -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--stride", help="compare's stride section of this runner (runners.toml)")
@@ -69,7 +69,11 @@ def main():
     parser.add_argument("--nodes", type=int, default=None, help="--stride: the strides' intervals")
     parser.add_argument("--transcription", default=None, help="--stride: the strides' transcription")
     parser.add_argument("--diff", nargs=2, metavar=("BEFORE", "AFTER"))
-    args = parser.parse_args()
+    return parser.parse_args()
+
+
+def main():
+    args = parse()
     if args.diff:
         return diff(*args.diff)
     if args.stride:
