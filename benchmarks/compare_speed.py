@@ -11,7 +11,7 @@ reference became one of its parameters: one PostureProblem (symbolic build and s
 step. No peer tool computes this (OpenSim and Visual3D give the angles, not an optimum).
 
     python benchmarks/compare_speed.py --stride T25 [--workers 1] [--json FILE] [--compiled true] [--solves]
-                                       [--nodes 24 --transcription hermite-simpson]
+                                       [--nodes 24 --transcription hermite-simpson] [--model scenes]
     python benchmarks/compare_speed.py --diff BEFORE.json AFTER.json
 
 `--stride`: compare's stride section (studies.compare_stride.answer) for one runner of
@@ -28,7 +28,8 @@ pool (`two_cores`: on the shared machine the wall measures the other runs as muc
 `--workers 1` puts every stage in this process; `--compiled true` compiles every NLP's node
 models (collocation.COMPILED; once, then from the disk cache: the section with every NLP
 compiled); `--nodes`, `--transcription`: the strides' mesh (compare_stride.answer's; default the section's,
-studies.stride_form.NODES and TRANSCRIPTION); `--solves`: every IPOPT run of every process (stage, NLP, solver: `stride_warm` the
+studies.stride_form.NODES and TRANSCRIPTION); `--model scenes`: the section on the torque
+scenes' stride model instead of compare's (`scenes_model`); `--solves`: every IPOPT run of every process (stage, NLP, solver: `stride_warm` the
 warm start with multipliers, cadence, iterations, status, objective, CPU s, pid, its wall from
 the section's start to its end). `--diff`: the
 stride sections of two comparison.json files (or --json files), number by number: each
@@ -68,6 +69,8 @@ def parse() -> argparse.Namespace:
     parser.add_argument("--solves", action="store_true", help="--stride: print every IPOPT run of this process")
     parser.add_argument("--nodes", type=int, default=None, help="--stride: the strides' intervals")
     parser.add_argument("--transcription", default=None, help="--stride: the strides' transcription")
+    parser.add_argument("--model", choices=("compare", "scenes"), default="compare",
+                        help="--stride: compare's stride model or the torque scenes' (scenes_model)")
     parser.add_argument("--diff", nargs=2, metavar=("BEFORE", "AFTER"))
     return parser.parse_args()
 
@@ -80,6 +83,8 @@ def main():
         from formopt.optim.stride import collocation
         collocation.COMPILED = {"auto": "auto", "true": True, "false": False}[args.compiled]
         mesh = {k: v for k, v in (("nodes", args.nodes), ("transcription", args.transcription)) if v is not None}
+        if args.model == "scenes":
+            scenes_model()
         return stride_stages(args.stride, args.workers, args.json, args.solves, mesh)
     exe = str(Path(sys.executable).with_name("formopt"))
     walls = []
@@ -152,6 +157,27 @@ def cpu_s() -> float:
     """CPU s of this process and its ended children (user + system)."""
     own, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
     return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+
+def scenes_model() -> None:
+    """compare's stride section on the torque scenes' model from here on (docs/howto/compare.md,
+    "Hermite-Simpson under the what-ifs"): compare_stride's nominal scene with the ankle's spring
+    alone (problem.RUNNER_ANKLE), the impacts charged (RUNNER_IMPACT_WEIGHT), the approach floor
+    (APPROACH_SPEED) and moment dynamics (MOMENT_TIME); its band's variants and other strikes are
+    made from it, and the pool's workers fork after this."""
+    from dataclasses import replace
+
+    from formopt.optim.stride.problem import APPROACH_SPEED, MOMENT_TIME, RUNNER_ANKLE, RUNNER_IMPACT_WEIGHT
+    from formopt.studies import compare_stride
+
+    compare_scene = compare_stride.stride_scene
+
+    def scene(*args, **kwargs):
+        nominal = compare_scene(*args, **kwargs, tendons=RUNNER_ANKLE)
+        return replace(nominal, settings=replace(nominal.settings, impact_weight=RUNNER_IMPACT_WEIGHT,
+                                                 approach_speed=APPROACH_SPEED, moment_time=MOMENT_TIME))
+
+    compare_stride.stride_scene = scene
 
 
 def stride_stages(runner: str, workers: int | None, out: str | None, each: bool = False,

@@ -27,12 +27,14 @@ SPREAD_NOTE = 0.01
 MESH_MOVE_W = 20.0  # W
 # What a mesh-converged transcription says of the same curves (problems/compare_mesh.py
 # --transcription hermite-simpson --nodes 24 48 on the three shipped runners: its objective moved
-# 0.1-1.5 % from 24 to 48 intervals, its changes 0.1-5.6 W; docs/howto/compare.md, "Hermite-Simpson
-# under the what-ifs", 2026-11-28)
+# 0.1-1.5 % from 24 to 48 intervals, its changes 0.1-5.6 W), and the torque scenes' model on it
+# (the section run with that model, 40 intervals: 8 of 12 verdicts other; docs/howto/compare.md,
+# "Hermite-Simpson under the what-ifs", 2026-11-28)
 HERMITE_NOTE = ("on Hermite-Simpson at 24 intervals, mesh-converged within 1.5 %, the three shipped runners' "
                 "power at their cadence lay 0.7-33 W from the section's and one of their twelve what-ifs turned "
-                "its sign; the section stays on the trapezoid for its time (docs/howto/compare.md, "
-                "'Hermite-Simpson under the what-ifs')")
+                "its sign; on the torque scenes' model (formopt stride's, 40 intervals) eight of the twelve "
+                "verdicts differ: the section stays on the trapezoid for its time, and its verdicts are this "
+                "model's (docs/howto/compare.md, 'Hermite-Simpson under the what-ifs')")
 # the envelope: the free optimum's objective at most this (relative) above the least imposed
 # stride's; IPOPT's optima are exact to about 1e-6, so a larger gap is another local optimum
 ENVELOPE = 1e-3

@@ -28,7 +28,8 @@ NODES = 30
 # instead of 15-18 (its warm starts take 25-50 IPOPT iterations of 12-14 ms against 9-16 of 7), and
 # with compare's knee spring RIC's free optimum crouches (stance knee 70 deg); the torque scenes'
 # model (no knee spring, impacts charged, moment dynamics) on it fails its forward check on RBDS001
-# T25 (0.31 rad), and on their 40 intervals takes 159 s for T25's section. Kept: the trapezoid, its
+# T25 (0.31 rad), and on their 40 intervals takes 100-164 s a section (eight of the three runners'
+# twelve verdicts other than the trapezoid's). Kept: the trapezoid, its
 # mesh said in the section's notes (docs/howto/compare.md, "Hermite-Simpson under the what-ifs",
 # 2026-11-28).
 TRANSCRIPTION = "trapezoid"
