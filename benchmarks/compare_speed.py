@@ -27,9 +27,10 @@ alone on 2 idle cores estimated from each process's CPU between this process's w
 pool (`two_cores`: on the shared machine the wall measures the other runs as much as this one);
 `--workers 1` puts every stage in this process; `--compiled true` compiles every NLP's node
 models (collocation.COMPILED; once, then from the disk cache: the section with every NLP
-compiled); `--nodes`, `--transcription`: the strides' mesh (compare_stride.answer's; default the section's,
-studies.stride_form.NODES and TRANSCRIPTION); `--model scenes`: the section on the torque
-scenes' stride model instead of compare's (`scenes_model`); `--solves`: every IPOPT run of every process (stage, NLP, solver: `stride_warm` the
+compiled); `--nodes`, `--transcription`: the strides' mesh (compare_stride.answer's; default
+the section's, studies.stride_form.NODES and TRANSCRIPTION); `--model scenes`: the section on
+the torque scenes' stride model instead of compare's (`scenes_model`); `--solves`: every IPOPT
+run of every process (stage, NLP, solver: `stride_warm` the
 warm start with multipliers, cadence, iterations, status, objective, CPU s, pid, its wall from
 the section's start to its end). `--diff`: the
 stride sections of two comparison.json files (or --json files), number by number: each
@@ -68,7 +69,8 @@ def parse() -> argparse.Namespace:
                         help="--stride: the stride NLPs' node models in C (collocation.COMPILED)")
     parser.add_argument("--solves", action="store_true", help="--stride: print every IPOPT run of this process")
     parser.add_argument("--nodes", type=int, default=None, help="--stride: the strides' intervals")
-    parser.add_argument("--transcription", default=None, help="--stride: the strides' transcription")
+    parser.add_argument("--transcription", default=None, choices=("trapezoid", "hermite-simpson"),
+                        help="--stride: the strides' transcription")
     parser.add_argument("--model", choices=("compare", "scenes"), default="compare",
                         help="--stride: compare's stride model or the torque scenes' (scenes_model)")
     parser.add_argument("--diff", nargs=2, metavar=("BEFORE", "AFTER"))
@@ -173,7 +175,7 @@ def scenes_model() -> None:
     compare_scene = compare_stride.stride_scene
 
     def scene(*args, **kwargs):
-        nominal = compare_scene(*args, **kwargs, tendons=RUNNER_ANKLE)
+        nominal = compare_scene(*args, **{**kwargs, "tendons": RUNNER_ANKLE})
         return replace(nominal, settings=replace(nominal.settings, impact_weight=RUNNER_IMPACT_WEIGHT,
                                                  approach_speed=APPROACH_SPEED, moment_time=MOMENT_TIME))
 

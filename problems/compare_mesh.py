@@ -88,10 +88,10 @@ def main(argv=None) -> None:
     for path in args.comparisons:
         r = runner(path)
         print(f"{r['name']}: {r['speed']:.2f} m/s, {r['strike']}, runner {r['cadence']:.1f} steps/min, the section "
-              f"on the {r['transcription']} at {r['nodes']} nodes; the finer meshes solved {how}", flush=True)
+              f"on the {r['transcription']} at {r['nodes']} intervals; the finer meshes solved {how}", flush=True)
         if (args.nodes[0], args.transcription) != (r["nodes"], r["transcription"]):
-            print(f"  NOTE: the first mesh ({args.transcription} at {args.nodes[0]} nodes) is not the section's "
-                  f"({r['transcription']} at {r['nodes']})", flush=True)
+            print(f"  NOTE: the first mesh ({args.transcription} at {args.nodes[0]} intervals) is not the "
+                  f"section's ({r['transcription']} at {r['nodes']})", flush=True)
         body = scaled_body(r["body"]["mass_kg"], r["body"]["height_m"], r["body"]["sex"])
         scene = stride_scene(body, r["speed"], r["strike"], "effort", r["friction"], r["law"], args.nodes[0],
                              transcription=args.transcription)

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 
 from ..optim.stride import Stride
 from ..optim.stride.notes import mesh_note
+from ..optim.stride.problem import RUNNER_TENDONS
 from .stride_form import NODES, TRANSCRIPTION
 
 if TYPE_CHECKING:
@@ -30,11 +31,9 @@ MESH_MOVE_W = 20.0  # W
 # 0.1-1.5 % from 24 to 48 intervals, its changes 0.1-5.6 W), and the torque scenes' model on it
 # (the section run with that model, 40 intervals: 8 of 12 verdicts other; docs/howto/compare.md,
 # "Hermite-Simpson under the what-ifs", 2026-11-28)
-HERMITE_NOTE = ("on Hermite-Simpson at 24 intervals, mesh-converged within 1.5 %, the three shipped runners' "
-                "power at their cadence lay 0.7-33 W from the section's and one of their twelve what-ifs turned "
-                "its sign; on the torque scenes' model (formopt stride's, 40 intervals) eight of the twelve "
-                "verdicts differ: the section stays on the trapezoid for its time, and its verdicts are this "
-                "model's (docs/howto/compare.md, 'Hermite-Simpson under the what-ifs')")
+HERMITE_NOTE = ("on the three shipped runners, Hermite-Simpson at 24 intervals (mesh-converged within 1.5 %) "
+                "turned one what-if of twelve, and the torque scenes' model (formopt stride's) eight: read the "
+                "verdicts as this model's (docs/howto/compare.md, 'Hermite-Simpson under the what-ifs')")
 # the envelope: the free optimum's objective at most this (relative) above the least imposed
 # stride's; IPOPT's optima are exact to about 1e-6, so a larger gap is another local optimum
 ENVELOPE = 1e-3
@@ -131,10 +130,12 @@ def variant_envelope_note(name: str, gap: float) -> str:
 def section_notes(curves: list[Curve], best: dict, runner: float, nominal) -> list[str]:
     """The section's notes on the mesh, the nominal's optima, the band's left-out variants and
     those off their envelope, a free optimum far from the runner and the strikes' validity."""
-    # MESH_MOVE_W was measured on the section's mesh, under Coulomb, with its band
+    # MESH_MOVE_W and HERMITE_NOTE were measured on the section's mesh and model, under Coulomb,
+    # with its band
     settings = nominal.settings
     measured = (settings.nodes == NODES and settings.transcription == TRANSCRIPTION
-                and settings.law == "coulomb" and len(curves) > 1)
+                and settings.tendons == RUNNER_TENDONS and not settings.impact_weight
+                and not settings.moment_time and settings.law == "coulomb" and len(curves) > 1)
     near = [mesh_what_if_note(curves[0]), HERMITE_NOTE] if measured else []
     notes = [mesh_note(nominal.settings), *filter(None, near), *optima_notes(curves[0])]
     if not curves[0].ok:

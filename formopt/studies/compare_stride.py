@@ -414,7 +414,7 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
     notes += section_notes(curves, best, runner, nominal)
     return StrideAnswer(speed, law, measured, curves, best,
                         what_ifs(curves, cadences, changes) if curves[0].ok else [], notes,
-                        time.perf_counter() - start, nominal.settings.nodes, transcription)
+                        time.perf_counter() - start, nominal.settings.nodes, nominal.settings.transcription)
 
 
 def band_curves(nominal: Curve, variants: list[Variant], beside: Background, say,

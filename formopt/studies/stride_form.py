@@ -42,7 +42,8 @@ def stride_scene(body: Body, speed: float, strike: str, objective: str = "effort
                  tendons: dict | None = None, transcription: str = TRANSCRIPTION) -> StrideScene:
     """A level-ground stride scene of `body` at `speed` (m/s), one strike and objective, the
     cadence free (stride_map.cadence_curve imposes it); the stance leg's tendons
-    (problem.RUNNER_TENDONS unless given; {} for none); `nodes` the transcription's intervals."""
+    (problem.RUNNER_TENDONS unless given; {} for none); `nodes` the intervals of `transcription`
+    (NODES and TRANSCRIPTION: compare's mesh)."""
     settings = StrideSettings(strike=strike, objective=objective, nodes=nodes, law=law,
                               transcription=transcription, max_iter=MAX_ITER,
                               tendons=dict(RUNNER_TENDONS if tendons is None else tendons))

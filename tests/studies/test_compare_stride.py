@@ -11,6 +11,7 @@ import pytest
 
 from formopt.mechanics.body import scaled_body
 from formopt.optim.stride import summarise
+from formopt.optim.stride.problem import RUNNER_ANKLE
 from formopt.report.figures import stride_cadence_figure
 from formopt.report.tables import stride_lines
 from formopt.studies import compare_band, compare_stride
@@ -89,6 +90,8 @@ def test_what_ifs_within_the_meshs_move_of_zero_are_named():
         notes = section_notes(curves, {}, 170.0, scene)  # said only where MESH_MOVE_W was measured
         assert any(n.startswith("the what-ifs at -5 %") for n in notes) is said
         assert (HERMITE_NOTE in notes) is said
+    scene = stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", law="coulomb", tendons=RUNNER_ANKLE)
+    assert not {HERMITE_NOTE, mesh_what_if_note(curve)} & set(section_notes(band, {}, 170.0, scene))  # another model
 
 
 def test_the_band_names_each_part_with_its_own_width():
@@ -228,7 +231,7 @@ def test_the_band_starts_its_free_optima_beside_the_family_only_when_their_start
     monkeypatch.setattr(compare_band, "stride_at", _solved)
     monkeypatch.setattr(compare_stride, "measured_form", lambda c: {"cadence_spm": 170.0, "strike": "heel"})
     monkeypatch.setattr(compare_stride, "stride_scene", lambda *a, **k: SimpleNamespace(
-        nlp=lambda: SimpleNamespace(solver=None), settings=SimpleNamespace(nodes=18)))
+        nlp=lambda: SimpleNamespace(solver=None), settings=SimpleNamespace(nodes=18, transcription="trapezoid")))
     monkeypatch.setattr(compare_stride, "band_variants", lambda scene, body: [Variant("friction 0.6", "friction", "mu")])
     monkeypatch.setattr(compare_stride, "strike_tasks", lambda scene, speed, strikes: [(type, s, "") for s in strikes])
     checked: list = []  # the strides handed to the forward check: the converged free optima only

@@ -14,8 +14,9 @@ Energy budget over the half stride (J), every integral by the trapezoidal rule o
 Kinetic and potential energy return to their start over a period, so `balance` is zero up to
 the transcription's error (O(h^2)). With muscles, W+- are the joint-level work of the muscles'
 net moments (their reserves' included); their own metabolic energy and their tendons' stored
-and returned energy are in `Stride.muscles` (muscle_readings.muscle_outputs), outside the balance. Cost of transport W+ / (m g d); mechanical power W+ / T
-(T the half-period, d = speed T the step length).
+and returned energy are in `Stride.muscles` (muscle_readings.muscle_outputs), outside the
+balance. Cost of transport W+ / (m g d); mechanical power W+ / T (T the half-period, d = speed T
+the step length).
 """
 
 from __future__ import annotations
