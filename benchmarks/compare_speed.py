@@ -28,8 +28,8 @@ pool (`two_cores`: on the shared machine the wall measures the other runs as muc
 `--workers 1` puts every stage in this process; `--compiled true` compiles every NLP's node
 models (collocation.COMPILED; once, then from the disk cache: the section with every NLP
 compiled); `--nodes`, `--transcription`: the strides' mesh (compare_stride.answer's; default
-the section's, studies.stride_form.NODES and TRANSCRIPTION); `--model scenes`: the section on
-the torque scenes' stride model instead of compare's (`scenes_model`); `--solves`: every IPOPT
+the model's); `--model`: the section's stride model (studies.stride_form.STRIDE_MODELS, compare's
+`stride_model`: quick, the default, or scenes, formopt stride's); `--solves`: every IPOPT
 run of every process (stage, NLP, solver: `stride_warm` the
 warm start with multipliers, cadence, iterations, status, objective, CPU s, pid, its wall from
 the section's start to its end). `--diff`: the
@@ -60,6 +60,8 @@ ARGS = ["compare", "--trial", str(DATA / "RBDS001runT35.c3d"), "--static", str(D
 
 
 def parse() -> argparse.Namespace:
+    from formopt.studies.stride_form import STRIDE_MODEL, STRIDE_MODELS
+
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--stride", help="compare's stride section of this runner (runners.toml)")
@@ -71,8 +73,8 @@ def parse() -> argparse.Namespace:
     parser.add_argument("--nodes", type=int, default=None, help="--stride: the strides' intervals")
     parser.add_argument("--transcription", default=None, choices=("trapezoid", "hermite-simpson"),
                         help="--stride: the strides' transcription")
-    parser.add_argument("--model", choices=("compare", "scenes"), default="compare",
-                        help="--stride: compare's stride model or the torque scenes' (scenes_model)")
+    parser.add_argument("--model", choices=tuple(STRIDE_MODELS), default=STRIDE_MODEL,
+                        help="--stride: the section's stride model (stride_form.STRIDE_MODELS)")
     parser.add_argument("--diff", nargs=2, metavar=("BEFORE", "AFTER"))
     return parser.parse_args()
 
@@ -85,9 +87,7 @@ def main():
         from formopt.optim.stride import collocation
         collocation.COMPILED = {"auto": "auto", "true": True, "false": False}[args.compiled]
         mesh = {k: v for k, v in (("nodes", args.nodes), ("transcription", args.transcription)) if v is not None}
-        if args.model == "scenes":
-            scenes_model()
-        return stride_stages(args.stride, args.workers, args.json, args.solves, mesh)
+        return stride_stages(args.stride, args.workers, args.json, args.solves, {**mesh, "model": args.model})
     exe = str(Path(sys.executable).with_name("formopt"))
     walls = []
     for _ in range(args.repeats):
@@ -159,27 +159,6 @@ def cpu_s() -> float:
     """CPU s of this process and its ended children (user + system)."""
     own, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
     return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
-
-
-def scenes_model() -> None:
-    """compare's stride section on the torque scenes' model from here on (docs/howto/compare.md,
-    "Hermite-Simpson under the what-ifs"): compare_stride's nominal scene with the ankle's spring
-    alone (problem.RUNNER_ANKLE), the impacts charged (RUNNER_IMPACT_WEIGHT), the approach floor
-    (APPROACH_SPEED) and moment dynamics (MOMENT_TIME); its band's variants and other strikes are
-    made from it, and the pool's workers fork after this."""
-    from dataclasses import replace
-
-    from formopt.optim.stride.problem import APPROACH_SPEED, MOMENT_TIME, RUNNER_ANKLE, RUNNER_IMPACT_WEIGHT
-    from formopt.studies import compare_stride
-
-    compare_scene = compare_stride.stride_scene
-
-    def scene(*args, **kwargs):
-        nominal = compare_scene(*args, **{**kwargs, "tendons": RUNNER_ANKLE})
-        return replace(nominal, settings=replace(nominal.settings, impact_weight=RUNNER_IMPACT_WEIGHT,
-                                                 approach_speed=APPROACH_SPEED, moment_time=MOMENT_TIME))
-
-    compare_stride.stride_scene = scene
 
 
 def stride_stages(runner: str, workers: int | None, out: str | None, each: bool = False,

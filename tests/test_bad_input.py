@@ -347,6 +347,7 @@ ONE_TRIAL = f'[[trial]]\ntrial = "{RUN35}"\n'
     (COMPARE + "starts = 2.5\n" + ONE_TRIAL, "compare.starts: must be a whole number"),
     (COMPARE + "per_step = 1\n" + ONE_TRIAL, "compare.per_step: must be true or false"),
     (COMPARE + 'contact = "coulomn"\n' + ONE_TRIAL, "did you mean 'coulomb'"),
+    (COMPARE + 'stride_model = "scene"\n' + ONE_TRIAL, "did you mean 'scenes'"),
     (COMPARE + f'[trial]\ntrial = "{RUN35}"\n', "trial: must be [[trial]] entries"),
     ("[compare]\nmas = 62\n", "compare.mas: unknown key 'mas' (did you mean 'mass'?)"),
     ("[comparee]\n", "did you mean 'compare'"),

@@ -26,6 +26,7 @@ from ..report.tables import comparison_table, trials_table
 from ..studies.compare import BOUNDS_DEG, JOINTS, SIDES, SUPPORT, compare
 from ..studies.compare_band import stage_count, stage_shares
 from ..studies.compare_stride import answer
+from ..studies.stride_form import STRIDE_MODEL, STRIDE_MODELS
 from .common import add_format, emit, out_folder
 
 # every setting: its default and what it is (the option's help)
@@ -52,7 +53,10 @@ SETTINGS: dict[str, tuple[Any, str]] = {
     "seed": (0, "seed of the random starts"),
     "per_step": (True, "an optimum for every step as well (--no-per-step: the mean step's only)"),
     "stride": (True, "the stride optimum of the runner's body and what-if cadences -10 to +10 %% "
-                     "(about a minute per trial; --no-stride: the touchdowns only)"),
+                     "(--no-stride: the touchdowns only)"),
+    "stride_model": (STRIDE_MODEL, "the stride's model: quick (the trapezoid at 30 intervals, knee and ankle "
+                                   "springs: 15-18 s a trial, not mesh-converged) or scenes (formopt stride's: "
+                                   "Hermite-Simpson at 40 intervals, mesh-converged: 90-165 s a trial)"),
 }
 
 
@@ -127,8 +131,8 @@ def check(table: dict, where: str, folder: Path | None = None) -> dict:
             b = val.table(table, key, set(BOUNDS_DEG), (), where)
             out[key] = {j: val.joint_bounds(v, f"{full}.{j}", j) for j, v in b.items()}
         else:
-            out[key] = val.choice(table[key], f"{where}.{key}" if where else key,
-                                  LAWS if key == "contact" else tuple(DE_LEVA))
+            choices = {"contact": LAWS, "stride_model": tuple(STRIDE_MODELS)}.get(key, tuple(DE_LEVA))
+            out[key] = val.choice(table[key], f"{where}.{key}" if where else key, choices)
     return out
 
 
@@ -209,7 +213,7 @@ def run_one(s: dict, args, out: Path, show: bool = True):
                          progress=None if quiet else say)
     if s["stride"]:
         with Stages(stage_count(), "compare: stride", stage_shares()) as say:
-            result.stride = answer(result, progress=None if quiet else say)
+            result.stride = answer(result, progress=None if quiet else say, model=s["stride_model"])
     rep = result.to_dict()
     rep["figure"] = str(save_figure(comparison_figure(result, rep), out / f"comparison.{args.format}"))
     rows = [TOUCHDOWN_COLUMNS]

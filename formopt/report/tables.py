@@ -297,7 +297,8 @@ def stride_lines(s: dict) -> list[str]:
     against the stride optimum, then each what-if cadence with its band; a change whose band
     holds zero is said to be unresolved, never advised."""
     lines = ["", f"  the stride: the half-stride optimum of this body at {s['speed_mps']:.2f} m/s "
-                 f"({s.get('transcription', 'trapezoid')} at {s['nodes']} intervals, {s['law']} impacts, objective effort)",
+                 f"({'model ' + s['model'] + ': ' if s.get('model') else ''}{s.get('transcription', 'trapezoid')} at "
+                 f"{s['nodes']} intervals, {s['law']} impacts, objective effort)",
              f"    the runner:  cadence {s['measured_cadence_spm']:6.1f} steps/min, step "
              f"{s['measured_step_length_m']:.3f} m, strike point {s['measured_placement_m']:.3f} m "
              f"ahead of the hip, {s['measured_strike']} strike{knee_text(s.get('measured_stance_knee_deg'))}"]

@@ -10,8 +10,7 @@ from typing import TYPE_CHECKING
 
 from ..optim.stride import Stride
 from ..optim.stride.notes import mesh_note
-from ..optim.stride.problem import RUNNER_TENDONS
-from .stride_form import NODES, TRANSCRIPTION
+from .stride_form import NODES, model_of
 
 if TYPE_CHECKING:
     from .compare_stride import Curve
@@ -32,8 +31,9 @@ MESH_MOVE_W = 20.0  # W
 # (the section run with that model, 40 intervals: 8 of 12 verdicts other; docs/howto/compare.md,
 # "Hermite-Simpson under the what-ifs", 2026-11-28)
 HERMITE_NOTE = ("on the three shipped runners, Hermite-Simpson at 24 intervals (mesh-converged within 1.5 %) "
-                "turned one what-if of twelve, and the torque scenes' model (formopt stride's) eight: read the "
-                "verdicts as this model's (docs/howto/compare.md, 'Hermite-Simpson under the what-ifs')")
+                "turned one what-if of twelve, and the torque scenes' model (formopt stride's, stride_model "
+                "'scenes': mesh-converged, 6-9 times slower) eight: read the verdicts as this model's "
+                "(docs/howto/compare.md, 'Two stride models')")
 # the envelope: the free optimum's objective at most this (relative) above the least imposed
 # stride's; IPOPT's optima are exact to about 1e-6, so a larger gap is another local optimum
 ENVELOPE = 1e-3
@@ -130,12 +130,9 @@ def variant_envelope_note(name: str, gap: float) -> str:
 def section_notes(curves: list[Curve], best: dict, runner: float, nominal) -> list[str]:
     """The section's notes on the mesh, the nominal's optima, the band's left-out variants and
     those off their envelope, a free optimum far from the runner and the strikes' validity."""
-    # MESH_MOVE_W and HERMITE_NOTE were measured on the section's mesh and model, under Coulomb,
-    # with its band
+    # MESH_MOVE_W and HERMITE_NOTE were measured on the quick model, under Coulomb, with its band
     settings = nominal.settings
-    measured = (settings.nodes == NODES and settings.transcription == TRANSCRIPTION
-                and settings.tendons == RUNNER_TENDONS and not settings.impact_weight
-                and not settings.moment_time and settings.law == "coulomb" and len(curves) > 1)
+    measured = model_of(settings) == "quick" and settings.law == "coulomb" and len(curves) > 1
     near = [mesh_what_if_note(curves[0]), HERMITE_NOTE] if measured else []
     notes = [mesh_note(nominal.settings), *filter(None, near), *optima_notes(curves[0])]
     if not curves[0].ok:

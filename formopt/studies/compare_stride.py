@@ -31,6 +31,8 @@ the other strikes' free optima beside the nominal curve, the curve's first sweep
 (stride_map.first_sweep), the band's free optima beside the family and its strides after it
 (compare_band; benchmarks/compare_speed.py --stride times each stage and process,
 docs/reference/performance.md). What the section says beside its numbers: compare_notes.
+Every stride is built as the section's model builds it (stride_form.STRIDE_MODELS: quick, the
+default, or scenes, formopt stride's).
 """
 
 from __future__ import annotations
@@ -57,7 +59,7 @@ from .compare_band import (
 )
 from .compare_notes import ENVELOPE, section_notes
 from .pool import Background
-from .stride_form import NODES, TRANSCRIPTION, joint_work, placement_m, stride_scene
+from .stride_form import STRIDE_MODEL, TRANSCRIPTION, joint_work, model_of, placement_m, stride_scene
 from .stride_map import better, cadence_curve, warm
 
 WHAT_IF_PCT = (-10.0, -5.0, 5.0, 10.0)  # cadence changes asked (% of the runner's cadence)
@@ -203,6 +205,7 @@ class StrideAnswer:
     seconds: float
     nominal_nodes: int  # collocation intervals of every stride solved
     transcription: str = TRANSCRIPTION  # theirs (StrideSettings.transcription)
+    model: str | None = STRIDE_MODEL  # theirs (stride_form.STRIDE_MODELS; None: another)
 
     @property
     def nominal(self) -> Curve:
@@ -224,6 +227,7 @@ class StrideAnswer:
         tried = self.nominal.own_free
         sticking = tried if tried is not None and tried.success else None
         return {"speed_mps": self.speed_mps, "law": self.law, "nodes": self.nominal_nodes, "transcription": self.transcription,
+                "model": self.model,
                 "measured_cadence_spm": self.measured["cadence_spm"],
                 "measured_step_length_m": self.measured["step_length_m"],
                 "measured_placement_m": self.measured["placement_m"],
@@ -368,15 +372,15 @@ def what_ifs(curves: list[Curve], cadences: list[float],
             for k, pct in enumerate(changes, 1)]
 
 
-def answer(c, progress=None, nodes: int = NODES, band: bool = True,
+def answer(c, progress=None, nodes: int | None = None, band: bool = True,
            changes: tuple[float, ...] = WHAT_IF_PCT, workers: int = WORKERS,
-           transcription: str = TRANSCRIPTION) -> StrideAnswer:
+           transcription: str | None = None, model: str = STRIDE_MODEL) -> StrideAnswer:
     """compare's stride section for a Comparison `c` (its speed, main side, body settings,
     friction and law); `progress(text)` is told of each stage; `band` False: the nominal
     variant and strike only (every band then the nominal value, no other strike: a cheap check,
     not a report); `changes`: the what-ifs' cadence changes (% of the runner's); `workers`: the
     processes of the section's pool (module docstring; band False: none, every solve here);
-    `nodes` and `transcription` the strides' mesh (stride_form.NODES, TRANSCRIPTION)."""
+    `model` the strides' (stride_form.STRIDE_MODELS), `nodes` and `transcription` over its mesh."""
     say = progress or (lambda text: None)
     start = time.perf_counter()
     measured = measured_form(c)
@@ -387,7 +391,7 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
     cadences = [runner] + [runner * (1 + p / 100) for p in changes]
     nominal = stride_scene(scaled_body(body["mass_kg"], body["height_m"], body["sex"]), speed,
                            measured["strike"], "effort", c.settings["friction"], law, nodes,
-                           transcription=transcription)
+                           transcription=transcription, model=model)
     others = [s for s in STRIKES if s != measured["strike"]] if band else []
     variants = band_variants(nominal, body) if band else []
     _ = nominal.nlp().solver  # built before the pool forks: its workers inherit it (the first sweep's)
@@ -414,7 +418,8 @@ def answer(c, progress=None, nodes: int = NODES, band: bool = True,
     notes += section_notes(curves, best, runner, nominal)
     return StrideAnswer(speed, law, measured, curves, best,
                         what_ifs(curves, cadences, changes) if curves[0].ok else [], notes,
-                        time.perf_counter() - start, nominal.settings.nodes, nominal.settings.transcription)
+                        time.perf_counter() - start, nominal.settings.nodes, nominal.settings.transcription,
+                        model_of(nominal.settings))
 
 
 def band_curves(nominal: Curve, variants: list[Variant], beside: Background, say,

@@ -6,7 +6,7 @@ Shared by compare's stride section (studies.compare_stride) and the literature c
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
@@ -14,7 +14,13 @@ from ..io.stride_scene import StrideScene
 from ..mechanics.body import Body
 from ..mechanics.joint_space import JOINTS
 from ..optim.stride import Stride, StrideSettings
-from ..optim.stride.problem import RUNNER_TENDONS
+from ..optim.stride.problem import (
+    APPROACH_SPEED,
+    MOMENT_TIME,
+    RUNNER_ANKLE,
+    RUNNER_IMPACT_WEIGHT,
+    RUNNER_TENDONS,
+)
 
 # collocation intervals of compare's strides and the literature checks: at 24 the free optimum
 # of RBDS001's body (heel, effort) jumped between local optima, 266 steps/min at 3.584 m/s and
@@ -29,25 +35,63 @@ NODES = 30
 # with compare's knee spring RIC's free optimum crouches (stance knee 70 deg); the torque scenes'
 # model (no knee spring, impacts charged, moment dynamics) on it fails its forward check on RBDS001
 # T25 (0.31 rad), and on their 40 intervals takes 100-164 s a section (eight of the three runners'
-# twelve verdicts other than the trapezoid's). Kept: the trapezoid, its
-# mesh said in the section's notes (docs/howto/compare.md, "Hermite-Simpson under the what-ifs",
-# 2026-11-28).
+# twelve verdicts other than the trapezoid's). Kept: the trapezoid in the quick model, the default,
+# its mesh said in the section's notes (docs/howto/compare.md, "Hermite-Simpson under the what-ifs",
+# 2026-11-28); the scenes' model is STRIDE_MODELS' other.
 TRANSCRIPTION = "trapezoid"
 MAX_ITER = 500  # IPOPT iterations: a converging stride takes 30-300 (2026-11-23, 24 nodes)
+# compare's stride models (its `stride_model` setting; docs/howto/compare.md, "Two stride models"),
+# each the settings its strides are built with beyond the body, speed, strike, objective and law:
+# - quick (the default): the trapezoid at NODES with RUNNER_TENDONS (knee and ankle springs), the
+#   impacts free: a section in 15-18 s a trial, not mesh-converged (above);
+# - scenes: formopt stride's torque scenes' model (formopt/scenes/stride_rbds001.toml; problem.RUNNER_ANKLE):
+#   Hermite-Simpson at 40 intervals, the ankle's spring alone, the impacts charged, moment dynamics and
+#   the approach floor: mesh-converged (optim.stride.notes.RUNNER_MESH), every stride of the three
+#   shipped runners valid, 89-164 s a section (benchmarks/compare_speed.py --model scenes; `formopt compare
+#   --scene problems/compare/runners.toml --stride-model scenes`: 89 / 113 / 104 s, T35 / T25 / RIC, 2026-11-28).
+
+
+@dataclass(frozen=True)
+class StrideModel:
+    """What compare's strides are built with beyond the body, speed, strike, objective and law
+    (problem.StrideSettings' fields of the same names)."""
+
+    nodes: int
+    transcription: str
+    tendons: dict  # N m/rad per kg, by joint
+    impact_weight: float = 0.0
+    approach_speed: float = 0.0  # m/s
+    moment_time: float = 0.0  # s
+
+
+STRIDE_MODELS = {
+    "quick": StrideModel(NODES, TRANSCRIPTION, RUNNER_TENDONS),
+    "scenes": StrideModel(40, "hermite-simpson", RUNNER_ANKLE, RUNNER_IMPACT_WEIGHT, APPROACH_SPEED, MOMENT_TIME),
+}
+STRIDE_MODEL = "quick"
 
 
 def stride_scene(body: Body, speed: float, strike: str, objective: str = "effort",
-                 friction: float = 0.8, law: str = "no-slip", nodes: int = NODES,
-                 starts: int = 1, name: str = "stride",
-                 tendons: dict | None = None, transcription: str = TRANSCRIPTION) -> StrideScene:
+                 friction: float = 0.8, law: str = "no-slip", nodes: int | None = None,
+                 starts: int = 1, name: str = "stride", tendons: dict | None = None,
+                 transcription: str | None = None, model: str = STRIDE_MODEL) -> StrideScene:
     """A level-ground stride scene of `body` at `speed` (m/s), one strike and objective, the
-    cadence free (stride_map.cadence_curve imposes it); the stance leg's tendons
-    (problem.RUNNER_TENDONS unless given; {} for none); `nodes` the intervals of `transcription`
-    (NODES and TRANSCRIPTION: compare's mesh)."""
-    settings = StrideSettings(strike=strike, objective=objective, nodes=nodes, law=law,
-                              transcription=transcription, max_iter=MAX_ITER,
-                              tendons=dict(RUNNER_TENDONS if tendons is None else tendons))
+    cadence free (stride_map.cadence_curve imposes it), built as `model` (STRIDE_MODELS) builds
+    it; `nodes` (the intervals), `transcription` and the stance leg's `tendons` ({} for none)
+    over the model's where given."""
+    own = STRIDE_MODELS[model]
+    settings = StrideSettings(strike=strike, objective=objective, nodes=nodes or own.nodes, law=law,
+                              transcription=transcription or own.transcription, max_iter=MAX_ITER,
+                              tendons=dict(own.tendons if tendons is None else tendons),
+                              impact_weight=own.impact_weight, approach_speed=own.approach_speed,
+                              moment_time=own.moment_time)
     return StrideScene(name, body, speed, 0.0, friction, strike, settings, None, starts)
+
+
+def model_of(settings: StrideSettings) -> str | None:
+    """The name of the STRIDE_MODELS entry whose settings these are (None: another model)."""
+    return next((name for name, m in STRIDE_MODELS.items()
+                 if all(getattr(settings, f.name) == getattr(m, f.name) for f in fields(m))), None)
 
 
 def with_body(scene: StrideScene, body: Body) -> StrideScene:

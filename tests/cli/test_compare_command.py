@@ -5,6 +5,7 @@ import json
 
 from helpers import DATA
 
+from formopt.cli import compare as compare_command
 from formopt.cli import main
 
 RBDS = DATA / "rbds"
@@ -45,17 +46,21 @@ def test_cli_compare_json_exports_and_bad_input(tmp_path, capsys):
     assert "no such file" in capsys.readouterr().err
 
 
-def test_scene_file_gives_one_table_across_trials(tmp_path, capsys):
+def test_scene_file_gives_one_table_across_trials(tmp_path, capsys, monkeypatch):
     """A scene of two trials (its bounds beyond the default range of motion accepted): one
     table across them, and with --json only JSON on stdout (issue 25), each trial's report
-    built once (Comparison.to_dict) and written whole beside its figure. (The JSON checks were
+    built once (Comparison.to_dict) and written whole beside its figure; its stride model
+    handed to each trial's stride section (here a stand-in: no section). (The JSON checks were
     test_compare_json's own run of the same two trials.)"""
+    models = []
+    monkeypatch.setattr(compare_command, "answer", lambda result, progress=None, model=None: models.append(model))
     scene = tmp_path / "runners.toml"
     scene.write_text(f'[compare]\nmass = 62\nheight = 1.81\nstatic = "{STATIC}"\nper_step = false\n'
-                     f'bounds = {{ knee = [0, 90] }}\n[[trial]]\ntrial = "{RUN35}"\n'
+                     f'bounds = {{ knee = [0, 90] }}\nstride_model = "scenes"\n[[trial]]\ntrial = "{RUN35}"\n'
                      f'[[trial]]\ntrial = "{RUN25}"\nforces = "{FORCES25}"\n')
     out = tmp_path / "out"
-    assert main(["compare", "--no-stride", "--scene", str(scene), "--json", "--out", str(out), "--starts", "1"]) == 0
+    assert main(["compare", "--scene", str(scene), "--json", "--out", str(out), "--starts", "1"]) == 0
+    assert models == ["scenes", "scenes"]
     rows = (out / "trials.csv").read_text().splitlines()
     assert len(rows) == 1 + 4 and "RBDS001runT25markers.txt" in rows[-1]
     printed = json.loads(capsys.readouterr().out)  # the whole of stdout is one JSON object

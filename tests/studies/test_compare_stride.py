@@ -9,8 +9,10 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from formopt import load
 from formopt.mechanics.body import scaled_body
 from formopt.optim.stride import summarise
+from formopt.optim.stride.notes import RUNNER_MESH, mesh_note
 from formopt.optim.stride.problem import RUNNER_ANKLE
 from formopt.report.figures import stride_cadence_figure
 from formopt.report.tables import stride_lines
@@ -35,7 +37,7 @@ from formopt.studies.compare_stride import (
     what_ifs,
 )
 from formopt.studies.pool import Background
-from formopt.studies.stride_form import joint_work, stride_scene
+from formopt.studies.stride_form import STRIDE_MODEL, joint_work, model_of, stride_scene
 from formopt.studies.stride_map import warm
 
 
@@ -90,8 +92,25 @@ def test_what_ifs_within_the_meshs_move_of_zero_are_named():
         notes = section_notes(curves, {}, 170.0, scene)  # said only where MESH_MOVE_W was measured
         assert any(n.startswith("the what-ifs at -5 %") for n in notes) is said
         assert (HERMITE_NOTE in notes) is said
-    scene = stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", law="coulomb", tendons=RUNNER_ANKLE)
-    assert not {HERMITE_NOTE, mesh_what_if_note(curve)} & set(section_notes(band, {}, 170.0, scene))  # another model
+    for other in (stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", law="coulomb", tendons=RUNNER_ANKLE),
+                  stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", law="coulomb", model="scenes")):
+        notes = section_notes(band, {}, 170.0, other)  # another model
+        assert not {HERMITE_NOTE, mesh_what_if_note(curve)} & set(notes)
+    assert mesh_note(other.settings) in notes and RUNNER_MESH in notes[0]  # the scenes': their own mesh's
+
+
+def test_the_scenes_model_is_formopt_strides():
+    """stride_model "scenes" builds the torque scenes' stride (formopt/scenes/stride_rbds001.toml's
+    settings but for the strike, objective and law compare gives); the default is the quick model;
+    model_of names either, and nothing for a mesh of its own."""
+    body = scaled_body(62.0, 1.81)
+    shipped = load("stride_rbds001").settings
+    scenes = stride_scene(body, 3.5, "heel", law="coulomb", model="scenes").settings
+    keys = ("nodes", "transcription", "tendons", "impact_weight", "approach_speed", "moment_time")
+    assert {k: getattr(scenes, k) for k in keys} == {k: getattr(shipped, k) for k in keys}
+    assert model_of(scenes) == "scenes" and model_of(stride_scene(body, 3.5, "heel").settings) == STRIDE_MODEL == "quick"
+    assert model_of(stride_scene(body, 3.5, "heel", nodes=18).settings) is None
+    assert model_of(stride_scene(body, 3.5, "heel", model="scenes", transcription="trapezoid").settings) is None
 
 
 def test_the_band_names_each_part_with_its_own_width():
@@ -381,6 +400,8 @@ def test_the_section_json_and_words(section):
     text = "\n".join(stride_lines(d))
     assert "the runner:  cadence  171.4" in text and "heel strike, stance knee 40 deg" in text
     assert "(trapezoid at 18 intervals, no-slip impacts" in text and d["transcription"] == "trapezoid"
+    assert d["model"] is None  # 18 nodes: neither of stride_form.STRIDE_MODELS
+    assert "(model quick: trapezoid at 30 intervals" in "\n".join(stride_lines({**d, "model": "quick", "nodes": 30}))
     assert f"stance knee {d['optimum_stance_knee_deg']:.0f} deg; mechanical power" in text
     assert all(f"{p:+5.0f} %" in text for p in CHANGES)
 
