@@ -212,7 +212,7 @@ def run_one(s: dict, args, out: Path, show: bool = True):
                          support=s["support"], options=options, per_step=s["per_step"],
                          progress=None if quiet else say)
     if s["stride"]:
-        with Stages(stage_count(), "compare: stride", stage_shares()) as say:
+        with Stages(stage_count(), "compare: stride", stage_shares(model=s["stride_model"])) as say:
             result.stride = answer(result, progress=None if quiet else say, model=s["stride_model"])
     rep = result.to_dict()
     rep["figure"] = str(save_figure(comparison_figure(result, rep), out / f"comparison.{args.format}"))

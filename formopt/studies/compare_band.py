@@ -32,7 +32,7 @@ from ..mechanics.body import scaled_body
 from ..optim.stride import Stride, forward_checked, summarise
 from ..optim.stride.problem import STRIKES
 from .pool import Background
-from .stride_form import with_body
+from .stride_form import STRIDE_MODEL, with_body
 from .stride_map import free, warm
 
 # the band: friction over the range of shod running on track and treadmill belts (0.6-1.0,
@@ -62,11 +62,14 @@ WORKERS = min(2, os.cpu_count() or 1)
 # process, CPU s: the metabolic objective 15.3, from the nominal's primal values alone, another
 # objective's NLP; each legs' mass 3-4; each friction 1-1.5, the nominal's NLP; 2026-11-27)
 LONGEST_FIRST = ("objective", "body", "friction")
-# the section's wall time on 2 processes, shares (`stage_shares`): the nominal curve, its
-# family (the band's free optima beside it), the band until its first variant ends, the rest of
-# the band (benchmarks/compare_speed.py --stride's timeline, 2026-11-27, load 2-3.2: RBDS001 T25
-# 8.1, 1.7, 5.4 and 1.9 s of 17.1; T35 14.7, 2.9, 7.8, 2.3 of 27.7; RIC 12.2, 3.5, 9.3, 4.6 of 29.6)
-STAGE_SHARES = (0.47, 0.11, 0.30, 0.12)
+# the section's wall time on 2 processes, shares (`stage_shares`) by stride model
+# (stride_form.STRIDE_MODELS): the nominal curve, its family (the band's free optima beside it),
+# the band until its first variant ends, the rest of the band (benchmarks/compare_speed.py
+# --stride's timeline; quick 2026-11-27, load 2-3.2: RBDS001 T25 8.1, 1.7, 5.4 and 1.9 s of 17.1;
+# T35 14.7, 2.9, 7.8, 2.3 of 27.7; RIC 12.2, 3.5, 9.3, 4.6 of 29.6; scenes 2026-11-28, --model
+# scenes: T35 44.1, 17.3, 11.8, 12.2 of 86.1; T25 52.0, 23.9, 41.7, 40.9 of 159.2 and 63.3, 22.4,
+# 19.4, 68.7 of 174.4)
+STAGE_SHARES = {"quick": (0.47, 0.11, 0.30, 0.12), "scenes": (0.41, 0.16, 0.17, 0.26)}
 
 
 class Variant(NamedTuple):
@@ -149,12 +152,13 @@ def stage_count(band: bool = True) -> int:
     return 3 + (len(FRICTION_BAND) + len(OBJECTIVE_BAND) + len(LEG_MASS_BAND) + len(STRIKES) - 1 if band else 0)
 
 
-def stage_shares(band: bool = True) -> list[float]:
+def stage_shares(band: bool = True, model: str = STRIDE_MODEL) -> list[float]:
     """Each of `stage_count`'s stages' expected share of the section's time, in the order
     compare_stride.answer tells them (io.progress.Stages' `shares`): the nominal curve, its
     family, each other strike (solved beside the nominal: done when told), the band until its
-    first variant ends (the longest, LONGEST_FIRST) and the rest of the band (STAGE_SHARES)."""
-    nominal, family, first, rest = STAGE_SHARES
+    first variant ends (the longest, LONGEST_FIRST) and the rest of the band (STAGE_SHARES of
+    the stride `model`)."""
+    nominal, family, first, rest = STAGE_SHARES[model]
     if not band:
         return [nominal, family, 0.0]
     strikes, variants = len(STRIKES) - 1, stage_count() - 3 - len(STRIKES) + 1

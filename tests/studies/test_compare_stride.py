@@ -37,7 +37,7 @@ from formopt.studies.compare_stride import (
     what_ifs,
 )
 from formopt.studies.pool import Background
-from formopt.studies.stride_form import STRIDE_MODEL, joint_work, model_of, stride_scene
+from formopt.studies.stride_form import STRIDE_MODEL, STRIDE_MODELS, joint_work, model_of, stride_scene
 from formopt.studies.stride_map import warm
 
 
@@ -302,13 +302,14 @@ def test_a_variant_starts_from_the_first_solution_of_its_own_nlp(monkeypatch):
 
 
 def test_each_stage_told_has_its_share_of_the_time():
-    """The progress bar's shares (io.progress.Stages): one per stage told, the band's first
-    variant's wait the longest of the band's."""
-    for band in (True, False):
-        shares = stage_shares(band)
-        assert len(shares) == stage_count(band) and min(shares) >= 0
-    shares = stage_shares()
-    assert sum(shares) == pytest.approx(1.0) and shares[4] == max(shares[4:])
+    """The progress bar's shares (io.progress.Stages), each stride model's: one per stage told,
+    the band's first variant's wait the longest of the band's."""
+    for model in STRIDE_MODELS:
+        for band in (True, False):
+            shares = stage_shares(band, model)
+            assert len(shares) == stage_count(band) and min(shares) >= 0
+        shares = stage_shares(model=model)
+        assert sum(shares) == pytest.approx(1.0) and shares[4] == max(shares[4:])
 
 
 CHANGES = (-5.0, 5.0)  # the section's what-ifs, two of WHAT_IF_PCT's four (the time: 3 cadences, not 5)
