@@ -86,8 +86,8 @@ def main():
     if args.stride:
         from formopt.optim.stride import collocation
         collocation.COMPILED = {"auto": "auto", "true": True, "false": False}[args.compiled]
-        mesh = {k: v for k, v in (("nodes", args.nodes), ("transcription", args.transcription)) if v is not None}
-        return stride_stages(args.stride, args.workers, args.json, args.solves, {**mesh, "model": args.model})
+        section = {k: v for k, v in (("nodes", args.nodes), ("transcription", args.transcription)) if v is not None}
+        return stride_stages(args.stride, args.workers, args.json, args.solves, {**section, "model": args.model})
     exe = str(Path(sys.executable).with_name("formopt"))
     walls = []
     for _ in range(args.repeats):
@@ -162,8 +162,9 @@ def cpu_s() -> float:
 
 
 def stride_stages(runner: str, workers: int | None, out: str | None, each: bool = False,
-                  mesh: dict | None = None) -> None:
-    """The stride section's time for one runner, and per stage of this process (module doc)."""
+                  section: dict | None = None) -> None:
+    """The stride section's time for one runner, and per stage of this process (module doc);
+    `section`: compare_stride.answer's nodes, transcription and model where given."""
     from formopt.optim.stride import collocation
     from formopt.studies import compare_band, compare_stride
 
@@ -211,7 +212,7 @@ def stride_stages(runner: str, workers: int | None, out: str | None, each: bool 
     compare_band.forward_checked = cpu_of("forward checks", compare_band.forward_checked)
     timeline = Timeline()
     wall, cpu, told = time.perf_counter(), cpu_s(), []
-    stages = {"progress": lambda text: told.append((time.perf_counter() - wall, text)), **(mesh or {})}
+    stages = {"progress": lambda text: told.append((time.perf_counter() - wall, text)), **(section or {})}
     answer = compare_stride.answer
     section = answer(c, workers=workers, **stages) if workers else answer(c, **stages)
     wall, cpu = time.perf_counter() - wall, cpu_s() - cpu

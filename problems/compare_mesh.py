@@ -1,5 +1,6 @@
 """What twice and four times the nodes do to compare's what-ifs (issue 34 item 2 on compare's
-stride section, which solves the trapezoid at studies.stride_form.NODES = 30 nodes).
+stride section, whose quick model, the default, solves the trapezoid at studies.stride_form.NODES =
+30 nodes).
 
 For each comparison.json given (written by `formopt compare`: the runner's speed, cadence, strike,
 body and friction), the section's nominal scene (studies.stride_form.stride_scene, effort,
@@ -35,7 +36,7 @@ from formopt.optim.stride.problem import TRANSCRIPTIONS
 from formopt.optim.stride.refine import refined
 from formopt.studies.compare_band import stride_at
 from formopt.studies.compare_stride import WHAT_IF_PCT
-from formopt.studies.stride_form import TRANSCRIPTION, stride_scene
+from formopt.studies.stride_form import STRIDE_MODEL, TRANSCRIPTION, stride_scene
 from formopt.studies.stride_map import cadence_curve, for_nodes
 
 
@@ -43,9 +44,9 @@ def parse(argv=None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("comparisons", nargs="+", help="comparison.json files written by formopt compare")
     parser.add_argument("--nodes", nargs="+", type=int, default=[30, 60, 120],
-                        help="the meshes (the transcription's intervals, StrideSettings.nodes), the section's first")
+                        help="the meshes (the transcription's intervals, StrideSettings.nodes), the quick model's first")
     parser.add_argument("--transcription", default=TRANSCRIPTION, choices=TRANSCRIPTIONS,
-                        help="every mesh's (the section's: studies.stride_form.TRANSCRIPTION)")
+                        help="every mesh's (the quick model's: studies.stride_form.TRANSCRIPTION)")
     parser.add_argument("--refined", action="store_true",
                         help="each finer stride solved by refine.refined (its touchdown's mode decided again "
                              "under Coulomb) instead of as the section solves its strides (sticking)")
@@ -60,7 +61,8 @@ def runner(path: str) -> dict:
     return {"name": path, "body": d["body"] if "mass_kg" in d["body"] else d["settings"]["body"],
             "friction": d["settings"]["friction"], "speed": s["speed_mps"], "law": s["law"],
             "cadence": s["measured_cadence_spm"], "strike": s["measured_strike"], "nodes": s["nodes"],
-            "what_if": s["what_if"], "transcription": s.get("transcription", "trapezoid")}
+            "what_if": s["what_if"], "transcription": s.get("transcription", "trapezoid"),
+            "model": s.get("model") or STRIDE_MODEL}
 
 
 def finer(scene, strides: list, nodes: int, refine: bool) -> list:
@@ -94,7 +96,7 @@ def main(argv=None) -> None:
                   f"section's ({r['transcription']} at {r['nodes']})", flush=True)
         body = scaled_body(r["body"]["mass_kg"], r["body"]["height_m"], r["body"]["sex"])
         scene = stride_scene(body, r["speed"], r["strike"], "effort", r["friction"], r["law"], args.nodes[0],
-                             transcription=args.transcription)
+                             transcription=args.transcription, model=r["model"])
         clock = time.process_time()
         curve = cadence_curve(scene, r["speed"], [r["cadence"]] + [r["cadence"] * (1 + p / 100) for p in WHAT_IF_PCT])
         print(f"  the curve at {args.nodes[0]} nodes: {time.process_time() - clock:.0f} s of CPU", flush=True)

@@ -56,7 +56,7 @@ SETTINGS: dict[str, tuple[Any, str]] = {
                      "(--no-stride: the touchdowns only)"),
     "stride_model": (STRIDE_MODEL, "the stride's model: quick (the trapezoid at 30 intervals, knee and ankle "
                                    "springs: 15-18 s a trial, not mesh-converged) or scenes (formopt stride's: "
-                                   "Hermite-Simpson at 40 intervals, mesh-converged: 90-165 s a trial)"),
+                                   "Hermite-Simpson at 40 intervals, mesh-converged: 80-164 s a trial)"),
 }
 
 
@@ -103,6 +103,7 @@ RANGES = {"mass": limits.BODY_MASS_KG, "height": limits.BODY_HEIGHT_M,
           "force_threshold": limits.Range(1.0, 5000.0, "N"),
           "foot_speed_fraction": limits.Range(0.05, 0.95), "support": limits.Range(0.0, 1e6)}
 WHOLE = {"starts": (1, 1000), "seed": (0, 2**31)}
+CHOICES = {"contact": LAWS, "stride_model": tuple(STRIDE_MODELS), "sex": tuple(DE_LEVA)}
 FILES = ("trial", "static", "forces", "markers")
 
 
@@ -131,8 +132,7 @@ def check(table: dict, where: str, folder: Path | None = None) -> dict:
             b = val.table(table, key, set(BOUNDS_DEG), (), where)
             out[key] = {j: val.joint_bounds(v, f"{full}.{j}", j) for j, v in b.items()}
         else:
-            choices = {"contact": LAWS, "stride_model": tuple(STRIDE_MODELS)}.get(key, tuple(DE_LEVA))
-            out[key] = val.choice(table[key], f"{where}.{key}" if where else key, choices)
+            out[key] = val.choice(table[key], f"{where}.{key}" if where else key, CHOICES[key])
     return out
 
 

@@ -32,7 +32,7 @@ MESH_MOVE_W = 20.0  # W
 # "Hermite-Simpson under the what-ifs", 2026-11-28)
 HERMITE_NOTE = ("on the three shipped runners, Hermite-Simpson at 24 intervals (mesh-converged within 1.5 %) "
                 "turned one what-if of twelve, and the torque scenes' model (formopt stride's, stride_model "
-                "'scenes': mesh-converged, 6-9 times slower) eight: read the verdicts as this model's "
+                "'scenes': mesh-converged, 5-10 times slower) eight: read the verdicts as this model's "
                 "(docs/howto/compare.md, 'Two stride models')")
 # the envelope: the free optimum's objective at most this (relative) above the least imposed
 # stride's; IPOPT's optima are exact to about 1e-6, so a larger gap is another local optimum

@@ -205,7 +205,7 @@ class StrideAnswer:
     seconds: float
     nominal_nodes: int  # collocation intervals of every stride solved
     transcription: str = TRANSCRIPTION  # theirs (StrideSettings.transcription)
-    model: str | None = STRIDE_MODEL  # theirs (stride_form.STRIDE_MODELS; None: another)
+    model: str | None = None  # theirs (stride_form.STRIDE_MODELS; None: another)
 
     @property
     def nominal(self) -> Curve:

@@ -19,7 +19,9 @@ from ..optim.stride.problem import (
     MOMENT_TIME,
     RUNNER_ANKLE,
     RUNNER_IMPACT_WEIGHT,
+    RUNNER_NODES,
     RUNNER_TENDONS,
+    RUNNER_TRANSCRIPTION,
 )
 
 # collocation intervals of compare's strides and the literature checks: at 24 the free optimum
@@ -34,7 +36,7 @@ NODES = 30
 # instead of 15-18 (its warm starts take 25-50 IPOPT iterations of 12-14 ms against 9-16 of 7), and
 # with compare's knee spring RIC's free optimum crouches (stance knee 70 deg); the torque scenes'
 # model (no knee spring, impacts charged, moment dynamics) on it fails its forward check on RBDS001
-# T25 (0.31 rad), and on their 40 intervals takes 100-164 s a section (eight of the three runners'
+# T25 (0.31 rad), and on their 40 intervals takes 80-164 s a section (eight of the three runners'
 # twelve verdicts other than the trapezoid's). Kept: the trapezoid in the quick model, the default,
 # its mesh said in the section's notes (docs/howto/compare.md, "Hermite-Simpson under the what-ifs",
 # 2026-11-28); the scenes' model is STRIDE_MODELS' other.
@@ -45,10 +47,11 @@ MAX_ITER = 500  # IPOPT iterations: a converging stride takes 30-300 (2026-11-23
 # - quick (the default): the trapezoid at NODES with RUNNER_TENDONS (knee and ankle springs), the
 #   impacts free: a section in 15-18 s a trial, not mesh-converged (above);
 # - scenes: formopt stride's torque scenes' model (formopt/scenes/stride_rbds001.toml; problem.RUNNER_ANKLE):
-#   Hermite-Simpson at 40 intervals, the ankle's spring alone, the impacts charged, moment dynamics and
-#   the approach floor: mesh-converged (optim.stride.notes.RUNNER_MESH), every stride of the three
-#   shipped runners valid, 89-164 s a section (benchmarks/compare_speed.py --model scenes; `formopt compare
-#   --scene problems/compare/runners.toml --stride-model scenes`: 89 / 113 / 104 s, T35 / T25 / RIC, 2026-11-28).
+#   Hermite-Simpson at 40 intervals, the ankle's spring alone, the impacts charged, moment dynamics,
+#   the approach floor and IPOPT's 1000 iterations: mesh-converged (optim.stride.notes.RUNNER_MESH), every stride of the three
+#   shipped runners valid, 80-164 s a section (benchmarks/compare_speed.py --model scenes; `formopt compare
+#   --scene problems/compare/runners.toml --stride-model scenes`: 89 / 113 / 104 s and 80 / 146 / 103 s,
+#   T35 / T25 / RIC, 2026-11-28).
 
 
 @dataclass(frozen=True)
@@ -58,15 +61,17 @@ class StrideModel:
 
     nodes: int
     transcription: str
-    tendons: dict  # N m/rad per kg, by joint
-    impact_weight: float = 0.0
+    tendons: dict  # N m/rad per kg, by joint (none at zero)
+    max_iter: int  # IPOPT's iterations, at most
+    impact_weight: float = 0.0  # 1/m
     approach_speed: float = 0.0  # m/s
     moment_time: float = 0.0  # s
 
 
 STRIDE_MODELS = {
-    "quick": StrideModel(NODES, TRANSCRIPTION, RUNNER_TENDONS),
-    "scenes": StrideModel(40, "hermite-simpson", RUNNER_ANKLE, RUNNER_IMPACT_WEIGHT, APPROACH_SPEED, MOMENT_TIME),
+    "quick": StrideModel(NODES, TRANSCRIPTION, RUNNER_TENDONS, MAX_ITER),
+    "scenes": StrideModel(RUNNER_NODES, RUNNER_TRANSCRIPTION, RUNNER_ANKLE, StrideSettings.max_iter,
+                          RUNNER_IMPACT_WEIGHT, APPROACH_SPEED, MOMENT_TIME),
 }
 STRIDE_MODEL = "quick"
 
@@ -81,7 +86,7 @@ def stride_scene(body: Body, speed: float, strike: str, objective: str = "effort
     over the model's where given."""
     own = STRIDE_MODELS[model]
     settings = StrideSettings(strike=strike, objective=objective, nodes=nodes or own.nodes, law=law,
-                              transcription=transcription or own.transcription, max_iter=MAX_ITER,
+                              transcription=transcription or own.transcription, max_iter=own.max_iter,
                               tendons=dict(own.tendons if tendons is None else tendons),
                               impact_weight=own.impact_weight, approach_speed=own.approach_speed,
                               moment_time=own.moment_time)
@@ -89,9 +94,13 @@ def stride_scene(body: Body, speed: float, strike: str, objective: str = "effort
 
 
 def model_of(settings: StrideSettings) -> str | None:
-    """The name of the STRIDE_MODELS entry whose settings these are (None: another model)."""
+    """The name of the STRIDE_MODELS entry whose settings these are (None: another model; a
+    spring at zero is none)."""
+    def own(value):
+        return {k: v for k, v in value.items() if v} if isinstance(value, dict) else value
+
     return next((name for name, m in STRIDE_MODELS.items()
-                 if all(getattr(settings, f.name) == getattr(m, f.name) for f in fields(m))), None)
+                 if all(own(getattr(settings, f.name)) == own(getattr(m, f.name)) for f in fields(m))), None)
 
 
 def with_body(scene: StrideScene, body: Body) -> StrideScene:

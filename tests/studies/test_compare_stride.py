@@ -106,11 +106,12 @@ def test_the_scenes_model_is_formopt_strides():
     body = scaled_body(62.0, 1.81)
     shipped = load("stride_rbds001").settings
     scenes = stride_scene(body, 3.5, "heel", law="coulomb", model="scenes").settings
-    keys = ("nodes", "transcription", "tendons", "impact_weight", "approach_speed", "moment_time")
+    keys = ("nodes", "transcription", "tendons", "impact_weight", "approach_speed", "moment_time", "max_iter")
     assert {k: getattr(scenes, k) for k in keys} == {k: getattr(shipped, k) for k in keys}
     assert model_of(scenes) == "scenes" and model_of(stride_scene(body, 3.5, "heel").settings) == STRIDE_MODEL == "quick"
     assert model_of(stride_scene(body, 3.5, "heel", nodes=18).settings) is None
     assert model_of(stride_scene(body, 3.5, "heel", model="scenes", transcription="trapezoid").settings) is None
+    assert model_of(stride_scene(body, 3.5, "heel", model="scenes", tendons={"knee": 0.0, "ankle": 4.0}).settings) == "scenes"
 
 
 def test_the_band_names_each_part_with_its_own_width():

@@ -196,10 +196,20 @@ def test_strikes_within_the_mesh_uncertainty_are_said_to_tie():
 
 def test_the_measured_mesh_figure_is_the_strides_own():
     """notes.mesh_cost_pct: the torque scenes' stride 0.3 %, its flat strike and its forefoot below
-    3.5 m/s (whose 80-interval solves did not converge) 1.1 %, other settings none."""
+    3.5 m/s (whose 80-interval solves did not converge) 1.1 %; under Coulomb 0.5 %, the forefoot
+    below 3.5 m/s 2 %, the flat strike (no sliding touchdown) as without; other settings none.
+    The mesh note says what Coulomb's strides moved under Coulomb only."""
     from dataclasses import replace
 
-    from formopt.optim.stride.notes import RUNNER_COST_PCT, RUNNER_UNCONVERGED_PCT, mesh_cost_pct
+    from formopt.optim.stride.notes import (
+        RUNNER_COST_PCT,
+        RUNNER_COULOMB_COST_PCT,
+        RUNNER_COULOMB_FOREFOOT_PCT,
+        RUNNER_COULOMB_MESH,
+        RUNNER_UNCONVERGED_PCT,
+        mesh_cost_pct,
+        mesh_note,
+    )
 
     runner = load(SHIPPED / "stride_rbds001.toml").settings
     assert mesh_cost_pct(replace(runner, strike="heel"), 2.5) == RUNNER_COST_PCT == 0.3
@@ -208,6 +218,11 @@ def test_the_measured_mesh_figure_is_the_strides_own():
     assert mesh_cost_pct(replace(runner, strike="flat"), 4.5) == RUNNER_UNCONVERGED_PCT
     assert mesh_cost_pct(replace(runner, torque_velocity=True), 3.5) is None
     assert mesh_cost_pct(replace(runner, nodes=20), 3.5) is None
+    coulomb = replace(runner, law="coulomb")
+    assert mesh_cost_pct(replace(coulomb, strike="heel"), 2.5) == RUNNER_COULOMB_COST_PCT == 0.5
+    assert mesh_cost_pct(replace(coulomb, strike="forefoot"), 2.5) == RUNNER_COULOMB_FOREFOOT_PCT == 2.0
+    assert mesh_cost_pct(replace(coulomb, strike="flat"), 3.5) == RUNNER_UNCONVERGED_PCT
+    assert RUNNER_COULOMB_MESH in mesh_note(coulomb) and RUNNER_COULOMB_MESH not in mesh_note(runner)
 
 
 def test_a_least_costly_stride_unlike_a_runners_names_the_one_that_is_not():

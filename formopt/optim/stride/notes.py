@@ -12,6 +12,8 @@ from .problem import (
     MOMENT_TIME,
     RUNNER_ANKLE,
     RUNNER_IMPACT_WEIGHT,
+    RUNNER_NODES,
+    RUNNER_TRANSCRIPTION,
     StrideSettings,
 )
 
@@ -58,6 +60,16 @@ RUNNER_MESH = (f"{RUNNER_SHIFT} on RBDS001's body (heel at "
                "2.5-4.5 m/s, forefoot at 3.5 and 4.5) and another lab's runner (heel and forefoot, 3.37 m/s); "
                "the 80-interval solves of the flat strike (2.5-4.5 m/s) and of the forefoot at 2.5 m/s did not "
                "converge, 0.2-1.1 % cheaper")
+# The same under Coulomb (law "coulomb": the touchdown solved sliding where formopt's Coulomb map says
+# it slides, local.touchdown_mode), the free optima of stride_rbds001.toml's settings with contact =
+# "coulomb", 40 -> 80 intervals (formopt stride SCENE --strike S [--speed 2.54] --mesh-check, the
+# search's 4 starts, 2026-11-28; compare's stride_model "scenes" solves this): RBDS001's body at 3.58
+# m/s, heel 189.4 steps/min (sliding 2.3 cm) -0.04 % in cadence and -0.15 % in cost, forefoot 196.4
+# (3.9 cm) +0.06 / -0.49 %; at 2.54 m/s the forefoot 185.6 (6.6 cm) +0.56 / -1.95 %.
+RUNNER_COULOMB_COST_PCT, RUNNER_COULOMB_FOREFOOT_PCT = 0.5, 2.0  # cost, and the forefoot's below 3.5 m/s
+RUNNER_COULOMB_MESH = ("under Coulomb, RBDS001's sliding free optima moved -0.04 / +0.06 % in cadence and "
+                       "-0.15 / -0.49 % in cost (heel / forefoot, 3.58 m/s), the forefoot's at 2.54 m/s +0.56 % "
+                       "and -1.95 %")
 
 
 # The torque scenes' stride with the torque-velocity limit (StrideSettings.torque_velocity), 40 ->
@@ -75,11 +87,15 @@ def mesh_cost_pct(settings: StrideSettings, speed: float) -> float | None:
     """How far (%) the mesh was measured to move the cost of a stride of these settings (its
     strike's) at `speed` (m/s) whose own mesh is not checked: for the torque scenes' stride on 40
     intervals or more RUNNER_COST_PCT, or RUNNER_UNCONVERGED_PCT for the flat strike and the
-    forefoot below 3.5 m/s (RUNNER_MESH); None where no figure holds as a bound."""
+    forefoot below 3.5 m/s (RUNNER_MESH); under Coulomb RUNNER_COULOMB_COST_PCT, or
+    RUNNER_COULOMB_FOREFOOT_PCT for the forefoot below 3.5 m/s (RUNNER_COULOMB_MESH); None where
+    no figure holds as a bound."""
     if not _runner(settings):
         return None
-    unconverged = settings.strike == "flat" or (settings.strike == "forefoot" and speed < 3.5)
-    return RUNNER_UNCONVERGED_PCT if unconverged else RUNNER_COST_PCT
+    slow_forefoot = settings.strike == "forefoot" and speed < 3.5
+    if settings.law == "coulomb" and settings.strike != "flat":  # a flat touchdown never slides
+        return RUNNER_COULOMB_FOREFOOT_PCT if slow_forefoot else RUNNER_COULOMB_COST_PCT
+    return RUNNER_UNCONVERGED_PCT if settings.strike == "flat" or slow_forefoot else RUNNER_COST_PCT
 
 
 def _runner(settings: StrideSettings, velocity: bool = False) -> bool:
@@ -88,10 +104,10 @@ def _runner(settings: StrideSettings, velocity: bool = False) -> bool:
     uniform), with the torque-velocity limit or without: what RUNNER_MESH (without) and
     VELOCITY_MESH (with, the heel strike) were measured with."""
     springs = {joint: k for joint, k in settings.tendons.items() if k}
-    return (settings.muscles is None and settings.objective == "effort" and settings.transcription == "hermite-simpson"
+    return (settings.muscles is None and settings.objective == "effort" and settings.transcription == RUNNER_TRANSCRIPTION
             and springs == RUNNER_ANKLE and settings.impact_weight == RUNNER_IMPACT_WEIGHT
             and settings.moment_time == MOMENT_TIME and settings.approach_speed == APPROACH_SPEED
-            and settings.torque_velocity == velocity and settings.nodes >= 40 and not settings.grading)
+            and settings.torque_velocity == velocity and settings.nodes >= RUNNER_NODES and not settings.grading)
 
 
 # The muscles' trapezoid from 40 to 80 nodes (RBDS001, heel and forefoot, 2.5 / 3.5 / 4.5 m/s,
@@ -166,8 +182,9 @@ def mesh_note(settings: StrideSettings) -> str:
         return (f"{settings.transcription} at {settings.nodes} intervals with the torque-velocity limit: "
                 f"{measured} (docs/concepts/stride.md, 'What holds the torque scenes' stride')")
     if _runner(settings):
+        coulomb = f"; {RUNNER_COULOMB_MESH}" if settings.law == "coulomb" else ""
         return (f"hermite-simpson at {settings.nodes} intervals: the torque scenes' effort optimum moved "
-                f"{RUNNER_MESH} (docs/concepts/stride.md, 'The torque scenes on Hermite-Simpson')")
+                f"{RUNNER_MESH}{coulomb} (docs/concepts/stride.md, 'The torque scenes on Hermite-Simpson')")
     least, shift = MESH_FINE.get(settings.transcription, (None, ""))
     if least is not None and settings.nodes >= least:
         return (f"{settings.transcription} at {settings.nodes} intervals: the effort optimum moved {shift} "

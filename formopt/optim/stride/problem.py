@@ -249,6 +249,7 @@ RUNNER_TENDONS = {"knee": 2.5, "ankle": 4.0}
 # What it gives, 40 -> 80 intervals, is optim.stride.notes.RUNNER_MESH's.
 RUNNER_ANKLE = {"ankle": 4.0}
 RUNNER_IMPACT_WEIGHT = 1.0 / EFFICIENCY_POSITIVE
+RUNNER_TRANSCRIPTION, RUNNER_NODES = "hermite-simpson", 40  # their mesh (the scene files' [stride])
 
 
 def other_leg(point: str) -> str:
