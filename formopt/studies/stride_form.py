@@ -45,13 +45,14 @@ MAX_ITER = 500  # IPOPT iterations: a converging stride takes 30-300 (2026-11-23
 # compare's stride models (its `stride_model` setting; docs/howto/compare.md, "Two stride models"),
 # each the settings its strides are built with beyond the body, speed, strike, objective and law:
 # - quick (the default): the trapezoid at NODES with RUNNER_TENDONS (knee and ankle springs), the
-#   impacts free: a section in 15-18 s a trial, not mesh-converged (above);
-# - scenes: formopt stride's torque scenes' model (formopt/scenes/stride_rbds001.toml; problem.RUNNER_ANKLE):
-#   Hermite-Simpson at 40 intervals, the ankle's spring alone, the impacts charged, moment dynamics,
-#   the approach floor and IPOPT's 1000 iterations: mesh-converged (optim.stride.notes.RUNNER_MESH), every stride of the three
-#   shipped runners valid, 80-164 s a section (benchmarks/compare_speed.py --model scenes; `formopt compare
-#   --scene problems/compare/runners.toml --stride-model scenes`: 89 / 113 / 104 s and 80 / 146 / 103 s,
-#   T35 / T25 / RIC, 2026-11-28).
+#   impacts free, MAX_ITER: a section in 15-18 s a trial, not mesh-converged (above);
+# - scenes: formopt stride's torque scenes' model (formopt/scenes/stride_rbds001.toml;
+#   problem.RUNNER_ANKLE): Hermite-Simpson at 40 intervals, the ankle's spring alone, the impacts
+#   charged, moment dynamics, the approach floor and IPOPT's 1000 iterations: mesh-converged
+#   (optim.stride.notes.RUNNER_MESH, RUNNER_COULOMB_MESH), every stride of the three shipped
+#   runners valid, 80-164 s a section (benchmarks/compare_speed.py --model scenes; `formopt
+#   compare --scene problems/compare/runners.toml --stride-model scenes`: 89 / 113 / 104 s and
+#   80 / 146 / 103 s, T35 / T25 / RIC, 2026-11-28).
 
 
 @dataclass(frozen=True)
