@@ -5,7 +5,7 @@ The periodic running half stride of the paper's body at 3.5 m/s with a heel stri
 (formopt/scenes/stride.toml): cadence, step length, contact and flight, the ground force, and
 the energy budget of one step, which closes to round-off.
 
-    python examples/stride.py [OUT] [--quick]    (``--quick``: 20 collocation nodes and one start,
+    python examples/stride.py [OUT] [--quick]    (``--quick``: 18 collocation nodes and one start,
                                                   not 40 nodes and 4 starts)
 """
 
@@ -22,7 +22,7 @@ out = Path(sys.argv[1] if len(sys.argv) > 1 and not sys.argv[1].startswith("-") 
 
 data = tomllib.loads(formopt.scene_path("stride").read_text())
 if "--quick" in sys.argv:  # the tests' run: seconds, not a minute
-    data["stride"].update(nodes=20, starts=1)
+    data["stride"].update(nodes=18, starts=1)  # the heel strike's fewest
 study = formopt.stride(parse(data, "stride.toml"))
 print(stride_table(study))
 best = study.best
@@ -31,6 +31,6 @@ print(f"\nper step: positive work {b['positive_work_J']:.1f} J = negative work {
       f" + tendons' loss {b['spring_J']:.1f} J + impacts {b['impacts_J']:.2f} J + the rest, "
       f"balance {b['balance_J']:+.1e} J; {best.mechanical_power_W:.0f} W at {best.cadence_spm:.1f} steps/min")
 if "--quick" in sys.argv:
-    print("(--quick, 20 nodes and one start: the cadence and the cost move with the mesh; the scene's 40 nodes are "
+    print("(--quick, 18 nodes and one start: the cadence and the cost move with the mesh; the scene's 40 nodes are "
           "what formopt stride stride reports)")
 print("wrote", save_figure(budget_figure(best), out / "stride_budget.png"))
