@@ -1,5 +1,5 @@
 """Every notebook runs top to bottom without an error (with FORMOPT_QUICK=1: a notebook that reads
-it runs a cheaper case, e.g. stride.ipynb's 20 nodes and one start; its text says so).
+it runs a cheaper case, e.g. stride.ipynb's 18 nodes and one start; its text says so).
 
 The notebooks run one after another in one kernel (`kernel`), each from an empty namespace
 (`%reset -f` first): a kernel's start and formopt's imports cost about 2 s of CPU a notebook
