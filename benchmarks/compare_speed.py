@@ -11,7 +11,7 @@ reference became one of its parameters: one PostureProblem (symbolic build and s
 step. No peer tool computes this (OpenSim and Visual3D give the angles, not an optimum).
 
     python benchmarks/compare_speed.py --stride T25 [--workers 1] [--json FILE] [--compiled true] [--solves]
-                                       [--nodes 24 --transcription hermite-simpson] [--model scenes]
+                                       [--nodes 24 --transcription hermite-simpson] [--model quick]
     python benchmarks/compare_speed.py --diff BEFORE.json AFTER.json
 
 `--stride`: compare's stride section (studies.compare_stride.answer) for one runner of
@@ -29,7 +29,7 @@ pool (`two_cores`: on the shared machine the wall measures the other runs as muc
 models (collocation.COMPILED; once, then from the disk cache: the section with every NLP
 compiled); `--nodes`, `--transcription`: the strides' mesh (compare_stride.answer's; default
 the model's); `--model`: the section's stride model (studies.stride_form.STRIDE_MODELS, compare's
-`stride_model`: quick, the default, or scenes, formopt stride's); `--solves`: every IPOPT
+`stride_model`: scenes, formopt stride's and the default since 2026-11-28, or quick); `--solves`: every IPOPT
 run of every process (stage, NLP, solver: `stride_warm` the
 warm start with multipliers, cadence, iterations, status, objective, CPU s, pid, its wall from
 the section's start to its end). `--diff`: the

@@ -1,6 +1,6 @@
 """What twice and four times the nodes do to compare's what-ifs (issue 34 item 2 on compare's
-stride section, whose quick model, the default, solves the trapezoid at studies.stride_form.NODES =
-30 nodes).
+stride section: its quick model solves the trapezoid at studies.stride_form.NODES = 30 nodes; the
+scenes' model, the default since 2026-11-28, Hermite-Simpson at 40).
 
 For each comparison.json given (written by `formopt compare`: the runner's speed, cadence, strike,
 body and friction), the section's nominal scene (studies.stride_form.stride_scene, effort,
@@ -36,7 +36,7 @@ from formopt.optim.stride.problem import TRANSCRIPTIONS
 from formopt.optim.stride.refine import refined
 from formopt.studies.compare_band import stride_at
 from formopt.studies.compare_stride import WHAT_IF_PCT
-from formopt.studies.stride_form import STRIDE_MODEL, TRANSCRIPTION, stride_scene
+from formopt.studies.stride_form import TRANSCRIPTION, stride_scene
 from formopt.studies.stride_map import cadence_curve, for_nodes
 
 
@@ -62,7 +62,8 @@ def runner(path: str) -> dict:
             "friction": d["settings"]["friction"], "speed": s["speed_mps"], "law": s["law"],
             "cadence": s["measured_cadence_spm"], "strike": s["measured_strike"], "nodes": s["nodes"],
             "what_if": s["what_if"], "transcription": s.get("transcription", "trapezoid"),
-            "model": s.get("model") or STRIDE_MODEL}
+            # a JSON from before the key (2026-11-28) or of a mesh set by hand (null): the quick model's
+            "model": s.get("model") or "quick"}
 
 
 def finer(scene, strides: list, nodes: int, refine: bool) -> list:

@@ -72,7 +72,7 @@ class Curves:
         key = (speed, objective, factors, steps)
         if key not in self.cache:
             scene = stride_scene(self.body, speed, self.strike, objective, nodes=self.nodes,
-                                 starts=self.starts)
+                                 starts=self.starts, model="quick")
             free = cadence_curve(scene, speed, []).free
             for _ in range(3):  # again around a cheaper free optimum found from an imposed cadence
                 centre = free

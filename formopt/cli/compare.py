@@ -54,9 +54,10 @@ SETTINGS: dict[str, tuple[Any, str]] = {
     "per_step": (True, "an optimum for every step as well (--no-per-step: the mean step's only)"),
     "stride": (True, "the stride optimum of the runner's body and what-if cadences -10 to +10 %% "
                      "(--no-stride: the touchdowns only)"),
-    "stride_model": (STRIDE_MODEL, "the stride's model: quick (the trapezoid at 30 intervals, knee and ankle "
-                                   "springs: 15-18 s a trial, not mesh-converged) or scenes (formopt stride's: "
-                                   "Hermite-Simpson at 40 intervals, mesh-converged: 80-164 s a trial)"),
+    "stride_model": (STRIDE_MODEL, "the stride's model: scenes (formopt stride's: Hermite-Simpson at 40 "
+                                   "intervals, mesh-converged: 80-164 s a trial) or quick (a preview: the "
+                                   "trapezoid at 30 intervals, knee and ankle springs: 15-18 s a trial, not "
+                                   "mesh-converged)"),
 }
 
 

@@ -37,22 +37,26 @@ NODES = 30
 # with compare's knee spring RIC's free optimum crouches (stance knee 70 deg); the torque scenes'
 # model (no knee spring, impacts charged, moment dynamics) on it fails its forward check on RBDS001
 # T25 (0.31 rad), and on their 40 intervals takes 80-164 s a section (eight of the three runners'
-# twelve verdicts other than the trapezoid's). Kept: the trapezoid in the quick model, the default,
-# its mesh said in the section's notes (docs/howto/compare.md, "Hermite-Simpson under the what-ifs",
-# 2026-11-28); the scenes' model is STRIDE_MODELS' other.
+# twelve verdicts other than the trapezoid's). Kept: the trapezoid in the quick model, its mesh
+# said in the section's notes (docs/howto/compare.md, "Hermite-Simpson under the what-ifs",
+# 2026-11-28); the default is STRIDE_MODELS' scenes.
 TRANSCRIPTION = "trapezoid"
 MAX_ITER = 500  # IPOPT iterations: a converging stride takes 30-300 (2026-11-23, 24 nodes)
 # compare's stride models (its `stride_model` setting; docs/howto/compare.md, "Two stride models"),
 # each the settings its strides are built with beyond the body, speed, strike, objective and law:
-# - quick (the default): the trapezoid at NODES with RUNNER_TENDONS (knee and ankle springs), the
-#   impacts free, MAX_ITER: a section in 15-18 s a trial, not mesh-converged (above);
-# - scenes: formopt stride's torque scenes' model (formopt/scenes/stride_rbds001.toml;
+# - scenes (the default): formopt stride's torque scenes' model (formopt/scenes/stride_rbds001.toml;
 #   problem.RUNNER_ANKLE): Hermite-Simpson at 40 intervals, the ankle's spring alone, the impacts
 #   charged, moment dynamics, the approach floor and IPOPT's 1000 iterations: mesh-converged
 #   (optim.stride.notes.RUNNER_MESH, RUNNER_COULOMB_MESH), every stride of the three shipped
 #   runners valid, 80-164 s a section (benchmarks/compare_speed.py --model scenes; `formopt
-#   compare --scene problems/compare/runners.toml --stride-model scenes`: 89 / 113 / 104 s and
-#   80 / 146 / 103 s, T35 / T25 / RIC, 2026-11-28).
+#   compare --scene problems/compare/runners.toml`: 89 / 113 / 104 s and 80 / 146 / 103 s,
+#   T35 / T25 / RIC, 2026-11-28). The default since 2026-11-28: design.md section 7 asks of a
+#   reported optimum that N against 2N nodes move it within 1 %, and on the quick model a
+#   different warm start of the band's metabolic variant turned 6 of the 12 shipped verdicts
+#   (scenes: 1; docs/howto/compare.md, "Two stride models");
+# - quick (`stride_model = "quick"`, a preview): the trapezoid at NODES with RUNNER_TENDONS (knee and
+#   ankle springs), the impacts free, MAX_ITER: a section in 15-18 s a trial, not mesh-converged
+#   (above; its notes say so).
 
 
 @dataclass(frozen=True)
@@ -74,7 +78,7 @@ STRIDE_MODELS = {
     "scenes": StrideModel(RUNNER_NODES, RUNNER_TRANSCRIPTION, RUNNER_ANKLE, StrideSettings.max_iter,
                           RUNNER_IMPACT_WEIGHT, APPROACH_SPEED, MOMENT_TIME),
 }
-STRIDE_MODEL = "quick"
+STRIDE_MODEL = "scenes"
 
 
 def stride_scene(body: Body, speed: float, strike: str, objective: str = "effort",

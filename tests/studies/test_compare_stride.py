@@ -88,11 +88,12 @@ def test_what_ifs_within_the_meshs_move_of_zero_are_named():
                                           (24, "trapezoid", "coulomb", band, False),
                                           (30, "hermite-simpson", "coulomb", band, False),
                                           (30, "trapezoid", "coulomb", band[:1], False)):
-        scene = stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", law=law, nodes=nodes, transcription=how)
+        scene = stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", law=law, nodes=nodes, transcription=how,
+                             model="quick")
         notes = section_notes(curves, {}, 170.0, scene)  # said only where MESH_MOVE_W was measured
         assert any(n.startswith("the what-ifs at -5 %") for n in notes) is said
         assert (HERMITE_NOTE in notes) is said
-    for other in (stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", law="coulomb", tendons=RUNNER_ANKLE),
+    for other in (stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", law="coulomb", tendons=RUNNER_ANKLE, model="quick"),
                   stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", law="coulomb", model="scenes")):
         notes = section_notes(band, {}, 170.0, other)  # another model
         assert not {HERMITE_NOTE, mesh_what_if_note(curve)} & set(notes)
@@ -101,15 +102,16 @@ def test_what_ifs_within_the_meshs_move_of_zero_are_named():
 
 def test_the_scenes_model_is_formopt_strides():
     """stride_model "scenes" builds the torque scenes' stride (formopt/scenes/stride_rbds001.toml's
-    settings but for the strike, objective and law compare gives); the default is the quick model;
-    model_of names either, and nothing for a mesh of its own."""
+    settings but for the strike, objective and law compare gives), the default; the quick model
+    beside it; model_of names either, and nothing for a mesh of its own."""
     body = scaled_body(62.0, 1.81)
     shipped = load("stride_rbds001").settings
     scenes = stride_scene(body, 3.5, "heel", law="coulomb", model="scenes").settings
     keys = ("nodes", "transcription", "tendons", "impact_weight", "approach_speed", "moment_time", "max_iter")
     assert {k: getattr(scenes, k) for k in keys} == {k: getattr(shipped, k) for k in keys}
-    assert model_of(scenes) == "scenes" and model_of(stride_scene(body, 3.5, "heel").settings) == STRIDE_MODEL == "quick"
+    assert model_of(scenes) == "scenes" and model_of(stride_scene(body, 3.5, "heel").settings) == STRIDE_MODEL == "scenes"
     assert model_of(stride_scene(body, 3.5, "heel", nodes=18).settings) is None
+    assert model_of(stride_scene(body, 3.5, "heel", model="quick").settings) == "quick"
     assert model_of(stride_scene(body, 3.5, "heel", model="scenes", transcription="trapezoid").settings) is None
     assert model_of(stride_scene(body, 3.5, "heel", model="scenes", tendons={"knee": 0.0, "ankle": 4.0}).settings) == "scenes"
 
@@ -159,7 +161,7 @@ def test_a_variant_off_its_envelope_is_said():
                                                                           "objective", [0.17, 0.18, 0.17, 0.15, 0.2])
     nominal.free = SimpleNamespace(objective_value=97.0, cadence_spm=187.0, success=True, valid=True, held=[])
     metabolic.free = SimpleNamespace(objective_value=0.18, success=True)
-    scene = stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", nodes=24)
+    scene = stride_scene(scaled_body(62.0, 1.81), 3.5, "heel", nodes=24, model="quick")
     said = [n for n in section_notes([nominal, metabolic], {}, 170.0, scene) if n.startswith("metabolic")]
     assert said == ["metabolic: its free optimum lies 16.7 % above its least costly imposed stride (tolerance 0.1 %): "
                     "its strides, each one solve warm from the nominal's, are local optima, and its part of the band "
@@ -326,7 +328,7 @@ def section():
     c = SimpleNamespace(steps=SimpleNamespace(speed=3.5, cadence_spm=171.4, touchdowns=tds), main_side=side,
                         settings={"body": {"mass_kg": 62.0, "height_m": 1.81, "sex": "male"},
                                   "friction": 0.8}, law="no-slip", measurement=knee_flexing(171.4))
-    return answer(c, nodes=18, band=False, changes=CHANGES)
+    return answer(c, nodes=18, band=False, changes=CHANGES, model="quick")
 
 
 def knee_flexing(cadence: float):
@@ -372,7 +374,7 @@ def test_total_mass_scales_the_power_and_the_legs_share_moves_the_stride(section
     free = section.nominal.free
 
     def warm_on(body):
-        nlp = stride_scene(body, 3.5, "heel", nodes=18).nlp()
+        nlp = stride_scene(body, 3.5, "heel", nodes=18, model="quick").nlp()
         stride = summarise(nlp, warm(nlp, free, 3.5, 0.0, 0.8, None), False)
         assert stride.success
         return stride.mechanical_power_W / free.mechanical_power_W, stride.cadence_spm / free.cadence_spm
