@@ -22,6 +22,7 @@ from ..optim.stride.problem import (
     RUNNER_NODES,
     RUNNER_TENDONS,
     RUNNER_TRANSCRIPTION,
+    springs,
 )
 
 # collocation intervals of compare's strides and the literature checks: at 24 the free optimum
@@ -102,7 +103,7 @@ def model_of(settings: StrideSettings) -> str | None:
     """The name of the STRIDE_MODELS entry whose settings these are (None: another model; a
     spring at zero is none)."""
     def own(value):
-        return {k: v for k, v in value.items() if v} if isinstance(value, dict) else value
+        return springs(value) if isinstance(value, dict) else value
 
     return next((name for name, m in STRIDE_MODELS.items()
                  if all(own(getattr(settings, f.name)) == own(getattr(m, f.name)) for f in fields(m))), None)

@@ -15,6 +15,7 @@ from .problem import (
     RUNNER_NODES,
     RUNNER_TRANSCRIPTION,
     StrideSettings,
+    springs,
 )
 
 # How far a stride's optimum moved with its mesh, N to 2N intervals (docs/concepts/stride.md,
@@ -103,9 +104,8 @@ def _runner(settings: StrideSettings, velocity: bool = False) -> bool:
     RUNNER_IMPACT_WEIGHT, MOMENT_TIME and APPROACH_SPEED on Hermite-Simpson at 40 intervals or more,
     uniform), with the torque-velocity limit or without: what RUNNER_MESH (without) and
     VELOCITY_MESH (with, the heel strike) were measured with."""
-    springs = {joint: k for joint, k in settings.tendons.items() if k}
     return (settings.muscles is None and settings.objective == "effort" and settings.transcription == RUNNER_TRANSCRIPTION
-            and springs == RUNNER_ANKLE and settings.impact_weight == RUNNER_IMPACT_WEIGHT
+            and springs(settings.tendons) == RUNNER_ANKLE and settings.impact_weight == RUNNER_IMPACT_WEIGHT
             and settings.moment_time == MOMENT_TIME and settings.approach_speed == APPROACH_SPEED
             and settings.torque_velocity == velocity and settings.nodes >= RUNNER_NODES and not settings.grading)
 

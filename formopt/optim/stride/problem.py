@@ -252,6 +252,11 @@ RUNNER_IMPACT_WEIGHT = 1.0 / EFFICIENCY_POSITIVE
 RUNNER_TRANSCRIPTION, RUNNER_NODES = "hermite-simpson", 40  # their mesh (the scene files' [stride])
 
 
+def springs(tendons: dict) -> dict:
+    """The springs of a tendons mapping ({joint: N m/rad per kg}): a spring at zero is none."""
+    return {joint: k for joint, k in tendons.items() if k}
+
+
 def other_leg(point: str) -> str:
     """heel_R <-> heel_L, forefoot_R <-> forefoot_L."""
     return point[:-1] + ("L" if point.endswith("R") else "R")
