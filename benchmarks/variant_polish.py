@@ -168,7 +168,8 @@ def main():
     compare_stride.band_curves = polished
     c = compare_speed.comparison(args.runner)
     cpu = compare_speed.cpu_s()
-    section = compare_stride.answer(c, workers=args.workers) if args.workers else compare_stride.answer(c)
+    # the quick model: the one its tables were measured on (the default's since 2026-11-28 is scenes)
+    section = compare_stride.answer(c, model="quick", **({"workers": args.workers} if args.workers else {}))
     report(args.runner, section, seen, compare_speed.cpu_s() - cpu)
 
 

@@ -15,8 +15,11 @@ dP(c) = P(c) - P(c_runner) (W), beside the section's own figures and band from t
 
     python problems/compare_mesh.py out/runners/*/comparison.json [--nodes 30 60 120] [--refined]
                                     [--transcription hermite-simpson (every mesh's, the section's
-                                     curve solved again on it)]
+                                     curve solved again on it)] [--model quick (a null model's)]
 
+The meshes default to the section's and twice it, on its transcription, the strides built as its
+model (the JSON's `model`) builds them. The figures below are the quick model's (sections run
+with `--stride-model quick`).
 From 30 to 60 nodes the changes moved by up to 19.2 W on the three shipped runners: the section
 names its what-ifs within compare_notes.MESH_MOVE_W (20 W) of zero, whose verdict a finer mesh
 may turn (docs/howto/compare.md, "The mesh under the what-ifs"). The section's "nodes" are the
@@ -36,17 +39,19 @@ from formopt.optim.stride.problem import TRANSCRIPTIONS
 from formopt.optim.stride.refine import refined
 from formopt.studies.compare_band import stride_at
 from formopt.studies.compare_stride import WHAT_IF_PCT
-from formopt.studies.stride_form import TRANSCRIPTION, stride_scene
+from formopt.studies.stride_form import STRIDE_MODELS, stride_scene
 from formopt.studies.stride_map import cadence_curve, for_nodes
 
 
 def parse(argv=None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("comparisons", nargs="+", help="comparison.json files written by formopt compare")
-    parser.add_argument("--nodes", nargs="+", type=int, default=[30, 60, 120],
-                        help="the meshes (the transcription's intervals, StrideSettings.nodes), the quick model's first")
-    parser.add_argument("--transcription", default=TRANSCRIPTION, choices=TRANSCRIPTIONS,
-                        help="every mesh's (the quick model's: studies.stride_form.TRANSCRIPTION)")
+    parser.add_argument("--nodes", nargs="+", type=int,
+                        help="the meshes (the transcription's intervals, StrideSettings.nodes; default the "
+                             "section's and twice it)")
+    parser.add_argument("--transcription", choices=TRANSCRIPTIONS, help="every mesh's (default the section's)")
+    parser.add_argument("--model", choices=tuple(STRIDE_MODELS),
+                        help="the section's stride model where its JSON says none (a mesh set by hand)")
     parser.add_argument("--refined", action="store_true",
                         help="each finer stride solved by refine.refined (its touchdown's mode decided again "
                              "under Coulomb) instead of as the section solves its strides (sticking)")
@@ -62,8 +67,7 @@ def runner(path: str) -> dict:
             "friction": d["settings"]["friction"], "speed": s["speed_mps"], "law": s["law"],
             "cadence": s["measured_cadence_spm"], "strike": s["measured_strike"], "nodes": s["nodes"],
             "what_if": s["what_if"], "transcription": s.get("transcription", "trapezoid"),
-            # a JSON from before the key (2026-11-28) or of a mesh set by hand (null): the quick model's
-            "model": s.get("model") or "quick"}
+            "model": s.get("model", "quick")}  # a JSON from before the key (2026-11-28): quick's
 
 
 def finer(scene, strides: list, nodes: int, refine: bool) -> list:
@@ -90,19 +94,23 @@ def main(argv=None) -> None:
     how = "refined, the touchdown's mode decided again" if args.refined else "as the section's band, sticking"
     for path in args.comparisons:
         r = runner(path)
+        r["model"] = r["model"] or args.model
+        if r["model"] is None:
+            raise SystemExit(f"{path}: its stride section's model is null (a mesh set by hand): give --model")
+        nodes, transcription = args.nodes or [r["nodes"], 2 * r["nodes"]], args.transcription or r["transcription"]
         print(f"{r['name']}: {r['speed']:.2f} m/s, {r['strike']}, runner {r['cadence']:.1f} steps/min, the section "
               f"on the {r['transcription']} at {r['nodes']} intervals; the finer meshes solved {how}", flush=True)
-        if (args.nodes[0], args.transcription) != (r["nodes"], r["transcription"]):
-            print(f"  NOTE: the first mesh ({args.transcription} at {args.nodes[0]} intervals) is not the "
+        if (nodes[0], transcription) != (r["nodes"], r["transcription"]):
+            print(f"  NOTE: the first mesh ({transcription} at {nodes[0]} intervals) is not the "
                   f"section's ({r['transcription']} at {r['nodes']})", flush=True)
         body = scaled_body(r["body"]["mass_kg"], r["body"]["height_m"], r["body"]["sex"])
-        scene = stride_scene(body, r["speed"], r["strike"], "effort", r["friction"], r["law"], args.nodes[0],
-                             transcription=args.transcription, model=r["model"])
+        scene = stride_scene(body, r["speed"], r["strike"], "effort", r["friction"], r["law"], nodes[0],
+                             transcription=transcription, model=r["model"])
         clock = time.process_time()
         curve = cadence_curve(scene, r["speed"], [r["cadence"]] + [r["cadence"] * (1 + p / 100) for p in WHAT_IF_PCT])
-        print(f"  the curve at {args.nodes[0]} nodes: {time.process_time() - clock:.0f} s of CPU", flush=True)
-        meshes = {args.nodes[0]: curve.strides}
-        meshes.update({n: finer(scene, curve.strides, n, args.refined) for n in args.nodes[1:]})
+        print(f"  the curve at {nodes[0]} nodes: {time.process_time() - clock:.0f} s of CPU", flush=True)
+        meshes = {nodes[0]: curve.strides}
+        meshes.update({n: finer(scene, curve.strides, n, args.refined) for n in nodes[1:]})
         for n, strides in meshes.items():
             p0, dp = changes(strides)
             failed = ", ".join(f"{s.cadence_spm:.0f}" for s in strides if not s.success)

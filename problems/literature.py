@@ -7,7 +7,9 @@
 Each relation prints its numbers and a verdict computed from them: "reproduced", "not
 reproduced" or "depends on the objective" (reproduced under some objectives, not others). The
 paper's body (73 kg, 1.731 m), level ground, friction 0.8, no-slip impacts, one strike (heel:
-most recreational runners'). Strides at imposed cadences come from
+most recreational runners'), on compare's quick model (studies.stride_form.STRIDE_MODELS: the
+trapezoid with knee and ankle springs, the model these verdicts were measured on; not
+mesh-converged). Strides at imposed cadences come from
 studies.stride_map.cadence_curve (at each cadence the least costly optimum found from the free
 optimum and both neighbours);
 per-joint work from studies.stride_form.joint_work. A stride that does not converge is

@@ -55,7 +55,7 @@ SETTINGS: dict[str, tuple[Any, str]] = {
     "stride": (True, "the stride optimum of the runner's body and what-if cadences -10 to +10 %% "
                      "(--no-stride: the touchdowns only)"),
     "stride_model": (STRIDE_MODEL, "the stride's model: scenes (formopt stride's: Hermite-Simpson at 40 "
-                                   "intervals, mesh-converged: 80-164 s a trial) or quick (a preview: the "
+                                   "intervals, mesh-converged: 80-165 s a trial) or quick (a preview: the "
                                    "trapezoid at 30 intervals, knee and ankle springs: 15-18 s a trial, not "
                                    "mesh-converged)"),
 }

@@ -31,8 +31,8 @@ the other strikes' free optima beside the nominal curve, the curve's first sweep
 (stride_map.first_sweep), the band's free optima beside the family and its strides after it
 (compare_band; benchmarks/compare_speed.py --stride times each stage and process,
 docs/reference/performance.md). What the section says beside its numbers: compare_notes.
-Every stride is built as the section's model builds it (stride_form.STRIDE_MODELS: quick, the
-default, or scenes, formopt stride's).
+Every stride is built as the section's model builds it (stride_form.STRIDE_MODELS: scenes,
+formopt stride's and the default, or quick, a preview on the trapezoid).
 """
 
 from __future__ import annotations
@@ -59,7 +59,7 @@ from .compare_band import (
 )
 from .compare_notes import ENVELOPE, section_notes
 from .pool import Background
-from .stride_form import STRIDE_MODEL, TRANSCRIPTION, joint_work, model_of, placement_m, stride_scene
+from .stride_form import STRIDE_MODEL, joint_work, model_of, placement_m, stride_scene
 from .stride_map import better, cadence_curve, warm
 
 WHAT_IF_PCT = (-10.0, -5.0, 5.0, 10.0)  # cadence changes asked (% of the runner's cadence)
@@ -204,7 +204,7 @@ class StrideAnswer:
     notes: list[str]
     seconds: float
     nominal_nodes: int  # collocation intervals of every stride solved
-    transcription: str = TRANSCRIPTION  # theirs (StrideSettings.transcription)
+    transcription: str  # theirs (StrideSettings.transcription)
     model: str | None = None  # theirs (stride_form.STRIDE_MODELS; None: another)
 
     @property

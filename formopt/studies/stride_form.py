@@ -25,12 +25,12 @@ from ..optim.stride.problem import (
     springs,
 )
 
-# collocation intervals of compare's strides and the literature checks: at 24 the free optimum
+# collocation intervals of compare's quick model and the literature checks: at 24 the free optimum
 # of RBDS001's body (heel, effort) jumped between local optima, 266 steps/min at 3.584 m/s and
 # 142.5 at 3.58 (2 starts); at 30 it is 175.7 steps/min (objective 0.780, lower than both) with
 # 1 or 2 starts, 2-3 s of CPU (2026-11-23)
 NODES = 30
-# the transcription of compare's strides and the literature checks. Hermite-Simpson at 24
+# the transcription of compare's quick model and the literature checks. Hermite-Simpson at 24
 # intervals is mesh-converged where the trapezoid at 30 is not (compare's three shipped runners,
 # each imposed stride solved again on twice the mesh: the objective moved 0.1-1.5 % against 10-18 %,
 # the what-ifs' changes 0.1-5.6 W against 1.3-19.2 W), but the section then takes 24-42 s a trial
@@ -49,9 +49,9 @@ MAX_ITER = 500  # IPOPT iterations: a converging stride takes 30-300 (2026-11-23
 #   problem.RUNNER_ANKLE): Hermite-Simpson at 40 intervals, the ankle's spring alone, the impacts
 #   charged, moment dynamics, the approach floor and IPOPT's 1000 iterations: mesh-converged
 #   (optim.stride.notes.RUNNER_MESH, RUNNER_COULOMB_MESH), every stride of the three shipped
-#   runners valid, 80-164 s a section (benchmarks/compare_speed.py --model scenes; `formopt
+#   runners valid, 80-165 s a section (benchmarks/compare_speed.py --model scenes; `formopt
 #   compare --scene problems/compare/runners.toml`: 89 / 113 / 104 s and 80 / 146 / 103 s,
-#   T35 / T25 / RIC, 2026-11-28). The default since 2026-11-28: design.md section 7 asks of a
+#   then 91 / 165 / 114 s as the default, T35 / T25 / RIC, 2026-11-28). The default since 2026-11-28: design.md section 7 asks of a
 #   reported optimum that N against 2N nodes move it within 1 %, and on the quick model a
 #   different warm start of the band's metabolic variant turned 6 of the 12 shipped verdicts
 #   (scenes: 1; docs/howto/compare.md, "Two stride models");

@@ -56,11 +56,11 @@ def test_scene_file_gives_one_table_across_trials(tmp_path, capsys, monkeypatch)
     monkeypatch.setattr(compare_command, "answer", lambda result, progress=None, model=None: models.append(model))
     scene = tmp_path / "runners.toml"
     scene.write_text(f'[compare]\nmass = 62\nheight = 1.81\nstatic = "{STATIC}"\nper_step = false\n'
-                     f'bounds = {{ knee = [0, 90] }}\nstride_model = "scenes"\n[[trial]]\ntrial = "{RUN35}"\n'
+                     f'bounds = {{ knee = [0, 90] }}\nstride_model = "quick"\n[[trial]]\ntrial = "{RUN35}"\n'
                      f'[[trial]]\ntrial = "{RUN25}"\nforces = "{FORCES25}"\n')
     out = tmp_path / "out"
     assert main(["compare", "--scene", str(scene), "--json", "--out", str(out), "--starts", "1"]) == 0
-    assert models == ["scenes", "scenes"]
+    assert models == ["quick", "quick"]
     rows = (out / "trials.csv").read_text().splitlines()
     assert len(rows) == 1 + 4 and "RBDS001runT25markers.txt" in rows[-1]
     printed = json.loads(capsys.readouterr().out)  # the whole of stdout is one JSON object
