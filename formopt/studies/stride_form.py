@@ -14,6 +14,7 @@ from ..io.stride_scene import StrideScene
 from ..mechanics.body import Body
 from ..mechanics.joint_space import JOINTS
 from ..optim.stride import Stride, StrideSettings
+from ..optim.stride.actuation import springs
 from ..optim.stride.problem import (
     APPROACH_SPEED,
     MOMENT_TIME,
@@ -22,7 +23,6 @@ from ..optim.stride.problem import (
     RUNNER_NODES,
     RUNNER_TENDONS,
     RUNNER_TRANSCRIPTION,
-    springs,
 )
 
 # collocation intervals of compare's quick model and the literature checks: at 24 the free optimum

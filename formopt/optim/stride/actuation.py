@@ -168,6 +168,11 @@ class Torques:
         return js.passive(theta)
 
 
+def springs(tendons: dict) -> dict:
+    """The springs of a tendons mapping ({joint: N m/rad per kg}): a spring at zero is none."""
+    return {joint: k for joint, k in tendons.items() if k}
+
+
 class TorquesWithSprings(Torques):
     """Torque sources with a spring in parallel at the stance leg's joints (tendons):
 
@@ -179,7 +184,7 @@ class TorquesWithSprings(Torques):
 
     def __init__(self, mass: float, limit: float, stiffness: dict, dynamic: bool = False, velocity: bool = False):
         super().__init__(mass, limit, dynamic, velocity)
-        self.stiffness = {f"{joint}_R": k for joint, k in stiffness.items() if k}
+        self.stiffness = {f"{joint}_R": k for joint, k in springs(stiffness).items()}
 
     def passive(self, theta, theta_td, stance: bool):
         out = [0.0] * NU

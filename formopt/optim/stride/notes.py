@@ -6,6 +6,7 @@ same cost, beside it too (`transcription_note`)."""
 
 from __future__ import annotations
 
+from .actuation import springs
 from .problem import (
     APPROACH_SPEED,
     FORCE_RATE_WEIGHT,
@@ -15,7 +16,6 @@ from .problem import (
     RUNNER_NODES,
     RUNNER_TRANSCRIPTION,
     StrideSettings,
-    springs,
 )
 
 # How far a stride's optimum moved with its mesh, N to 2N intervals (docs/concepts/stride.md,

@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 
 from ...mechanics.errors import InputError
 from ...mechanics.muscles import Muscles
-from .actuation import ACTIVATION_RATE_SMOOTHING
+from .actuation import ACTIVATION_RATE_SMOOTHING, springs
 from .contact import CLEARANCE
 from .ranges import RANGES, check
 
@@ -252,11 +252,6 @@ RUNNER_IMPACT_WEIGHT = 1.0 / EFFICIENCY_POSITIVE
 RUNNER_TRANSCRIPTION, RUNNER_NODES = "hermite-simpson", 40  # their mesh (the scene files' [stride])
 
 
-def springs(tendons: dict) -> dict:
-    """The springs of a tendons mapping ({joint: N m/rad per kg}): a spring at zero is none."""
-    return {joint: k for joint, k in tendons.items() if k}
-
-
 def other_leg(point: str) -> str:
     """heel_R <-> heel_L, forefoot_R <-> forefoot_L."""
     return point[:-1] + ("L" if point.endswith("R") else "R")
@@ -423,7 +418,7 @@ class StrideSettings:
     @property
     def actuation(self) -> str:
         """The rung of ACTUATIONS these settings build."""
-        return "muscles" if self.muscles is not None else "torque+springs" if any(self.tendons.values()) else "torque"
+        return "muscles" if self.muscles is not None else "torque+springs" if springs(self.tendons) else "torque"
 
     @property
     def rate_weight(self) -> float:
