@@ -32,7 +32,8 @@ MESH_MOVE_W = 20.0  # W
 # "Hermite-Simpson under the what-ifs", 2026-11-28)
 HERMITE_NOTE = ("on the three shipped runners, Hermite-Simpson at 24 intervals (mesh-converged within 1.5 %) "
                 "turned one what-if of twelve, and the torque scenes' model (formopt stride's, stride_model "
-                "'scenes': mesh-converged, 5-10 times slower) eight: read the verdicts as this model's "
+                "'scenes', the default: mesh-converged, 5-10 times slower) eight: read the verdicts as this "
+                "preview's "
                 "(docs/howto/compare.md, 'Two stride models')")
 # the envelope: the free optimum's objective at most this (relative) above the least imposed
 # stride's; IPOPT's optima are exact to about 1e-6, so a larger gap is another local optimum
@@ -134,7 +135,7 @@ def section_notes(curves: list[Curve], best: dict, runner: float, nominal) -> li
     settings = nominal.settings
     measured = model_of(settings) == "quick" and settings.law == "coulomb" and len(curves) > 1
     near = [mesh_what_if_note(curves[0]), HERMITE_NOTE] if measured else []
-    notes = [mesh_note(nominal.settings), *filter(None, near), *optima_notes(curves[0])]
+    notes = [mesh_note(settings), *filter(None, near), *optima_notes(curves[0])]
     if not curves[0].ok:
         notes.append(f"the nominal stride did not converge ({curves[0].why_not}): no what-if")
     notes += [f"{cv.name} left out of the band: {cv.why_not}" for cv in curves[1:] if not cv.ok]
